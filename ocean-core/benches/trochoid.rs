@@ -1,0 +1,2 @@
+//! Trochoid wave-sum benchmarks.
+fn main() {}

@@ -1,0 +1,144 @@
+//! The `f32` trochoid kernel, shaped for auto-vectorisation.
+//!
+//! Points are processed in chunks of [`LANES`]; every operation is written element-wise over
+//! `[f32; LANES]` arrays, which LLVM turns into SSE2, AVX2 or NEON instructions. Each lane sees
+//! the same sequence of IEEE operations whatever the vector width, and there is no fused
+//! multiply-add, so results are bit-identical across targets and thread counts.
+
+use glam::Vec3;
+
+use crate::sincos::sincos;
+use crate::wave::Wave;
+
+/// Points per chunk of the `f32` kernel.
+pub const LANES: usize = 8;
+
+/// Per-wave constants of the `f32` kernel, derived once from a [`Wave`].
+///
+/// With θ = k·p₀ − ωt + Φ, s = sin θ, c = cos θ, k̂ = k/|k|, the wave contributes (Eq. 6, 7):
+/// displacement −k̂ A s (horizontal) and A c (vertical); horizontal Jacobian
+/// ∂p/∂p₀ −= (k kᵀ/|k|) A c; height gradient ∂y/∂p₀ −= k A s.
+///
+/// `#[repr(C)]` and [`bytemuck::Pod`]: the GPU pass uploads this array as it is (32 bytes per
+/// wave, the layout of WGSL's `WaveCoeffs`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct WaveCoeffs {
+    /// A.
+    pub a: f32,
+    /// A k_x/|k|.
+    pub ahx: f32,
+    /// A k_z/|k|.
+    pub ahz: f32,
+    /// A k_x²/|k|.
+    pub cxx: f32,
+    /// A k_x k_z/|k|.
+    pub cxz: f32,
+    /// A k_z²/|k|.
+    pub czz: f32,
+    /// A k_x.
+    pub gx: f32,
+    /// A k_z.
+    pub gz: f32,
+}
+
+impl WaveCoeffs {
+    /// The kernel constants of `wave`, computed in `f64` and rounded once.
+    pub fn of(wave: &Wave) -> Self {
+        let a = wave.amplitude();
+        let k = wave.wave_vector();
+        let m = wave.wavenumber();
+        Self {
+            a: a as f32,
+            ahx: (a * k.x / m) as f32,
+            ahz: (a * k.y / m) as f32,
+            cxx: (a * k.x * k.x / m) as f32,
+            cxz: (a * k.x * k.y / m) as f32,
+            czz: (a * k.y * k.y / m) as f32,
+            gx: (a * k.x) as f32,
+            gz: (a * k.y) as f32,
+        }
+    }
+}
+
+/// Running sums over the waves for one chunk of points.
+pub(crate) struct Acc {
+    dx: [f32; LANES],
+    y: [f32; LANES],
+    dz: [f32; LANES],
+    jxx: [f32; LANES],
+    jxz: [f32; LANES],
+    jzz: [f32; LANES],
+    sx: [f32; LANES],
+    sz: [f32; LANES],
+}
+
+impl Acc {
+    #[inline(always)]
+    pub(crate) fn new() -> Self {
+        Self {
+            dx: [0.0; LANES],
+            y: [0.0; LANES],
+            dz: [0.0; LANES],
+            jxx: [1.0; LANES],
+            jxz: [0.0; LANES],
+            jzz: [1.0; LANES],
+            sx: [0.0; LANES],
+            sz: [0.0; LANES],
+        }
+    }
+
+    /// Adds one wave at phases `theta` (each in [-2π, 2π]).
+    #[inline(always)]
+    pub(crate) fn add(&mut self, c: &WaveCoeffs, theta: &[f32; LANES]) {
+        for l in 0..LANES {
+            let (s, co) = sincos(theta[l]);
+            self.dx[l] -= c.ahx * s;
+            self.dz[l] -= c.ahz * s;
+            self.y[l] += c.a * co;
+            self.jxx[l] -= c.cxx * co;
+            self.jxz[l] -= c.cxz * co;
+            self.jzz[l] -= c.czz * co;
+            self.sx[l] -= c.gx * s;
+            self.sz[l] -= c.gz * s;
+        }
+    }
+
+    /// Writes the first `out_pos.len()` lanes: positions `(x + dx, y, z + dz)` and unit normals.
+    ///
+    /// The normal is ∂p/∂z × ∂p/∂x with ∂p/∂x = (J_xx, s_x, J_xz) and ∂p/∂z = (J_xz, s_z, J_zz);
+    /// its y component is det J, which stays ≥ 0 while the steepness sum is ≤ 1. Where the cross
+    /// product vanishes (only at a cusp, k·A = 1) the normal is taken as +y.
+    #[inline(always)]
+    pub(crate) fn finish(
+        &self,
+        x: &[f32; LANES],
+        z: &[f32; LANES],
+        out_pos: &mut [Vec3],
+        out_nrm: &mut [Vec3],
+    ) {
+        let mut px = [0.0f32; LANES];
+        let mut pz = [0.0f32; LANES];
+        let mut nx = [0.0f32; LANES];
+        let mut ny = [0.0f32; LANES];
+        let mut nz = [0.0f32; LANES];
+        for l in 0..LANES {
+            px[l] = x[l] + self.dx[l];
+            pz[l] = z[l] + self.dz[l];
+            let a = self.sz[l] * self.jxz[l] - self.jzz[l] * self.sx[l];
+            let b = self.jzz[l] * self.jxx[l] - self.jxz[l] * self.jxz[l];
+            let c = self.jxz[l] * self.sx[l] - self.sz[l] * self.jxx[l];
+            let len2 = a * a + b * b + c * c;
+            let degenerate = len2 <= 0.0;
+            let inv = 1.0 / crate::math::sqrtf(if degenerate { 1.0 } else { len2 });
+            nx[l] = if degenerate { 0.0 } else { a * inv };
+            ny[l] = if degenerate { 1.0 } else { b * inv };
+            nz[l] = if degenerate { 0.0 } else { c * inv };
+        }
+        let n = out_pos.len().min(LANES);
+        for l in 0..n {
+            out_pos[l] = Vec3::new(px[l], self.y[l], pz[l]);
+            out_nrm[l] = Vec3::new(nx[l], ny[l], nz[l]);
+        }
+    }
+}

@@ -1,0 +1,480 @@
+//! The sum of trochoid waves (Yrjölä & Larsson Eq. 6 and 7; Bruneton et al. Eq. 2) with its
+//! analytic derivatives, at single points and in batches.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use glam::{DVec2, DVec3, Vec2, Vec3};
+
+use crate::error::{EvalError, WaveError};
+use crate::grid::Grid;
+use crate::kernel::{Acc, LANES, WaveCoeffs};
+use crate::math;
+use crate::phase::reduce_angle_f32;
+use crate::wave::{Wave, WaveDesc};
+
+/// Surface point from the `f32` kernel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// Displaced position minus rest position: (Δx, y, Δz), metres.
+    pub displacement: Vec3,
+    /// Unit surface normal (y up).
+    pub normal: Vec3,
+}
+
+/// Surface point from the `f64` reference path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SampleF64 {
+    /// Displaced position minus rest position: (Δx, y, Δz), metres.
+    pub displacement: DVec3,
+    /// Unit surface normal (y up).
+    pub normal: DVec3,
+}
+
+/// A sum of trochoid waves, evaluated by
+///
+/// p = p₀ − Σᵢ k̂ᵢ Aᵢ sin θᵢ,  y = Σᵢ Aᵢ cos θᵢ,  θᵢ = kᵢ·p₀ − ωᵢ t + Φᵢ   (Eq. 6, 7)
+///
+/// with normals from the analytic derivatives of p and y with respect to p₀.
+///
+/// Each wave has steepness kᵢAᵢ ≤ 1. The *sum* still loops over itself where the horizontal
+/// Jacobian det(∂p/∂p₀) turns negative, which cannot happen while
+/// [`WaveSet::steepness_sum`] ≤ 1; sets above that are allowed (the lighting paper's spectra
+/// exceed it) and produce folded crests where the waves align.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WaveSet {
+    waves: Vec<Wave>,
+    coeffs: Vec<WaveCoeffs>,
+}
+
+/// Per-wave `f64` constants for one evaluation time.
+#[derive(Clone, Copy)]
+struct Timed {
+    k: DVec2,
+    /// k·origin − ωt + Φ, unreduced.
+    base: f64,
+}
+
+fn check_time(t: f64) -> Result<(), EvalError> {
+    if t.is_finite() {
+        Ok(())
+    } else {
+        Err(EvalError::Time(t))
+    }
+}
+
+fn check_outputs(n: usize, pos: &[Vec3], nrm: &[Vec3]) -> Result<(), EvalError> {
+    if n == 0 {
+        return Err(EvalError::Empty);
+    }
+    if pos.len() != n || nrm.len() != n {
+        return Err(EvalError::OutputLength {
+            expected: n,
+            positions: pos.len(),
+            normals: nrm.len(),
+        });
+    }
+    Ok(())
+}
+
+/// Runs `f` compiled for the best SIMD level the CPU offers (AVX2 on x86-64 when present).
+/// The kernel avoids fused multiply-add, so every level yields the same bits.
+#[inline(always)]
+fn dispatch<R>(f: impl FnOnce() -> R) -> R {
+    pulp::Arch::new().dispatch(f)
+}
+
+impl WaveSet {
+    /// A set of already validated waves; at least one.
+    pub fn new(waves: &[Wave]) -> Result<Self, WaveError> {
+        if waves.is_empty() {
+            return Err(WaveError::Empty);
+        }
+        Ok(Self {
+            waves: waves.to_vec(),
+            coeffs: waves.iter().map(WaveCoeffs::of).collect(),
+        })
+    }
+
+    /// Builds every description and collects them into a set.
+    pub fn from_descs(descs: &[WaveDesc]) -> Result<Self, WaveError> {
+        let waves = descs
+            .iter()
+            .map(WaveDesc::build)
+            .collect::<Result<Vec<_>, _>>()?;
+        Self::new(&waves)
+    }
+
+    /// The waves, in evaluation order.
+    pub fn waves(&self) -> &[Wave] {
+        &self.waves
+    }
+
+    /// The per-wave `f32` kernel constants, as the GPU pass uploads them.
+    pub fn coeffs(&self) -> &[WaveCoeffs] {
+        &self.coeffs
+    }
+
+    /// Σ kᵢAᵢ. At most 1 guarantees the summed surface never folds over itself.
+    pub fn steepness_sum(&self) -> f64 {
+        self.waves.iter().map(Wave::steepness).sum()
+    }
+
+    /// Σ Aᵢ: the largest height above (and depth below) y = 0 and the largest horizontal
+    /// displacement any point can reach. Use it for bounding volumes and culling margins.
+    pub fn max_amplitude(&self) -> f64 {
+        self.waves.iter().map(Wave::amplitude).sum()
+    }
+
+    fn timed(&self, origin: DVec2, t: f64) -> Vec<Timed> {
+        self.waves
+            .iter()
+            .map(|w| Timed {
+                k: w.wave_vector(),
+                base: w.phase_at(origin, t),
+            })
+            .collect()
+    }
+
+    /// The `f64` reference: every quantity in double precision with the platform's (or libm's)
+    /// `sin` and `cos`. Slow; the oracle the `f32` paths are tested against.
+    pub fn sample_f64(&self, rest: DVec2, t: f64) -> Result<SampleF64, EvalError> {
+        check_time(t)?;
+        if !rest.is_finite() {
+            return Err(EvalError::Position { index: 0 });
+        }
+        let mut d = DVec3::ZERO;
+        let (mut jxx, mut jxz, mut jzz, mut sx, mut sz) = (1.0, 0.0, 1.0, 0.0, 0.0);
+        for w in &self.waves {
+            let theta = w.phase_at(rest, t);
+            let (s, c) = (math::sin(theta), math::cos(theta));
+            let a = w.amplitude();
+            let k = w.wave_vector();
+            let m = w.wavenumber();
+            d.x -= a * k.x / m * s;
+            d.z -= a * k.y / m * s;
+            d.y += a * c;
+            jxx -= a * k.x * k.x / m * c;
+            jxz -= a * k.x * k.y / m * c;
+            jzz -= a * k.y * k.y / m * c;
+            sx -= a * k.x * s;
+            sz -= a * k.y * s;
+        }
+        let n = DVec3::new(sz * jxz - jzz * sx, jzz * jxx - jxz * jxz, jxz * sx - sz * jxx);
+        let len = math::sqrt(n.length_squared());
+        let normal = if len > 0.0 { n / len } else { DVec3::Y };
+        Ok(SampleF64 {
+            displacement: d,
+            normal,
+        })
+    }
+
+    /// Displacement and normal at one world rest position, through the `f32` kernel (the same
+    /// arithmetic as [`WaveSet::evaluate_points`]).
+    pub fn sample(&self, rest: DVec2, t: f64) -> Result<Sample, EvalError> {
+        let mut pos = [Vec3::ZERO];
+        let mut nrm = [Vec3::ZERO];
+        self.evaluate_points(rest, &[Vec2::ZERO], t, &mut pos, &mut nrm)?;
+        Ok(Sample {
+            displacement: pos[0],
+            normal: nrm[0],
+        })
+    }
+
+    /// Evaluates rest points `origin + local[n]` at time `t`.
+    ///
+    /// Writes positions relative to `origin` (`local + displacement`) and unit normals. Phases
+    /// are formed in `f64` per point, so `local` may span any distance. Nothing is written if
+    /// an argument is invalid.
+    pub fn evaluate_points(
+        &self,
+        origin: DVec2,
+        local: &[Vec2],
+        t: f64,
+        out_pos: &mut [Vec3],
+        out_nrm: &mut [Vec3],
+    ) -> Result<(), EvalError> {
+        let timed = self.check_points(origin, local, t, out_pos, out_nrm)?;
+        dispatch(|| points_kernel(&self.coeffs, &timed, local, out_pos, out_nrm));
+        Ok(())
+    }
+
+    fn check_points(
+        &self,
+        origin: DVec2,
+        local: &[Vec2],
+        t: f64,
+        out_pos: &[Vec3],
+        out_nrm: &[Vec3],
+    ) -> Result<Vec<Timed>, EvalError> {
+        check_time(t)?;
+        check_outputs(local.len(), out_pos, out_nrm)?;
+        if !origin.is_finite() {
+            return Err(EvalError::Position { index: 0 });
+        }
+        if let Some(index) = local.iter().position(|p| !p.is_finite()) {
+            return Err(EvalError::Position { index });
+        }
+        Ok(self.timed(origin, t))
+    }
+
+    /// Evaluates every point of `grid` at time `t` into row-major outputs (see [`Grid`]):
+    /// positions relative to `grid.origin`, and unit normals.
+    pub fn evaluate_grid(
+        &self,
+        grid: &Grid,
+        t: f64,
+        out_pos: &mut [Vec3],
+        out_nrm: &mut [Vec3],
+    ) -> Result<(), EvalError> {
+        let plan = GridPlan::new(self, grid, t, out_pos, out_nrm)?;
+        let mut cols = vec![0.0f32; plan.col_table_len()];
+        plan.fill_columns(&mut cols, 0);
+        let nx = grid.size.0;
+        for (j, (p, n)) in out_pos
+            .chunks_mut(nx)
+            .zip(out_nrm.chunks_mut(nx))
+            .enumerate()
+        {
+            plan.row(&self.coeffs, &cols, j, p, n);
+        }
+        Ok(())
+    }
+
+    /// Fills the phase tables of a grid at time `t`, as the GPU pass consumes them:
+    /// `rows[w * size.1 + j]` and `cols[w * size.0 + i]`, both in [-π, π], with the phase of
+    /// wave `w` at point (i, j) equal to `rows[..] + cols[..]` (modulo 2π).
+    pub fn grid_phases(
+        &self,
+        grid: &Grid,
+        t: f64,
+        rows: &mut [f32],
+        cols: &mut [f32],
+    ) -> Result<(), EvalError> {
+        check_time(t)?;
+        grid.len()?;
+        let (nx, nz) = grid.size;
+        let w = self.waves.len();
+        if rows.len() != w * nz || cols.len() != w * nx {
+            return Err(EvalError::Grid(
+                "phase tables must hold waves x rows and waves x columns values",
+            ));
+        }
+        let timed = self.timed(grid.origin, t);
+        for (wi, tw) in timed.iter().enumerate() {
+            for j in 0..nz {
+                rows[wi * nz + j] = row_phase(tw, grid, j);
+            }
+            for i in 0..nx {
+                cols[wi * nx + i] = col_phase(tw, grid, i);
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(feature = "std")]
+mod parallel {
+    use super::*;
+    use rayon::prelude::*;
+
+    /// Points per parallel task: large enough to amortise scheduling, small enough to balance.
+    const POINTS_PER_TASK: usize = LANES * 256;
+
+    impl WaveSet {
+        /// [`WaveSet::evaluate_grid`] on the current rayon thread pool (run it inside
+        /// `ThreadPool::install` to choose the thread count). Output is bit-identical to the
+        /// single-threaded path for every thread count.
+        pub fn evaluate_grid_par(
+            &self,
+            grid: &Grid,
+            t: f64,
+            out_pos: &mut [Vec3],
+            out_nrm: &mut [Vec3],
+        ) -> Result<(), EvalError> {
+            let plan = GridPlan::new(self, grid, t, out_pos, out_nrm)?;
+            let mut cols = vec![0.0f32; plan.col_table_len()];
+            let block = plan.waves * LANES;
+            cols.par_chunks_mut(block * 16)
+                .enumerate()
+                .for_each(|(c, chunk)| plan.fill_columns(chunk, c * 16));
+            let nx = grid.size.0;
+            out_pos
+                .par_chunks_mut(nx)
+                .zip(out_nrm.par_chunks_mut(nx))
+                .enumerate()
+                .for_each(|(j, (p, n))| plan.row(&self.coeffs, &cols, j, p, n));
+            Ok(())
+        }
+
+        /// [`WaveSet::evaluate_points`] on the current rayon thread pool; bit-identical to it.
+        pub fn evaluate_points_par(
+            &self,
+            origin: DVec2,
+            local: &[Vec2],
+            t: f64,
+            out_pos: &mut [Vec3],
+            out_nrm: &mut [Vec3],
+        ) -> Result<(), EvalError> {
+            let timed = self.check_points(origin, local, t, out_pos, out_nrm)?;
+            local
+                .par_chunks(POINTS_PER_TASK)
+                .zip(out_pos.par_chunks_mut(POINTS_PER_TASK))
+                .zip(out_nrm.par_chunks_mut(POINTS_PER_TASK))
+                .for_each(|((l, p), n)| {
+                    dispatch(|| points_kernel(&self.coeffs, &timed, l, p, n));
+                });
+            Ok(())
+        }
+    }
+}
+
+#[inline(always)]
+fn row_phase(tw: &Timed, grid: &Grid, j: usize) -> f32 {
+    reduce_angle_f32(tw.base + tw.k.y * (j as f64 * grid.spacing.y))
+}
+
+#[inline(always)]
+fn col_phase(tw: &Timed, grid: &Grid, i: usize) -> f32 {
+    reduce_angle_f32(tw.k.x * (i as f64 * grid.spacing.x))
+}
+
+/// Everything a grid evaluation needs besides the column table.
+struct GridPlan<'a> {
+    grid: &'a Grid,
+    timed: Vec<Timed>,
+    waves: usize,
+    chunks: usize,
+}
+
+impl<'a> GridPlan<'a> {
+    fn new(
+        set: &WaveSet,
+        grid: &'a Grid,
+        t: f64,
+        out_pos: &[Vec3],
+        out_nrm: &[Vec3],
+    ) -> Result<Self, EvalError> {
+        check_time(t)?;
+        let n = grid.len()?;
+        check_outputs(n, out_pos, out_nrm)?;
+        Ok(Self {
+            grid,
+            timed: set.timed(grid.origin, t),
+            waves: set.waves.len(),
+            chunks: grid.size.0.div_ceil(LANES),
+        })
+    }
+
+    /// Column phases, chunk-major: `[chunk][wave][lane]`, so a chunk streams one block.
+    fn col_table_len(&self) -> usize {
+        self.chunks * self.waves * LANES
+    }
+
+    /// Fills `out`, which starts at chunk `first_chunk`, with column phases.
+    fn fill_columns(&self, out: &mut [f32], first_chunk: usize) {
+        let nx = self.grid.size.0;
+        for (c, block) in out.chunks_mut(self.waves * LANES).enumerate() {
+            let i0 = (first_chunk + c) * LANES;
+            for (tw, lanes) in self.timed.iter().zip(block.chunks_mut(LANES)) {
+                for (l, v) in lanes.iter_mut().enumerate() {
+                    // Padding lanes past the last column get phase 0; they are never written out.
+                    *v = if i0 + l < nx {
+                        col_phase(tw, self.grid, i0 + l)
+                    } else {
+                        0.0
+                    };
+                }
+            }
+        }
+    }
+
+    fn row(&self, coeffs: &[WaveCoeffs], cols: &[f32], j: usize, pos: &mut [Vec3], nrm: &mut [Vec3]) {
+        let mut rp = [0.0f32; 256];
+        let mut heap;
+        let rp: &mut [f32] = if self.waves <= rp.len() {
+            &mut rp[..self.waves]
+        } else {
+            heap = vec![0.0f32; self.waves];
+            &mut heap
+        };
+        for (v, tw) in rp.iter_mut().zip(&self.timed) {
+            *v = row_phase(tw, self.grid, j);
+        }
+        let z = self.grid.local(0, j).1;
+        let rp = &*rp;
+        dispatch(|| grid_row_kernel(coeffs, rp, cols, self.grid, z, pos, nrm));
+    }
+}
+
+#[inline(always)]
+fn lanes(s: &[f32]) -> &[f32; LANES] {
+    s[..LANES].try_into().expect("slice of LANES floats")
+}
+
+#[inline(always)]
+fn grid_row_kernel(
+    coeffs: &[WaveCoeffs],
+    row_phases: &[f32],
+    cols: &[f32],
+    grid: &Grid,
+    z: f32,
+    out_pos: &mut [Vec3],
+    out_nrm: &mut [Vec3],
+) {
+    let block = coeffs.len() * LANES;
+    let dx = grid.spacing.x as f32;
+    for (c, (pos, nrm)) in out_pos
+        .chunks_mut(LANES)
+        .zip(out_nrm.chunks_mut(LANES))
+        .enumerate()
+    {
+        let phases = &cols[c * block..(c + 1) * block];
+        let mut acc = Acc::new();
+        for ((coeff, rp), cp) in coeffs.iter().zip(row_phases).zip(phases.chunks_exact(LANES)) {
+            let cp = lanes(cp);
+            let mut theta = [0.0f32; LANES];
+            for l in 0..LANES {
+                theta[l] = rp + cp[l];
+            }
+            acc.add(coeff, &theta);
+        }
+        let mut x = [0.0f32; LANES];
+        for (l, v) in x.iter_mut().enumerate() {
+            *v = (c * LANES + l) as f32 * dx;
+        }
+        acc.finish(&x, &[z; LANES], pos, nrm);
+    }
+}
+
+#[inline(always)]
+fn points_kernel(
+    coeffs: &[WaveCoeffs],
+    timed: &[Timed],
+    local: &[Vec2],
+    out_pos: &mut [Vec3],
+    out_nrm: &mut [Vec3],
+) {
+    for ((pts, pos), nrm) in local
+        .chunks(LANES)
+        .zip(out_pos.chunks_mut(LANES))
+        .zip(out_nrm.chunks_mut(LANES))
+    {
+        let mut x = [0.0f32; LANES];
+        let mut z = [0.0f32; LANES];
+        for (l, p) in pts.iter().enumerate() {
+            x[l] = p.x;
+            z[l] = p.y;
+        }
+        let mut acc = Acc::new();
+        for (coeff, tw) in coeffs.iter().zip(timed) {
+            let mut theta = [0.0f32; LANES];
+            for l in 0..LANES {
+                theta[l] =
+                    reduce_angle_f32(tw.base + tw.k.x * f64::from(x[l]) + tw.k.y * f64::from(z[l]));
+            }
+            acc.add(coeff, &theta);
+        }
+        acc.finish(&x, &z, pos, nrm);
+    }
+}
