@@ -1,1 +1,36 @@
-//! C ABI of the ocean crates.
+//! # ocean-ffi
+//!
+//! The C ABI of the ocean crates. `include/ocean.h` is generated from this crate by cbindgen
+//! (`cbindgen.toml`); `tests/header.rs` fails when the checked-in header differs from a fresh
+//! generation, and rewrites it when `OCEAN_BLESS=1`.
+//!
+//! The model is rustls-ffi:
+//!
+//! - Every fallible function returns an [`OceanStatus`] (`OCEAN_STATUS_OK` = 0) and writes its
+//!   outputs through out-parameters, and only on success.
+//! - A detailed message for the most recent failure on the calling thread is available from
+//!   [`ocean_last_error_message`]; [`ocean_status_message`] gives a fixed text per code.
+//! - Objects are opaque handles with `_create` / `_destroy` pairs; destroy accepts NULL.
+//! - Every pointer is checked for NULL and alignment, every length for overflow, every float
+//!   for NaN and infinity. No panic crosses the boundary: each function body runs inside
+//!   `catch_unwind`, and a panic becomes `OCEAN_STATUS_PANIC`.
+//!
+//! `unsafe` cannot be forbidden in a C ABI crate; instead `unsafe_op_in_unsafe_fn` is denied,
+//! functions that take raw pointers are `unsafe extern "C"` with a `# Safety` section (what the
+//! caller must guarantee beyond what is checked), and the few `unsafe` blocks (turning checked
+//! raw pointers into references and slices) each carry a `SAFETY:` comment.
+#![deny(unsafe_op_in_unsafe_fn)]
+#![deny(clippy::undocumented_unsafe_blocks)]
+#![warn(missing_docs)]
+
+mod status;
+mod version;
+mod waves;
+
+pub use status::{OceanStatus, ocean_last_error_message, ocean_status_message};
+pub use version::{OCEAN_VERSION_MAJOR, OCEAN_VERSION_MINOR, OCEAN_VERSION_PATCH, ocean_version};
+pub use waves::{
+    OceanGrid, OceanVec2, OceanVec3, OceanWaveDesc, OceanWaves, ocean_waves_count,
+    ocean_waves_create, ocean_waves_destroy, ocean_waves_evaluate, ocean_waves_evaluate_grid,
+    ocean_waves_max_amplitude, ocean_waves_steepness_sum,
+};

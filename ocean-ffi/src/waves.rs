@@ -1,0 +1,580 @@
+//! Trochoid (Gerstner) wave sets: create, evaluate at points or on a grid, query, destroy.
+
+use core::mem::{align_of, size_of};
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
+use bytemuck::{Pod, Zeroable};
+use glam::{DVec2, Vec2, Vec3};
+use ocean_core::{Depth, EvalError, Grid, WaveDesc, WaveError, WaveSet};
+
+use crate::status::{Error, OceanStatus, guard};
+
+/// A point on the sea plane y = 0: world x and z in metres (single precision).
+///
+/// The layout (two packed floats, 8 bytes) is that of GLM's `glm::vec2` and `float[2]`; the
+/// second member holds z, not y.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct OceanVec2 {
+    /// x, metres.
+    pub x: f32,
+    /// z, metres.
+    pub z: f32,
+}
+
+/// A 3D vector (metres for positions; unit length for normals), right-handed, y up.
+///
+/// The layout (three packed floats, 12 bytes) is that of GLM's `glm::vec3` and `float[3]`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct OceanVec3 {
+    /// x, metres.
+    pub x: f32,
+    /// y (up), metres.
+    pub y: f32,
+    /// z, metres.
+    pub z: f32,
+}
+
+const _: () = assert!(size_of::<OceanVec2>() == size_of::<Vec2>());
+const _: () = assert!(align_of::<OceanVec2>() == align_of::<Vec2>());
+const _: () = assert!(size_of::<OceanVec3>() == size_of::<Vec3>());
+const _: () = assert!(align_of::<OceanVec3>() == align_of::<Vec3>());
+
+/// One trochoid (Gerstner) wave train, as the caller describes it (Yrjola & Larsson Eq. 6, 7).
+///
+/// Every member must be finite, except `depth`, which may be `INFINITY` for deep water.
+/// NaN anywhere, or an infinite amplitude, wavelength, direction, phase or a depth of
+/// `-INFINITY`, gives `OCEAN_STATUS_NON_FINITE`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanWaveDesc {
+    /// Amplitude A in metres (half the crest-to-trough height), >= 0. The steepness k*A with
+    /// k = 2*pi/wavelength must be <= 1 (else `OCEAN_STATUS_TOO_STEEP`): A <= wavelength/(2*pi).
+    pub amplitude: f64,
+    /// Wavelength in metres, > 0.
+    pub wavelength: f64,
+    /// x component of the direction of travel on the sea plane; with `direction_z` any finite,
+    /// non-zero vector (it is normalised).
+    pub direction_x: f64,
+    /// z component of the direction of travel.
+    pub direction_z: f64,
+    /// Phase shift in radians, finite.
+    pub phase: f64,
+    /// Water depth in metres, > 0, which sets the angular frequency by the dispersion relation
+    /// omega = sqrt(g*k*tanh(k*depth)) (Eq. 4, g = 9.81 m/s^2); or `INFINITY` for deep water,
+    /// omega = sqrt(g*k) (Eq. 5).
+    pub depth: f64,
+}
+
+/// A regular grid of rest positions on the sea plane: point (i, j), for i < nx and j < nz, rests
+/// at world (origin_x + i*spacing_x, origin_z + j*spacing_z). Outputs are row-major: point (i, j)
+/// is element j*nx + i.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanGrid {
+    /// World x of point (0, 0), metres, finite.
+    pub origin_x: f64,
+    /// World z of point (0, 0), metres, finite.
+    pub origin_z: f64,
+    /// Distance between columns along x, metres, finite and > 0.
+    pub spacing_x: f64,
+    /// Distance between rows along z, metres, finite and > 0.
+    pub spacing_z: f64,
+    /// Number of columns (along x), 1 to 2^24.
+    pub nx: usize,
+    /// Number of rows (along z), 1 to 2^24.
+    pub nz: usize,
+}
+
+/// An immutable set of trochoid waves (opaque). Create with `ocean_waves_create`, free with
+/// `ocean_waves_destroy`. A `const OceanWaves *` may be evaluated and queried from any number
+/// of threads at once; destroying it must not race with any other use.
+pub struct OceanWaves {
+    set: WaveSet,
+}
+
+/// Points from which `ocean_waves_evaluate` splits the work over threads (the results are
+/// bit-identical either way; below this the thread hand-off costs more than it saves).
+const PARALLEL_POINTS: usize = 16 * 1024;
+
+fn check_ptr<T>(p: *const T, name: &str) -> Result<(), Error> {
+    if p.is_null() {
+        return Err(Error::new(
+            OceanStatus::NullPointer,
+            format!("`{name}` is NULL"),
+        ));
+    }
+    if !p.is_aligned() {
+        return Err(Error::new(
+            OceanStatus::MisalignedPointer,
+            format!(
+                "`{name}` ({p:p}) is not aligned to {} bytes",
+                align_of::<T>()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Size in bytes of `n` elements of `T`, if it fits in `isize::MAX` (the limit of every Rust and
+/// C object).
+fn byte_len<T>(n: usize, name: &str) -> Result<usize, Error> {
+    n.checked_mul(size_of::<T>())
+        .filter(|&b| b <= isize::MAX as usize)
+        .ok_or_else(|| {
+            Error::new(
+                OceanStatus::LengthOverflow,
+                format!(
+                    "{n} elements of {} bytes for `{name}` exceed PTRDIFF_MAX bytes",
+                    size_of::<T>()
+                ),
+            )
+        })
+}
+
+/// Fails if the byte ranges `[a, a + a_len)` and `[b, b + b_len)` intersect.
+fn check_disjoint(
+    (a, a_len, a_name): (*const u8, usize, &str),
+    (b, b_len, b_name): (*const u8, usize, &str),
+) -> Result<(), Error> {
+    let (a0, b0) = (a as usize, b as usize);
+    if a0 < b0.saturating_add(b_len) && b0 < a0.saturating_add(a_len) {
+        return Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("`{a_name}` and `{b_name}` overlap"),
+        ));
+    }
+    Ok(())
+}
+
+fn check_time(time: f64) -> Result<(), Error> {
+    if time.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::new(
+            OceanStatus::NonFinite,
+            format!("`time` must be finite seconds, got {time}"),
+        ))
+    }
+}
+
+fn wave_desc(i: usize, d: &OceanWaveDesc) -> Result<WaveDesc, Error> {
+    let fields = [
+        ("amplitude", d.amplitude),
+        ("wavelength", d.wavelength),
+        ("direction_x", d.direction_x),
+        ("direction_z", d.direction_z),
+        ("phase", d.phase),
+    ];
+    for (name, v) in fields {
+        if !v.is_finite() {
+            return Err(Error::new(
+                OceanStatus::NonFinite,
+                format!("descs[{i}].{name} must be finite, got {v}"),
+            ));
+        }
+    }
+    let depth = if d.depth == f64::INFINITY {
+        Depth::Deep
+    } else if !d.depth.is_finite() {
+        return Err(Error::new(
+            OceanStatus::NonFinite,
+            format!(
+                "descs[{i}].depth must be finite metres or +INFINITY (deep water), got {}",
+                d.depth
+            ),
+        ));
+    } else {
+        Depth::Finite(d.depth)
+    };
+    Ok(WaveDesc {
+        amplitude: d.amplitude,
+        wavelength: d.wavelength,
+        direction: DVec2::new(d.direction_x, d.direction_z),
+        phase: d.phase,
+        depth,
+    })
+}
+
+fn wave_error(i: usize, e: WaveError) -> Error {
+    let status = match e {
+        WaveError::TooSteep(_) => OceanStatus::TooSteep,
+        WaveError::Empty => OceanStatus::Empty,
+        _ => OceanStatus::InvalidArgument,
+    };
+    Error::new(status, format!("descs[{i}]: {e}"))
+}
+
+fn eval_error(e: EvalError, positions: &str) -> Error {
+    let status = match e {
+        EvalError::Time(_) => OceanStatus::NonFinite,
+        EvalError::Position { .. } => OceanStatus::NonFinite,
+        EvalError::Empty => OceanStatus::Empty,
+        _ => OceanStatus::InvalidArgument,
+    };
+    let message = match e {
+        EvalError::Position { index } => format!("{positions}[{index}] is not finite"),
+        e => e.to_string(),
+    };
+    Error::new(status, message)
+}
+
+/// Builds a wave set from `n` wave descriptions and stores a new handle in `*out`.
+///
+/// The waves are summed as trochoids (Gerstner waves, Yrjola & Larsson Eq. 6, 7); see
+/// `ocean_waves_evaluate` for the formula. Each description is validated: the last-error message
+/// names the first bad one (`descs[i]`) and its bad member.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` if `descs` or `out` is NULL, `OCEAN_STATUS_EMPTY` if
+/// `n` is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanWaveDesc)` exceeds
+/// `PTRDIFF_MAX`, `OCEAN_STATUS_NON_FINITE` for NaN or infinite members (see `OceanWaveDesc`),
+/// `OCEAN_STATUS_TOO_STEEP` if a wave has k*A > 1, `OCEAN_STATUS_INVALID_ARGUMENT` for other
+/// out-of-range members (amplitude < 0, wavelength <= 0, zero direction, depth <= 0). On any
+/// failure `*out` is left unchanged. Free the handle with `ocean_waves_destroy`.
+///
+/// # Safety
+///
+/// `descs` must point to `n` readable `OceanWaveDesc`s and `out` to a writable pointer; neither
+/// is retained after the call.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_waves_create(
+    descs: *const OceanWaveDesc,
+    n: usize,
+    out: *mut *mut OceanWaves,
+) -> OceanStatus {
+    guard("ocean_waves_create", || {
+        check_ptr(descs, "descs")?;
+        check_ptr(out, "out")?;
+        if n == 0 {
+            return Err(Error::new(
+                OceanStatus::Empty,
+                "`n` is 0: a wave set needs at least one wave",
+            ));
+        }
+        byte_len::<OceanWaveDesc>(n, "descs")?;
+        // SAFETY: `descs` is non-NULL and aligned (checked), `n * size_of` fits in isize
+        // (checked), and the caller guarantees `n` readable descriptions that nothing writes
+        // during the call.
+        let descs = unsafe { core::slice::from_raw_parts(descs, n) };
+        let mut waves = Vec::with_capacity(n);
+        for (i, d) in descs.iter().enumerate() {
+            waves.push(wave_desc(i, d)?.build().map_err(|e| wave_error(i, e))?);
+        }
+        let set = WaveSet::new(&waves).map_err(|e| wave_error(0, e))?;
+        let handle = Box::into_raw(Box::new(OceanWaves { set }));
+        // SAFETY: `out` is non-NULL and aligned (checked) and writable (caller's guarantee).
+        unsafe { out.write(handle) };
+        Ok(())
+    })
+}
+
+/// Frees a wave set. NULL is ignored, and so is a pointer that is not even aligned (it cannot
+/// have come from `ocean_waves_create`). Never fails; leaves the last-error message alone.
+///
+/// # Safety
+///
+/// `waves` must be NULL or a handle from `ocean_waves_create` that has not been destroyed, and
+/// no other thread may be using it.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_waves_destroy(waves: *mut OceanWaves) {
+    if waves.is_null() || !waves.is_aligned() {
+        return;
+    }
+    // SAFETY: the caller guarantees a live handle from `ocean_waves_create`, which came from
+    // `Box::into_raw`, and exclusive access to it; it is not used again.
+    let boxed = unsafe { Box::from_raw(waves) };
+    // Dropping a WaveSet only frees memory; the boundary is there all the same.
+    let _ = catch_unwind(AssertUnwindSafe(move || drop(boxed)));
+}
+
+/// Borrows a handle after checking it for NULL and alignment.
+///
+/// # Safety
+///
+/// `waves` must be NULL, misaligned, or a live handle from `ocean_waves_create`.
+unsafe fn handle<'a>(waves: *const OceanWaves) -> Result<&'a OceanWaves, Error> {
+    check_ptr(waves, "waves")?;
+    // SAFETY: non-NULL and aligned (checked); live and not being destroyed (caller's
+    // guarantee); only shared references are ever made from a `const OceanWaves *`.
+    Ok(unsafe { &*waves })
+}
+
+/// Evaluates the wave set at `n` rest points at `time` seconds.
+///
+/// For rest point p0 = (`xz[i].x`, 0, `xz[i].z`) (world metres) writes the displaced surface point
+/// to `out_pos[i]` and the unit surface normal to `out_normal[i]` (right-handed, y up):
+///
+/// ```text
+/// theta_w    = k_w . p0 - omega_w * time + phase_w
+/// out_pos    = p0 + sum_w (-khat_w.x A_w sin(theta_w), A_w cos(theta_w), -khat_w.z A_w sin(theta_w))
+/// out_normal = normalize(d out_pos/dz x d out_pos/dx)
+/// ```
+///
+/// with k_w = (2*pi/wavelength) * khat_w, khat_w the normalised direction and omega_w from the
+/// dispersion relation (see `OceanWaveDesc`). Positions are world coordinates, so their float
+/// resolution degrades far from the origin (about 4 mm at 100 km); use
+/// `ocean_waves_evaluate_grid`, which writes positions relative to a double-precision origin,
+/// for geometry far from the origin. Phases are formed and reduced in double precision, so large
+/// `time` values (10^6 s) do not jitter. The arithmetic is bit-identical on every platform and
+/// thread count; large batches are split over a global worker pool.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` if any pointer is NULL, `OCEAN_STATUS_MISALIGNED_POINTER`
+/// if one is not aligned to 4 bytes (8 for `waves`), `OCEAN_STATUS_EMPTY` if `n` is 0,
+/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanVec3)` exceeds `PTRDIFF_MAX`,
+/// `OCEAN_STATUS_INVALID_ARGUMENT` if any two of the three arrays overlap,
+/// `OCEAN_STATUS_NON_FINITE` if `time` or a coordinate of `xz` is NaN or infinite (the message
+/// gives the first bad index). Nothing is written on failure.
+///
+/// # Safety
+///
+/// `waves` must be a live handle; `xz` must point to `n` readable `OceanVec2`s, and `out_pos`
+/// and `out_normal` to `n` writable `OceanVec3`s each, none of them modified by another thread
+/// during the call.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_waves_evaluate(
+    waves: *const OceanWaves,
+    xz: *const OceanVec2,
+    n: usize,
+    time: f64,
+    out_pos: *mut OceanVec3,
+    out_normal: *mut OceanVec3,
+) -> OceanStatus {
+    guard("ocean_waves_evaluate", || {
+        // SAFETY: forwarded from this function's contract.
+        let waves = unsafe { handle(waves) }?;
+        check_ptr(xz, "xz")?;
+        check_ptr(out_pos, "out_pos")?;
+        check_ptr(out_normal, "out_normal")?;
+        if n == 0 {
+            return Err(Error::new(
+                OceanStatus::Empty,
+                "`n` is 0: no points to evaluate",
+            ));
+        }
+        let in_bytes = byte_len::<OceanVec2>(n, "xz")?;
+        let out_bytes = byte_len::<OceanVec3>(n, "out_pos")?;
+        let ranges = [
+            (xz.cast::<u8>(), in_bytes, "xz"),
+            (out_pos.cast_const().cast::<u8>(), out_bytes, "out_pos"),
+            (
+                out_normal.cast_const().cast::<u8>(),
+                out_bytes,
+                "out_normal",
+            ),
+        ];
+        check_disjoint(ranges[0], ranges[1])?;
+        check_disjoint(ranges[0], ranges[2])?;
+        check_disjoint(ranges[1], ranges[2])?;
+        check_time(time)?;
+        // SAFETY: every pointer is non-NULL and aligned, every byte size fits in isize, and the
+        // three ranges are pairwise disjoint (all checked above); the caller guarantees that they
+        // hold `n` elements each, readable (`xz`) or writable (outputs), untouched by others.
+        let (xz, pos, nrm) = unsafe {
+            (
+                core::slice::from_raw_parts(xz, n),
+                core::slice::from_raw_parts_mut(out_pos, n),
+                core::slice::from_raw_parts_mut(out_normal, n),
+            )
+        };
+        let local: &[Vec2] = bytemuck::cast_slice(xz);
+        let pos: &mut [Vec3] = bytemuck::cast_slice_mut(pos);
+        let nrm: &mut [Vec3] = bytemuck::cast_slice_mut(nrm);
+        // Origin (0, 0): `xz` are world positions and so are the outputs. The core validates
+        // every position before it writes anything.
+        let result = if n >= PARALLEL_POINTS {
+            waves
+                .set
+                .evaluate_points_par(DVec2::ZERO, local, time, pos, nrm)
+        } else {
+            waves
+                .set
+                .evaluate_points(DVec2::ZERO, local, time, pos, nrm)
+        };
+        result.map_err(|e| eval_error(e, "xz"))
+    })
+}
+
+/// Evaluates the wave set on every point of `grid` at `time` seconds, on a global worker pool.
+///
+/// Writes `grid->nx * grid->nz` positions and unit normals, row-major (point (i, j) at index
+/// j*nx + i), by the formula of `ocean_waves_evaluate`. The positions are relative to the grid
+/// origin: `out_pos[j*nx + i]` is the displaced point minus (origin_x, 0, origin_z), about
+/// (i*spacing_x, y, j*spacing_z). The origin stays in double precision, so a grid 100 km from
+/// the world origin is as precise as one at it; add the origin back in double precision, or put
+/// it in the model matrix (camera-relative rendering). The result is bit-identical for every
+/// thread count and platform.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` if any pointer is NULL,
+/// `OCEAN_STATUS_MISALIGNED_POINTER` if one is misaligned, `OCEAN_STATUS_EMPTY` if `nx` or `nz`
+/// is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if `nx * nz` overflows or `nx * nz * sizeof(OceanVec3)`
+/// exceeds `PTRDIFF_MAX`, `OCEAN_STATUS_INVALID_ARGUMENT` if the output arrays overlap, a
+/// spacing is <= 0 or `nx` or `nz` exceeds 2^24, `OCEAN_STATUS_NON_FINITE` if `time`, the origin
+/// or a spacing is NaN or infinite. Nothing is written on failure.
+///
+/// # Safety
+///
+/// `waves` must be a live handle, `grid` must point to a readable `OceanGrid`, and `out_pos` and
+/// `out_normal` to `nx * nz` writable `OceanVec3`s each, untouched by other threads during the
+/// call.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_waves_evaluate_grid(
+    waves: *const OceanWaves,
+    grid: *const OceanGrid,
+    time: f64,
+    out_pos: *mut OceanVec3,
+    out_normal: *mut OceanVec3,
+) -> OceanStatus {
+    guard("ocean_waves_evaluate_grid", || {
+        // SAFETY: forwarded from this function's contract.
+        let waves = unsafe { handle(waves) }?;
+        check_ptr(grid, "grid")?;
+        check_ptr(out_pos, "out_pos")?;
+        check_ptr(out_normal, "out_normal")?;
+        // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
+        let g = unsafe { grid.read() };
+        if g.nx == 0 || g.nz == 0 {
+            return Err(Error::new(
+                OceanStatus::Empty,
+                format!("grid is {} x {}: both sizes must be >= 1", g.nx, g.nz),
+            ));
+        }
+        let n = g.nx.checked_mul(g.nz).ok_or_else(|| {
+            Error::new(
+                OceanStatus::LengthOverflow,
+                format!("grid point count {} x {} overflows size_t", g.nx, g.nz),
+            )
+        })?;
+        let out_bytes = byte_len::<OceanVec3>(n, "out_pos")?;
+        check_disjoint(
+            (out_pos.cast_const().cast::<u8>(), out_bytes, "out_pos"),
+            (
+                out_normal.cast_const().cast::<u8>(),
+                out_bytes,
+                "out_normal",
+            ),
+        )?;
+        check_time(time)?;
+        let members = [
+            ("origin_x", g.origin_x),
+            ("origin_z", g.origin_z),
+            ("spacing_x", g.spacing_x),
+            ("spacing_z", g.spacing_z),
+        ];
+        for (name, v) in members {
+            if !v.is_finite() {
+                return Err(Error::new(
+                    OceanStatus::NonFinite,
+                    format!("grid->{name} must be finite, got {v}"),
+                ));
+            }
+        }
+        let core_grid = Grid {
+            origin: DVec2::new(g.origin_x, g.origin_z),
+            spacing: DVec2::new(g.spacing_x, g.spacing_z),
+            size: (g.nx, g.nz),
+        };
+        // Spacing <= 0 and sides above 2^24 are refused here, before any slice is made.
+        core_grid.len().map_err(|e| eval_error(e, "grid->origin"))?;
+        // SAFETY: both pointers are non-NULL and aligned, the byte size fits in isize and the
+        // ranges are disjoint (all checked above); the caller guarantees `n` writable elements
+        // in each, untouched by others during the call.
+        let (pos, nrm) = unsafe {
+            (
+                core::slice::from_raw_parts_mut(out_pos, n),
+                core::slice::from_raw_parts_mut(out_normal, n),
+            )
+        };
+        waves
+            .set
+            .evaluate_grid_par(
+                &core_grid,
+                time,
+                bytemuck::cast_slice_mut(pos),
+                bytemuck::cast_slice_mut(nrm),
+            )
+            .map_err(|e| eval_error(e, "grid->origin"))
+    })
+}
+
+/// Writes `*out` through a checked pointer, after `value` has been computed.
+///
+/// # Safety
+///
+/// `out` must be NULL, misaligned, or writable.
+unsafe fn write_out<T>(out: *mut T, name: &str, value: T) -> Result<(), Error> {
+    check_ptr(out, name)?;
+    // SAFETY: non-NULL and aligned (checked); writable (caller's guarantee).
+    unsafe { out.write(value) };
+    Ok(())
+}
+
+/// Stores the number of waves in the set (>= 1) in `*out_count`.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `waves` or
+/// `out_count`; `*out_count` is written only on success.
+///
+/// # Safety
+///
+/// `waves` must be a live handle and `out_count` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_waves_count(
+    waves: *const OceanWaves,
+    out_count: *mut usize,
+) -> OceanStatus {
+    guard("ocean_waves_count", || {
+        // SAFETY: forwarded from this function's contract.
+        let waves = unsafe { handle(waves) }?;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out_count, "out_count", waves.set.waves().len()) }
+    })
+}
+
+/// Stores the steepness sum, sum over the waves of k*A (dimensionless), in `*out_steepness`.
+///
+/// While it is <= 1 the summed surface can never fold over itself; above 1 crests may fold where
+/// the waves align (allowed, since each wave alone is at most a cusp). Returns
+/// `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad argument; the output is
+/// written only on success.
+///
+/// # Safety
+///
+/// `waves` must be a live handle and `out_steepness` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_waves_steepness_sum(
+    waves: *const OceanWaves,
+    out_steepness: *mut f64,
+) -> OceanStatus {
+    guard("ocean_waves_steepness_sum", || {
+        // SAFETY: forwarded from this function's contract.
+        let waves = unsafe { handle(waves) }?;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out_steepness, "out_steepness", waves.set.steepness_sum()) }
+    })
+}
+
+/// Stores the sum of the amplitudes, in metres, in `*out_amplitude`: the largest height above
+/// (and depth below) y = 0 and the largest horizontal displacement any point can reach; use it
+/// for bounding volumes and culling margins. Returns `OCEAN_STATUS_NULL_POINTER` (or
+/// `_MISALIGNED_POINTER`) for a bad argument; the output is written only on success.
+///
+/// # Safety
+///
+/// `waves` must be a live handle and `out_amplitude` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_waves_max_amplitude(
+    waves: *const OceanWaves,
+    out_amplitude: *mut f64,
+) -> OceanStatus {
+    guard("ocean_waves_max_amplitude", || {
+        // SAFETY: forwarded from this function's contract.
+        let waves = unsafe { handle(waves) }?;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out_amplitude, "out_amplitude", waves.set.max_amplitude()) }
+    })
+}
+
+const _: () = {
+    const fn shareable<T: Send + Sync>() {}
+    shareable::<OceanWaves>();
+};

@@ -1,0 +1,85 @@
+//! `include/ocean.h` must be exactly what cbindgen generates from this crate.
+//!
+//! Fails on any difference and prints the first differing line; `OCEAN_BLESS=1` rewrites the
+//! checked-in header instead.
+
+use std::path::Path;
+
+fn generate() -> String {
+    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let config = cbindgen::Config::from_file(crate_dir.join("cbindgen.toml"))
+        .expect("ocean-ffi/cbindgen.toml parses");
+    let bindings = cbindgen::Builder::new()
+        .with_crate(crate_dir)
+        .with_config(config)
+        .generate()
+        .expect("cbindgen generates the header");
+    let mut out = Vec::new();
+    bindings.write(&mut out);
+    String::from_utf8(out).expect("the header is UTF-8")
+}
+
+#[test]
+fn checked_in_header_is_up_to_date() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../include/ocean.h");
+    let fresh = generate();
+    if std::env::var_os("OCEAN_BLESS").is_some_and(|v| v == "1") {
+        std::fs::write(&path, &fresh).expect("write include/ocean.h");
+        return;
+    }
+    let checked_in = std::fs::read_to_string(&path).unwrap_or_default();
+    if checked_in != fresh {
+        let line = checked_in
+            .lines()
+            .zip(fresh.lines())
+            .position(|(a, b)| a != b)
+            .unwrap_or_else(|| checked_in.lines().count().min(fresh.lines().count()));
+        panic!(
+            "{} is out of date (first difference at line {}: checked in {:?}, generated {:?}); \
+             run `OCEAN_BLESS=1 cargo test -p ocean-ffi --test header` and commit the result",
+            path.display(),
+            line + 1,
+            checked_in.lines().nth(line),
+            fresh.lines().nth(line),
+        );
+    }
+}
+
+#[test]
+fn header_has_the_promised_shape() {
+    // Independent of the snapshot: the things C callers rely on by name.
+    let h = generate();
+    for needle in [
+        "#ifndef OCEAN_H",
+        "#include <stdint.h>",
+        "#include <stddef.h>",
+        "#include <stdbool.h>",
+        "extern \"C\" {",
+        "OCEAN_STATUS_OK = 0,",
+        "OCEAN_STATUS_PANIC = 8,",
+        &format!(
+            "#define OCEAN_VERSION_MAJOR {}",
+            env!("CARGO_PKG_VERSION_MAJOR")
+        ),
+        &format!(
+            "#define OCEAN_VERSION_MINOR {}",
+            env!("CARGO_PKG_VERSION_MINOR")
+        ),
+        &format!(
+            "#define OCEAN_VERSION_PATCH {}",
+            env!("CARGO_PKG_VERSION_PATCH")
+        ),
+        "typedef struct OceanWaves OceanWaves;",
+        "size_t n,",
+        "double time,",
+    ] {
+        assert!(
+            h.contains(needle),
+            "generated header lacks {needle:?}:\n{h}"
+        );
+    }
+    assert!(
+        !h.contains("Vec3A") && !h.contains("glam"),
+        "glam types leaked into the header"
+    );
+}
