@@ -27,7 +27,9 @@ pub enum WaveError {
     #[error("a wave set needs at least one wave")]
     Empty,
     /// Steepness k·A above 1 makes the trochoid loop over itself.
-    #[error("wave steepness k*A = {0} exceeds 1: the trochoid would loop (clamp the amplitude to 1/k)")]
+    #[error(
+        "wave steepness k*A = {0} exceeds 1: the trochoid would loop (clamp the amplitude to 1/k)"
+    )]
     TooSteep(f64),
 }
 

@@ -32,7 +32,7 @@ impl Grid {
     }
 
     /// Number of points, or an error if the grid is empty, not finite or too large.
-    pub fn len(&self) -> Result<usize, EvalError> {
+    pub fn point_count(&self) -> Result<usize, EvalError> {
         if !(self.origin.x.is_finite() && self.origin.y.is_finite()) {
             return Err(EvalError::Position { index: 0 });
         }

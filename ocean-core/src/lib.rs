@@ -44,8 +44,8 @@ compile_error!("ocean-core needs the `std` or the `libm` feature for its f64 mat
 
 pub mod camera;
 pub mod dispersion;
-pub mod frustum;
 mod error;
+pub mod frustum;
 pub mod grid;
 pub mod kernel;
 pub mod math;
@@ -56,9 +56,9 @@ pub mod trochoid;
 pub mod wave;
 
 pub use dispersion::{Depth, GRAVITY};
-pub use kernel::WaveCoeffs;
 pub use error::{EvalError, WaveError};
 pub use grid::Grid;
+pub use kernel::WaveCoeffs;
 pub use trochoid::{Sample, SampleF64, WaveSet};
 pub use wave::{Wave, WaveDesc};
 
