@@ -1,1 +1,121 @@
-//! wgpu backend of the ocean crates.
+//! # ocean-gpu
+//!
+//! The wgpu backend of the ocean crates:
+//!
+//! - [`GpuContext`]: a headless device (adapter chosen by `WGPU_BACKEND`, software adapters
+//!   accepted), or a wrapper around the caller's own `wgpu::Device` and `wgpu::Queue`.
+//! - [`readback`]: copying buffers and textures back to the CPU (with the 256-byte row padding
+//!   of texture copies) and GPU timestamps ([`GpuTimer`]) where the adapter has them.
+//! - [`shaders`]: every WGSL source of the crate, validated by naga and exportable to GLSL,
+//!   GLSL ES, HLSL, MSL and SPIR-V with its binding layout listed.
+//! - [`TrochoidPass`]: the trochoid (Gerstner) displacement of a grid as a compute pass, the GPU
+//!   twin of [`ocean_core::WaveSet::evaluate_grid`].
+//!
+//! ## Conventions
+//!
+//! Metres, seconds, radians; right-handed, **y up**, the sea at rest is y = 0. Time is `f64`
+//! seconds at every public boundary: wave phases are formed and reduced modulo 2π in `f64` on the
+//! host, so the GPU only ever adds two `f32` phases in [-π, π]. Grid outputs are positions
+//! relative to the grid origin, row-major (point (i, j) is element `j * nx + i`).
+//!
+//! ## Errors
+//!
+//! Every fallible function returns [`GpuError`]; invalid input (an empty grid, a non-finite
+//! time, a buffer too small or without the right usage, a grid beyond the device's limits) is
+//! reported, never a panic. wgpu validation errors raised by this crate's own calls are caught
+//! with error scopes and returned as [`GpuError::Wgpu`].
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod context;
+pub mod readback;
+pub mod shaders;
+pub mod trochoid;
+
+pub use context::{ContextOptions, GpuContext};
+pub use readback::{GpuDuration, GpuTimer, TextureData};
+pub use shaders::{Code, Export, ExportFile, Language, ShaderError};
+pub use trochoid::{GridOutput, TrochoidParams, TrochoidPass, TrochoidTarget};
+
+pub use naga;
+pub use wgpu;
+
+/// Why a GPU operation failed.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum GpuError {
+    /// No adapter matched the requested backends.
+    #[error(
+        "no GPU adapter found (backends: {backends}): {reason}. On a machine without a GPU, \
+         install Mesa's software drivers (`apt-get install mesa-vulkan-drivers` for lavapipe on \
+         Vulkan) or use Mesa's llvmpipe through EGL with `WGPU_BACKEND=gl`"
+    )]
+    NoAdapter {
+        /// The backends that were searched, as `WGPU_BACKEND` would spell them.
+        backends: String,
+        /// What wgpu reported.
+        reason: String,
+    },
+    /// The adapter cannot run this crate's passes.
+    #[error("adapter {adapter:?} is unsuitable: {reason}")]
+    UnsuitableAdapter {
+        /// Adapter name.
+        adapter: String,
+        /// What it lacks.
+        reason: String,
+    },
+    /// The device could not be created.
+    #[error("could not create a device: {0}")]
+    RequestDevice(#[from] wgpu::RequestDeviceError),
+    /// A wgpu validation or out-of-memory error raised by one of this crate's calls.
+    #[error("wgpu error: {0}")]
+    Wgpu(String),
+    /// Waiting for the GPU failed.
+    #[error("waiting for the GPU failed: {0}")]
+    Poll(#[from] wgpu::PollError),
+    /// Mapping a buffer for reading failed.
+    #[error("mapping a buffer for reading failed: {0}")]
+    Map(#[from] wgpu::BufferAsyncError),
+    /// The wave evaluation inputs are invalid (time, grid).
+    #[error(transparent)]
+    Eval(#[from] ocean_core::EvalError),
+    /// A size exceeds what the device (or a 32-bit index) allows.
+    #[error("{what} needs {needed}, but the limit is {limit}")]
+    TooLarge {
+        /// What was being sized.
+        what: &'static str,
+        /// The size needed.
+        needed: u64,
+        /// The limit.
+        limit: u64,
+    },
+    /// A caller-provided resource does not fit the request.
+    #[error("invalid {what}: {reason}")]
+    InvalidResource {
+        /// Which resource.
+        what: &'static str,
+        /// Why it does not fit.
+        reason: String,
+    },
+    /// A shader could not be parsed, validated or translated.
+    #[error(transparent)]
+    Shader(#[from] ShaderError),
+}
+
+/// Runs `f` inside validation and out-of-memory error scopes on `device` and returns the first
+/// error either scope caught, so wgpu errors come back as values instead of reaching the
+/// device's uncaptured-error handler (which panics by default).
+pub(crate) fn scoped<R>(
+    device: &wgpu::Device,
+    f: impl FnOnce() -> Result<R, GpuError>,
+) -> Result<R, GpuError> {
+    let oom = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let result = f();
+    let validation = pollster::block_on(validation.pop());
+    let oom = pollster::block_on(oom.pop());
+    if let Some(e) = validation.or(oom) {
+        return Err(GpuError::Wgpu(e.to_string()));
+    }
+    result
+}

@@ -1,0 +1,105 @@
+// Trochoid (Gerstner) displacement of a regular grid: the GPU twin of
+// `ocean_core::WaveSet::evaluate_grid`.
+//
+// Sum of trochoid waves (wave-train-boxes Eq. 6 and 7): for rest position p0 and wave i with
+// phase θ_i = k_i·p0 − ω_i t + Φ_i,
+//     p = p0 − Σ k̂_i A_i sin θ_i,   y = Σ A_i cos θ_i,
+// and the normal from the analytic derivatives of p and y with respect to p0.
+//
+// Conventions: metres, right-handed, y up; positions are relative to the grid origin. The host
+// forms and reduces every phase in f64 and uploads two f32 tables (one value per wave and row,
+// one per wave and column, each in [-π, π]); this shader only adds them, so it never sees an
+// unreduced phase whatever the time or the distance from the world origin.
+//
+// Layout: point (i, j) of an nx × nz grid is element j·nx + i of both outputs (row-major, rows
+// along z). positions[n] = (x, y, z, 1), normals[n] = (nx, ny, nz, 0), 16 bytes each, so the
+// output buffers also serve as vertex buffers (Float32x4, or Float32x3 with a 16-byte stride).
+//
+// Work mapping: one invocation per point, 64 per workgroup, linear point index
+// (workgroup_id.y · groups_x + workgroup_id.x) · 64 + local_invocation_index, so grids with more
+// than 65535 workgroups fold into a second dispatch dimension.
+
+struct WaveCoeffs {
+    a: f32,    // A
+    ahx: f32,  // A k_x/|k|
+    ahz: f32,  // A k_z/|k|
+    cxx: f32,  // A k_x²/|k|
+    cxz: f32,  // A k_x k_z/|k|
+    czz: f32,  // A k_z²/|k|
+    gx: f32,   // A k_x
+    gz: f32,   // A k_z
+}
+
+// Matches `ocean_gpu::trochoid::TrochoidParams` (32 bytes).
+struct Params {
+    nx: u32,            // columns (along x)
+    nz: u32,            // rows (along z)
+    waves: u32,         // number of waves
+    cols_offset: u32,   // index in `phases` of the first column phase (= waves · nz)
+    groups_x: u32,      // workgroups along the x dimension of the dispatch
+    _pad: u32,
+    spacing_x: f32,     // grid spacing along x, metres
+    spacing_z: f32,     // grid spacing along z, metres
+}
+
+@group(0) @binding(0) var<uniform> params: Params;
+@group(0) @binding(1) var<storage, read> coeffs: array<WaveCoeffs>;
+// rows: phases[w · nz + j] for w < waves, j < nz; columns: phases[cols_offset + w · nx + i].
+@group(0) @binding(2) var<storage, read> phases: array<f32>;
+@group(0) @binding(3) var<storage, read_write> positions: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read_write> normals: array<vec4<f32>>;
+
+@compute @workgroup_size(64)
+fn displace(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+) {
+    let index = (group.y * params.groups_x + group.x) * 64u + local;
+    let nx = params.nx;
+    let nz = params.nz;
+    // Total point count is checked on the host to fit in u32.
+    if index >= nx * nz {
+        return;
+    }
+    let i = index % nx;
+    let j = index / nx;
+
+    var dx = 0.0;
+    var y = 0.0;
+    var dz = 0.0;
+    var jxx = 1.0;
+    var jxz = 0.0;
+    var jzz = 1.0;
+    var sx = 0.0;
+    var sz = 0.0;
+    for (var w = 0u; w < params.waves; w++) {
+        let c = coeffs[w];
+        let theta = phases[w * nz + j] + phases[params.cols_offset + w * nx + i];
+        let sc = ocean_sincos(theta);
+        let s = sc.x;
+        let co = sc.y;
+        dx -= c.ahx * s;
+        dz -= c.ahz * s;
+        y += c.a * co;
+        jxx -= c.cxx * co;
+        jxz -= c.cxz * co;
+        jzz -= c.czz * co;
+        sx -= c.gx * s;
+        sz -= c.gz * s;
+    }
+
+    let x0 = f32(i) * params.spacing_x;
+    let z0 = f32(j) * params.spacing_z;
+    // Normal = ∂p/∂z × ∂p/∂x with ∂p/∂x = (J_xx, s_x, J_xz), ∂p/∂z = (J_xz, s_z, J_zz); its y
+    // component is det J. Where it vanishes (a cusp) the normal is +y, as on the CPU.
+    let na = sz * jxz - jzz * sx;
+    let nb = jzz * jxx - jxz * jxz;
+    let nc = jxz * sx - sz * jxx;
+    let len2 = na * na + nb * nb + nc * nc;
+    let degenerate = len2 <= 0.0;
+    let inv = 1.0 / sqrt(select(len2, 1.0, degenerate));
+    let normal = select(vec3<f32>(na * inv, nb * inv, nc * inv), vec3<f32>(0.0, 1.0, 0.0), degenerate);
+
+    positions[index] = vec4<f32>(x0 + dx, y, z0 + dz, 1.0);
+    normals[index] = vec4<f32>(normal, 0.0);
+}
