@@ -1,1 +1,41 @@
-fn main() {}
+//! `ocean`: the command-line front end of the ocean crates.
+#![forbid(unsafe_code)]
+
+mod bench;
+mod bench_gpu;
+mod shaders;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Real-time water and screen-space rendering: benchmarks and shader export.
+#[derive(Parser)]
+#[command(name = "ocean", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a benchmark suite and print its figures.
+    Bench(bench::BenchArgs),
+    /// Export every WGSL pass to another shading language, with its binding layout.
+    Shaders(shaders::ShadersArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Bench(args) => bench::run(&args),
+        Command::Shaders(args) => shaders::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("ocean: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

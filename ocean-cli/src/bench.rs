@@ -1,0 +1,207 @@
+//! `ocean bench`: figures for the issues' performance targets.
+//!
+//! Times are medians over repeated runs after a warm-up; every figure is measured in the same
+//! run as the baseline it is compared with.
+
+use std::f64::consts::TAU;
+use std::time::Instant;
+
+use clap::{Args, ValueEnum};
+use glam::{DVec2, Vec3};
+use ocean_core::{Depth, Grid, WaveDesc, WaveSet};
+use rayon::prelude::*;
+use serde_json::{Value, json};
+
+use crate::bench_gpu;
+
+#[derive(Args)]
+pub struct BenchArgs {
+    /// Which suite to run.
+    suite: Suite,
+    /// Print one JSON document instead of a table.
+    #[arg(long)]
+    json: bool,
+    /// Grid side length (points per side).
+    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(8..=8192))]
+    size: u32,
+    /// Timed repetitions per figure (the median is reported).
+    #[arg(long, default_value_t = 15, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    runs: u32,
+    /// Skip the GPU figures.
+    #[arg(long)]
+    no_gpu: bool,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Suite {
+    /// The trochoid (Gerstner) wave sum on a grid: CPU single-thread, all threads, GPU.
+    Gerstner,
+}
+
+/// A wave set of `n` deep-water trochoids, wavelengths in geometric progression from 0.5 m to
+/// 60 m and steepness 0.1 each: the shape of the lighting paper's spectrum (n = 60) and of
+/// the wave-train paper's scenario 1 (n = 3).
+pub fn bench_waves(n: usize) -> WaveSet {
+    let descs: Vec<WaveDesc> = (0..n)
+        .map(|i| {
+            let f = if n > 1 { i as f64 / (n - 1) as f64 } else { 0.0 };
+            let lambda = 0.5 * 120f64.powf(f);
+            let angle = 2.399 * i as f64;
+            WaveDesc {
+                amplitude: 0.1 * lambda / TAU,
+                wavelength: lambda,
+                direction: DVec2::new(angle.cos(), angle.sin()),
+                phase: i as f64,
+                depth: Depth::Deep,
+            }
+        })
+        .collect();
+    WaveSet::from_descs(&descs).expect("benchmark waves are valid")
+}
+
+/// Median and minimum of `runs` timings of `f`, in milliseconds, after two warm-up calls.
+pub fn time_ms(runs: u32, mut f: impl FnMut()) -> (f64, f64) {
+    f();
+    f();
+    let mut t: Vec<f64> = (0..runs)
+        .map(|_| {
+            let start = Instant::now();
+            f();
+            start.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    (t[t.len() / 2], t[0])
+}
+
+pub fn run(args: &BenchArgs) -> Result<(), String> {
+    match args.suite {
+        Suite::Gerstner => gerstner(args),
+    }
+}
+
+fn gerstner(args: &BenchArgs) -> Result<(), String> {
+    let side = args.size as usize;
+    let n = side * side;
+    let grid = Grid::centred(DVec2::new(100.0, -40.0), 0.25, side);
+    let threads = rayon::current_num_threads();
+    let mut pos = vec![Vec3::ZERO; n];
+    let mut nrm = vec![Vec3::ZERO; n];
+    let t = 1234.5;
+
+    // The memory baseline: writing the same output buffers once, with the same threads and
+    // row partition as the evaluation, so the ratio isolates the cost of the arithmetic.
+    let (baseline_ms, _) = time_ms(args.runs, || {
+        pos.par_chunks_mut(side)
+            .zip(nrm.par_chunks_mut(side))
+            .enumerate()
+            .for_each(|(j, (p, q))| {
+                p.fill(Vec3::splat(j as f32));
+                q.fill(Vec3::Y);
+            });
+    });
+
+    let gpu = if args.no_gpu {
+        Err("skipped (--no-gpu)".to_string())
+    } else {
+        bench_gpu::Bench::new()
+    };
+
+    let mut cases = Vec::new();
+    for waves in [3usize, 60] {
+        let set = bench_waves(waves);
+        let (single_ms, _) = time_ms(args.runs, || {
+            set.evaluate_grid(&grid, t, &mut pos, &mut nrm).expect("valid grid");
+        });
+        let (threads_ms, _) = time_ms(args.runs, || {
+            set.evaluate_grid_par(&grid, t, &mut pos, &mut nrm)
+                .expect("valid grid");
+        });
+        let evals = (n * waves) as f64;
+        let per_core_single = evals / (single_ms * 1e-3);
+        let per_core_threads = evals / (threads_ms * 1e-3) / threads as f64;
+        let gpu_case = match &gpu {
+            Ok(g) => g.gerstner(&set, &grid, t, args.runs),
+            Err(e) => Err(e.clone()),
+        };
+        cases.push(json!({
+            "waves": waves,
+            "points": n,
+            "cpu_single_ms": single_ms,
+            "cpu_threads_ms": threads_ms,
+            "threads": threads,
+            "memory_baseline_ms": baseline_ms,
+            "threads_over_baseline": threads_ms / baseline_ms,
+            "evals_per_s_per_core_single": per_core_single,
+            "evals_per_s_per_core_threads": per_core_threads,
+            "gpu": match gpu_case {
+                Ok(v) => v,
+                Err(e) => json!({ "unavailable": e }),
+            },
+        }));
+    }
+    let report = json!({
+        "suite": "gerstner",
+        "grid": [side, side],
+        "cpu": cpu_name(),
+        "gpu_device": match &gpu { Ok(g) => Value::from(g.describe()), Err(_) => Value::Null },
+        "cases": cases,
+        "targets": {
+            "3_waves_threads_over_baseline_max": 2.5,
+            "60_waves_evals_per_s_per_core_min": 3.0e8,
+        },
+    });
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report).expect("JSON"));
+    } else {
+        print_gerstner(&report);
+    }
+    Ok(())
+}
+
+fn print_gerstner(r: &Value) {
+    println!(
+        "gerstner: {}x{} grid, CPU {}, {} threads",
+        r["grid"][0], r["grid"][1], r["cpu"].as_str().unwrap_or("?"), r["cases"][0]["threads"]
+    );
+    match r["gpu_device"].as_str() {
+        Some(d) => println!("GPU: {d}"),
+        None => println!("GPU: {}", r["cases"][0]["gpu"]["unavailable"].as_str().unwrap_or("none")),
+    }
+    println!(
+        "{:>6} {:>12} {:>12} {:>12} {:>10} {:>16} {:>12}",
+        "waves", "1 thread ms", "threads ms", "memory ms", "thr/mem", "evals/s/core", "GPU ms"
+    );
+    for c in r["cases"].as_array().into_iter().flatten() {
+        let gpu = c["gpu"]["kernel_ms"]
+            .as_f64()
+            .or(c["gpu"]["wall_ms"].as_f64())
+            .map_or("-".to_string(), |v| format!("{v:.3}"));
+        println!(
+            "{:>6} {:>12.3} {:>12.3} {:>12.3} {:>10.2} {:>16.3e} {:>12}",
+            c["waves"],
+            c["cpu_single_ms"].as_f64().unwrap_or(f64::NAN),
+            c["cpu_threads_ms"].as_f64().unwrap_or(f64::NAN),
+            c["memory_baseline_ms"].as_f64().unwrap_or(f64::NAN),
+            c["threads_over_baseline"].as_f64().unwrap_or(f64::NAN),
+            c["evals_per_s_per_core_single"].as_f64().unwrap_or(f64::NAN),
+            gpu
+        );
+    }
+    println!(
+        "targets: 3 waves threads/memory <= 2.5; 60 waves >= 3.0e8 evaluations/s/core (single thread)"
+    );
+}
+
+/// The CPU model from /proc/cpuinfo where there is one.
+fn cpu_name() -> String {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| std::env::consts::ARCH.to_string())
+}

@@ -1,0 +1,66 @@
+//! The GPU side of `ocean bench`: the same workloads on the headless wgpu device.
+
+use std::time::Instant;
+
+use ocean_core::{Grid, WaveSet};
+use ocean_gpu::{GpuContext, GpuTimer, TrochoidPass, TrochoidTarget};
+use serde_json::{Value, json};
+
+pub struct Bench {
+    ctx: GpuContext,
+    trochoid: TrochoidPass,
+}
+
+impl Bench {
+    /// The headless context (honouring `WGPU_BACKEND`) and the passes, or why there is none.
+    pub fn new() -> Result<Self, String> {
+        let ctx = GpuContext::headless().map_err(|e| e.to_string())?;
+        let trochoid = TrochoidPass::new(&ctx).map_err(|e| e.to_string())?;
+        Ok(Self { ctx, trochoid })
+    }
+
+    pub fn describe(&self) -> String {
+        self.ctx.describe()
+    }
+
+    /// Median GPU time of the trochoid pass (timestamps, when the adapter has them) and median
+    /// wall time of upload + dispatch + wait, over `runs` runs after two warm-ups.
+    pub fn gerstner(&self, set: &WaveSet, grid: &Grid, t: f64, runs: u32) -> Result<Value, String> {
+        let e = |e: ocean_gpu::GpuError| e.to_string();
+        let target = TrochoidTarget::new(&self.ctx, grid).map_err(e)?;
+        let timer = GpuTimer::new(&self.ctx);
+        let mut kernel = Vec::new();
+        let mut wall = Vec::new();
+        for i in 0..runs + 2 {
+            let start = Instant::now();
+            self.trochoid
+                .run(&self.ctx, set, grid, t, &target, timer.as_ref())
+                .map_err(e)?;
+            self.ctx.wait_idle().map_err(e)?;
+            let elapsed = start.elapsed().as_secs_f64() * 1e3;
+            let gpu = match &timer {
+                Some(timer) => timer.read(&self.ctx).map_err(e)?,
+                None => None,
+            };
+            if i >= 2 {
+                wall.push(elapsed);
+                if let Some(d) = gpu {
+                    kernel.push(d.ms());
+                }
+            }
+        }
+        Ok(json!({
+            "kernel_ms": median(&mut kernel),
+            "wall_ms": median(&mut wall),
+            "timestamps": timer.is_some(),
+        }))
+    }
+}
+
+fn median(v: &mut [f64]) -> Option<f64> {
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    Some(v[v.len() / 2])
+}
