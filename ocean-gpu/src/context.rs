@@ -268,7 +268,10 @@ mod tests {
     fn backend_names_spell_wgpu_backend_values() {
         // The NoAdapter message prints the searched backends in WGPU_BACKEND's own spelling, so
         // a user can copy them back into the variable.
-        assert_eq!(backend_names(wgpu::Backends::VULKAN | wgpu::Backends::GL), "vulkan,gl");
+        assert_eq!(
+            backend_names(wgpu::Backends::VULKAN | wgpu::Backends::GL),
+            "vulkan,gl"
+        );
         assert_eq!(backend_names(wgpu::Backends::empty()), "none");
         for name in ["vulkan", "gl", "metal", "dx12"] {
             assert_eq!(backend_names(wgpu::Backends::from_comma_list(name)), name);

@@ -35,7 +35,7 @@ pub mod trochoid;
 pub use context::{ContextOptions, GpuContext};
 pub use readback::{GpuDuration, GpuTimer, TextureData};
 pub use shaders::{Code, Export, ExportFile, Language, ShaderError};
-pub use trochoid::{GridOutput, TrochoidParams, TrochoidPass, TrochoidTarget};
+pub use trochoid::{GridOutput, TrochoidInput, TrochoidParams, TrochoidPass, TrochoidTarget};
 
 pub use naga;
 pub use wgpu;

@@ -43,14 +43,19 @@ pub fn read_buffer(
     if !buffer.usage().contains(wgpu::BufferUsages::COPY_SRC) {
         return Err(invalid("the buffer lacks COPY_SRC usage".to_owned()));
     }
-    if size == 0 || offset % wgpu::COPY_BUFFER_ALIGNMENT != 0 || size % wgpu::COPY_BUFFER_ALIGNMENT != 0
+    if size == 0
+        || !offset.is_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT)
+        || !size.is_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT)
     {
         return Err(invalid(format!(
             "offset {offset} and size {size} must be non-zero multiples of {}",
             wgpu::COPY_BUFFER_ALIGNMENT
         )));
     }
-    if offset.checked_add(size).is_none_or(|end| end > buffer.size()) {
+    if offset
+        .checked_add(size)
+        .is_none_or(|end| end > buffer.size())
+    {
         return Err(invalid(format!(
             "bytes {offset}..{offset}+{size} exceed the buffer's {} bytes",
             buffer.size()
@@ -91,7 +96,10 @@ pub fn read_buffer_as<T: bytemuck::Pod>(
     if elem == 0 || bytes.len() % elem != 0 {
         return Err(GpuError::InvalidResource {
             what: "readback buffer",
-            reason: format!("{} bytes is not a whole number of {elem}-byte values", bytes.len()),
+            reason: format!(
+                "{} bytes is not a whole number of {elem}-byte values",
+                bytes.len()
+            ),
         });
     }
     // `pod_collect_to_vec` copies, so the staging data need not be aligned for `T`.
@@ -119,7 +127,12 @@ pub struct TextureLayout {
 impl TextureLayout {
     /// The layout of a `width × height × layers` copy of `bytes_per_texel`-byte texels, or an
     /// error if a dimension is zero or a size overflows `u32` row pitches / `u64` totals.
-    pub fn new(width: u32, height: u32, layers: u32, bytes_per_texel: u32) -> Result<Self, GpuError> {
+    pub fn new(
+        width: u32,
+        height: u32,
+        layers: u32,
+        bytes_per_texel: u32,
+    ) -> Result<Self, GpuError> {
         if width == 0 || height == 0 || layers == 0 || bytes_per_texel == 0 {
             return Err(GpuError::InvalidResource {
                 what: "texture copy",

@@ -392,11 +392,10 @@ impl Export {
 impl ShaderEntry {
     /// Parses and validates the source with [`ValidationFlags::all`] and [`CAPABILITIES`].
     pub fn module(&self) -> Result<(naga::Module, ModuleInfo), ShaderError> {
-        let module =
-            naga::front::wgsl::parse_str(self.source).map_err(|e| ShaderError::Parse {
-                name: self.name,
-                message: e.emit_to_string(self.source),
-            })?;
+        let module = naga::front::wgsl::parse_str(self.source).map_err(|e| ShaderError::Parse {
+            name: self.name,
+            message: e.emit_to_string(self.source),
+        })?;
         let info = Validator::new(ValidationFlags::all(), CAPABILITIES)
             .validate(&module)
             .map_err(|e| ShaderError::Validation {
@@ -673,7 +672,11 @@ impl ShaderEntry {
                     b.glsl_name = Some(glsl.clone());
                 }
             }
-            let es = if language == Language::GlslEs { ".es" } else { "" };
+            let es = if language == Language::GlslEs {
+                ".es"
+            } else {
+                ""
+            };
             files.push(ExportFile {
                 file_name: format!("{}.{}.{}{es}.glsl", self.name, ep.name, ep.stage.suffix()),
                 entry_point: Some(ep.name.to_owned()),
@@ -764,7 +767,10 @@ mod tests {
             source: "fn (",
             ..bad
         };
-        assert!(matches!(unparsable.module(), Err(ShaderError::Parse { .. })));
+        assert!(matches!(
+            unparsable.module(),
+            Err(ShaderError::Parse { .. })
+        ));
     }
 
     #[test]
@@ -774,20 +780,54 @@ mod tests {
         let b = get("trochoid").unwrap().bindings().unwrap();
         let summary: Vec<(u32, u32, &str, String, &str, u32)> = b
             .iter()
-            .map(|b| (b.group, b.binding, b.name.as_str(), b.kind.to_string(), b.ty.as_str(), b.size))
+            .map(|b| {
+                (
+                    b.group,
+                    b.binding,
+                    b.name.as_str(),
+                    b.kind.to_string(),
+                    b.ty.as_str(),
+                    b.size,
+                )
+            })
             .collect();
         assert_eq!(
             summary,
             vec![
                 (0, 0, "params", "uniform".into(), "Params", 32),
-                (0, 1, "coeffs", "storage(read)".into(), "array<WaveCoeffs>", 32),
+                (
+                    0,
+                    1,
+                    "coeffs",
+                    "storage(read)".into(),
+                    "array<WaveCoeffs>",
+                    32
+                ),
                 (0, 2, "phases", "storage(read)".into(), "array<f32>", 4),
-                (0, 3, "positions", "storage(read_write)".into(), "array<vec4<f32>>", 16),
-                (0, 4, "normals", "storage(read_write)".into(), "array<vec4<f32>>", 16),
+                (
+                    0,
+                    3,
+                    "positions",
+                    "storage(read_write)".into(),
+                    "array<vec4<f32>>",
+                    16
+                ),
+                (
+                    0,
+                    4,
+                    "normals",
+                    "storage(read_write)".into(),
+                    "array<vec4<f32>>",
+                    16
+                ),
             ]
         );
         // Params members at the offsets of the Rust TrochoidParams.
-        let offsets: Vec<(&str, u32)> = b[0].members.iter().map(|m| (m.name.as_str(), m.offset)).collect();
+        let offsets: Vec<(&str, u32)> = b[0]
+            .members
+            .iter()
+            .map(|m| (m.name.as_str(), m.offset))
+            .collect();
         assert_eq!(
             offsets,
             vec![
@@ -807,8 +847,11 @@ mod tests {
     fn glsl_bindings_are_flattened_per_namespace() {
         // Uniform blocks and storage blocks are separate GL namespaces, each numbered from 0.
         let e = export("trochoid", Language::Glsl).unwrap();
-        let gl: Vec<(&str, Option<u32>)> =
-            e.bindings.iter().map(|b| (b.name.as_str(), b.glsl_binding)).collect();
+        let gl: Vec<(&str, Option<u32>)> = e
+            .bindings
+            .iter()
+            .map(|b| (b.name.as_str(), b.glsl_binding))
+            .collect();
         assert_eq!(
             gl,
             vec![
@@ -822,9 +865,16 @@ mod tests {
         let Code::Text(text) = &e.files[0].code else {
             panic!("GLSL is text")
         };
-        assert!(text.starts_with("#version 430 core"), "{}", &text[..40.min(text.len())]);
+        assert!(
+            text.starts_with("#version 430 core"),
+            "{}",
+            &text[..40.min(text.len())]
+        );
         for b in &e.bindings {
-            let name = b.glsl_name.as_deref().expect("every buffer has a GLSL block name");
+            let name = b
+                .glsl_name
+                .as_deref()
+                .expect("every buffer has a GLSL block name");
             assert!(text.contains(name), "{name} not in the GLSL");
         }
         let es = export("trochoid", Language::GlslEs).unwrap();
@@ -863,7 +913,11 @@ mod tests {
             if name == "ROUND_MAGIC" {
                 continue; // WGSL uses round() instead (see sincos.wgsl).
             }
-            let value: f32 = value.trim_end_matches(';').replace('_', "").parse().unwrap();
+            let value: f32 = value
+                .trim_end_matches(';')
+                .replace('_', "")
+                .parse()
+                .unwrap();
             let gpu = wgsl_const(&format!("SINCOS_{name}"));
             assert_eq!(gpu.to_bits(), value.to_bits(), "{name}: {gpu} vs {value}");
             checked += 1;

@@ -16,7 +16,7 @@
 //! 16-byte stride) and `COPY_SRC`.
 
 use glam::Vec3;
-use ocean_core::{Grid, WaveCoeffs, WaveSet};
+use ocean_core::{Grid, WaveSet};
 use wgpu::util::DeviceExt;
 
 use crate::readback::{GpuDuration, GpuTimer, read_buffer_as};
@@ -125,7 +125,10 @@ impl TrochoidTarget {
             if b.size() < need {
                 return Err(GpuError::InvalidResource {
                     what,
-                    reason: format!("{} bytes, the grid needs {need} ({points} points x 16)", b.size()),
+                    reason: format!(
+                        "{} bytes, the grid needs {need} ({points} points x 16)",
+                        b.size()
+                    ),
                 });
             }
         }
@@ -142,7 +145,9 @@ impl TrochoidTarget {
 fn output_bytes(device: &wgpu::Device, points: u64) -> Result<u64, GpuError> {
     let size = points * OUTPUT_STRIDE;
     let limits = device.limits();
-    let limit = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
+    let limit = limits
+        .max_storage_buffer_binding_size
+        .min(limits.max_buffer_size);
     if size > limit {
         return Err(GpuError::TooLarge {
             what: "trochoid output buffer (16 bytes per grid point)",
@@ -151,6 +156,17 @@ fn output_bytes(device: &wgpu::Device, points: u64) -> Result<u64, GpuError> {
         });
     }
     Ok(size)
+}
+
+/// What one run of the pass evaluates: a wave set on a grid at a time.
+#[derive(Clone, Copy, Debug)]
+pub struct TrochoidInput<'a> {
+    /// The waves.
+    pub waves: &'a WaveSet,
+    /// The grid of rest positions.
+    pub grid: &'a Grid,
+    /// Time in seconds (`f64`: phases are reduced on the host, so any finite time works).
+    pub time: f64,
 }
 
 /// Positions and normals read back from the GPU.
@@ -214,9 +230,10 @@ impl TrochoidPass {
                         ty: wgpu::BindingType::Buffer {
                             ty: wgpu::BufferBindingType::Uniform,
                             has_dynamic_offset: false,
-                            min_binding_size: wgpu::BufferSize::new(
-                                std::mem::size_of::<TrochoidParams>() as u64,
-                            ),
+                            min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<
+                                TrochoidParams,
+                            >()
+                                as u64),
                         },
                         count: None,
                     },
@@ -254,14 +271,24 @@ impl TrochoidPass {
         self
     }
 
-    fn prepare(&self, ctx: &GpuContext, waves: &WaveSet, grid: &Grid, t: f64) -> Result<Prepared, GpuError> {
+    fn prepare(
+        &self,
+        ctx: &GpuContext,
+        waves: &WaveSet,
+        grid: &Grid,
+        t: f64,
+    ) -> Result<Prepared, GpuError> {
         let points = grid.point_count()?;
         let (nx, nz) = grid.size;
         let w = waves.coeffs().len();
         let mut rows = vec![0.0f32; w * nz];
         let mut cols = vec![0.0f32; w * nx];
         waves.grid_phases(grid, t, &mut rows, &mut cols)?;
-        let too_large = |what, needed: u64, limit: u64| GpuError::TooLarge { what, needed, limit };
+        let too_large = |what, needed: u64, limit: u64| GpuError::TooLarge {
+            what,
+            needed,
+            limit,
+        };
         let u32max = u64::from(u32::MAX);
         // The shader indexes points and phase tables with u32.
         if points as u64 > u32max {
@@ -269,16 +296,30 @@ impl TrochoidPass {
         }
         let phase_count = (rows.len() + cols.len()) as u64;
         if phase_count > u32max {
-            return Err(too_large("phase table entries (u32 index)", phase_count, u32max));
+            return Err(too_large(
+                "phase table entries (u32 index)",
+                phase_count,
+                u32max,
+            ));
         }
         let limits = ctx.device().limits();
-        let binding_limit = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
-        let coeff_bytes = (w * std::mem::size_of::<WaveCoeffs>()) as u64;
+        let binding_limit = limits
+            .max_storage_buffer_binding_size
+            .min(limits.max_buffer_size);
+        let coeff_bytes = std::mem::size_of_val(waves.coeffs()) as u64;
         if coeff_bytes > binding_limit {
-            return Err(too_large("wave coefficient buffer (bytes)", coeff_bytes, binding_limit));
+            return Err(too_large(
+                "wave coefficient buffer (bytes)",
+                coeff_bytes,
+                binding_limit,
+            ));
         }
         if phase_count * 4 > binding_limit {
-            return Err(too_large("phase table buffer (bytes)", phase_count * 4, binding_limit));
+            return Err(too_large(
+                "phase table buffer (bytes)",
+                phase_count * 4,
+                binding_limit,
+            ));
         }
         output_bytes(ctx.device(), points as u64)?;
         let groups = (points as u64).div_ceil(u64::from(WORKGROUP_SIZE));
@@ -305,23 +346,22 @@ impl TrochoidPass {
         })
     }
 
-    /// Uploads the inputs for `waves` on `grid` at time `t` (seconds) and records the dispatch
-    /// into the caller's `encoder`; the uploads reach the GPU with the caller's next submit,
-    /// ahead of the encoder's commands. `timer`, if given, timestamps the pass (call
-    /// [`GpuTimer::resolve`] on the encoder afterwards).
+    /// Uploads the inputs (waves, grid, time) and records the dispatch into the caller's
+    /// `encoder`; the uploads reach the GPU with the caller's next submit, ahead of the
+    /// encoder's commands. `timer`, if given, timestamps the pass (call [`GpuTimer::resolve`]
+    /// on the encoder afterwards).
     ///
     /// Nothing is recorded if an argument is invalid.
     pub fn encode(
         &self,
         ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
-        waves: &WaveSet,
-        grid: &Grid,
-        t: f64,
+        input: &TrochoidInput<'_>,
         target: &TrochoidTarget,
         timer: Option<&GpuTimer>,
     ) -> Result<(), GpuError> {
-        let p = self.prepare(ctx, waves, grid, t)?;
+        let waves = input.waves;
+        let p = self.prepare(ctx, waves, input.grid, input.time)?;
         target.check(p.points)?;
         let device = ctx.device();
         crate::scoped(device, || {
@@ -398,9 +438,7 @@ impl TrochoidPass {
     pub fn run(
         &self,
         ctx: &GpuContext,
-        waves: &WaveSet,
-        grid: &Grid,
-        t: f64,
+        input: &TrochoidInput<'_>,
         target: &TrochoidTarget,
         timer: Option<&GpuTimer>,
     ) -> Result<(), GpuError> {
@@ -409,7 +447,7 @@ impl TrochoidPass {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("ocean trochoid"),
             });
-        self.encode(ctx, &mut encoder, waves, grid, t, target, timer)?;
+        self.encode(ctx, &mut encoder, input, target, timer)?;
         if let Some(timer) = timer {
             timer.resolve(&mut encoder);
         }
@@ -431,10 +469,18 @@ impl TrochoidPass {
     ) -> Result<GridOutput, GpuError> {
         let target = TrochoidTarget::new(ctx, grid)?;
         let timer = GpuTimer::new(ctx);
-        self.run(ctx, waves, grid, t, &target, timer.as_ref())?;
+        let input = TrochoidInput {
+            waves,
+            grid,
+            time: t,
+        };
+        self.run(ctx, &input, &target, timer.as_ref())?;
         let n = grid.point_count()?;
         let to_vec3 = |v: Vec<[f32; 4]>| -> Vec<Vec3> {
-            v.into_iter().take(n).map(|p| Vec3::new(p[0], p[1], p[2])).collect()
+            v.into_iter()
+                .take(n)
+                .map(|p| Vec3::new(p[0], p[1], p[2]))
+                .collect()
         };
         let positions = to_vec3(read_buffer_as(ctx, &target.positions)?);
         let normals = to_vec3(read_buffer_as(ctx, &target.normals)?);
@@ -477,7 +523,14 @@ mod tests {
         assert_eq!(dispatch_shape(10, 4).unwrap(), (4, 3));
         assert_eq!(dispatch_shape(0, 3).unwrap(), (0, 0));
         // More than max^2 groups cannot be dispatched in two dimensions: 10 > 3 x 3.
-        assert!(matches!(dispatch_shape(10, 3), Err(GpuError::TooLarge { needed: 10, limit: 9, .. })));
+        assert!(matches!(
+            dispatch_shape(10, 3),
+            Err(GpuError::TooLarge {
+                needed: 10,
+                limit: 9,
+                ..
+            })
+        ));
         assert_eq!(dispatch_shape(9, 3).unwrap(), (3, 3));
     }
 }

@@ -1,1 +1,180 @@
 //! Shared helpers of the workspace integration tests.
+//!
+//! GPU tests call [`gpu_context_or_skip`]: on a machine without any usable adapter they print
+//! why and pass vacuously, unless `OCEAN_REQUIRE_GPU=1` is set (as in CI, which runs them on
+//! lavapipe with `WGPU_BACKEND=vulkan` and on llvmpipe with `WGPU_BACKEND=gl`), where a missing
+//! adapter is a failure.
+
+use std::f64::consts::TAU;
+
+use glam::{DVec2, Vec3};
+use ocean_core::{Depth, WaveDesc, WaveSet};
+use ocean_gpu::GpuContext;
+
+/// Whether `OCEAN_REQUIRE_GPU=1` is set.
+pub fn gpu_required() -> bool {
+    std::env::var("OCEAN_REQUIRE_GPU").is_ok_and(|v| v.trim() == "1")
+}
+
+/// The headless GPU context (adapter chosen by `WGPU_BACKEND`), or `None` after printing a skip
+/// message when no usable adapter exists.
+///
+/// # Panics
+///
+/// When `OCEAN_REQUIRE_GPU=1` is set and no context can be created: CI must not pass GPU tests
+/// by skipping them.
+pub fn gpu_context_or_skip() -> Option<GpuContext> {
+    match GpuContext::headless() {
+        Ok(ctx) => {
+            eprintln!("GPU tests on {}", ctx.describe());
+            Some(ctx)
+        }
+        Err(e) if gpu_required() => {
+            panic!("OCEAN_REQUIRE_GPU=1 is set but no GPU context could be created: {e}")
+        }
+        Err(e) => {
+            eprintln!(
+                "SKIPPED: no usable GPU adapter ({e}). Set OCEAN_REQUIRE_GPU=1 to make this a \
+                 failure."
+            );
+            None
+        }
+    }
+}
+
+/// A realistic sea for parity tests: six waves from 3 m to 120 m wavelength, spread over
+/// directions around a mean wind from +x, deep and finite depth, steepness k·A from 0.05 to 0.6,
+/// Σ k·A = 1.5 (so crests fold where waves align: the normals' worst case, as in the lighting
+/// paper's spectra).
+pub fn realistic_waves() -> WaveSet {
+    // (wavelength m, steepness k·A, direction angle rad, phase rad, depth)
+    let spec: [(f64, f64, f64, f64, Depth); 6] = [
+        (120.0, 0.05, 0.0, 0.0, Depth::Deep),
+        (57.0, 0.12, 0.35, 1.3, Depth::Deep),
+        (23.0, 0.2, -0.6, 2.9, Depth::Finite(15.0)),
+        (9.5, 0.35, 1.1, -0.7, Depth::Deep),
+        (5.2, 0.6, -1.4, 0.4, Depth::Deep),
+        (3.1, 0.18, 2.6, -2.2, Depth::Finite(4.0)),
+    ];
+    let descs: Vec<WaveDesc> = spec
+        .iter()
+        .map(|&(wavelength, steepness, angle, phase, depth)| WaveDesc {
+            amplitude: steepness * wavelength / TAU,
+            wavelength,
+            direction: DVec2::new(angle.cos(), angle.sin()),
+            phase,
+            depth,
+        })
+        .collect();
+    WaveSet::from_descs(&descs).expect("valid wave set")
+}
+
+/// Differences between two evaluations of the same grid.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct GridDiff {
+    /// Points compared.
+    pub points: usize,
+    /// RMS of the height (y) difference, metres.
+    pub height_rms: f64,
+    /// Largest height difference, metres.
+    pub height_max: f64,
+    /// Largest horizontal (x, z) position difference, metres.
+    pub horizontal_max: f64,
+    /// RMS of the angle between normals, degrees.
+    pub normal_rms_deg: f64,
+    /// Largest angle between normals, degrees.
+    pub normal_max_deg: f64,
+}
+
+/// Angle between two (not necessarily unit) vectors in degrees, computed as
+/// atan2(|a × b|, a · b) in `f64`, which stays accurate for tiny angles (acos does not).
+pub fn angle_deg(a: Vec3, b: Vec3) -> f64 {
+    let a = a.as_dvec3();
+    let b = b.as_dvec3();
+    a.cross(b).length().atan2(a.dot(b)).to_degrees()
+}
+
+/// Compares positions and normals point by point.
+///
+/// # Panics
+///
+/// If the slices differ in length or are empty.
+pub fn compare(pos_a: &[Vec3], nrm_a: &[Vec3], pos_b: &[Vec3], nrm_b: &[Vec3]) -> GridDiff {
+    let n = pos_a.len();
+    assert!(n > 0, "nothing to compare");
+    assert!(
+        nrm_a.len() == n && pos_b.len() == n && nrm_b.len() == n,
+        "length mismatch"
+    );
+    let mut d = GridDiff {
+        points: n,
+        ..GridDiff::default()
+    };
+    let (mut h2, mut a2) = (0.0, 0.0);
+    for i in 0..n {
+        let (pa, pb) = (pos_a[i].as_dvec3(), pos_b[i].as_dvec3());
+        let dh = (pa.y - pb.y).abs();
+        h2 += dh * dh;
+        d.height_max = d.height_max.max(dh);
+        d.horizontal_max = d
+            .horizontal_max
+            .max((pa.x - pb.x).abs())
+            .max((pa.z - pb.z).abs());
+        let ang = angle_deg(nrm_a[i], nrm_b[i]);
+        a2 += ang * ang;
+        d.normal_max_deg = d.normal_max_deg.max(ang);
+    }
+    d.height_rms = (h2 / n as f64).sqrt();
+    d.normal_rms_deg = (a2 / n as f64).sqrt();
+    d
+}
+
+impl std::fmt::Display for GridDiff {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} points: height RMS {:.3e} m, max {:.3e} m; horizontal max {:.3e} m; \
+             normal angle RMS {:.3e} deg, max {:.3e} deg",
+            self.points,
+            self.height_rms,
+            self.height_max,
+            self.horizontal_max,
+            self.normal_rms_deg,
+            self.normal_max_deg
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn angle_of_known_vectors() {
+        assert_eq!(angle_deg(Vec3::Y, Vec3::Y), 0.0);
+        assert!((angle_deg(Vec3::Y, Vec3::X) - 90.0).abs() < 1e-12);
+        // 1e-4 rad = 5.7296e-3 deg, resolved exactly where acos(dot) would round to 0.
+        let tilted = Vec3::new(1e-4f32.sin(), 1e-4f32.cos(), 0.0);
+        assert!((angle_deg(Vec3::Y, tilted) - 1e-4f64.to_degrees()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn compare_reports_rms_and_max() {
+        // Heights differ by 0 and 2 mm: RMS = sqrt((0 + 4e-6) / 2) = 1.414 mm, max 2 mm.
+        let a = [Vec3::ZERO, Vec3::ZERO];
+        let b = [Vec3::ZERO, Vec3::new(0.0, 0.002, 0.0)];
+        let n = [Vec3::Y, Vec3::Y];
+        let d = compare(&a, &n, &b, &n);
+        assert!((d.height_rms - 0.002 / 2f64.sqrt()).abs() < 1e-9);
+        assert!((d.height_max - 0.002).abs() < 1e-9);
+        assert_eq!(d.normal_max_deg, 0.0);
+    }
+
+    #[test]
+    fn realistic_waves_are_steep_and_varied() {
+        let w = realistic_waves();
+        assert_eq!(w.waves().len(), 6);
+        assert!((w.steepness_sum() - 1.5).abs() < 1e-12);
+        assert!(w.waves().iter().any(|w| w.steepness() >= 0.5));
+    }
+}
