@@ -475,7 +475,9 @@ pub unsafe extern "C" fn ocean_waves_evaluate_grid(
             size: (g.nx, g.nz),
         };
         // Spacing <= 0 and sides above 2^24 are refused here, before any slice is made.
-        core_grid.point_count().map_err(|e| eval_error(e, "grid->origin"))?;
+        core_grid
+            .point_count()
+            .map_err(|e| eval_error(e, "grid->origin"))?;
         // SAFETY: both pointers are non-NULL and aligned, the byte size fits in isize and the
         // ranges are disjoint (all checked above); the caller guarantees `n` writable elements
         // in each, untouched by others during the call.

@@ -1,0 +1,227 @@
+//! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c` and
+//! `tests/cpp/test_waves.cpp` against `include/ocean.h` and the static library `libocean.a`
+//! with the system compilers and `-Wall -Wextra -Werror -pedantic`, runs them, and fails unless
+//! each reports `0 failures` after a positive number of checks and exits 0.
+//!
+//! Where the library comes from: `ocean-tests` depends on `ocean-ffi`, and cargo builds every
+//! crate type of a dependency, so by the time this test runs `libocean.a` (crate-type
+//! `staticlib`, lib name `ocean`) is fresh in the profile directory this test binary lives in
+//! (`<target>/<profile>/deps/c_abi-<hash>`). Observed with cargo 1.95: as a dependency it lands in
+//! `<target>/<profile>/deps/libocean.a` (no hash in the name); built as a root package
+//! (`cargo build -p ocean-ffi`, `cargo test --workspace`) it is also uplifted to
+//! `<target>/<profile>/libocean.a`. The test derives the profile directory from its own path
+//! (so `CARGO_TARGET_DIR` and `--release` work), collects `libocean.a` and `libocean-*.a` from both
+//! places and links the newest, after checking that it is not older than the `ocean-ffi`
+//! sources. It never runs cargo itself (that would wait forever on the build lock that the
+//! `cargo test` running it holds).
+//!
+//! Compilers: `$CC` / `$CXX`, else `cc` / `c++`. A missing compiler fails the test with a message;
+//! it never passes silently.
+#![cfg(unix)]
+
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::SystemTime;
+
+/// System libraries the Rust standard library inside `libocean.a` needs, as printed by
+/// `cargo rustc -p ocean-ffi --lib --crate-type staticlib -- --print native-static-libs`
+/// (x86_64-unknown-linux-gnu, Rust 1.95: `-lgcc_s -lutil -lrt -lpthread -lm -ldl -lc`).
+#[cfg(target_os = "macos")]
+const NATIVE_STATIC_LIBS: &[&str] = &["-lSystem", "-lc", "-lm"];
+#[cfg(not(target_os = "macos"))]
+const NATIVE_STATIC_LIBS: &[&str] = &[
+    "-lgcc_s",
+    "-lutil",
+    "-lrt",
+    "-lpthread",
+    "-lm",
+    "-ldl",
+    "-lc",
+];
+
+const WARNINGS: &[&str] = &["-Wall", "-Wextra", "-Werror", "-pedantic"];
+
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("tests/ has a parent")
+        .to_path_buf()
+}
+
+fn mtime(p: &Path) -> SystemTime {
+    std::fs::metadata(p)
+        .and_then(|m| m.modified())
+        .unwrap_or_else(|e| panic!("cannot stat {}: {e}", p.display()))
+}
+
+/// Newest modification time of the files under `dir`.
+fn newest_source(dir: &Path) -> SystemTime {
+    let mut newest = SystemTime::UNIX_EPOCH;
+    for entry in std::fs::read_dir(dir).unwrap_or_else(|e| panic!("read {}: {e}", dir.display())) {
+        let path = entry.expect("directory entry").path();
+        let t = if path.is_dir() {
+            newest_source(&path)
+        } else {
+            mtime(&path)
+        };
+        newest = newest.max(t);
+    }
+    newest
+}
+
+/// The profile directory (`<target>/<profile>`) this test binary was built into.
+fn profile_dir() -> PathBuf {
+    let exe = std::env::current_exe().expect("path of the test binary");
+    let deps = exe.parent().expect("test binary has a parent directory");
+    assert_eq!(
+        deps.file_name().and_then(|n| n.to_str()),
+        Some("deps"),
+        "expected the test binary in <target>/<profile>/deps, found {}",
+        exe.display()
+    );
+    deps.parent().expect("deps has a parent").to_path_buf()
+}
+
+/// The freshest `libocean.a` of this profile (see the module documentation).
+fn libocean() -> PathBuf {
+    let profile = profile_dir();
+    let mut found = Vec::new();
+    for dir in [profile.clone(), profile.join("deps")] {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        for entry in entries {
+            let path = entry.expect("directory entry").path();
+            let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            if name == "libocean.a" || (name.starts_with("libocean-") && name.ends_with(".a")) {
+                found.push((mtime(&path), path));
+            }
+        }
+    }
+    let (built, lib) = found.into_iter().max().unwrap_or_else(|| {
+        panic!(
+            "no libocean.a in {} or its deps/: ocean-ffi's staticlib was not built \
+             (run `cargo build -p ocean-ffi` with the same profile and target directory)",
+            profile.display()
+        )
+    });
+    let sources = newest_source(&workspace_root().join("ocean-ffi/src"));
+    assert!(
+        built >= sources,
+        "{} is older than the ocean-ffi sources: it is stale; rebuild with `cargo build -p ocean-ffi`",
+        lib.display()
+    );
+    lib
+}
+
+fn compiler(var: &str, default: &str) -> OsString {
+    std::env::var_os(var).unwrap_or_else(|| default.into())
+}
+
+/// Runs `cmd`, failing the test with its output if it cannot start or exits non-zero.
+fn run(mut cmd: Command, what: &str) -> String {
+    let out = match cmd.output() {
+        Ok(out) => out,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => panic!(
+            "{what}: `{}` was not found. The C ABI tests need a C11 and a C++17 compiler \
+             (Debian: apt-get install gcc g++ libglm-dev), or set CC / CXX.",
+            cmd.get_program().to_string_lossy()
+        ),
+        Err(e) => panic!("{what}: cannot run {cmd:?}: {e}"),
+    };
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    // Shown with --nocapture, and in the failure report otherwise.
+    println!("{what}: {cmd:?}\n{stdout}{stderr}");
+    assert!(
+        out.status.success(),
+        "{what} failed ({}):\n{stdout}\n{stderr}",
+        out.status
+    );
+    stdout
+}
+
+/// Compiles `source` with `compiler` and `std`, links it with libocean.a, runs it and checks its
+/// summary line.
+fn build_and_run(compiler: OsString, std_flag: &str, source: &str, exe_name: &str) {
+    let root = workspace_root();
+    let lib = libocean();
+    let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_abi");
+    std::fs::create_dir_all(&out_dir).expect("create the output directory");
+    let exe = out_dir.join(exe_name);
+
+    let mut cc = Command::new(compiler);
+    cc.arg(std_flag)
+        .args(WARNINGS)
+        .arg("-g")
+        .arg("-I")
+        .arg(root.join("include"))
+        .arg(root.join(source))
+        .arg(&lib)
+        .args(NATIVE_STATIC_LIBS)
+        .arg("-o")
+        .arg(&exe);
+    run(cc, &format!("compile {source}"));
+
+    let stdout = run(Command::new(&exe), &format!("run {exe_name}"));
+    // The programs print "<file>: library <version>, <N> checks, <F> failures; ...". Require
+    // the line, N > 0 and F = 0, so an empty or truncated run cannot pass.
+    let summary = stdout
+        .lines()
+        .find(|l| l.contains(" checks, "))
+        .unwrap_or_else(|| panic!("{exe_name} printed no summary:\n{stdout}"));
+    let number_before = |word: &str| -> u64 {
+        let head = &summary[..summary.find(word).expect("summary word")];
+        head.rsplit(|c: char| !c.is_ascii_digit())
+            .find(|s| !s.is_empty())
+            .and_then(|s| s.parse().ok())
+            .unwrap_or_else(|| panic!("no number before {word:?} in {summary:?}"))
+    };
+    assert!(number_before(" checks") > 0, "{summary}");
+    assert_eq!(number_before(" failures"), 0, "{summary}");
+    assert!(
+        summary.contains(&format!("library {}", env!("CARGO_PKG_VERSION"))),
+        "the program linked a library of another version: {summary}"
+    );
+}
+
+#[test]
+fn c11_program_against_the_static_library() {
+    build_and_run(
+        compiler("CC", "cc"),
+        "-std=c11",
+        "tests/c/test_waves.c",
+        "test_waves_c",
+    );
+}
+
+#[test]
+fn cpp17_glm_program_against_the_static_library() {
+    build_and_run(
+        compiler("CXX", "c++"),
+        "-std=c++17",
+        "tests/cpp/test_waves.cpp",
+        "test_waves_cpp",
+    );
+}
+
+/// The header alone compiles as C99 and C++11 too (the oldest standards it claims), without
+/// warnings.
+#[test]
+fn header_compiles_as_c99_and_cpp11() {
+    let include = workspace_root().join("include");
+    for (compiler, lang, std_flag) in [
+        (compiler("CC", "cc"), "c", "-std=c99"),
+        (compiler("CXX", "c++"), "c++", "-std=c++11"),
+    ] {
+        let mut cmd = Command::new(compiler);
+        cmd.args(["-x", lang, std_flag])
+            .args(WARNINGS)
+            .arg("-fsyntax-only")
+            .arg("-I")
+            .arg(&include)
+            .arg(include.join("ocean.h"));
+        run(cmd, &format!("{lang} {std_flag} syntax check of ocean.h"));
+    }
+}
