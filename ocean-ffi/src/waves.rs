@@ -580,3 +580,223 @@ const _: () = {
     const fn shareable<T: Send + Sync>() {}
     shareable::<OceanWaves>();
 };
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use core::ffi::CStr;
+
+    fn last_error() -> String {
+        // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
+        unsafe { CStr::from_ptr(crate::ocean_last_error_message()) }
+            .to_string_lossy()
+            .into_owned()
+    }
+
+    const DESCS: [OceanWaveDesc; 2] = [
+        OceanWaveDesc {
+            amplitude: 0.5,
+            wavelength: 12.0,
+            direction_x: 1.0,
+            direction_z: 0.5,
+            phase: 0.3,
+            depth: f64::INFINITY,
+        },
+        OceanWaveDesc {
+            amplitude: 0.2,
+            wavelength: 5.0,
+            direction_x: -0.4,
+            direction_z: 1.0,
+            phase: -1.0,
+            depth: 2.5,
+        },
+    ];
+
+    fn create() -> *mut OceanWaves {
+        let mut w = core::ptr::null_mut();
+        // SAFETY: valid array and out pointer.
+        let s = unsafe { ocean_waves_create(DESCS.as_ptr(), DESCS.len(), &mut w) };
+        assert_eq!(s, OceanStatus::Ok, "{}", last_error());
+        w
+    }
+
+    fn core_set() -> WaveSet {
+        WaveSet::from_descs(&[
+            WaveDesc {
+                amplitude: 0.5,
+                wavelength: 12.0,
+                direction: DVec2::new(1.0, 0.5),
+                phase: 0.3,
+                depth: Depth::Deep,
+            },
+            WaveDesc {
+                amplitude: 0.2,
+                wavelength: 5.0,
+                direction: DVec2::new(-0.4, 1.0),
+                phase: -1.0,
+                depth: Depth::Finite(2.5),
+            },
+        ])
+        .unwrap()
+    }
+
+    /// The wrapper adds nothing to the arithmetic: its outputs are the core's, bit for bit, for
+    /// points (origin 0, world coordinates) and grids (origin-relative), on both sides of the
+    /// parallel threshold.
+    #[test]
+    fn matches_the_core_bit_for_bit() {
+        let w = create();
+        let set = core_set();
+        for n in [5, PARALLEL_POINTS + 3] {
+            let xz: Vec<OceanVec2> = (0..n)
+                .map(|i| OceanVec2 {
+                    x: (i % 97) as f32 * 1.5 - 60.0,
+                    z: (i / 97) as f32 * 0.75 - 20.0,
+                })
+                .collect();
+            let mut pos = vec![OceanVec3::default(); n];
+            let mut nrm = vec![OceanVec3::default(); n];
+            // SAFETY: n elements in each buffer.
+            let s = unsafe {
+                ocean_waves_evaluate(w, xz.as_ptr(), n, 42.5, pos.as_mut_ptr(), nrm.as_mut_ptr())
+            };
+            assert_eq!(s, OceanStatus::Ok, "{}", last_error());
+            let local: Vec<Vec2> = xz.iter().map(|p| Vec2::new(p.x, p.z)).collect();
+            let mut cp = vec![Vec3::ZERO; n];
+            let mut cn = vec![Vec3::ZERO; n];
+            set.evaluate_points(DVec2::ZERO, &local, 42.5, &mut cp, &mut cn)
+                .unwrap();
+            assert!(
+                pos.iter()
+                    .zip(&cp)
+                    .all(|(a, b)| [a.x, a.y, a.z] == b.to_array())
+            );
+            assert!(
+                nrm.iter()
+                    .zip(&cn)
+                    .all(|(a, b)| [a.x, a.y, a.z] == b.to_array())
+            );
+        }
+
+        let g = OceanGrid {
+            origin_x: 5000.5,
+            origin_z: -123.25,
+            spacing_x: 0.5,
+            spacing_z: 0.25,
+            nx: 19,
+            nz: 7,
+        };
+        let mut pos = vec![OceanVec3::default(); 19 * 7];
+        let mut nrm = pos.clone();
+        // SAFETY: nx * nz elements in each buffer.
+        let s =
+            unsafe { ocean_waves_evaluate_grid(w, &g, 8.0, pos.as_mut_ptr(), nrm.as_mut_ptr()) };
+        assert_eq!(s, OceanStatus::Ok, "{}", last_error());
+        let grid = Grid {
+            origin: DVec2::new(5000.5, -123.25),
+            spacing: DVec2::new(0.5, 0.25),
+            size: (19, 7),
+        };
+        let mut cp = vec![Vec3::ZERO; 19 * 7];
+        let mut cn = cp.clone();
+        set.evaluate_grid(&grid, 8.0, &mut cp, &mut cn).unwrap();
+        assert!(
+            pos.iter()
+                .zip(&cp)
+                .all(|(a, b)| [a.x, a.y, a.z] == b.to_array())
+        );
+        assert!(
+            nrm.iter()
+                .zip(&cn)
+                .all(|(a, b)| [a.x, a.y, a.z] == b.to_array())
+        );
+        // SAFETY: live handle, destroyed once.
+        unsafe { ocean_waves_destroy(w) };
+    }
+
+    /// Misaligned pointers (which C code cannot even form without undefined behaviour, but
+    /// other languages' FFIs can pass) are refused before any access.
+    #[test]
+    fn misaligned_pointers_are_refused() {
+        let w = create();
+        let mut storage = [0u64; 32]; // 8-aligned, so base + 4 is not
+        let xz = [OceanVec2::default(); 4];
+        let base = storage.as_mut_ptr().cast::<u8>();
+        // One byte past a 4-aligned address: misaligned for f32 structs. Never dereferenced.
+        let bad_out = base.wrapping_add(1).cast::<OceanVec3>();
+        let good_out = base.wrapping_add(128).cast::<OceanVec3>();
+        // SAFETY: the library refuses the misaligned pointer before touching any buffer.
+        let s = unsafe { ocean_waves_evaluate(w, xz.as_ptr(), 4, 0.0, bad_out, good_out) };
+        assert_eq!(s, OceanStatus::MisalignedPointer);
+        assert!(last_error().contains("out_pos"), "{}", last_error());
+        let bad_in = base.wrapping_add(2).cast::<OceanVec2>().cast_const();
+        // SAFETY: as above.
+        let s = unsafe { ocean_waves_evaluate(w, bad_in, 4, 0.0, good_out, good_out) };
+        assert_eq!(s, OceanStatus::MisalignedPointer);
+        let mut count = 0usize;
+        let bad_handle = base.wrapping_add(4).cast::<OceanWaves>().cast_const();
+        // SAFETY: as above.
+        let s = unsafe { ocean_waves_count(bad_handle, &mut count) };
+        assert_eq!(s, OceanStatus::MisalignedPointer);
+        assert!(
+            storage.iter().all(|&v| v == 0),
+            "a refused call wrote memory"
+        );
+        // SAFETY: misaligned pointers are ignored by destroy.
+        unsafe { ocean_waves_destroy(bad_handle.cast_mut()) };
+        // SAFETY: live handle, destroyed once.
+        unsafe { ocean_waves_destroy(w) };
+    }
+
+    /// Partly overlapping arrays (not only identical pointers) are refused: creating `&` and
+    /// `&mut` slices over them would be undefined behaviour.
+    #[test]
+    fn overlapping_buffers_are_refused() {
+        let w = create();
+        let mut buf = vec![OceanVec3::default(); 10];
+        let xz = [OceanVec2::default(); 4];
+        let p = buf.as_mut_ptr();
+        // out_normal starts inside out_pos's 4 elements.
+        // SAFETY: refused before any access; the buffer holds 10 elements anyway.
+        let s = unsafe { ocean_waves_evaluate(w, xz.as_ptr(), 4, 0.0, p, p.wrapping_add(3)) };
+        assert_eq!(s, OceanStatus::InvalidArgument);
+        // Adjacent, non-overlapping ranges are fine.
+        // SAFETY: elements 0..4 and 4..8 of a 10-element buffer.
+        let s = unsafe { ocean_waves_evaluate(w, xz.as_ptr(), 4, 0.0, p, p.wrapping_add(4)) };
+        assert_eq!(s, OceanStatus::Ok, "{}", last_error());
+        // Input overlapping an output.
+        let xz_alias = p.wrapping_add(8).cast::<OceanVec2>().cast_const();
+        // SAFETY: refused before any access (1 point = 8 bytes inside element 8).
+        let s = unsafe { ocean_waves_evaluate(w, xz_alias, 1, 0.0, p.wrapping_add(8), p) };
+        assert_eq!(s, OceanStatus::InvalidArgument);
+        // SAFETY: live handle, destroyed once.
+        unsafe { ocean_waves_destroy(w) };
+    }
+
+    #[test]
+    fn depth_infinity_is_deep_water_and_other_non_finite_depths_are_refused() {
+        // depth = +INFINITY must give the same wave as the core's Depth::Deep.
+        let deep = wave_desc(0, &DESCS[0]).unwrap();
+        assert_eq!(deep.depth, Depth::Deep);
+        for (d, status) in [
+            (f64::NAN, OceanStatus::NonFinite),
+            (f64::NEG_INFINITY, OceanStatus::NonFinite),
+        ] {
+            let desc = OceanWaveDesc {
+                depth: d,
+                ..DESCS[0]
+            };
+            assert_eq!(wave_desc(0, &desc).unwrap_err().status, status);
+        }
+        let mut w = core::ptr::null_mut();
+        let desc = OceanWaveDesc {
+            depth: -1.0,
+            ..DESCS[1]
+        };
+        // SAFETY: valid pointers.
+        let s = unsafe { ocean_waves_create(&desc, 1, &mut w) };
+        assert_eq!(s, OceanStatus::InvalidArgument);
+        assert!(w.is_null());
+        assert!(last_error().contains("depth"), "{}", last_error());
+    }
+}
