@@ -44,7 +44,11 @@ enum Suite {
 pub fn bench_waves(n: usize) -> WaveSet {
     let descs: Vec<WaveDesc> = (0..n)
         .map(|i| {
-            let f = if n > 1 { i as f64 / (n - 1) as f64 } else { 0.0 };
+            let f = if n > 1 {
+                i as f64 / (n - 1) as f64
+            } else {
+                0.0
+            };
             let lambda = 0.5 * 120f64.powf(f);
             let angle = 2.399 * i as f64;
             WaveDesc {
@@ -111,7 +115,8 @@ fn gerstner(args: &BenchArgs) -> Result<(), String> {
     for waves in [3usize, 60] {
         let set = bench_waves(waves);
         let (single_ms, _) = time_ms(args.runs, || {
-            set.evaluate_grid(&grid, t, &mut pos, &mut nrm).expect("valid grid");
+            set.evaluate_grid(&grid, t, &mut pos, &mut nrm)
+                .expect("valid grid");
         });
         let (threads_ms, _) = time_ms(args.runs, || {
             set.evaluate_grid_par(&grid, t, &mut pos, &mut nrm)
@@ -162,11 +167,19 @@ fn gerstner(args: &BenchArgs) -> Result<(), String> {
 fn print_gerstner(r: &Value) {
     println!(
         "gerstner: {}x{} grid, CPU {}, {} threads",
-        r["grid"][0], r["grid"][1], r["cpu"].as_str().unwrap_or("?"), r["cases"][0]["threads"]
+        r["grid"][0],
+        r["grid"][1],
+        r["cpu"].as_str().unwrap_or("?"),
+        r["cases"][0]["threads"]
     );
     match r["gpu_device"].as_str() {
         Some(d) => println!("GPU: {d}"),
-        None => println!("GPU: {}", r["cases"][0]["gpu"]["unavailable"].as_str().unwrap_or("none")),
+        None => println!(
+            "GPU: {}",
+            r["cases"][0]["gpu"]["unavailable"]
+                .as_str()
+                .unwrap_or("none")
+        ),
     }
     println!(
         "{:>6} {:>12} {:>12} {:>12} {:>10} {:>16} {:>12}",
@@ -184,7 +197,9 @@ fn print_gerstner(r: &Value) {
             c["cpu_threads_ms"].as_f64().unwrap_or(f64::NAN),
             c["memory_baseline_ms"].as_f64().unwrap_or(f64::NAN),
             c["threads_over_baseline"].as_f64().unwrap_or(f64::NAN),
-            c["evals_per_s_per_core_single"].as_f64().unwrap_or(f64::NAN),
+            c["evals_per_s_per_core_single"]
+                .as_f64()
+                .unwrap_or(f64::NAN),
             gpu
         );
     }

@@ -3,6 +3,7 @@
 use std::time::Instant;
 
 use ocean_core::{Grid, WaveSet};
+use ocean_gpu::trochoid::TrochoidInput;
 use ocean_gpu::{GpuContext, GpuTimer, TrochoidPass, TrochoidTarget};
 use serde_json::{Value, json};
 
@@ -33,8 +34,13 @@ impl Bench {
         let mut wall = Vec::new();
         for i in 0..runs + 2 {
             let start = Instant::now();
+            let input = TrochoidInput {
+                waves: set,
+                grid,
+                time: t,
+            };
             self.trochoid
-                .run(&self.ctx, set, grid, t, &target, timer.as_ref())
+                .run(&self.ctx, &input, &target, timer.as_ref())
                 .map_err(e)?;
             self.ctx.wait_idle().map_err(e)?;
             let elapsed = start.elapsed().as_secs_f64() * 1e3;

@@ -138,10 +138,26 @@ impl Acc {
             ny[l] = if degenerate { 1.0 } else { b * inv };
             nz[l] = if degenerate { 0.0 } else { c * inv };
         }
-        let n = out_pos.len().min(LANES);
-        for l in 0..n {
-            out_pos[l] = Vec3::new(px[l], self.y[l], pz[l]);
-            out_nrm[l] = Vec3::new(nx[l], ny[l], nz[l]);
+        if out_pos.len() >= LANES && out_nrm.len() >= LANES {
+            // Full chunk: interleave into xyz order here and store contiguous runs, instead
+            // of six scalar stores per point.
+            let mut p = [0.0f32; 3 * LANES];
+            let mut q = [0.0f32; 3 * LANES];
+            for l in 0..LANES {
+                p[3 * l] = px[l];
+                p[3 * l + 1] = self.y[l];
+                p[3 * l + 2] = pz[l];
+                q[3 * l] = nx[l];
+                q[3 * l + 1] = ny[l];
+                q[3 * l + 2] = nz[l];
+            }
+            bytemuck::cast_slice_mut::<Vec3, f32>(&mut out_pos[..LANES]).copy_from_slice(&p);
+            bytemuck::cast_slice_mut::<Vec3, f32>(&mut out_nrm[..LANES]).copy_from_slice(&q);
+        } else {
+            for l in 0..out_pos.len().min(LANES) {
+                out_pos[l] = Vec3::new(px[l], self.y[l], pz[l]);
+                out_nrm[l] = Vec3::new(nx[l], ny[l], nz[l]);
+            }
         }
     }
 }

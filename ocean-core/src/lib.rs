@@ -1,8 +1,31 @@
 //! # ocean-core
 //!
 //! `no_std` math shared by every ocean crate: trochoid (Gerstner) waves with analytic
-//! derivatives, the dispersion relation, cameras and projections, frustum planes with AABB and
-//! OBB tests, and a deterministic random number generator.
+//! derivatives ([`trochoid`], [`wave`], [`dispersion`]), cameras and projections for every depth
+//! convention ([`camera`]), frustum planes with conservative sphere, AABB and OBB tests
+//! ([`frustum`]), and a deterministic random number generator ([`rng`], PCG32).
+//!
+//! ## Example
+//!
+//! ```
+//! use glam::{DVec2, Vec3};
+//! use ocean_core::{Depth, Grid, WaveDesc, WaveSet};
+//!
+//! let waves = WaveSet::from_descs(&[WaveDesc {
+//!     amplitude: 0.5,                  // m
+//!     wavelength: 20.0,                // m
+//!     direction: DVec2::new(1.0, 0.3), // (x, z), any length
+//!     phase: 0.0,                      // rad
+//!     depth: Depth::Finite(8.0),       // ω from Eq. 4; Depth::Deep for Eq. 5
+//! }])?;
+//! let grid = Grid::centred(DVec2::new(1.0e5, 0.0), 0.5, 256); // 256 × 256 points, 0.5 m apart
+//! let mut pos = vec![Vec3::ZERO; 256 * 256];
+//! let mut nrm = vec![Vec3::ZERO; 256 * 256];
+//! waves.evaluate_grid_par(&grid, 1.0e6, &mut pos, &mut nrm)?; // relative to grid.origin
+//! let buoy = waves.sample(DVec2::new(1.0e5, 3.0), 1.0e6)?; // displacement and normal
+//! assert!(buoy.displacement.y.abs() <= 0.5 && (nrm[0].length() - 1.0).abs() < 1e-6);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 //!
 //! ## Conventions
 //!
@@ -55,10 +78,15 @@ pub mod sincos;
 pub mod trochoid;
 pub mod wave;
 
+pub use camera::{
+    Camera, CameraError, DepthConvention, DepthDirection, DepthRange, Far, Projection,
+};
 pub use dispersion::{Depth, GRAVITY};
 pub use error::{EvalError, WaveError};
+pub use frustum::{Containment, Frustum, FrustumError};
 pub use grid::Grid;
 pub use kernel::WaveCoeffs;
+pub use rng::Pcg32;
 pub use trochoid::{Sample, SampleF64, WaveSet};
 pub use wave::{Wave, WaveDesc};
 

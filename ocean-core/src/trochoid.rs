@@ -493,6 +493,17 @@ fn lanes(s: &[f32]) -> &[f32; LANES] {
     s[..LANES].try_into().expect("slice of LANES floats")
 }
 
+/// 0, 1, …, LANES − 1 as floats.
+const LANE_INDEX: [f32; LANES] = {
+    let mut v = [0.0f32; LANES];
+    let mut l = 0;
+    while l < LANES {
+        v[l] = l as f32;
+        l += 1;
+    }
+    v
+};
+
 #[inline(always)]
 fn grid_row_kernel(
     coeffs: &[WaveCoeffs],
@@ -523,9 +534,12 @@ fn grid_row_kernel(
             }
             acc.add(coeff, &theta);
         }
+        // (c·LANES + l) as f32, formed by one conversion and exact float additions (all
+        // integers below 2²⁴), so it vectorises.
+        let first = (c * LANES) as f32;
         let mut x = [0.0f32; LANES];
-        for (l, v) in x.iter_mut().enumerate() {
-            *v = (c * LANES + l) as f32 * dx;
+        for l in 0..LANES {
+            x[l] = (first + LANE_INDEX[l]) * dx;
         }
         acc.finish(&x, &[z; LANES], pos, nrm);
     }
