@@ -884,6 +884,76 @@ mod tests {
         assert!(text.starts_with("#version 310 es"));
     }
 
+    /// A draw pass (vertex + fragment) with a uniform block, a texture and a sampler, to check
+    /// the GLSL 3.30 path: no `binding =` qualifiers there (3.30 lacks them), so
+    /// `glsl_binding` is `None` and the engine binds by `glsl_name`; ES 3.10 does write them.
+    const DRAW_TEST: ShaderEntry = ShaderEntry {
+        name: "draw_test",
+        files: &[],
+        source: "
+            struct View { view_proj: mat4x4<f32>, tint: vec4<f32> }
+            @group(0) @binding(0) var<uniform> view: View;
+            @group(0) @binding(1) var albedo: texture_2d<f32>;
+            @group(0) @binding(2) var albedo_sampler: sampler;
+            struct VsOut { @builtin(position) clip: vec4<f32>, @location(0) uv: vec2<f32> }
+            @vertex fn vs(@location(0) p: vec4<f32>) -> VsOut {
+                return VsOut(view.view_proj * vec4<f32>(p.xyz, 1.0), p.xz);
+            }
+            @fragment fn fs(v: VsOut) -> @location(0) vec4<f32> {
+                return view.tint * textureSample(albedo, albedo_sampler, v.uv);
+            }",
+        kind: ShaderKind::Draw,
+        entry_points: &[
+            EntryPoint {
+                name: "vs",
+                stage: Stage::Vertex,
+            },
+            EntryPoint {
+                name: "fs",
+                stage: Stage::Fragment,
+            },
+        ],
+        description: "test draw pass",
+    };
+
+    #[test]
+    fn draw_passes_export_glsl_330_without_binding_qualifiers() {
+        let e = DRAW_TEST.export(Language::Glsl).unwrap();
+        let names: Vec<&str> = e.files.iter().map(|f| f.file_name.as_str()).collect();
+        assert_eq!(names, ["draw_test.vs.vert.glsl", "draw_test.fs.frag.glsl"]);
+        for f in &e.files {
+            let Code::Text(t) = &f.code else {
+                panic!("GLSL is text")
+            };
+            assert!(t.starts_with("#version 330 core"), "{}", f.file_name);
+            assert!(
+                !t.contains("binding ="),
+                "GLSL 3.30 has no binding qualifier"
+            );
+        }
+        let kinds: Vec<String> = e.bindings.iter().map(|b| b.kind.to_string()).collect();
+        assert_eq!(kinds, ["uniform", "texture", "sampler"]);
+        assert!(e.bindings.iter().all(|b| b.glsl_binding.is_none()));
+        // The uniform block and the combined texture+sampler have GLSL names to bind by.
+        assert!(e.bindings[0].glsl_name.is_some() && e.bindings[1].glsl_name.is_some());
+        assert_eq!(e.bindings[0].size, 80, "mat4x4 (64) + vec4 (16)");
+
+        // ES 3.10 writes explicit bindings: uniform block 0, texture unit 0.
+        let es = DRAW_TEST.export(Language::GlslEs).unwrap();
+        let gl: Vec<Option<u32>> = es.bindings.iter().map(|b| b.glsl_binding).collect();
+        assert_eq!(gl, [Some(0), Some(0), None]);
+        let Code::Text(vs) = &es.files[0].code else {
+            panic!("GLSL ES is text")
+        };
+        assert!(vs.starts_with("#version 310 es") && vs.contains("binding = 0"));
+        // Every other language translates the draw pass too.
+        for l in [Language::Hlsl, Language::Msl, Language::SpirV] {
+            DRAW_TEST
+                .export(l)
+                .unwrap_or_else(|err| panic!("{l}: {err}"));
+        }
+    }
+
     #[test]
     fn wgsl_sincos_constants_match_the_cpu() {
         // ocean_core::sincos keeps its constants private; read them from its source so a change

@@ -43,8 +43,8 @@ pub struct TrochoidParams {
     /// Workgroups along x of the dispatch; the linear workgroup index is
     /// `workgroup_id.y · groups_x + workgroup_id.x`.
     pub groups_x: u32,
-    /// Padding to the 8-byte boundary WGSL gives nothing here, kept explicit so the struct has
-    /// no implicit padding (a `Pod` requirement) and stays 32 bytes.
+    /// Explicit padding, 0: keeps the struct at 32 bytes (a whole number of 16-byte std140
+    /// rows) with no implicit padding, which `Pod` forbids.
     pub _pad: u32,
     /// Grid spacing along x, metres (`f32`, as the CPU kernel rounds it).
     pub spacing_x: f32,
@@ -350,6 +350,9 @@ impl TrochoidPass {
     /// `encoder`; the uploads reach the GPU with the caller's next submit, ahead of the
     /// encoder's commands. `timer`, if given, timestamps the pass (call [`GpuTimer::resolve`]
     /// on the encoder afterwards).
+    ///
+    /// Each call allocates three small input buffers (uniforms, coefficients, phase tables:
+    /// 32 + 32·waves + 4·waves·(nx + nz) bytes); they live as long as the recorded commands.
     ///
     /// Nothing is recorded if an argument is invalid.
     pub fn encode(
