@@ -14,7 +14,11 @@ use crate::sincos::sincos;
 use crate::wave::Wave;
 
 /// Points per chunk of the `f32` kernel.
-pub const LANES: usize = 8;
+///
+/// Sixteen lanes are two AVX2 vectors: two independent dependency chains per instruction
+/// stream hide the latency of the square root and division in the normalisation, which
+/// dominates when there are few waves.
+pub const LANES: usize = 16;
 
 /// Per-wave constants of the `f32` kernel, derived once from a [`Wave`].
 ///
@@ -94,8 +98,19 @@ impl Acc {
     /// Adds one wave at phases `theta` (each in [-2π, 2π]).
     #[inline(always)]
     pub(crate) fn add(&mut self, c: &WaveCoeffs, theta: &[f32; LANES]) {
+        let mut s = [0.0f32; LANES];
+        let mut co = [0.0f32; LANES];
         for l in 0..LANES {
-            let (s, co) = sincos(theta[l]);
+            (s[l], co[l]) = sincos(theta[l]);
+        }
+        self.add_sin_cos(c, &s, &co);
+    }
+
+    /// Adds one wave given sin θ and cos θ per lane.
+    #[inline(always)]
+    pub(crate) fn add_sin_cos(&mut self, c: &WaveCoeffs, s: &[f32; LANES], co: &[f32; LANES]) {
+        for l in 0..LANES {
+            let (s, co) = (s[l], co[l]);
             self.dx[l] -= c.ahx * s;
             self.dz[l] -= c.ahz * s;
             self.y[l] += c.a * co;
@@ -111,7 +126,8 @@ impl Acc {
     ///
     /// The normal is ∂p/∂z × ∂p/∂x with ∂p/∂x = (J_xx, s_x, J_xz) and ∂p/∂z = (J_xz, s_z, J_zz);
     /// its y component is det J, which stays ≥ 0 while the steepness sum is ≤ 1. Where the cross
-    /// product vanishes (only at a cusp, k·A = 1) the normal is taken as +y.
+    /// product vanishes (|n|² below `f32::MIN_POSITIVE`, which happens only at a cusp,
+    /// k·A = 1) the normal is taken as +y.
     #[inline(always)]
     pub(crate) fn finish(
         &self,
@@ -132,7 +148,9 @@ impl Acc {
             let b = self.jzz[l] * self.jxx[l] - self.jxz[l] * self.jxz[l];
             let c = self.jxz[l] * self.sx[l] - self.sz[l] * self.jxx[l];
             let len2 = a * a + b * b + c * c;
-            let degenerate = len2 <= 0.0;
+            // Below the smallest normal float the cross product has no meaningful direction
+            // (|n| < 1.1e-19, only next to a cusp).
+            let degenerate = len2 < f32::MIN_POSITIVE;
             let inv = 1.0 / crate::math::sqrtf(if degenerate { 1.0 } else { len2 });
             nx[l] = if degenerate { 0.0 } else { a * inv };
             ny[l] = if degenerate { 1.0 } else { b * inv };

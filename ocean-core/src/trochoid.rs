@@ -14,6 +14,7 @@ use crate::grid::Grid;
 use crate::kernel::{Acc, LANES, WaveCoeffs};
 use crate::math;
 use crate::phase::reduce_angle_f32;
+use crate::sincos::sincos;
 use crate::wave::{Wave, WaveDesc};
 
 /// Surface point from the `f32` kernel.
@@ -93,7 +94,7 @@ fn dispatch<K: pulp::WithSimd>(kernel: K) -> K::Output {
 /// One grid row: the arguments of [`grid_row_kernel`].
 struct GridRow<'a> {
     coeffs: &'a [WaveCoeffs],
-    row_phases: &'a [f32],
+    rows: &'a [[f32; 2]],
     cols: &'a [f32],
     dx: f32,
     z: f32,
@@ -107,7 +108,7 @@ impl pulp::WithSimd for GridRow<'_> {
     fn with_simd<S: pulp::Simd>(self, _: S) {
         grid_row_kernel(
             self.coeffs,
-            self.row_phases,
+            self.rows,
             self.cols,
             self.dx,
             self.z,
@@ -334,12 +335,21 @@ impl WaveSet {
 }
 
 #[cfg(feature = "std")]
+pub use parallel::rows_per_task;
+
+#[cfg(feature = "std")]
 mod parallel {
     use super::*;
     use rayon::prelude::*;
 
-    /// Points per parallel task: large enough to amortise scheduling, small enough to balance.
-    const POINTS_PER_TASK: usize = LANES * 256;
+    /// Points per parallel task: large enough to amortise rayon's scheduling (about a
+    /// microsecond per task), small enough to balance the load over many threads.
+    pub(crate) const POINTS_PER_TASK: usize = 16 * 1024;
+
+    /// Whole grid rows per parallel task for rows of `nx` points.
+    pub fn rows_per_task(nx: usize) -> usize {
+        (POINTS_PER_TASK / nx.max(1)).max(1)
+    }
 
     impl WaveSet {
         /// [`WaveSet::evaluate_grid`] on the current rayon thread pool (run it inside
@@ -354,16 +364,21 @@ mod parallel {
         ) -> Result<(), EvalError> {
             let plan = GridPlan::new(self, grid, t, out_pos, out_nrm)?;
             let mut cols = vec![0.0f32; plan.col_table_len()];
-            let block = plan.waves * LANES;
+            let block = plan.block();
             cols.par_chunks_mut(block * 16)
                 .enumerate()
                 .for_each(|(c, chunk)| plan.fill_columns(chunk, c * 16));
             let nx = grid.size.0;
+            let rows = rows_per_task(nx);
             out_pos
-                .par_chunks_mut(nx)
-                .zip(out_nrm.par_chunks_mut(nx))
+                .par_chunks_mut(nx * rows)
+                .zip(out_nrm.par_chunks_mut(nx * rows))
                 .enumerate()
-                .for_each(|(j, (p, n))| plan.row(&self.coeffs, &cols, j, p, n));
+                .for_each(|(task, (p, n))| {
+                    for (r, (p, n)) in p.chunks_mut(nx).zip(n.chunks_mut(nx)).enumerate() {
+                        plan.row(&self.coeffs, &cols, task * rows + r, p, n);
+                    }
+                });
             Ok(())
         }
 
@@ -432,24 +447,32 @@ impl<'a> GridPlan<'a> {
         })
     }
 
-    /// Column phases, chunk-major: `[chunk][wave][lane]`, so a chunk streams one block.
-    fn col_table_len(&self) -> usize {
-        self.chunks * self.waves * LANES
+    /// Floats per chunk in the column table: sin and cos of every wave's column phase.
+    fn block(&self) -> usize {
+        self.waves * 2 * LANES
     }
 
-    /// Fills `out`, which starts at chunk `first_chunk`, with column phases.
+    /// Column table, chunk-major: `[chunk][wave][sin lanes, cos lanes]`, so a chunk streams
+    /// one contiguous block.
+    fn col_table_len(&self) -> usize {
+        self.chunks * self.block()
+    }
+
+    /// Fills `out`, which starts at chunk `first_chunk`, with sin and cos of column phases.
     fn fill_columns(&self, out: &mut [f32], first_chunk: usize) {
         let nx = self.grid.size.0;
-        for (c, block) in out.chunks_mut(self.waves * LANES).enumerate() {
+        for (c, block) in out.chunks_mut(self.block()).enumerate() {
             let i0 = (first_chunk + c) * LANES;
-            for (tw, lanes) in self.timed.iter().zip(block.chunks_mut(LANES)) {
-                for (l, v) in lanes.iter_mut().enumerate() {
-                    // Padding lanes past the last column get phase 0; they are never written out.
-                    *v = if i0 + l < nx {
+            for (tw, lanes) in self.timed.iter().zip(block.chunks_mut(2 * LANES)) {
+                let (sin, cos) = lanes.split_at_mut(LANES);
+                for l in 0..LANES {
+                    // Padding lanes past the last column get phase 0; they are never written.
+                    let phase = if i0 + l < nx {
                         col_phase(tw, self.grid, i0 + l)
                     } else {
                         0.0
                     };
+                    (sin[l], cos[l]) = sincos(phase);
                 }
             }
         }
@@ -463,22 +486,22 @@ impl<'a> GridPlan<'a> {
         pos: &mut [Vec3],
         nrm: &mut [Vec3],
     ) {
-        let mut rp = [0.0f32; 256];
+        let mut stack = [[0.0f32; 2]; 256];
         let mut heap;
-        let rp: &mut [f32] = if self.waves <= rp.len() {
-            &mut rp[..self.waves]
+        let rows: &mut [[f32; 2]] = if self.waves <= stack.len() {
+            &mut stack[..self.waves]
         } else {
-            heap = vec![0.0f32; self.waves];
+            heap = vec![[0.0f32; 2]; self.waves];
             &mut heap
         };
-        for (v, tw) in rp.iter_mut().zip(&self.timed) {
-            *v = row_phase(tw, self.grid, j);
+        for (v, tw) in rows.iter_mut().zip(&self.timed) {
+            let (s, c) = sincos(row_phase(tw, self.grid, j));
+            *v = [s, c];
         }
         let z = self.grid.local(0, j).1;
-        let rp = &*rp;
         dispatch(GridRow {
             coeffs,
-            row_phases: rp,
+            rows,
             cols,
             dx: self.grid.spacing.x as f32,
             z,
@@ -504,35 +527,41 @@ const LANE_INDEX: [f32; LANES] = {
     v
 };
 
+/// One grid row. The phase of wave w at column i of row j is R_j + C_i, so its sine and cosine
+/// follow from the angle-addition identities
+///
+/// sin(R + C) = sin R cos C + cos R sin C,  cos(R + C) = cos R cos C − sin R sin C,
+///
+/// with sin and cos of R per row and of C per column computed once by [`sincos`]: four
+/// multiplications and two additions per wave and point instead of a polynomial evaluation.
 #[inline(always)]
 fn grid_row_kernel(
     coeffs: &[WaveCoeffs],
-    row_phases: &[f32],
+    rows: &[[f32; 2]],
     cols: &[f32],
     dx: f32,
     z: f32,
     out_pos: &mut [Vec3],
     out_nrm: &mut [Vec3],
 ) {
-    let block = coeffs.len() * LANES;
+    let block = coeffs.len() * 2 * LANES;
     for (c, (pos, nrm)) in out_pos
         .chunks_mut(LANES)
         .zip(out_nrm.chunks_mut(LANES))
         .enumerate()
     {
-        let phases = &cols[c * block..(c + 1) * block];
+        let table = &cols[c * block..(c + 1) * block];
         let mut acc = Acc::new();
-        for ((coeff, rp), cp) in coeffs
-            .iter()
-            .zip(row_phases)
-            .zip(phases.chunks_exact(LANES))
-        {
-            let cp = lanes(cp);
-            let mut theta = [0.0f32; LANES];
+        for ((coeff, &[rs, rc]), sc) in coeffs.iter().zip(rows).zip(table.chunks_exact(2 * LANES)) {
+            let (cs, cc) = sc.split_at(LANES);
+            let (cs, cc) = (lanes(cs), lanes(cc));
+            let mut s = [0.0f32; LANES];
+            let mut co = [0.0f32; LANES];
             for l in 0..LANES {
-                theta[l] = rp + cp[l];
+                s[l] = rs * cc[l] + rc * cs[l];
+                co[l] = rc * cc[l] - rs * cs[l];
             }
-            acc.add(coeff, &theta);
+            acc.add_sin_cos(coeff, &s, &co);
         }
         // (c·LANES + l) as f32, formed by one conversion and exact float additions (all
         // integers below 2²⁴), so it vectorises.
@@ -609,16 +638,19 @@ mod tests {
             GridPlan::new(&set, &grid, 4321.0, &[Vec3::ZERO; 303], &[Vec3::ZERO; 303]).unwrap();
         let mut cols = vec![0.0f32; plan.col_table_len()];
         plan.fill_columns(&mut cols, 0);
-        let rows: Vec<f32> = plan
+        let rows: Vec<[f32; 2]> = plan
             .timed
             .iter()
-            .map(|tw| row_phase(tw, &grid, 2))
+            .map(|tw| {
+                let (s, c) = sincos(row_phase(tw, &grid, 2));
+                [s, c]
+            })
             .collect();
         let run = |arch: pulp::Arch| {
             let (mut p, mut n) = (vec![Vec3::ZERO; 101], vec![Vec3::ZERO; 101]);
             arch.dispatch(GridRow {
                 coeffs: &set.coeffs,
-                row_phases: &rows,
+                rows: &rows,
                 cols: &cols,
                 dx: grid.spacing.x as f32,
                 z: 0.66,
