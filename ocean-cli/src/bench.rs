@@ -64,19 +64,35 @@ pub fn bench_waves(n: usize) -> WaveSet {
     WaveSet::from_descs(&descs).expect("benchmark waves are valid")
 }
 
-/// Median and minimum of `runs` timings of `f`, in milliseconds, after two warm-up calls.
-pub fn time_ms(runs: u32, mut f: impl FnMut()) -> (f64, f64) {
+/// Milliseconds taken by one call of `f`.
+fn once_ms(f: &mut impl FnMut()) -> f64 {
+    let start = Instant::now();
     f();
-    f();
-    let mut t: Vec<f64> = (0..runs)
-        .map(|_| {
-            let start = Instant::now();
+    start.elapsed().as_secs_f64() * 1e3
+}
+
+/// Median of each of `fs` over `runs` rounds, after two warm-up rounds. The functions run in
+/// turn within each round, so a slow spell of the machine (often a shared virtual machine)
+/// hits all of them alike and their ratios stay meaningful.
+pub fn interleaved_medians<const N: usize>(runs: u32, mut fs: [&mut dyn FnMut(); N]) -> [f64; N] {
+    let mut times: [Vec<f64>; N] = std::array::from_fn(|_| Vec::new());
+    for round in 0..runs + 2 {
+        for (f, t) in fs.iter_mut().zip(times.iter_mut()) {
+            // An untimed run first: each figure is then the steady state of a frame loop
+            // that calls the same function again. Without it, a parallel run that follows a
+            // single-threaded one pays for waking the idle pool threads and cores, which on a
+            // virtual machine costs up to milliseconds.
             f();
-            start.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    (t[t.len() / 2], t[0])
+            let ms = once_ms(f);
+            if round >= 2 {
+                t.push(ms);
+            }
+        }
+    }
+    times.map(|mut t| {
+        t.sort_by(f64::total_cmp);
+        t[t.len() / 2]
+    })
 }
 
 pub fn run(args: &BenchArgs) -> Result<(), String> {
@@ -95,9 +111,9 @@ fn gerstner(args: &BenchArgs) -> Result<(), String> {
     let t = 1234.5;
 
     // The memory baseline: writing the same output buffers once, with the same threads and
-    // row partition as the evaluation, so the ratio isolates the cost of the arithmetic.
+    // task partition as the evaluation, so the ratio isolates the cost of the arithmetic.
     let task = side * rows_per_task(side);
-    let (baseline_ms, _) = time_ms(args.runs, || {
+    let baseline = |pos: &mut [Vec3], nrm: &mut [Vec3]| {
         pos.par_chunks_mut(task)
             .zip(nrm.par_chunks_mut(task))
             .enumerate()
@@ -105,7 +121,8 @@ fn gerstner(args: &BenchArgs) -> Result<(), String> {
                 p.fill(Vec3::splat(j as f32));
                 q.fill(Vec3::Y);
             });
-    });
+        std::hint::black_box((pos, nrm));
+    };
 
     let gpu = if args.no_gpu {
         Err("skipped (--no-gpu)".to_string())
@@ -116,14 +133,23 @@ fn gerstner(args: &BenchArgs) -> Result<(), String> {
     let mut cases = Vec::new();
     for waves in [3usize, 60] {
         let set = bench_waves(waves);
-        let (single_ms, _) = time_ms(args.runs, || {
-            set.evaluate_grid(&grid, t, &mut pos, &mut nrm)
-                .expect("valid grid");
-        });
-        let (threads_ms, _) = time_ms(args.runs, || {
-            set.evaluate_grid_par(&grid, t, &mut pos, &mut nrm)
-                .expect("valid grid");
-        });
+        // One buffer pair per measurement, so none of them finds the others' data in cache.
+        let (mut bp, mut bn) = (pos.clone(), nrm.clone());
+        let (mut tp, mut tn) = (pos.clone(), nrm.clone());
+        let [baseline_ms, single_ms, threads_ms] = interleaved_medians(
+            args.runs,
+            [
+                &mut || baseline(&mut bp, &mut bn),
+                &mut || {
+                    set.evaluate_grid(&grid, t, &mut pos, &mut nrm)
+                        .expect("valid grid")
+                },
+                &mut || {
+                    set.evaluate_grid_par(&grid, t, &mut tp, &mut tn)
+                        .expect("valid grid")
+                },
+            ],
+        );
         let evals = (n * waves) as f64;
         let per_core_single = evals / (single_ms * 1e-3);
         let per_core_threads = evals / (threads_ms * 1e-3) / threads as f64;
