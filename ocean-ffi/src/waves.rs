@@ -159,6 +159,18 @@ fn check_time(time: f64) -> Result<(), Error> {
     }
 }
 
+/// `OCEAN_STATUS_NON_FINITE` naming the first of `fields` that is NaN or infinite, as
+/// `{prefix}{name}`.
+fn check_finite(prefix: &str, fields: &[(&str, f64)]) -> Result<(), Error> {
+    match fields.iter().find(|(_, v)| !v.is_finite()) {
+        Some((name, v)) => Err(Error::new(
+            OceanStatus::NonFinite,
+            format!("{prefix}{name} must be finite, got {v}"),
+        )),
+        None => Ok(()),
+    }
+}
+
 fn wave_desc(i: usize, d: &OceanWaveDesc) -> Result<WaveDesc, Error> {
     let fields = [
         ("amplitude", d.amplitude),
@@ -167,14 +179,7 @@ fn wave_desc(i: usize, d: &OceanWaveDesc) -> Result<WaveDesc, Error> {
         ("direction_z", d.direction_z),
         ("phase", d.phase),
     ];
-    for (name, v) in fields {
-        if !v.is_finite() {
-            return Err(Error::new(
-                OceanStatus::NonFinite,
-                format!("descs[{i}].{name} must be finite, got {v}"),
-            ));
-        }
-    }
+    check_finite(&format!("descs[{i}]."), &fields)?;
     let depth = if d.depth == f64::INFINITY {
         Depth::Deep
     } else if !d.depth.is_finite() {
@@ -461,14 +466,7 @@ pub unsafe extern "C" fn ocean_waves_evaluate_grid(
             ("spacing_x", g.spacing_x),
             ("spacing_z", g.spacing_z),
         ];
-        for (name, v) in members {
-            if !v.is_finite() {
-                return Err(Error::new(
-                    OceanStatus::NonFinite,
-                    format!("grid->{name} must be finite, got {v}"),
-                ));
-            }
-        }
+        check_finite("grid->", &members)?;
         let core_grid = Grid {
             origin: DVec2::new(g.origin_x, g.origin_z),
             spacing: DVec2::new(g.spacing_x, g.spacing_z),
