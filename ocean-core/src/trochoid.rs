@@ -95,7 +95,7 @@ fn dispatch<K: pulp::WithSimd>(kernel: K) -> K::Output {
 struct GridRow<'a> {
     coeffs: &'a [WaveCoeffs],
     rows: &'a [[f32; 2]],
-    cols: &'a [f32],
+    cols: &'a [ColumnSinCos],
     dx: f32,
     z: f32,
     pos: &'a mut [Vec3],
@@ -289,7 +289,7 @@ impl WaveSet {
         out_nrm: &mut [Vec3],
     ) -> Result<(), EvalError> {
         let plan = GridPlan::new(self, grid, t, out_pos, out_nrm)?;
-        let mut cols = vec![0.0f32; plan.col_table_len()];
+        let mut cols = vec![ColumnSinCos::ZERO; plan.col_table_len()];
         plan.fill_columns(&mut cols, 0);
         let nx = grid.size.0;
         for (j, (p, n)) in out_pos
@@ -302,15 +302,21 @@ impl WaveSet {
         Ok(())
     }
 
-    /// Fills the phase tables of a grid at time `t`, as the GPU pass consumes them:
-    /// `rows[w * size.1 + j]` and `cols[w * size.0 + i]`, both in [-π, π], with the phase of
-    /// wave `w` at point (i, j) equal to `rows[..] + cols[..]` (modulo 2π).
-    pub fn grid_phases(
+    /// Fills the tables from which the grid kernels form every wave's sine and cosine, as the
+    /// GPU pass uploads them: `rows[w * size.1 + j]` = [sin R, cos R] and
+    /// `cols[w * size.0 + i]` = [sin C, cos C], where R and C are the phase parts of wave `w`
+    /// for row `j` and column `i` (R = k·origin − ωt + Φ + k_z j Δz and C = k_x i Δx, each
+    /// reduced to [-π, π] in `f64`, then [`sincos`]). The phase at point (i, j) is R + C, so
+    ///
+    /// sin θ = sin R cos C + cos R sin C,  cos θ = cos R cos C − sin R sin C,
+    ///
+    /// which is the arithmetic of [`WaveSet::evaluate_grid`] and of the GPU pass.
+    pub fn grid_sin_cos(
         &self,
         grid: &Grid,
         t: f64,
-        rows: &mut [f32],
-        cols: &mut [f32],
+        rows: &mut [[f32; 2]],
+        cols: &mut [[f32; 2]],
     ) -> Result<(), EvalError> {
         check_time(t)?;
         grid.point_count()?;
@@ -318,16 +324,20 @@ impl WaveSet {
         let w = self.waves.len();
         if rows.len() != w * nz || cols.len() != w * nx {
             return Err(EvalError::Grid(
-                "phase tables must hold waves x rows and waves x columns values",
+                "sin/cos tables must hold waves x rows and waves x columns pairs",
             ));
         }
+        let pair = |phase: f32| {
+            let (s, c) = sincos(phase);
+            [s, c]
+        };
         let timed = self.timed(grid.origin, t);
         for (wi, tw) in timed.iter().enumerate() {
             for j in 0..nz {
-                rows[wi * nz + j] = row_phase(tw, grid, j);
+                rows[wi * nz + j] = pair(row_phase(tw, grid, j));
             }
             for i in 0..nx {
-                cols[wi * nx + i] = col_phase(tw, grid, i);
+                cols[wi * nx + i] = pair(col_phase(tw, grid, i));
             }
         }
         Ok(())
@@ -363,8 +373,8 @@ mod parallel {
             out_nrm: &mut [Vec3],
         ) -> Result<(), EvalError> {
             let plan = GridPlan::new(self, grid, t, out_pos, out_nrm)?;
-            let mut cols = vec![0.0f32; plan.col_table_len()];
-            let block = plan.block();
+            let mut cols = vec![ColumnSinCos::ZERO; plan.col_table_len()];
+            let block = plan.waves;
             cols.par_chunks_mut(block * 16)
                 .enumerate()
                 .for_each(|(c, chunk)| plan.fill_columns(chunk, c * 16));
@@ -447,24 +457,17 @@ impl<'a> GridPlan<'a> {
         })
     }
 
-    /// Floats per chunk in the column table: sin and cos of every wave's column phase.
-    fn block(&self) -> usize {
-        self.waves * 2 * LANES
-    }
-
-    /// Column table, chunk-major: `[chunk][wave][sin lanes, cos lanes]`, so a chunk streams
-    /// one contiguous block.
+    /// Column table, chunk-major: `[chunk][wave]`, so a chunk streams one contiguous block.
     fn col_table_len(&self) -> usize {
-        self.chunks * self.block()
+        self.chunks * self.waves
     }
 
     /// Fills `out`, which starts at chunk `first_chunk`, with sin and cos of column phases.
-    fn fill_columns(&self, out: &mut [f32], first_chunk: usize) {
+    fn fill_columns(&self, out: &mut [ColumnSinCos], first_chunk: usize) {
         let nx = self.grid.size.0;
-        for (c, block) in out.chunks_mut(self.block()).enumerate() {
+        for (c, block) in out.chunks_mut(self.waves).enumerate() {
             let i0 = (first_chunk + c) * LANES;
-            for (tw, lanes) in self.timed.iter().zip(block.chunks_mut(2 * LANES)) {
-                let (sin, cos) = lanes.split_at_mut(LANES);
+            for (tw, col) in self.timed.iter().zip(block) {
                 for l in 0..LANES {
                     // Padding lanes past the last column get phase 0; they are never written.
                     let phase = if i0 + l < nx {
@@ -472,7 +475,7 @@ impl<'a> GridPlan<'a> {
                     } else {
                         0.0
                     };
-                    (sin[l], cos[l]) = sincos(phase);
+                    (col.sin[l], col.cos[l]) = sincos(phase);
                 }
             }
         }
@@ -481,7 +484,7 @@ impl<'a> GridPlan<'a> {
     fn row(
         &self,
         coeffs: &[WaveCoeffs],
-        cols: &[f32],
+        cols: &[ColumnSinCos],
         j: usize,
         pos: &mut [Vec3],
         nrm: &mut [Vec3],
@@ -511,11 +514,6 @@ impl<'a> GridPlan<'a> {
     }
 }
 
-#[inline(always)]
-fn lanes(s: &[f32]) -> &[f32; LANES] {
-    s[..LANES].try_into().expect("slice of LANES floats")
-}
-
 /// 0, 1, …, LANES − 1 as floats.
 const LANE_INDEX: [f32; LANES] = {
     let mut v = [0.0f32; LANES];
@@ -526,6 +524,20 @@ const LANE_INDEX: [f32; LANES] = {
     }
     v
 };
+
+/// sin and cos of one wave's phase at the columns of one chunk.
+#[derive(Clone, Copy)]
+struct ColumnSinCos {
+    sin: [f32; LANES],
+    cos: [f32; LANES],
+}
+
+impl ColumnSinCos {
+    const ZERO: Self = Self {
+        sin: [0.0; LANES],
+        cos: [0.0; LANES],
+    };
+}
 
 /// One grid row. The phase of wave w at column i of row j is R_j + C_i, so its sine and cosine
 /// follow from the angle-addition identities
@@ -538,13 +550,13 @@ const LANE_INDEX: [f32; LANES] = {
 fn grid_row_kernel(
     coeffs: &[WaveCoeffs],
     rows: &[[f32; 2]],
-    cols: &[f32],
+    cols: &[ColumnSinCos],
     dx: f32,
     z: f32,
     out_pos: &mut [Vec3],
     out_nrm: &mut [Vec3],
 ) {
-    let block = coeffs.len() * 2 * LANES;
+    let block = coeffs.len();
     for (c, (pos, nrm)) in out_pos
         .chunks_mut(LANES)
         .zip(out_nrm.chunks_mut(LANES))
@@ -552,14 +564,12 @@ fn grid_row_kernel(
     {
         let table = &cols[c * block..(c + 1) * block];
         let mut acc = Acc::new();
-        for ((coeff, &[rs, rc]), sc) in coeffs.iter().zip(rows).zip(table.chunks_exact(2 * LANES)) {
-            let (cs, cc) = sc.split_at(LANES);
-            let (cs, cc) = (lanes(cs), lanes(cc));
+        for ((coeff, &[rs, rc]), col) in coeffs.iter().zip(rows).zip(table) {
             let mut s = [0.0f32; LANES];
             let mut co = [0.0f32; LANES];
             for l in 0..LANES {
-                s[l] = rs * cc[l] + rc * cs[l];
-                co[l] = rc * cc[l] - rs * cs[l];
+                s[l] = rs * col.cos[l] + rc * col.sin[l];
+                co[l] = rc * col.cos[l] - rs * col.sin[l];
             }
             acc.add_sin_cos(coeff, &s, &co);
         }
@@ -636,7 +646,7 @@ mod tests {
         };
         let plan =
             GridPlan::new(&set, &grid, 4321.0, &[Vec3::ZERO; 303], &[Vec3::ZERO; 303]).unwrap();
-        let mut cols = vec![0.0f32; plan.col_table_len()];
+        let mut cols = vec![ColumnSinCos::ZERO; plan.col_table_len()];
         plan.fill_columns(&mut cols, 0);
         let rows: Vec<[f32; 2]> = plan
             .timed

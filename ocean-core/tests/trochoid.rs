@@ -358,3 +358,43 @@ fn statistics_of_a_set() {
     let top = p.iter().map(|v| v.y).fold(f32::MIN, f32::max);
     assert!(f64::from(top) <= set.max_amplitude() + 1e-6);
 }
+
+#[test]
+fn grid_sin_cos_tables_give_each_phase() {
+    // Angle addition of the row and column entries must give sin and cos of the full phase
+    // k·p₀ − ωt + Φ, to the f32 rounding of the two table entries (a few 1e-7).
+    let set = far_field_waves();
+    let grid = Grid {
+        origin: DVec2::new(-3.0e4, 7.0e4),
+        spacing: DVec2::new(0.37, 0.29),
+        size: (19, 7),
+    };
+    let t = 2.5e5;
+    let w = set.waves().len();
+    let mut rows = vec![[0.0f32; 2]; w * 7];
+    let mut cols = vec![[0.0f32; 2]; w * 19];
+    set.grid_sin_cos(&grid, t, &mut rows, &mut cols).unwrap();
+    let mut worst = 0.0f64;
+    for (wi, wave) in set.waves().iter().enumerate() {
+        for j in 0..7 {
+            for i in 0..19 {
+                let [rs, rc] = rows[wi * 7 + j].map(f64::from);
+                let [cs, cc] = cols[wi * 19 + i].map(f64::from);
+                let rest = grid.origin + DVec2::new(i as f64 * 0.37, j as f64 * 0.29);
+                let theta = wave.phase_at(rest, t);
+                worst = worst
+                    .max((rs * cc + rc * cs - theta.sin()).abs())
+                    .max((rc * cc - rs * cs - theta.cos()).abs());
+            }
+        }
+    }
+    assert!(worst < 5e-7, "worst {worst:e}");
+    assert!(matches!(
+        set.grid_sin_cos(&grid, t, &mut rows[1..], &mut cols),
+        Err(EvalError::Grid(_))
+    ));
+    assert!(
+        set.grid_sin_cos(&grid, f64::NAN, &mut rows, &mut cols)
+            .is_err()
+    );
+}

@@ -15,7 +15,8 @@
 //!
 //! Metres, seconds, radians; right-handed, **y up**, the sea at rest is y = 0. Time is `f64`
 //! seconds at every public boundary: wave phases are formed and reduced modulo 2π in `f64` on the
-//! host, so the GPU only ever adds two `f32` phases in [-π, π]. Grid outputs are positions
+//! host, which uploads the sines and cosines of their per-row and per-column parts; the GPU only
+//! combines those by angle addition, as the CPU grid kernel does. Grid outputs are positions
 //! relative to the grid origin, row-major (point (i, j) is element `j * nx + i`).
 //!
 //! ## Errors
@@ -35,7 +36,9 @@ pub mod trochoid;
 pub use context::{ContextOptions, GpuContext};
 pub use readback::{GpuDuration, GpuTimer, TextureData};
 pub use shaders::{Code, Export, ExportFile, Language, ShaderError};
-pub use trochoid::{GridOutput, TrochoidInput, TrochoidParams, TrochoidPass, TrochoidTarget};
+pub use trochoid::{
+    GridOutput, TrochoidInput, TrochoidParams, TrochoidPass, TrochoidStats, TrochoidTarget,
+};
 
 pub use naga;
 pub use wgpu;

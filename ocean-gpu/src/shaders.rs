@@ -94,19 +94,13 @@ pub struct ShaderEntry {
     pub description: &'static str,
 }
 
-/// Source of the shared deterministic `ocean_sincos` (the twin of `ocean_core::sincos`).
-pub const SINCOS_WGSL: &str = include_str!("shaders/sincos.wgsl");
-
-/// Source of the trochoid displacement pass, with the shared snippets prepended.
-pub const TROCHOID_WGSL: &str = concat!(
-    include_str!("shaders/sincos.wgsl"),
-    "\n",
-    include_str!("shaders/trochoid.wgsl")
-);
+/// Source of the trochoid displacement pass. It needs no shared snippet: the host uploads sines
+/// and cosines, which the shader combines by angle addition.
+pub const TROCHOID_WGSL: &str = include_str!("shaders/trochoid.wgsl");
 
 static SHADERS: [ShaderEntry; 1] = [ShaderEntry {
     name: "trochoid",
-    files: &["sincos.wgsl", "trochoid.wgsl"],
+    files: &["trochoid.wgsl"],
     source: TROCHOID_WGSL,
     kind: ShaderKind::Compute,
     entry_points: &[EntryPoint {
@@ -803,7 +797,14 @@ mod tests {
                     "array<WaveCoeffs>",
                     32
                 ),
-                (0, 2, "phases", "storage(read)".into(), "array<f32>", 4),
+                (
+                    0,
+                    2,
+                    "tables",
+                    "storage(read)".into(),
+                    "array<vec2<f32>>",
+                    8
+                ),
                 (
                     0,
                     3,
@@ -857,7 +858,7 @@ mod tests {
             vec![
                 ("params", Some(0)),
                 ("coeffs", Some(0)),
-                ("phases", Some(1)),
+                ("tables", Some(1)),
                 ("positions", Some(2)),
                 ("normals", Some(3)),
             ]
@@ -955,48 +956,21 @@ mod tests {
     }
 
     #[test]
-    fn wgsl_sincos_constants_match_the_cpu() {
-        // ocean_core::sincos keeps its constants private; read them from its source so a change
-        // on either side fails here. Every `const NAME: f32 = value;` of sincos.rs must appear
-        // in the WGSL as SINCOS_NAME with the same f32 bits (FRAC_2_PI comes from core).
-        let cpu_src = include_str!("../../ocean-core/src/sincos.rs");
+    fn wgsl_degenerate_normal_threshold_is_f32_min_positive() {
+        // The CPU kernel takes the normal as +y where |n|² < f32::MIN_POSITIVE; the WGSL
+        // literal must round to exactly that f32, or the two sides disagree next to cusps.
         let (module, _) = get("trochoid").unwrap().module().unwrap();
-        let wgsl_const = |name: &str| -> f32 {
-            let (_, c) = module
-                .constants
-                .iter()
-                .find(|(_, c)| c.name.as_deref() == Some(name))
-                .unwrap_or_else(|| panic!("WGSL constant {name} missing"));
-            match module.global_expressions[c.init] {
-                naga::Expression::Literal(naga::Literal::F32(v)) => v,
-                ref other => panic!("{name} is {other:?}"),
+        let (_, c) = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some("F32_MIN_POSITIVE"))
+            .expect("WGSL constant F32_MIN_POSITIVE");
+        match module.global_expressions[c.init] {
+            naga::Expression::Literal(naga::Literal::F32(v)) => {
+                assert_eq!(v.to_bits(), f32::MIN_POSITIVE.to_bits(), "{v:e}");
             }
-        };
-        let mut checked = 0;
-        for line in cpu_src.lines() {
-            let Some(rest) = line.trim().strip_prefix("const ") else {
-                continue;
-            };
-            let Some((name, value)) = rest.split_once(": f32 = ") else {
-                continue;
-            };
-            if name == "ROUND_MAGIC" {
-                continue; // WGSL uses round() instead (see sincos.wgsl).
-            }
-            let value: f32 = value
-                .trim_end_matches(';')
-                .replace('_', "")
-                .parse()
-                .unwrap();
-            let gpu = wgsl_const(&format!("SINCOS_{name}"));
-            assert_eq!(gpu.to_bits(), value.to_bits(), "{name}: {gpu} vs {value}");
-            checked += 1;
+            ref other => panic!("F32_MIN_POSITIVE is {other:?}"),
         }
-        assert_eq!(checked, 9, "PIO2 x3 and six polynomial coefficients");
-        assert_eq!(
-            wgsl_const("SINCOS_FRAC_2_PI").to_bits(),
-            core::f32::consts::FRAC_2_PI.to_bits()
-        );
     }
 
     /// A deterministic, human-readable record of an export: bindings table, then each file

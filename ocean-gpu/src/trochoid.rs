@@ -3,11 +3,17 @@
 //! For each point of a [`Grid`] it sums the waves of a [`WaveSet`] (wave-train-boxes Eq. 6-7:
 //! p = p₀ − Σ k̂ A sin θ, y = Σ A cos θ) and writes the displaced position and the unit normal
 //! from the analytic derivatives, with the same `f32` arithmetic as the CPU kernel (the same
-//! deterministic polynomial `sincos`, the same order of accumulation).
+//! angle-addition products, the same order of accumulation, the same degenerate-normal rule).
 //!
-//! Phases never reach the GPU unreduced: [`WaveSet::grid_phases`] forms every k·p₀ − ωt + Φ in
-//! `f64` on the host and reduces it to [-π, π] as a per-row and a per-column table (the phase at
-//! (i, j) is their sum), so the result does not degrade at t = 10⁶ s or 100 km from the origin.
+//! Phases never reach the GPU unreduced, and the GPU evaluates no sine or cosine: the phase at
+//! (i, j) is a row part R plus a column part C, which [`WaveSet::grid_sin_cos`] forms in `f64`
+//! on the host, reduces to [-π, π] and turns into [sin, cos] tables (per wave and row, per wave
+//! and column). The shader combines them as sin θ = sin R cos C + cos R sin C and
+//! cos θ = cos R cos C − sin R sin C, exactly as the CPU kernel does, so the result neither
+//! degrades at t = 10⁶ s or 100 km from the origin nor depends on the GPU's `sin`/`cos`.
+//!
+//! Inputs live in buffers the [`TrochoidPass`] keeps and rewrites each run (grown only when a
+//! run needs more room), so a frame loop allocates nothing on the GPU in steady state.
 //!
 //! Output layout (see `shaders/trochoid.wgsl`): two buffers of `nx · nz` × 16 bytes, row-major
 //! (point (i, j) at index `j · nx + i`); positions `(x, y, z, 1)` relative to the grid origin,
@@ -15,9 +21,10 @@
 //! [`TrochoidTarget::new`] are also `VERTEX` buffers (`Float32x4`, or `Float32x3` with a
 //! 16-byte stride) and `COPY_SRC`.
 
+use std::sync::{Mutex, MutexGuard, PoisonError};
+
 use glam::Vec3;
-use ocean_core::{Grid, WaveSet};
-use wgpu::util::DeviceExt;
+use ocean_core::{Grid, WaveCoeffs, WaveSet};
 
 use crate::readback::{GpuDuration, GpuTimer, read_buffer_as};
 use crate::{GpuContext, GpuError, shaders};
@@ -38,7 +45,7 @@ pub struct TrochoidParams {
     pub nz: u32,
     /// Number of waves.
     pub waves: u32,
-    /// Index in the phase buffer of the first column phase: `waves · nz`.
+    /// Index in the sin/cos table buffer of the first column entry: `waves · nz`.
     pub cols_offset: u32,
     /// Workgroups along x of the dispatch; the linear workgroup index is
     /// `workgroup_id.y · groups_x + workgroup_id.x`.
@@ -180,20 +187,245 @@ pub struct GridOutput {
     pub gpu_time: Option<GpuDuration>,
 }
 
-/// The trochoid compute pipeline, created once per device.
+/// The trochoid compute pipeline and the input buffers it reuses from run to run.
+///
+/// Create it once per device. Each [`encode`](Self::encode) writes the inputs (uniform block,
+/// wave coefficients, sin/cos tables) with `Queue::write_buffer` into buffers the pass keeps,
+/// growing them only when a run needs more waves or a larger grid than any before it, so a frame
+/// loop allocates nothing on the GPU once its sizes are settled ([`stats`](Self::stats) shows it).
+///
+/// As with any wgpu renderer that owns its uniforms, the written inputs take effect at the
+/// caller's next `Queue::submit`: one pass holds one set of inputs between two submits.
 #[derive(Debug)]
 pub struct TrochoidPass {
     pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     max_groups_per_dim: u32,
+    /// The reusable inputs. A `Mutex` rather than `&mut self`, so one pass can be shared (for
+    /// instance behind an `Arc`) like the wgpu objects it wraps; `encode` holds it while it
+    /// writes and records.
+    inputs: Mutex<Inputs>,
 }
 
-/// Everything one dispatch needs, built on the host.
+/// Counters and capacities of a [`TrochoidPass`]'s own GPU objects, to check that a frame loop
+/// has reached a steady state (no counter moves from one frame to the next).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TrochoidStats {
+    /// Input buffers created so far: three in [`TrochoidPass::new`] (uniform block,
+    /// coefficients, tables), then one each time the coefficients or the tables outgrow theirs.
+    pub buffers_created: u64,
+    /// Bind groups created so far: one per target seen (at most [`BIND_GROUP_CACHE`] are kept),
+    /// and again for every target after an input buffer grew.
+    pub bind_groups_created: u64,
+    /// Waves the coefficient buffer holds.
+    pub wave_capacity: u64,
+    /// [sin, cos] pairs the table buffer holds; a run needs waves · (nx + nz).
+    pub table_capacity: u64,
+}
+
+/// Bind groups a [`TrochoidPass`] keeps (the least recently used is evicted first): enough for
+/// a few targets used in turn (levels of detail, double buffering) without rebuilding them every
+/// frame. A cached bind group keeps its target's buffers alive until it is evicted.
+pub const BIND_GROUP_CACHE: usize = 4;
+
+/// Initial capacity of the coefficient buffer, in waves.
+const INITIAL_WAVES: u64 = 16;
+/// Initial capacity of the table buffer, in [sin, cos] pairs (16 waves on a 128 x 128 grid).
+const INITIAL_TABLE_PAIRS: u64 = 16 * 256;
+/// Bytes of one wave's coefficients (WGSL `WaveCoeffs`).
+const COEFF_STRIDE: u64 = std::mem::size_of::<WaveCoeffs>() as u64;
+/// Bytes of one [sin, cos] pair (WGSL `vec2<f32>`).
+const PAIR_STRIDE: u64 = 8;
+
+/// The input buffers of a pass, with a host staging area for the tables and the bind groups
+/// built on them.
+#[derive(Debug)]
+struct Inputs {
+    params: wgpu::Buffer,
+    coeffs: wgpu::Buffer,
+    tables: wgpu::Buffer,
+    /// Rows then columns, as uploaded to `tables`; kept to avoid a host allocation per run.
+    scratch: Vec<[f32; 2]>,
+    /// Least recently used first.
+    bind_groups: Vec<CachedBindGroup>,
+    stats: TrochoidStats,
+}
+
+#[derive(Debug)]
+struct CachedBindGroup {
+    positions: wgpu::Buffer,
+    normals: wgpu::Buffer,
+    out_size: u64,
+    group: wgpu::BindGroup,
+}
+
+/// Everything one dispatch needs besides the tables, checked on the host.
 struct Prepared {
     params: TrochoidParams,
     groups: (u32, u32),
-    phases: Vec<f32>,
     points: u64,
+    /// [sin, cos] pairs in the tables: waves · (nz + nx).
+    table_pairs: u64,
+    /// Largest binding the device allows, bytes.
+    binding_limit: u64,
+}
+
+/// The size of a buffer that must hold `needed` bytes and now holds `current`: at least double,
+/// so a slowly growing grid reallocates O(log n) times, but never past the binding limit (which
+/// `needed` is known to respect).
+fn grown_size(current: u64, needed: u64, limit: u64) -> u64 {
+    needed.max(current.saturating_mul(2).min(limit))
+}
+
+fn input_buffer(
+    device: &wgpu::Device,
+    label: &str,
+    size: u64,
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size,
+        usage: usage | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+impl Inputs {
+    fn new(device: &wgpu::Device) -> Self {
+        let storage = wgpu::BufferUsages::STORAGE;
+        Self {
+            params: input_buffer(
+                device,
+                "ocean trochoid params",
+                std::mem::size_of::<TrochoidParams>() as u64,
+                wgpu::BufferUsages::UNIFORM,
+            ),
+            coeffs: input_buffer(
+                device,
+                "ocean trochoid coefficients",
+                INITIAL_WAVES * COEFF_STRIDE,
+                storage,
+            ),
+            tables: input_buffer(
+                device,
+                "ocean trochoid sin/cos tables",
+                INITIAL_TABLE_PAIRS * PAIR_STRIDE,
+                storage,
+            ),
+            scratch: Vec::new(),
+            bind_groups: Vec::new(),
+            stats: TrochoidStats {
+                buffers_created: 3,
+                bind_groups_created: 0,
+                wave_capacity: INITIAL_WAVES,
+                table_capacity: INITIAL_TABLE_PAIRS,
+            },
+        }
+    }
+
+    /// Replaces the coefficient and table buffers that are too small for `p` (their contents
+    /// are rewritten by every run, so nothing is copied). Cached bind groups refer to the old
+    /// buffers and are dropped with them.
+    fn reserve(&mut self, device: &wgpu::Device, p: &Prepared) -> Result<(), GpuError> {
+        let waves = u64::from(p.params.waves);
+        let coeff_bytes = waves * COEFF_STRIDE;
+        let table_bytes = p.table_pairs * PAIR_STRIDE;
+        let grow_coeffs = coeff_bytes > self.coeffs.size();
+        let grow_tables = table_bytes > self.tables.size();
+        if !grow_coeffs && !grow_tables {
+            return Ok(());
+        }
+        let storage = wgpu::BufferUsages::STORAGE;
+        // Create inside an error scope and install only on success, so an out-of-memory
+        // failure leaves the pass with its old, valid buffers.
+        let (coeffs, tables) = crate::scoped(device, || {
+            let coeffs = grow_coeffs.then(|| {
+                let size = grown_size(self.coeffs.size(), coeff_bytes, p.binding_limit);
+                input_buffer(device, "ocean trochoid coefficients", size, storage)
+            });
+            let tables = grow_tables.then(|| {
+                let size = grown_size(self.tables.size(), table_bytes, p.binding_limit);
+                input_buffer(device, "ocean trochoid sin/cos tables", size, storage)
+            });
+            Ok((coeffs, tables))
+        })?;
+        if let Some(b) = coeffs {
+            self.stats.wave_capacity = b.size() / COEFF_STRIDE;
+            self.stats.buffers_created += 1;
+            self.coeffs = b;
+        }
+        if let Some(b) = tables {
+            self.stats.table_capacity = b.size() / PAIR_STRIDE;
+            self.stats.buffers_created += 1;
+            self.tables = b;
+        }
+        self.bind_groups.clear();
+        Ok(())
+    }
+
+    /// The bind group of the current input buffers and `target`, from the cache or new.
+    fn bind_group(
+        &mut self,
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        target: &TrochoidTarget,
+        out_size: u64,
+    ) -> wgpu::BindGroup {
+        let hit = self.bind_groups.iter().position(|c| {
+            c.positions == target.positions && c.normals == target.normals && c.out_size == out_size
+        });
+        if let Some(i) = hit {
+            let cached = self.bind_groups.remove(i);
+            let group = cached.group.clone();
+            self.bind_groups.push(cached);
+            return group;
+        }
+        let output = |buffer| {
+            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer,
+                offset: 0,
+                size: wgpu::BufferSize::new(out_size),
+            })
+        };
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ocean trochoid bind group"),
+            layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.params.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: self.coeffs.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: self.tables.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: output(&target.positions),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: output(&target.normals),
+                },
+            ],
+        });
+        self.stats.bind_groups_created += 1;
+        if self.bind_groups.len() == BIND_GROUP_CACHE {
+            self.bind_groups.remove(0);
+        }
+        self.bind_groups.push(CachedBindGroup {
+            positions: target.positions.clone(),
+            normals: target.normals.clone(),
+            out_size,
+            group: group.clone(),
+        });
+        group
+    }
 }
 
 impl TrochoidPass {
@@ -260,6 +492,7 @@ impl TrochoidPass {
                 pipeline,
                 layout,
                 max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
+                inputs: Mutex::new(Inputs::new(device)),
             })
         })
     }
@@ -271,34 +504,43 @@ impl TrochoidPass {
         self
     }
 
+    /// The counters and capacities of the pass's own buffers and bind groups.
+    pub fn stats(&self) -> TrochoidStats {
+        self.lock_inputs().stats
+    }
+
+    /// The inputs, also after a panic in another thread: every field is replaced whole, so a
+    /// poisoned lock still guards consistent buffers.
+    fn lock_inputs(&self) -> MutexGuard<'_, Inputs> {
+        self.inputs.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// Checks sizes against the shader's u32 indices and the device limits; time is checked
+    /// by [`WaveSet::grid_sin_cos`].
     fn prepare(
         &self,
         ctx: &GpuContext,
         waves: &WaveSet,
         grid: &Grid,
-        t: f64,
     ) -> Result<Prepared, GpuError> {
-        let points = grid.point_count()?;
+        let points = grid.point_count()? as u64;
         let (nx, nz) = grid.size;
-        let w = waves.coeffs().len();
-        let mut rows = vec![0.0f32; w * nz];
-        let mut cols = vec![0.0f32; w * nx];
-        waves.grid_phases(grid, t, &mut rows, &mut cols)?;
+        let w = waves.coeffs().len() as u64;
         let too_large = |what, needed: u64, limit: u64| GpuError::TooLarge {
             what,
             needed,
             limit,
         };
         let u32max = u64::from(u32::MAX);
-        // The shader indexes points and phase tables with u32.
-        if points as u64 > u32max {
-            return Err(too_large("grid points (u32 index)", points as u64, u32max));
+        // The shader indexes points and tables with u32.
+        if points > u32max {
+            return Err(too_large("grid points (u32 index)", points, u32max));
         }
-        let phase_count = (rows.len() + cols.len()) as u64;
-        if phase_count > u32max {
+        let table_pairs = w * (nz as u64 + nx as u64);
+        if table_pairs > u32max {
             return Err(too_large(
-                "phase table entries (u32 index)",
-                phase_count,
+                "sin/cos table entries (u32 index)",
+                table_pairs,
                 u32max,
             ));
         }
@@ -306,7 +548,7 @@ impl TrochoidPass {
         let binding_limit = limits
             .max_storage_buffer_binding_size
             .min(limits.max_buffer_size);
-        let coeff_bytes = std::mem::size_of_val(waves.coeffs()) as u64;
+        let coeff_bytes = w * COEFF_STRIDE;
         if coeff_bytes > binding_limit {
             return Err(too_large(
                 "wave coefficient buffer (bytes)",
@@ -314,47 +556,52 @@ impl TrochoidPass {
                 binding_limit,
             ));
         }
-        if phase_count * 4 > binding_limit {
+        if table_pairs * PAIR_STRIDE > binding_limit {
             return Err(too_large(
-                "phase table buffer (bytes)",
-                phase_count * 4,
+                "sin/cos table buffer (bytes)",
+                table_pairs * PAIR_STRIDE,
                 binding_limit,
             ));
         }
-        output_bytes(ctx.device(), points as u64)?;
-        let groups = (points as u64).div_ceil(u64::from(WORKGROUP_SIZE));
+        output_bytes(ctx.device(), points)?;
+        let groups = points.div_ceil(u64::from(WORKGROUP_SIZE));
         let groups = dispatch_shape(
             u32::try_from(groups).map_err(|_| too_large("workgroups", groups, u32max))?,
             self.max_groups_per_dim,
         )?;
-        let mut phases = rows;
-        phases.extend_from_slice(&cols);
         Ok(Prepared {
             params: TrochoidParams {
                 nx: nx as u32,
                 nz: nz as u32,
                 waves: w as u32,
-                cols_offset: (w * nz) as u32,
+                cols_offset: (w * nz as u64) as u32,
                 groups_x: groups.0,
                 _pad: 0,
                 spacing_x: grid.spacing.x as f32,
                 spacing_z: grid.spacing.y as f32,
             },
             groups,
-            phases,
-            points: points as u64,
+            points,
+            table_pairs,
+            binding_limit,
         })
     }
 
     /// Uploads the inputs (waves, grid, time) and records the dispatch into the caller's
-    /// `encoder`; the uploads reach the GPU with the caller's next submit, ahead of the
-    /// encoder's commands. `timer`, if given, timestamps the pass (call [`GpuTimer::resolve`]
-    /// on the encoder afterwards).
+    /// `encoder`. `timer`, if given, timestamps the pass (call [`GpuTimer::resolve`] on the
+    /// encoder afterwards).
     ///
-    /// Each call allocates three small input buffers (uniforms, coefficients, phase tables:
-    /// 32 + 32·waves + 4·waves·(nx + nz) bytes); they live as long as the recorded commands.
+    /// The inputs go into the pass's own buffers by `Queue::write_buffer`, so they reach the GPU
+    /// with the caller's next `Queue::submit`, ahead of the commands submitted then. Hence
+    /// submit between two `encode` calls on the same pass: both dispatches of a doubly encoded
+    /// pass would see the inputs of the second call (use one pass per dispatch to evaluate
+    /// several inputs in one submission). [`run`](Self::run) submits for you.
     ///
-    /// Nothing is recorded if an argument is invalid.
+    /// The buffers grow when a run needs more than any run before; otherwise nothing is
+    /// allocated on the GPU, and the bind group for `target` comes from a small cache
+    /// (see [`TrochoidStats`]).
+    ///
+    /// Nothing is written or recorded if an argument is invalid.
     pub fn encode(
         &self,
         ctx: &GpuContext,
@@ -364,67 +611,24 @@ impl TrochoidPass {
         timer: Option<&GpuTimer>,
     ) -> Result<(), GpuError> {
         let waves = input.waves;
-        let p = self.prepare(ctx, waves, input.grid, input.time)?;
+        let p = self.prepare(ctx, waves, input.grid)?;
         target.check(p.points)?;
         let device = ctx.device();
-        crate::scoped(device, || {
-            let init = |label, contents: &[u8], usage| {
-                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(label),
-                    contents,
-                    usage,
-                })
-            };
-            let params = init(
-                "ocean trochoid params",
-                bytemuck::bytes_of(&p.params),
-                wgpu::BufferUsages::UNIFORM,
-            );
-            let coeffs = init(
-                "ocean trochoid coefficients",
-                bytemuck::cast_slice(waves.coeffs()),
-                wgpu::BufferUsages::STORAGE,
-            );
-            let phases = init(
-                "ocean trochoid phases",
-                bytemuck::cast_slice(&p.phases),
-                wgpu::BufferUsages::STORAGE,
-            );
-            let out_size = wgpu::BufferSize::new(p.points * OUTPUT_STRIDE);
-            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("ocean trochoid bind group"),
-                layout: &self.layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: params.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: coeffs.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: phases.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                            buffer: &target.positions,
-                            offset: 0,
-                            size: out_size,
-                        }),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 4,
-                        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                            buffer: &target.normals,
-                            offset: 0,
-                            size: out_size,
-                        }),
-                    },
-                ],
-            });
+        let mut guard = self.lock_inputs();
+        let inputs = &mut *guard;
+        // Tables first: a bad time fails here, before anything is written to the GPU.
+        inputs.scratch.clear();
+        inputs.scratch.resize(p.table_pairs as usize, [0.0; 2]);
+        let (rows, cols) = inputs.scratch.split_at_mut(p.params.cols_offset as usize);
+        waves.grid_sin_cos(input.grid, input.time, rows, cols)?;
+        inputs.reserve(device, &p)?;
+        let recorded = crate::scoped(device, || {
+            let queue = ctx.queue();
+            queue.write_buffer(&inputs.params, 0, bytemuck::bytes_of(&p.params));
+            queue.write_buffer(&inputs.coeffs, 0, bytemuck::cast_slice(waves.coeffs()));
+            queue.write_buffer(&inputs.tables, 0, bytemuck::cast_slice(&inputs.scratch));
+            let bind_group =
+                inputs.bind_group(device, &self.layout, target, p.points * OUTPUT_STRIDE);
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ocean trochoid"),
                 timestamp_writes: timer.map(GpuTimer::compute_pass_writes),
@@ -433,7 +637,12 @@ impl TrochoidPass {
             pass.set_bind_group(0, &bind_group, &[]);
             pass.dispatch_workgroups(p.groups.0, p.groups.1, 1);
             Ok(())
-        })
+        });
+        if recorded.is_err() {
+            // A bind group created under a validation error is invalid: never reuse it.
+            inputs.bind_groups.clear();
+        }
+        recorded
     }
 
     /// Records, submits and returns: the pass writes into `target` (timed when `timer` is
@@ -463,6 +672,10 @@ impl TrochoidPass {
     /// Evaluates `grid` at time `t` on the GPU and reads the result back: the GPU twin of
     /// [`WaveSet::evaluate_grid`] (same layout, positions relative to `grid.origin`), with the
     /// pass's GPU time when the device supports timestamps.
+    ///
+    /// A one-off query: it allocates the output and readback buffers each call and waits for
+    /// the GPU. A frame loop keeps a [`TrochoidTarget`] and calls [`run`](Self::run) or
+    /// [`encode`](Self::encode).
     pub fn evaluate_grid(
         &self,
         ctx: &GpuContext,
@@ -511,6 +724,17 @@ mod tests {
         let b = shaders::get("trochoid").unwrap().bindings().unwrap();
         assert_eq!(b[0].size as usize, std::mem::size_of::<TrochoidParams>());
         assert_eq!(b[0].members.last().unwrap().offset, 28);
+    }
+
+    #[test]
+    fn buffers_grow_geometrically_up_to_the_binding_limit() {
+        // At least double, so n growing by one each run reallocates O(log n) times.
+        assert_eq!(grown_size(4096, 4104, 1 << 27), 8192);
+        // A jump past double takes exactly what is needed.
+        assert_eq!(grown_size(4096, 100_000, 1 << 27), 100_000);
+        // Doubling stops at the limit; what is needed (<= limit, checked before) always fits.
+        assert_eq!(grown_size(100 << 20, (100 << 20) + 8, 128 << 20), 128 << 20);
+        assert_eq!(grown_size(u64::MAX / 2 + 1, 16, 1 << 27), 1 << 27);
     }
 
     #[test]

@@ -3,16 +3,17 @@
 //!
 //! Tolerances (DESIGN.md, "CPU and GPU twins"): heights within 1 mm RMS; normals within 0.1° as
 //! the *maximum* angle over all points (the RMS angle is printed too). Both sides run the same
-//! `f32` arithmetic on the same f64-reduced phase tables, so the real differences are the GPU's
-//! freedom to fuse multiply-adds and its approximate `sqrt` and division: micrometres and
-//! thousandths of a degree, far inside the tolerances, which are the visual requirement.
+//! `f32` arithmetic (angle addition of per-row and per-column sines and cosines, then the same
+//! sums) on the same sin/cos tables from `WaveSet::grid_sin_cos`, so the real differences are
+//! the GPU's freedom to fuse multiply-adds and its approximate `sqrt` and division: micrometres
+//! and thousandths of a degree, far inside the tolerances, which are the visual requirement.
 //!
 //! Run with `OCEAN_REQUIRE_GPU=1` to turn a missing adapter into a failure (CI does, on lavapipe
 //! with `WGPU_BACKEND=vulkan` and on llvmpipe with `WGPU_BACKEND=gl`).
 
 use glam::{DVec2, Vec3};
-use ocean_core::{Grid, WaveSet};
-use ocean_gpu::{GpuContext, GpuError, TrochoidInput, TrochoidPass, TrochoidTarget};
+use ocean_core::{Depth, Grid, WaveDesc, WaveSet};
+use ocean_gpu::{GpuContext, GpuError, TrochoidInput, TrochoidPass, TrochoidStats, TrochoidTarget};
 use ocean_tests::{GridDiff, compare, gpu_context_or_skip, realistic_waves};
 
 const HEIGHT_RMS_TOL_M: f64 = 1e-3;
@@ -397,4 +398,120 @@ fn gpu_time_present_iff_timestamps_supported() {
     if let Some(d) = out.gpu_time {
         assert!(d.ns > 0.0, "a 65536-point pass takes time, got {} ns", d.ns);
     }
+}
+
+/// 40 waves (more than the pass's initial room for 16), 2 m to 80 m long, each of steepness
+/// 0.02 (Σ k·A = 0.8, no folds), spread over all directions.
+fn forty_waves() -> WaveSet {
+    let descs: Vec<WaveDesc> = (0..40)
+        .map(|n| {
+            let wavelength = 2.0 + 78.0 * f64::from(n) / 39.0;
+            let angle = f64::from(n) * 2.4;
+            WaveDesc {
+                amplitude: 0.02 * wavelength / std::f64::consts::TAU,
+                wavelength,
+                direction: DVec2::new(angle.cos(), angle.sin()),
+                phase: f64::from(n) * 0.7,
+                depth: Depth::Deep,
+            }
+        })
+        .collect();
+    WaveSet::from_descs(&descs).unwrap()
+}
+
+/// The pass keeps its input buffers: runs of the same size allocate nothing and reuse the
+/// bind group, larger grids or more waves grow the buffers once, and every run is correct
+/// (a stale upload, a table read at the wrong offset or a leftover coefficient from a larger
+/// set would be centimetres off). Each run uses a new time, so a run that saw the previous
+/// run's inputs would fail the comparison.
+#[test]
+fn repeated_runs_reuse_and_grow_the_input_buffers() {
+    let Some(ctx) = gpu_context_or_skip() else {
+        return;
+    };
+    let pass = TrochoidPass::new(&ctx).unwrap();
+    let six = realistic_waves();
+    let forty = forty_waves();
+    let small = Grid {
+        origin: DVec2::new(-20.0, 35.0),
+        spacing: DVec2::new(0.5, 0.75),
+        size: (48, 40),
+    };
+    let big = Grid {
+        origin: DVec2::new(1.0e4, -3.0e3),
+        spacing: DVec2::new(0.5, 0.5),
+        size: (600, 400),
+    };
+    let small_target = TrochoidTarget::new(&ctx, &small).unwrap();
+    let big_target = TrochoidTarget::new(&ctx, &big).unwrap();
+    let mut time = 0.0;
+    let mut run = |waves: &WaveSet, grid: &Grid, target: &TrochoidTarget| -> TrochoidStats {
+        time += 1.75;
+        let input = TrochoidInput { waves, grid, time };
+        pass.run(&ctx, &input, target, None).unwrap();
+        let n = grid.point_count().unwrap();
+        let v3 = |v: Vec<[f32; 4]>| -> Vec<Vec3> {
+            v[..n].iter().map(|p| Vec3::new(p[0], p[1], p[2])).collect()
+        };
+        let pos = v3(ocean_gpu::readback::read_buffer_as(&ctx, &target.positions).unwrap());
+        let nrm = v3(ocean_gpu::readback::read_buffer_as(&ctx, &target.normals).unwrap());
+        let (cpos, cnrm) = cpu(waves, grid, time);
+        let label = format!(
+            "{} waves, {}x{}, t={time}",
+            waves.waves().len(),
+            grid.size.0,
+            grid.size.1
+        );
+        assert_within(&label, &compare(&pos, &nrm, &cpos, &cnrm));
+        pass.stats()
+    };
+
+    let fresh = pass.stats();
+    assert_eq!(fresh.buffers_created, 3, "uniforms, coefficients, tables");
+    assert_eq!(fresh.bind_groups_created, 0);
+    // 6 waves x (48 + 40) = 528 pairs fit the initial tables: only a bind group is made.
+    let first = run(&six, &small, &small_target);
+    assert_eq!(
+        first,
+        TrochoidStats {
+            bind_groups_created: 1,
+            ..fresh
+        }
+    );
+    for _ in 0..3 {
+        assert_eq!(run(&six, &small, &small_target), first, "steady state");
+    }
+
+    // 6 x (600 + 400) = 6000 pairs outgrow the tables (one new buffer), not the coefficients.
+    let grown = run(&six, &big, &big_target);
+    assert_eq!(grown.buffers_created, first.buffers_created + 1);
+    assert_eq!(grown.wave_capacity, first.wave_capacity);
+    assert!(grown.table_capacity >= 6000, "{grown:?}");
+    assert_eq!(run(&six, &big, &big_target), grown, "steady state");
+    // Growing dropped the small target's bind group; after one rebuild both targets are
+    // cached and alternating between them allocates nothing.
+    let both = run(&six, &small, &small_target);
+    assert_eq!(both.bind_groups_created, grown.bind_groups_created + 1);
+    assert_eq!(both.buffers_created, grown.buffers_created);
+    for _ in 0..2 {
+        assert_eq!(run(&six, &big, &big_target), both);
+        assert_eq!(run(&six, &small, &small_target), both);
+    }
+
+    // 40 waves outgrow the coefficients (40 x (48 + 40) = 3520 pairs still fit the tables),
+    // then 40 x 1000 pairs the tables.
+    let more = run(&forty, &small, &small_target);
+    assert_eq!(more.buffers_created, both.buffers_created + 1);
+    assert!(more.wave_capacity >= 40, "{more:?}");
+    assert_eq!(more.table_capacity, both.table_capacity);
+    let most = run(&forty, &big, &big_target);
+    assert_eq!(most.buffers_created, more.buffers_created + 1);
+    assert!(most.table_capacity >= 40_000, "{most:?}");
+    assert_eq!(run(&forty, &big, &big_target), most, "steady state");
+    // Back to fewer waves and a smaller grid: the buffers are large enough and the leftover
+    // coefficients and table entries past the new sizes must not be read.
+    assert_eq!(run(&six, &big, &big_target), most);
+    let last = run(&six, &small, &small_target);
+    assert_eq!(last.buffers_created, most.buffers_created);
+    assert_eq!(run(&six, &small, &small_target), last, "steady state");
 }

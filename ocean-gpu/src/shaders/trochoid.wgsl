@@ -6,10 +6,13 @@
 //     p = p0 − Σ k̂_i A_i sin θ_i,   y = Σ A_i cos θ_i,
 // and the normal from the analytic derivatives of p and y with respect to p0.
 //
-// Conventions: metres, right-handed, y up; positions are relative to the grid origin. The host
-// forms and reduces every phase in f64 and uploads two f32 tables (one value per wave and row,
-// one per wave and column, each in [-π, π]); this shader only adds them, so it never sees an
-// unreduced phase whatever the time or the distance from the world origin.
+// Conventions: metres, right-handed, y up; positions are relative to the grid origin. The phase
+// at point (i, j) splits into a row part R_j = k·origin − ωt + Φ + k_z j Δz and a column part
+// C_i = k_x i Δx. The host (`WaveSet::grid_sin_cos`) forms and reduces each part to [-π, π] in
+// f64 and uploads [sin, cos] of it per wave and row and per wave and column; this shader forms
+//     sin θ = sin R cos C + cos R sin C,   cos θ = cos R cos C − sin R sin C
+// in the CPU kernel's order of operations, so it evaluates no sine or cosine itself and never
+// sees an unreduced phase, whatever the time or the distance from the world origin.
 //
 // Layout: point (i, j) of an nx × nz grid is element j·nx + i of both outputs (row-major, rows
 // along z). positions[n] = (x, y, z, 1), normals[n] = (nx, ny, nz, 0), 16 bytes each, so the
@@ -18,6 +21,10 @@
 // Work mapping: one invocation per point, 64 per workgroup, linear point index
 // (workgroup_id.y · groups_x + workgroup_id.x) · 64 + local_invocation_index, so grids with more
 // than 65535 workgroups fold into a second dispatch dimension.
+
+// Rust's f32::MIN_POSITIVE, the smallest normal f32 (2^-126): the CPU kernel's threshold for a
+// degenerate normal.
+const F32_MIN_POSITIVE: f32 = 1.17549435e-38;
 
 struct WaveCoeffs {
     a: f32,    // A
@@ -35,7 +42,7 @@ struct Params {
     nx: u32,            // columns (along x)
     nz: u32,            // rows (along z)
     waves: u32,         // number of waves
-    cols_offset: u32,   // index in `phases` of the first column phase (= waves · nz)
+    cols_offset: u32,   // index in `tables` of the first column entry (= waves · nz)
     groups_x: u32,      // workgroups along the x dimension of the dispatch
     _pad: u32,
     spacing_x: f32,     // grid spacing along x, metres
@@ -44,8 +51,9 @@ struct Params {
 
 @group(0) @binding(0) var<uniform> params: Params;
 @group(0) @binding(1) var<storage, read> coeffs: array<WaveCoeffs>;
-// rows: phases[w · nz + j] for w < waves, j < nz; columns: phases[cols_offset + w · nx + i].
-@group(0) @binding(2) var<storage, read> phases: array<f32>;
+// [sin, cos] of the row parts, tables[w · nz + j] for w < waves, j < nz, then of the column
+// parts, tables[cols_offset + w · nx + i] for i < nx.
+@group(0) @binding(2) var<storage, read> tables: array<vec2<f32>>;
 @group(0) @binding(3) var<storage, read_write> positions: array<vec4<f32>>;
 @group(0) @binding(4) var<storage, read_write> normals: array<vec4<f32>>;
 
@@ -74,10 +82,10 @@ fn displace(
     var sz = 0.0;
     for (var w = 0u; w < params.waves; w++) {
         let c = coeffs[w];
-        let theta = phases[w * nz + j] + phases[params.cols_offset + w * nx + i];
-        let sc = ocean_sincos(theta);
-        let s = sc.x;
-        let co = sc.y;
+        let row = tables[w * nz + j];                        // (sin R, cos R)
+        let col = tables[params.cols_offset + w * nx + i];   // (sin C, cos C)
+        let s = row.x * col.y + row.y * col.x;
+        let co = row.y * col.y - row.x * col.x;
         dx -= c.ahx * s;
         dz -= c.ahz * s;
         y += c.a * co;
@@ -91,12 +99,13 @@ fn displace(
     let x0 = f32(i) * params.spacing_x;
     let z0 = f32(j) * params.spacing_z;
     // Normal = ∂p/∂z × ∂p/∂x with ∂p/∂x = (J_xx, s_x, J_xz), ∂p/∂z = (J_xz, s_z, J_zz); its y
-    // component is det J. Where it vanishes (a cusp) the normal is +y, as on the CPU.
+    // component is det J. Where |n|² falls below the smallest normal f32 (next to a cusp, where
+    // the cross product has no meaningful direction) the normal is +y, as on the CPU.
     let na = sz * jxz - jzz * sx;
     let nb = jzz * jxx - jxz * jxz;
     let nc = jxz * sx - sz * jxx;
     let len2 = na * na + nb * nb + nc * nc;
-    let degenerate = len2 <= 0.0;
+    let degenerate = len2 < F32_MIN_POSITIVE;
     let inv = 1.0 / sqrt(select(len2, 1.0, degenerate));
     let normal = select(vec3<f32>(na * inv, nb * inv, nc * inv), vec3<f32>(0.0, 1.0, 0.0), degenerate);
 
