@@ -4,6 +4,11 @@
 //! why and pass vacuously, unless `OCEAN_REQUIRE_GPU=1` is set (as in CI, which runs them on
 //! lavapipe with `WGPU_BACKEND=vulkan` and on llvmpipe with `WGPU_BACKEND=gl`), where a missing
 //! adapter is a failure.
+//!
+//! Tests that need tools a fresh machine lacks (GLM's headers, `glslangValidator`,
+//! `spirv-val`) call [`tool_or_skip`] or [`cpp_header_or_skip`] the same way, with
+//! `OCEAN_REQUIRE_TOOLS=1` (set in CI) turning a missing tool into a failure. So
+//! `cargo test --workspace` passes on a fresh machine and CI still runs everything.
 
 use std::f64::consts::TAU;
 
@@ -13,7 +18,72 @@ use ocean_gpu::GpuContext;
 
 /// Whether `OCEAN_REQUIRE_GPU=1` is set.
 pub fn gpu_required() -> bool {
-    std::env::var("OCEAN_REQUIRE_GPU").is_ok_and(|v| v.trim() == "1")
+    flag("OCEAN_REQUIRE_GPU")
+}
+
+/// Whether `OCEAN_REQUIRE_TOOLS=1` is set.
+pub fn tools_required() -> bool {
+    flag("OCEAN_REQUIRE_TOOLS")
+}
+
+fn flag(name: &str) -> bool {
+    std::env::var(name).is_ok_and(|v| v.trim() == "1")
+}
+
+/// Prints why a test is skipped, or panics when `OCEAN_REQUIRE_TOOLS=1` is set.
+fn skip_or_fail(what: &str, package: &str) {
+    if tools_required() {
+        panic!("OCEAN_REQUIRE_TOOLS=1 is set but {what}: install Debian's `{package}`");
+    }
+    eprintln!(
+        "SKIPPED: {what} (install Debian's `{package}`; set OCEAN_REQUIRE_TOOLS=1 to make this \
+         a failure)"
+    );
+}
+
+/// `program` when it can be started, else `None` after a skip message (a panic when
+/// `OCEAN_REQUIRE_TOOLS=1`). `package` names the Debian package that provides it.
+pub fn tool_or_skip(program: &str, package: &str) -> Option<String> {
+    match std::process::Command::new(program)
+        .arg("--version")
+        .output()
+    {
+        Ok(_) => Some(program.to_owned()),
+        Err(e) => {
+            skip_or_fail(&format!("`{program}` cannot be run ({e})"), package);
+            None
+        }
+    }
+}
+
+/// Whether the C++ compiler `cxx` finds `header` (for instance `glm/glm.hpp`); `false` after a
+/// skip message (a panic when `OCEAN_REQUIRE_TOOLS=1`).
+pub fn cpp_header_or_skip(cxx: &std::ffi::OsStr, header: &str, package: &str) -> bool {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let probe = Command::new(cxx)
+        .args(["-fsyntax-only", "-x", "c++", "-"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .and_then(|mut child| {
+            child
+                .stdin
+                .take()
+                .expect("piped stdin")
+                .write_all(format!("#include <{header}>\n").as_bytes())?;
+            child.wait()
+        });
+    match probe {
+        Ok(status) if status.success() => true,
+        // A compiler that cannot start is the C ABI test's own failure, reported there.
+        Err(_) => true,
+        Ok(_) => {
+            skip_or_fail(&format!("{cxx:?} does not find <{header}>"), package);
+            false
+        }
+    }
 }
 
 /// The headless GPU context (adapter chosen by `WGPU_BACKEND`), or `None` after printing a skip

@@ -198,8 +198,12 @@ fn c11_program_against_the_static_library() {
 
 #[test]
 fn cpp17_glm_program_against_the_static_library() {
+    let cxx = compiler("CXX", "c++");
+    if !ocean_tests::cpp_header_or_skip(&cxx, "glm/glm.hpp", "libglm-dev") {
+        return;
+    }
     build_and_run(
-        compiler("CXX", "c++"),
+        cxx,
         "-std=c++17",
         "tests/cpp/test_waves.cpp",
         "test_waves_cpp",
