@@ -68,31 +68,79 @@ impl WaveCoeffs {
     }
 }
 
-/// Running sums over the waves for one chunk of points.
-pub(crate) struct Acc {
-    dx: [f32; LANES],
-    y: [f32; LANES],
-    dz: [f32; LANES],
-    jxx: [f32; LANES],
-    jxz: [f32; LANES],
-    jzz: [f32; LANES],
-    sx: [f32; LANES],
-    sz: [f32; LANES],
+/// Running sums over the waves for `N` points (a chunk has [`LANES`]; the grid kernel sums half
+/// chunks, see [`HALF`]).
+pub(crate) struct Acc<const N: usize = LANES> {
+    dx: [f32; N],
+    y: [f32; N],
+    dz: [f32; N],
+    jxx: [f32; N],
+    jxz: [f32; N],
+    jzz: [f32; N],
+    sx: [f32; N],
+    sz: [f32; N],
 }
 
-impl Acc {
+/// Half a chunk: eight sums of eight lanes each are eight AVX2 registers, so a loop over the
+/// waves keeps them all in registers; a whole chunk's sixteen would spill on every wave.
+pub(crate) const HALF: usize = LANES / 2;
+
+impl<const N: usize> Acc<N> {
     #[inline(always)]
     pub(crate) fn new() -> Self {
         Self {
-            dx: [0.0; LANES],
-            y: [0.0; LANES],
-            dz: [0.0; LANES],
-            jxx: [1.0; LANES],
-            jxz: [0.0; LANES],
-            jzz: [1.0; LANES],
-            sx: [0.0; LANES],
-            sz: [0.0; LANES],
+            dx: [0.0; N],
+            y: [0.0; N],
+            dz: [0.0; N],
+            jxx: [1.0; N],
+            jxz: [0.0; N],
+            jzz: [1.0; N],
+            sx: [0.0; N],
+            sz: [0.0; N],
         }
+    }
+
+    /// Adds one wave given sin θ and cos θ per lane.
+    #[inline(always)]
+    pub(crate) fn add_sin_cos(&mut self, c: &WaveCoeffs, s: &[f32; N], co: &[f32; N]) {
+        for l in 0..N {
+            let (s, co) = (s[l], co[l]);
+            self.dx[l] -= c.ahx * s;
+            self.dz[l] -= c.ahz * s;
+            self.y[l] += c.a * co;
+            self.jxx[l] -= c.cxx * co;
+            self.jxz[l] -= c.cxz * co;
+            self.jzz[l] -= c.czz * co;
+            self.sx[l] -= c.gx * s;
+            self.sz[l] -= c.gz * s;
+        }
+    }
+}
+
+impl Acc<LANES> {
+    /// Chunk sums from the sums of its two halves.
+    #[inline(always)]
+    pub(crate) fn from_halves(lo: &Acc<HALF>, hi: &Acc<HALF>) -> Self {
+        let mut v = Self::new();
+        for l in 0..HALF {
+            v.dx[l] = lo.dx[l];
+            v.y[l] = lo.y[l];
+            v.dz[l] = lo.dz[l];
+            v.jxx[l] = lo.jxx[l];
+            v.jxz[l] = lo.jxz[l];
+            v.jzz[l] = lo.jzz[l];
+            v.sx[l] = lo.sx[l];
+            v.sz[l] = lo.sz[l];
+            v.dx[HALF + l] = hi.dx[l];
+            v.y[HALF + l] = hi.y[l];
+            v.dz[HALF + l] = hi.dz[l];
+            v.jxx[HALF + l] = hi.jxx[l];
+            v.jxz[HALF + l] = hi.jxz[l];
+            v.jzz[HALF + l] = hi.jzz[l];
+            v.sx[HALF + l] = hi.sx[l];
+            v.sz[HALF + l] = hi.sz[l];
+        }
+        v
     }
 
     /// Adds one wave at phases `theta` (each in [-2π, 2π]).
@@ -104,22 +152,6 @@ impl Acc {
             (s[l], co[l]) = sincos(theta[l]);
         }
         self.add_sin_cos(c, &s, &co);
-    }
-
-    /// Adds one wave given sin θ and cos θ per lane.
-    #[inline(always)]
-    pub(crate) fn add_sin_cos(&mut self, c: &WaveCoeffs, s: &[f32; LANES], co: &[f32; LANES]) {
-        for l in 0..LANES {
-            let (s, co) = (s[l], co[l]);
-            self.dx[l] -= c.ahx * s;
-            self.dz[l] -= c.ahz * s;
-            self.y[l] += c.a * co;
-            self.jxx[l] -= c.cxx * co;
-            self.jxz[l] -= c.cxz * co;
-            self.jzz[l] -= c.czz * co;
-            self.sx[l] -= c.gx * s;
-            self.sz[l] -= c.gz * s;
-        }
     }
 
     /// Writes the first `out_pos.len()` lanes: positions `(x + dx, y, z + dz)` and unit normals.

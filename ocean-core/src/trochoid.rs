@@ -11,7 +11,7 @@ use glam::{DVec2, DVec3, Vec2, Vec3};
 
 use crate::error::{EvalError, WaveError};
 use crate::grid::Grid;
-use crate::kernel::{Acc, LANES, WaveCoeffs};
+use crate::kernel::{Acc, HALF, LANES, WaveCoeffs};
 use crate::math;
 use crate::phase::reduce_angle_f32;
 use crate::sincos::sincos;
@@ -546,6 +546,27 @@ impl ColumnSinCos {
 ///
 /// with sin and cos of R per row and of C per column computed once by [`sincos`]: four
 /// multiplications and two additions per wave and point instead of a polynomial evaluation.
+/// The sums over every wave for lanes `OFFSET..OFFSET + HALF` of one chunk.
+#[inline(always)]
+fn half_sums<const OFFSET: usize>(
+    coeffs: &[WaveCoeffs],
+    rows: &[[f32; 2]],
+    table: &[ColumnSinCos],
+) -> Acc<HALF> {
+    let mut acc = Acc::<HALF>::new();
+    for ((coeff, &[rs, rc]), col) in coeffs.iter().zip(rows).zip(table) {
+        let mut s = [0.0f32; HALF];
+        let mut co = [0.0f32; HALF];
+        for l in 0..HALF {
+            let (cs, cc) = (col.sin[OFFSET + l], col.cos[OFFSET + l]);
+            s[l] = rs * cc + rc * cs;
+            co[l] = rc * cc - rs * cs;
+        }
+        acc.add_sin_cos(coeff, &s, &co);
+    }
+    acc
+}
+
 #[inline(always)]
 fn grid_row_kernel(
     coeffs: &[WaveCoeffs],
@@ -563,16 +584,10 @@ fn grid_row_kernel(
         .enumerate()
     {
         let table = &cols[c * block..(c + 1) * block];
-        let mut acc = Acc::new();
-        for ((coeff, &[rs, rc]), col) in coeffs.iter().zip(rows).zip(table) {
-            let mut s = [0.0f32; LANES];
-            let mut co = [0.0f32; LANES];
-            for l in 0..LANES {
-                s[l] = rs * col.cos[l] + rc * col.sin[l];
-                co[l] = rc * col.cos[l] - rs * col.sin[l];
-            }
-            acc.add_sin_cos(coeff, &s, &co);
-        }
+        let acc = Acc::from_halves(
+            &half_sums::<0>(coeffs, rows, table),
+            &half_sums::<HALF>(coeffs, rows, table),
+        );
         // (c·LANES + l) as f32, formed by one conversion and exact float additions (all
         // integers below 2²⁴), so it vectorises.
         let first = (c * LANES) as f32;
