@@ -15,9 +15,10 @@ use crate::wave::Wave;
 
 /// Points per chunk of the `f32` kernel.
 ///
-/// Sixteen lanes are two AVX2 vectors: two independent dependency chains per instruction
-/// stream hide the latency of the square root and division in the normalisation, which
-/// dominates when there are few waves.
+/// Sixteen lanes are two AVX2 vectors. The normalisation and the stores run on both at once,
+/// so two independent dependency chains hide the latency of the square root and division,
+/// which dominate when there are few waves; the grid kernel sums the waves over half chunks
+/// (eight lanes) so that the running sums stay in registers.
 pub const LANES: usize = 16;
 
 /// Per-wave constants of the `f32` kernel, derived once from a [`Wave`].
