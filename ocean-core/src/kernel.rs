@@ -119,6 +119,14 @@ impl<const N: usize> Acc<N> {
 }
 
 impl Acc<LANES> {
+    /// Adds `h` to the heights (an additive height field: noise, run-up).
+    #[inline(always)]
+    pub(crate) fn add_height(&mut self, h: &[f32; LANES]) {
+        for l in 0..LANES {
+            self.y[l] += h[l];
+        }
+    }
+
     /// Chunk sums from the sums of its two halves.
     #[inline(always)]
     pub(crate) fn from_halves(lo: &Acc<HALF>, hi: &Acc<HALF>) -> Self {

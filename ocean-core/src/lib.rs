@@ -71,6 +71,7 @@ mod error;
 pub mod frustum;
 pub mod grid;
 pub mod kernel;
+pub mod layers;
 pub mod math;
 pub mod phase;
 pub mod rng;
@@ -86,6 +87,9 @@ pub use error::{EvalError, WaveError};
 pub use frustum::{Containment, Frustum, FrustumError};
 pub use grid::Grid;
 pub use kernel::WaveCoeffs;
+#[cfg(feature = "std")]
+pub use layers::evaluate_layers_par;
+pub use layers::{GridRect, Layer, evaluate_layers};
 pub use rng::Pcg32;
 pub use trochoid::{Sample, SampleF64, WaveSet};
 pub use wave::{Wave, WaveDesc};

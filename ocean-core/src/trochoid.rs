@@ -59,7 +59,7 @@ struct Timed {
     base: f64,
 }
 
-fn check_time(t: f64) -> Result<(), EvalError> {
+pub(crate) fn check_time(t: f64) -> Result<(), EvalError> {
     if t.is_finite() {
         Ok(())
     } else {
@@ -67,7 +67,7 @@ fn check_time(t: f64) -> Result<(), EvalError> {
     }
 }
 
-fn check_outputs(n: usize, pos: &[Vec3], nrm: &[Vec3]) -> Result<(), EvalError> {
+pub(crate) fn check_outputs(n: usize, pos: &[Vec3], nrm: &[Vec3]) -> Result<(), EvalError> {
     if n == 0 {
         return Err(EvalError::Empty);
     }
@@ -87,7 +87,7 @@ fn check_outputs(n: usize, pos: &[Vec3], nrm: &[Vec3]) -> Result<(), EvalError> 
 /// pulp compiles [`pulp::WithSimd::with_simd`] inside a `#[target_feature]` function; the
 /// kernels are `#[inline(always)]` all the way down so that they are vectorised there.
 #[inline(always)]
-fn dispatch<K: pulp::WithSimd>(kernel: K) -> K::Output {
+pub(crate) fn dispatch<K: pulp::WithSimd>(kernel: K) -> K::Output {
     pulp::Arch::new().dispatch(kernel)
 }
 
@@ -431,7 +431,7 @@ fn col_phase(tw: &Timed, grid: &Grid, i: usize) -> f32 {
 }
 
 /// Everything a grid evaluation needs besides the column table.
-struct GridPlan<'a> {
+pub(crate) struct GridPlan<'a> {
     grid: &'a Grid,
     timed: Vec<Timed>,
     waves: usize,
@@ -449,21 +449,34 @@ impl<'a> GridPlan<'a> {
         check_time(t)?;
         let n = grid.point_count()?;
         check_outputs(n, out_pos, out_nrm)?;
-        Ok(Self {
+        Ok(Self::unchecked(set, grid, t))
+    }
+
+    /// The plan of `set` over `grid` at `t`, whose validity the caller has checked.
+    pub(crate) fn unchecked(set: &WaveSet, grid: &'a Grid, t: f64) -> Self {
+        Self {
             grid,
             timed: set.timed(grid.origin, t),
             waves: set.waves.len(),
             chunks: grid.size.0.div_ceil(LANES),
-        })
+        }
+    }
+
+    /// sin and cos of every wave's row phase at row `j`, into `out` (one pair per wave).
+    pub(crate) fn row_sin_cos(&self, j: usize, out: &mut [[f32; 2]]) {
+        for (v, tw) in out.iter_mut().zip(&self.timed) {
+            let (s, c) = sincos(row_phase(tw, self.grid, j));
+            *v = [s, c];
+        }
     }
 
     /// Column table, chunk-major: `[chunk][wave]`, so a chunk streams one contiguous block.
-    fn col_table_len(&self) -> usize {
+    pub(crate) fn col_table_len(&self) -> usize {
         self.chunks * self.waves
     }
 
     /// Fills `out`, which starts at chunk `first_chunk`, with sin and cos of column phases.
-    fn fill_columns(&self, out: &mut [ColumnSinCos], first_chunk: usize) {
+    pub(crate) fn fill_columns(&self, out: &mut [ColumnSinCos], first_chunk: usize) {
         let nx = self.grid.size.0;
         for (c, block) in out.chunks_mut(self.waves).enumerate() {
             let i0 = (first_chunk + c) * LANES;
@@ -497,10 +510,7 @@ impl<'a> GridPlan<'a> {
             heap = vec![[0.0f32; 2]; self.waves];
             &mut heap
         };
-        for (v, tw) in rows.iter_mut().zip(&self.timed) {
-            let (s, c) = sincos(row_phase(tw, self.grid, j));
-            *v = [s, c];
-        }
+        self.row_sin_cos(j, rows);
         let z = self.grid.local(0, j).1;
         dispatch(GridRow {
             coeffs,
@@ -515,7 +525,7 @@ impl<'a> GridPlan<'a> {
 }
 
 /// 0, 1, …, LANES − 1 as floats.
-const LANE_INDEX: [f32; LANES] = {
+pub(crate) const LANE_INDEX: [f32; LANES] = {
     let mut v = [0.0f32; LANES];
     let mut l = 0;
     while l < LANES {
@@ -527,13 +537,13 @@ const LANE_INDEX: [f32; LANES] = {
 
 /// sin and cos of one wave's phase at the columns of one chunk.
 #[derive(Clone, Copy)]
-struct ColumnSinCos {
-    sin: [f32; LANES],
-    cos: [f32; LANES],
+pub(crate) struct ColumnSinCos {
+    pub(crate) sin: [f32; LANES],
+    pub(crate) cos: [f32; LANES],
 }
 
 impl ColumnSinCos {
-    const ZERO: Self = Self {
+    pub(crate) const ZERO: Self = Self {
         sin: [0.0; LANES],
         cos: [0.0; LANES],
     };

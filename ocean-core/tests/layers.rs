@@ -1,0 +1,345 @@
+//! Modulated layers against the plain trochoid sum: the identities that define them.
+
+use core::f64::consts::TAU;
+
+use glam::{DVec2, Vec3};
+use ocean_core::{
+    Depth, EvalError, Grid, GridRect, Layer, Wave, WaveDesc, WaveSet, evaluate_layers,
+    evaluate_layers_par,
+};
+
+fn waves(seed: f64) -> WaveSet {
+    let descs: Vec<WaveDesc> = (0..3)
+        .map(|i| {
+            let lambda = 4.0 + 7.0 * i as f64 + seed;
+            let a = 0.4 * i as f64 + seed;
+            WaveDesc {
+                amplitude: 0.3 * lambda / TAU,
+                wavelength: lambda,
+                direction: DVec2::new(a.cos(), a.sin()),
+                phase: seed + i as f64,
+                depth: Depth::Deep,
+            }
+        })
+        .collect();
+    WaveSet::from_descs(&descs).unwrap()
+}
+
+/// 45 × 23: not a multiple of the 16-lane chunk, far from the origin.
+fn grid() -> Grid {
+    Grid {
+        origin: DVec2::new(-3.0e4, 1.2e4),
+        spacing: DVec2::splat(0.7),
+        size: (45, 23),
+    }
+}
+
+fn full(grid: &Grid) -> GridRect {
+    GridRect {
+        i0: 0,
+        j0: 0,
+        nx: grid.size.0,
+        nz: grid.size.1,
+    }
+}
+
+fn run(grid: &Grid, t: f64, layers: &[Layer], height: Option<&[f32]>) -> (Vec<Vec3>, Vec<Vec3>) {
+    let n = grid.size.0 * grid.size.1;
+    let (mut p, mut q) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    evaluate_layers(grid, t, layers, height, &mut p, &mut q).unwrap();
+    (p, q)
+}
+
+fn max_diff(a: &[Vec3], b: &[Vec3]) -> f32 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (*x - *y).abs().max_element())
+        .fold(0.0, f32::max)
+}
+
+#[test]
+fn unit_modulation_is_the_plain_sum_bit_for_bit() {
+    // μ = [1, 0]: sin θ·1 + cos θ·0 = sin θ and cos θ·1 − sin θ·0 = cos θ exactly in IEEE
+    // arithmetic, so the layer reproduces WaveSet::evaluate_grid to the bit.
+    let g = grid();
+    let set = waves(0.0);
+    let m = vec![[1.0f32, 0.0]; g.size.0 * g.size.1];
+    let (p, q) = run(
+        &g,
+        77.5,
+        &[Layer {
+            waves: &set,
+            rect: full(&g),
+            modulation: &m,
+        }],
+        None,
+    );
+    let n = p.len();
+    let (mut pe, mut qe) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    set.evaluate_grid(&g, 77.5, &mut pe, &mut qe).unwrap();
+    assert_eq!(p, pe);
+    assert_eq!(q, qe);
+}
+
+#[test]
+fn constant_modulation_scales_amplitude_and_shifts_phase() {
+    // μ = m e^{iφ} everywhere equals the same waves with amplitude m·A and phase Φ + φ
+    // (Eq. 6, 7), up to f32 rounding of the modulated products (≤ a few 1e-7 · A).
+    let g = grid();
+    let set = waves(0.5);
+    let (m, phi) = (0.6f64, 1.1f64);
+    let mu = vec![[(m * phi.cos()) as f32, (m * phi.sin()) as f32]; g.size.0 * g.size.1];
+    let (p, q) = run(
+        &g,
+        3.0e5,
+        &[Layer {
+            waves: &set,
+            rect: full(&g),
+            modulation: &mu,
+        }],
+        None,
+    );
+    let shifted: Vec<Wave> = set
+        .waves()
+        .iter()
+        .map(|w| {
+            Wave::from_parts(
+                m * w.amplitude(),
+                w.wave_vector(),
+                w.angular_frequency(),
+                w.phase() + phi,
+            )
+            .unwrap()
+        })
+        .collect();
+    let expect = WaveSet::new(&shifted).unwrap();
+    let n = p.len();
+    let (mut pe, mut qe) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    expect.evaluate_grid(&g, 3.0e5, &mut pe, &mut qe).unwrap();
+    assert!(max_diff(&p, &pe) < 5e-6, "positions {}", max_diff(&p, &pe));
+    assert!(max_diff(&q, &qe) < 5e-6, "normals {}", max_diff(&q, &qe));
+}
+
+#[test]
+fn overlapping_layers_add_and_rectangles_bound_them() {
+    // Two layers over two overlapping rectangles: inside both the result is the sum of both
+    // wave sets; inside one only, that set alone; outside both, the rest position with +y.
+    let g = grid();
+    let (a, b) = (waves(0.0), waves(1.3));
+    let ra = GridRect {
+        i0: 3,
+        j0: 2,
+        nx: 30,
+        nz: 15,
+    };
+    let rb = GridRect {
+        i0: 20,
+        j0: 9,
+        nx: 25,
+        nz: 14,
+    };
+    let ma = vec![[1.0f32, 0.0]; ra.len()];
+    let mb = vec![[1.0f32, 0.0]; rb.len()];
+    let t = 12.0;
+    let (p, q) = run(
+        &g,
+        t,
+        &[
+            Layer {
+                waves: &a,
+                rect: ra,
+                modulation: &ma,
+            },
+            Layer {
+                waves: &b,
+                rect: rb,
+                modulation: &mb,
+            },
+        ],
+        None,
+    );
+    let both: Vec<Wave> = a.waves().iter().chain(b.waves()).copied().collect();
+    let both = WaveSet::new(&both).unwrap();
+    let n = p.len();
+    let eval = |s: &WaveSet| {
+        let (mut pe, mut qe) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+        s.evaluate_grid(&g, t, &mut pe, &mut qe).unwrap();
+        (pe, qe)
+    };
+    let (pab, qab) = eval(&both);
+    let (pa, qa) = eval(&a);
+    let (pb, qb) = eval(&b);
+    let (nx, nz) = g.size;
+    let mut counts = [0usize; 4];
+    for j in 0..nz {
+        for i in 0..nx {
+            let k = j * nx + i;
+            let (ina, inb) = (ra.index(i, j).is_some(), rb.index(i, j).is_some());
+            let (lx, lz) = g.local(i, j);
+            let (ep, eq) = match (ina, inb) {
+                (true, true) => (pab[k], qab[k]),
+                (true, false) => (pa[k], qa[k]),
+                (false, true) => (pb[k], qb[k]),
+                (false, false) => (Vec3::new(lx, 0.0, lz), Vec3::Y),
+            };
+            counts[usize::from(ina) * 2 + usize::from(inb)] += 1;
+            // Summation order differs between one set of six waves and two layers of three.
+            assert!(
+                (p[k] - ep).abs().max_element() < 2e-6,
+                "({i},{j}) {:?} vs {ep:?}",
+                p[k]
+            );
+            assert!((q[k] - eq).abs().max_element() < 2e-6, "({i},{j}) normal");
+        }
+    }
+    assert!(
+        counts.iter().all(|&c| c > 0),
+        "every region exercised: {counts:?}"
+    );
+}
+
+#[test]
+fn height_field_adds_to_heights_only() {
+    let g = grid();
+    let set = waves(0.2);
+    let m = vec![[0.8f32, -0.3]; g.size.0 * g.size.1];
+    let h: Vec<f32> = (0..m.len()).map(|k| 0.01 * (k % 7) as f32 - 0.02).collect();
+    let layer = [Layer {
+        waves: &set,
+        rect: full(&g),
+        modulation: &m,
+    }];
+    let (p0, q0) = run(&g, 5.0, &layer, None);
+    let (p1, q1) = run(&g, 5.0, &layer, Some(&h));
+    for k in 0..p0.len() {
+        assert_eq!(p1[k].x, p0[k].x);
+        assert_eq!(p1[k].z, p0[k].z);
+        assert!((p1[k].y - (p0[k].y + h[k])).abs() <= 1e-6);
+    }
+    assert_eq!(q0, q1);
+}
+
+#[test]
+fn threads_give_identical_bits() {
+    let g = Grid {
+        size: (333, 97),
+        ..grid()
+    };
+    let (a, b) = (waves(0.0), waves(2.0));
+    let ra = GridRect {
+        i0: 0,
+        j0: 0,
+        nx: 200,
+        nz: 97,
+    };
+    let rb = GridRect {
+        i0: 150,
+        j0: 10,
+        nx: 183,
+        nz: 80,
+    };
+    let ma: Vec<[f32; 2]> = (0..ra.len())
+        .map(|k| [(k % 13) as f32 / 13.0, 0.1])
+        .collect();
+    let mb: Vec<[f32; 2]> = (0..rb.len()).map(|k| [0.5, (k % 5) as f32 / 9.0]).collect();
+    let layers = [
+        Layer {
+            waves: &a,
+            rect: ra,
+            modulation: &ma,
+        },
+        Layer {
+            waves: &b,
+            rect: rb,
+            modulation: &mb,
+        },
+    ];
+    let (p1, q1) = run(&g, 1.5e4, &layers, None);
+    for threads in [1, 2, 8] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let n = p1.len();
+        let (mut p, mut q) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+        pool.install(|| evaluate_layers_par(&g, 1.5e4, &layers, None, &mut p, &mut q))
+            .unwrap();
+        assert!(p == p1 && q == q1, "{threads} threads differ");
+    }
+}
+
+#[test]
+fn bad_layers_are_refused_without_writing() {
+    let g = grid();
+    let set = waves(0.0);
+    let n = g.size.0 * g.size.1;
+    let sentinel = Vec3::splat(9.0);
+    let (mut p, mut q) = (vec![sentinel; n], vec![sentinel; n]);
+    let m = vec![[1.0f32, 0.0]; n];
+    let outside = GridRect {
+        i0: 40,
+        j0: 0,
+        nx: 10,
+        nz: 5,
+    };
+    let short = vec![[1.0f32, 0.0]; 10];
+    let nan = vec![[f32::NAN, 0.0]; n];
+    let bad_h = vec![0.0f32; n - 1];
+    // (layers, height field, time): each invalid in one way.
+    type Case<'a> = (Vec<Layer<'a>>, Option<&'a [f32]>, f64);
+    let cases: Vec<Case> = vec![
+        (
+            vec![Layer {
+                waves: &set,
+                rect: outside,
+                modulation: &m[..50],
+            }],
+            None,
+            0.0,
+        ),
+        (
+            vec![Layer {
+                waves: &set,
+                rect: full(&g),
+                modulation: &short,
+            }],
+            None,
+            0.0,
+        ),
+        (
+            vec![Layer {
+                waves: &set,
+                rect: full(&g),
+                modulation: &nan,
+            }],
+            None,
+            0.0,
+        ),
+        (
+            vec![Layer {
+                waves: &set,
+                rect: full(&g),
+                modulation: &m,
+            }],
+            Some(&bad_h),
+            0.0,
+        ),
+        (
+            vec![Layer {
+                waves: &set,
+                rect: full(&g),
+                modulation: &m,
+            }],
+            None,
+            f64::NAN,
+        ),
+    ];
+    for (layers, h, t) in &cases {
+        assert!(evaluate_layers(&g, *t, layers, *h, &mut p, &mut q).is_err());
+    }
+    assert!(matches!(
+        evaluate_layers(&g, 0.0, &[], None, &mut p[..3], &mut q),
+        Err(EvalError::OutputLength { .. })
+    ));
+    assert!(p.iter().chain(&q).all(|v| *v == sentinel));
+}
