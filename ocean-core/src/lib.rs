@@ -91,7 +91,7 @@ pub use kernel::WaveCoeffs;
 pub use layers::evaluate_layers_par;
 pub use layers::{GridRect, Layer, evaluate_layers};
 pub use rng::Pcg32;
-pub use trochoid::{Sample, SampleF64, WaveSet};
+pub use trochoid::{PointSums, Sample, SampleF64, WaveSet};
 pub use wave::{Wave, WaveDesc};
 
 pub use glam;

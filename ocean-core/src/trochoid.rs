@@ -35,6 +35,67 @@ pub struct SampleF64 {
     pub normal: DVec3,
 }
 
+/// The running sums of a surface at one point, in `f64` (Eq. 6, 7 and their derivatives).
+///
+/// `jxx`, `jxz`, `jzz` form the horizontal Jacobian ∂p/∂p₀ of the displaced position with respect
+/// to the rest position, and (`sx`, `sz`) the height gradient ∂y/∂p₀; start from
+/// [`PointSums::REST`] (the identity and zero) and add wave sets with
+/// [`WaveSet::add_sums_f64`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointSums {
+    /// Horizontal displacement along x, metres.
+    pub dx: f64,
+    /// Height, metres.
+    pub y: f64,
+    /// Horizontal displacement along z, metres.
+    pub dz: f64,
+    /// ∂pₓ/∂x₀.
+    pub jxx: f64,
+    /// ∂pₓ/∂z₀ = ∂p_z/∂x₀.
+    pub jxz: f64,
+    /// ∂p_z/∂z₀.
+    pub jzz: f64,
+    /// ∂y/∂x₀.
+    pub sx: f64,
+    /// ∂y/∂z₀.
+    pub sz: f64,
+}
+
+impl PointSums {
+    /// The sea at rest: no displacement, identity Jacobian, flat.
+    pub const REST: Self = Self {
+        dx: 0.0,
+        y: 0.0,
+        dz: 0.0,
+        jxx: 1.0,
+        jxz: 0.0,
+        jzz: 1.0,
+        sx: 0.0,
+        sz: 0.0,
+    };
+
+    /// (Δx, y, Δz).
+    pub fn displacement(&self) -> DVec3 {
+        DVec3::new(self.dx, self.y, self.dz)
+    }
+
+    /// The unit normal ∂p/∂z₀ × ∂p/∂x₀ (y up), or +y where it vanishes (a cusp).
+    pub fn normal(&self) -> DVec3 {
+        let n = DVec3::new(
+            self.sz * self.jxz - self.jzz * self.sx,
+            self.jzz * self.jxx - self.jxz * self.jxz,
+            self.jxz * self.sx - self.sz * self.jxx,
+        );
+        let len = math::sqrt(n.length_squared());
+        if len > 0.0 { n / len } else { DVec3::Y }
+    }
+
+    /// det ∂p/∂p₀: positive where the surface does not fold.
+    pub fn jacobian_det(&self) -> f64 {
+        self.jxx * self.jzz - self.jxz * self.jxz
+    }
+}
+
 /// A sum of trochoid waves, evaluated by
 ///
 /// p = p₀ − Σᵢ k̂ᵢ Aᵢ sin θᵢ,  y = Σᵢ Aᵢ cos θᵢ,  θᵢ = kᵢ·p₀ − ωᵢ t + Φᵢ   (Eq. 6, 7)
@@ -190,38 +251,52 @@ impl WaveSet {
     /// The `f64` reference: every quantity in double precision with the platform's (or libm's)
     /// `sin` and `cos`. Slow; the oracle the `f32` paths are tested against.
     pub fn sample_f64(&self, rest: DVec2, t: f64) -> Result<SampleF64, EvalError> {
+        let mut sums = PointSums::REST;
+        self.add_sums_f64(rest, t, [1.0, 0.0], &mut sums)?;
+        Ok(SampleF64 {
+            displacement: sums.displacement(),
+            normal: sums.normal(),
+        })
+    }
+
+    /// Adds this set's contribution at world rest position `rest` and time `t`, multiplied by
+    /// the complex amplitude `mu` = [m cos φ, m sin φ] (amplitudes m·Aᵢ, phases θᵢ + φ; `[1, 0]`
+    /// for the plain sum), to `sums`, in `f64`. Several sets, or several layers of
+    /// [`crate::layers`], add into the same sums; [`PointSums`] then gives the displacement,
+    /// the normal and the horizontal Jacobian that a height query inverts.
+    pub fn add_sums_f64(
+        &self,
+        rest: DVec2,
+        t: f64,
+        mu: [f64; 2],
+        sums: &mut PointSums,
+    ) -> Result<(), EvalError> {
         check_time(t)?;
         if !rest.is_finite() {
             return Err(EvalError::Position { index: 0 });
         }
-        let mut d = DVec3::ZERO;
-        let (mut jxx, mut jxz, mut jzz, mut sx, mut sz) = (1.0, 0.0, 1.0, 0.0, 0.0);
+        if !(mu[0].is_finite() && mu[1].is_finite()) {
+            return Err(EvalError::Position { index: 0 });
+        }
         for w in &self.waves {
             let theta = w.phase_at(rest, t);
-            let (s, c) = (math::sin(theta), math::cos(theta));
+            let (sin, cos) = (math::sin(theta), math::cos(theta));
+            // m sin(θ + φ) and m cos(θ + φ), as in the layers kernel.
+            let s = sin * mu[0] + cos * mu[1];
+            let c = cos * mu[0] - sin * mu[1];
             let a = w.amplitude();
             let k = w.wave_vector();
             let m = w.wavenumber();
-            d.x -= a * k.x / m * s;
-            d.z -= a * k.y / m * s;
-            d.y += a * c;
-            jxx -= a * k.x * k.x / m * c;
-            jxz -= a * k.x * k.y / m * c;
-            jzz -= a * k.y * k.y / m * c;
-            sx -= a * k.x * s;
-            sz -= a * k.y * s;
+            sums.dx -= a * k.x / m * s;
+            sums.dz -= a * k.y / m * s;
+            sums.y += a * c;
+            sums.jxx -= a * k.x * k.x / m * c;
+            sums.jxz -= a * k.x * k.y / m * c;
+            sums.jzz -= a * k.y * k.y / m * c;
+            sums.sx -= a * k.x * s;
+            sums.sz -= a * k.y * s;
         }
-        let n = DVec3::new(
-            sz * jxz - jzz * sx,
-            jzz * jxx - jxz * jxz,
-            jxz * sx - sz * jxx,
-        );
-        let len = math::sqrt(n.length_squared());
-        let normal = if len > 0.0 { n / len } else { DVec3::Y };
-        Ok(SampleF64 {
-            displacement: d,
-            normal,
-        })
+        Ok(())
     }
 
     /// Displacement and normal at one world rest position, through the `f32` kernel (the same
