@@ -1,0 +1,345 @@
+//! Sums of modulated wave sets on a grid: the evaluation primitive of wave train boxes.
+//!
+//! A [`Layer`] is a wave set whose contribution at each point of a grid rectangle is multiplied
+//! by a complex amplitude μ = m·e^{iφ}, stored as `[m cos φ, m sin φ]`: the point's trains are
+//! evaluated with amplitude m·Aᵢ and phase θᵢ + φ (Yrjölä & Larsson Eq. 6, 7). The amplitude
+//! factor m carries everything that scales a box's waves locally (the side smoothing of Fig. 4,
+//! the build-up envelope, land, shadow and shoaling along the rays, the irregular height of
+//! Eq. 8), the phase φ everything that shifts them (depth refraction, Fig. 6; round waves,
+//! Eq. 10). Layers add up where they overlap (§2.2), and an optional additive height field
+//! carries height-only terms (capillary noise, Eq. 9; run-up).
+//!
+//! The arithmetic is the grid kernel's: per wave, sin θ and cos θ by angle addition of the row
+//! and column tables, then
+//!
+//! m sin(θ + φ) = sin θ·(m cos φ) + cos θ·(m sin φ),  m cos(θ + φ) = cos θ·(m cos φ) − sin θ·(m sin φ),
+//!
+//! accumulated like an unmodulated wave. With μ = [1, 0] everywhere a layer gives exactly
+//! [`WaveSet::evaluate_grid`]'s result.
+//!
+//! The horizontal derivatives used for the normals treat μ as locally constant: the normal is
+//! that of the modulated waves, not of the modulation itself.
+
+// Lane loops index several arrays in step; that indexed shape is what LLVM vectorises.
+#![allow(clippy::needless_range_loop)]
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use glam::Vec3;
+
+use crate::error::EvalError;
+use crate::grid::Grid;
+use crate::kernel::{Acc, HALF, LANES, WaveCoeffs};
+use crate::trochoid::{
+    ColumnSinCos, GridPlan, LANE_INDEX, WaveSet, check_outputs, check_time, dispatch,
+};
+
+/// A rectangle of grid points: columns `i0..i0 + nx`, rows `j0..j0 + nz`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GridRect {
+    /// First column.
+    pub i0: usize,
+    /// First row.
+    pub j0: usize,
+    /// Number of columns.
+    pub nx: usize,
+    /// Number of rows.
+    pub nz: usize,
+}
+
+impl GridRect {
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.nx * self.nz
+    }
+
+    /// Whether the rectangle holds no point.
+    pub fn is_empty(&self) -> bool {
+        self.nx == 0 || self.nz == 0
+    }
+
+    /// Index into a row-major array over this rectangle of grid point (i, j), if inside.
+    #[inline]
+    pub fn index(&self, i: usize, j: usize) -> Option<usize> {
+        let (di, dj) = (i.checked_sub(self.i0)?, j.checked_sub(self.j0)?);
+        (di < self.nx && dj < self.nz).then_some(dj * self.nx + di)
+    }
+}
+
+/// One wave set modulated over a rectangle of the grid (see the module documentation).
+#[derive(Clone, Copy, Debug)]
+pub struct Layer<'a> {
+    /// The waves.
+    pub waves: &'a WaveSet,
+    /// Where the layer acts; outside it the layer contributes nothing.
+    pub rect: GridRect,
+    /// `[m cos φ, m sin φ]` per point of `rect`, row-major (`rect.len()` entries).
+    pub modulation: &'a [[f32; 2]],
+}
+
+/// Validated inputs with their per-layer tables.
+struct Plan<'a> {
+    grid: &'a Grid,
+    layers: &'a [Layer<'a>],
+    plans: Vec<GridPlan<'a>>,
+    cols: Vec<Vec<ColumnSinCos>>,
+    height: Option<&'a [f32]>,
+}
+
+impl<'a> Plan<'a> {
+    fn new(
+        grid: &'a Grid,
+        t: f64,
+        layers: &'a [Layer<'a>],
+        height: Option<&'a [f32]>,
+        out_pos: &[Vec3],
+        out_nrm: &[Vec3],
+    ) -> Result<Self, EvalError> {
+        check_time(t)?;
+        let n = grid.point_count()?;
+        check_outputs(n, out_pos, out_nrm)?;
+        let (gx, gz) = grid.size;
+        for layer in layers {
+            let r = layer.rect;
+            if r.is_empty() || r.i0 + r.nx > gx || r.j0 + r.nz > gz {
+                return Err(EvalError::Grid("layer rectangle empty or outside the grid"));
+            }
+            if layer.modulation.len() != r.len() {
+                return Err(EvalError::Grid(
+                    "layer modulation must hold one entry per point of its rectangle",
+                ));
+            }
+            if let Some(index) = layer
+                .modulation
+                .iter()
+                .position(|m| !(m[0].is_finite() && m[1].is_finite()))
+            {
+                return Err(EvalError::Position { index });
+            }
+        }
+        if let Some(h) = height {
+            if h.len() != n {
+                return Err(EvalError::Grid(
+                    "height field must hold one value per grid point",
+                ));
+            }
+            if let Some(index) = h.iter().position(|v| !v.is_finite()) {
+                return Err(EvalError::Position { index });
+            }
+        }
+        let plans: Vec<GridPlan<'a>> = layers
+            .iter()
+            .map(|l| GridPlan::unchecked(l.waves, grid, t))
+            .collect();
+        let cols = plans
+            .iter()
+            .map(|p| {
+                let mut c = vec![ColumnSinCos::ZERO; p.col_table_len()];
+                p.fill_columns(&mut c, 0);
+                c
+            })
+            .collect();
+        Ok(Self {
+            grid,
+            layers,
+            plans,
+            cols,
+            height,
+        })
+    }
+
+    /// Evaluates row `j` into `pos` and `nrm` (one grid row each).
+    fn row(&self, j: usize, pos: &mut [Vec3], nrm: &mut [Vec3]) {
+        let nx = self.grid.size.0;
+        // The layers covering this row, with their row tables.
+        let mut active = Vec::new();
+        for ((layer, plan), cols) in self.layers.iter().zip(&self.plans).zip(&self.cols) {
+            let r = layer.rect;
+            if j < r.j0 || j >= r.j0 + r.nz {
+                continue;
+            }
+            let mut rows = vec![[0.0f32; 2]; layer.waves.coeffs().len()];
+            plan.row_sin_cos(j, &mut rows);
+            let start = (j - r.j0) * r.nx;
+            active.push(ActiveLayer {
+                coeffs: layer.waves.coeffs(),
+                rows,
+                cols,
+                i0: r.i0,
+                modulation: &layer.modulation[start..start + r.nx],
+            });
+        }
+        let height = self.height.map(|h| &h[j * nx..(j + 1) * nx]);
+        dispatch(LayerRow {
+            layers: &active,
+            height,
+            dx: self.grid.spacing.x as f32,
+            z: self.grid.local(0, j).1,
+            pos,
+            nrm,
+        });
+    }
+}
+
+/// One layer's data for one grid row.
+struct ActiveLayer<'a> {
+    coeffs: &'a [WaveCoeffs],
+    /// sin and cos of each wave's row phase.
+    rows: Vec<[f32; 2]>,
+    /// The layer's column table (see [`GridPlan`]).
+    cols: &'a [ColumnSinCos],
+    /// First column of the layer's rectangle.
+    i0: usize,
+    /// The layer's modulation along this row (its rectangle's width).
+    modulation: &'a [[f32; 2]],
+}
+
+struct LayerRow<'a> {
+    layers: &'a [ActiveLayer<'a>],
+    height: Option<&'a [f32]>,
+    dx: f32,
+    z: f32,
+    pos: &'a mut [Vec3],
+    nrm: &'a mut [Vec3],
+}
+
+impl pulp::WithSimd for LayerRow<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        layer_row_kernel(
+            self.layers,
+            self.height,
+            self.dx,
+            self.z,
+            self.pos,
+            self.nrm,
+        );
+    }
+}
+
+#[inline(always)]
+fn layer_row_kernel(
+    layers: &[ActiveLayer<'_>],
+    height: Option<&[f32]>,
+    dx: f32,
+    z: f32,
+    out_pos: &mut [Vec3],
+    out_nrm: &mut [Vec3],
+) {
+    for (c, (pos, nrm)) in out_pos
+        .chunks_mut(LANES)
+        .zip(out_nrm.chunks_mut(LANES))
+        .enumerate()
+    {
+        let first_col = c * LANES;
+        let mut lo = Acc::<HALF>::new();
+        let mut hi = Acc::<HALF>::new();
+        for layer in layers {
+            let end = layer.i0 + layer.modulation.len();
+            if end <= first_col || layer.i0 >= first_col + LANES {
+                continue;
+            }
+            // The modulation of this chunk's lanes; zero outside the layer's rectangle.
+            let mut re = [0.0f32; LANES];
+            let mut im = [0.0f32; LANES];
+            for l in 0..LANES {
+                let i = first_col + l;
+                if i >= layer.i0 && i < end {
+                    [re[l], im[l]] = layer.modulation[i - layer.i0];
+                }
+            }
+            let waves = layer.coeffs.len();
+            let table = &layer.cols[c * waves..(c + 1) * waves];
+            add_half::<0>(&mut lo, layer, table, &re, &im);
+            add_half::<HALF>(&mut hi, layer, table, &re, &im);
+        }
+        let mut acc = Acc::from_halves(&lo, &hi);
+        if let Some(h) = height {
+            let mut add = [0.0f32; LANES];
+            let n = pos.len().min(LANES);
+            add[..n].copy_from_slice(&h[first_col..first_col + n]);
+            acc.add_height(&add);
+        }
+        let first = first_col as f32;
+        let mut x = [0.0f32; LANES];
+        for l in 0..LANES {
+            x[l] = (first + LANE_INDEX[l]) * dx;
+        }
+        acc.finish(&x, &[z; LANES], pos, nrm);
+    }
+}
+
+/// Adds one layer's waves, modulated by `re + i·im`, for lanes `OFFSET..OFFSET + HALF`.
+#[inline(always)]
+fn add_half<const OFFSET: usize>(
+    acc: &mut Acc<HALF>,
+    layer: &ActiveLayer<'_>,
+    table: &[ColumnSinCos],
+    re: &[f32; LANES],
+    im: &[f32; LANES],
+) {
+    for ((coeff, &[rs, rc]), col) in layer.coeffs.iter().zip(&layer.rows).zip(table) {
+        let mut s = [0.0f32; HALF];
+        let mut co = [0.0f32; HALF];
+        for l in 0..HALF {
+            let (cs, cc) = (col.sin[OFFSET + l], col.cos[OFFSET + l]);
+            let (sin, cos) = (rs * cc + rc * cs, rc * cc - rs * cs);
+            let (mr, mi) = (re[OFFSET + l], im[OFFSET + l]);
+            s[l] = sin * mr + cos * mi;
+            co[l] = cos * mr - sin * mi;
+        }
+        acc.add_sin_cos(coeff, &s, &co);
+    }
+}
+
+/// Evaluates the sum of `layers` (plus `height`, if given, added to every point's height) on
+/// every point of `grid` at time `t`: positions relative to `grid.origin` and unit normals,
+/// row-major, as [`WaveSet::evaluate_grid`] writes them. Points no layer covers stay at rest
+/// (normal +y). Nothing is written if an argument is invalid.
+pub fn evaluate_layers(
+    grid: &Grid,
+    t: f64,
+    layers: &[Layer<'_>],
+    height: Option<&[f32]>,
+    out_pos: &mut [Vec3],
+    out_nrm: &mut [Vec3],
+) -> Result<(), EvalError> {
+    let plan = Plan::new(grid, t, layers, height, out_pos, out_nrm)?;
+    let nx = grid.size.0;
+    for (j, (p, n)) in out_pos
+        .chunks_mut(nx)
+        .zip(out_nrm.chunks_mut(nx))
+        .enumerate()
+    {
+        plan.row(j, p, n);
+    }
+    Ok(())
+}
+
+/// [`evaluate_layers`] on the current rayon thread pool; bit-identical to it.
+#[cfg(feature = "std")]
+pub fn evaluate_layers_par(
+    grid: &Grid,
+    t: f64,
+    layers: &[Layer<'_>],
+    height: Option<&[f32]>,
+    out_pos: &mut [Vec3],
+    out_nrm: &mut [Vec3],
+) -> Result<(), EvalError> {
+    use rayon::prelude::*;
+    let plan = Plan::new(grid, t, layers, height, out_pos, out_nrm)?;
+    let nx = grid.size.0;
+    let rows = crate::trochoid::rows_per_task(nx);
+    out_pos
+        .par_chunks_mut(nx * rows)
+        .zip(out_nrm.par_chunks_mut(nx * rows))
+        .enumerate()
+        .for_each(|(task, (p, n))| {
+            for (r, (p, n)) in p.chunks_mut(nx).zip(n.chunks_mut(nx)).enumerate() {
+                plan.row(task * rows + r, p, n);
+            }
+        });
+    Ok(())
+}
