@@ -10,6 +10,9 @@
 //!   GLSL ES, HLSL, MSL and SPIR-V with its binding layout listed.
 //! - [`TrochoidPass`]: the trochoid (Gerstner) displacement of a grid as a compute pass, the GPU
 //!   twin of [`ocean_core::WaveSet::evaluate_grid`].
+//! - [`LayersPass`]: sums of wave sets modulated by complex amplitude fields over grid
+//!   rectangles, plus an additive height field (the wave-train-box primitive), the GPU twin of
+//!   [`ocean_core::evaluate_layers`]. It writes into the same [`TrochoidTarget`] buffers.
 //!
 //! ## Conventions
 //!
@@ -29,11 +32,13 @@
 #![warn(missing_docs)]
 
 pub mod context;
+pub mod layers;
 pub mod readback;
 pub mod shaders;
 pub mod trochoid;
 
 pub use context::{ContextOptions, GpuContext};
+pub use layers::{LayerDesc, LayersInput, LayersParams, LayersPass, LayersStats};
 pub use readback::{GpuDuration, GpuTimer, TextureData};
 pub use shaders::{Code, Export, ExportFile, Language, ShaderError};
 pub use trochoid::{

@@ -98,17 +98,36 @@ pub struct ShaderEntry {
 /// and cosines, which the shader combines by angle addition.
 pub const TROCHOID_WGSL: &str = include_str!("shaders/trochoid.wgsl");
 
-static SHADERS: [ShaderEntry; 1] = [ShaderEntry {
-    name: "trochoid",
-    files: &["trochoid.wgsl"],
-    source: TROCHOID_WGSL,
-    kind: ShaderKind::Compute,
-    entry_points: &[EntryPoint {
-        name: "displace",
-        stage: Stage::Compute,
-    }],
-    description: "trochoid (Gerstner) displacement and normals of a grid (wave-train-boxes Eq. 6-7)",
-}];
+/// Source of the layered (wave-train-box) displacement pass: sums of wave sets modulated by
+/// complex amplitude fields over grid rectangles, plus an additive height field. Like the
+/// trochoid pass it combines host-made sines and cosines by angle addition.
+pub const LAYERS_WGSL: &str = include_str!("shaders/layers.wgsl");
+
+static SHADERS: [ShaderEntry; 2] = [
+    ShaderEntry {
+        name: "trochoid",
+        files: &["trochoid.wgsl"],
+        source: TROCHOID_WGSL,
+        kind: ShaderKind::Compute,
+        entry_points: &[EntryPoint {
+            name: "displace",
+            stage: Stage::Compute,
+        }],
+        description: "trochoid (Gerstner) displacement and normals of a grid (wave-train-boxes Eq. 6-7)",
+    },
+    ShaderEntry {
+        name: "layers",
+        files: &["layers.wgsl"],
+        source: LAYERS_WGSL,
+        kind: ShaderKind::Compute,
+        entry_points: &[EntryPoint {
+            name: "displace",
+            stage: Stage::Compute,
+        }],
+        description: "sums of wave sets modulated by complex amplitudes over grid rectangles, plus \
+                      a height field: displacement and normals (wave-train-boxes Eq. 6-7)",
+    },
+];
 
 /// Shader capabilities the passes may use: none beyond core WGSL. wgpu enables extra
 /// capabilities only for optional device features, and this crate requests none that affect
@@ -729,6 +748,7 @@ mod tests {
     #[test]
     fn registry_lookup() {
         assert!(get("trochoid").is_some());
+        assert!(get("layers").is_some());
         assert!(get("no-such-shader").is_none());
         let e = export("no-such-shader", Language::Glsl).unwrap_err();
         assert!(e.to_string().contains("trochoid"), "{e}");
@@ -959,17 +979,19 @@ mod tests {
     fn wgsl_degenerate_normal_threshold_is_f32_min_positive() {
         // The CPU kernel takes the normal as +y where |n|² < f32::MIN_POSITIVE; the WGSL
         // literal must round to exactly that f32, or the two sides disagree next to cusps.
-        let (module, _) = get("trochoid").unwrap().module().unwrap();
-        let (_, c) = module
-            .constants
-            .iter()
-            .find(|(_, c)| c.name.as_deref() == Some("F32_MIN_POSITIVE"))
-            .expect("WGSL constant F32_MIN_POSITIVE");
-        match module.global_expressions[c.init] {
-            naga::Expression::Literal(naga::Literal::F32(v)) => {
-                assert_eq!(v.to_bits(), f32::MIN_POSITIVE.to_bits(), "{v:e}");
+        for name in ["trochoid", "layers"] {
+            let (module, _) = get(name).unwrap().module().unwrap();
+            let (_, c) = module
+                .constants
+                .iter()
+                .find(|(_, c)| c.name.as_deref() == Some("F32_MIN_POSITIVE"))
+                .expect("WGSL constant F32_MIN_POSITIVE");
+            match module.global_expressions[c.init] {
+                naga::Expression::Literal(naga::Literal::F32(v)) => {
+                    assert_eq!(v.to_bits(), f32::MIN_POSITIVE.to_bits(), "{name}: {v:e}");
+                }
+                ref other => panic!("{name}: F32_MIN_POSITIVE is {other:?}"),
             }
-            ref other => panic!("F32_MIN_POSITIVE is {other:?}"),
         }
     }
 

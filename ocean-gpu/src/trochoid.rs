@@ -70,7 +70,7 @@ pub fn dispatch_shape(groups: u32, max_per_dim: u32) -> Result<(u32, u32), GpuEr
     let y = groups.div_ceil(x);
     if y > max {
         return Err(GpuError::TooLarge {
-            what: "trochoid dispatch (workgroups)",
+            what: "compute dispatch (workgroups)",
             needed: u64::from(groups),
             limit: u64::from(max) * u64::from(max),
         });
@@ -78,7 +78,8 @@ pub fn dispatch_shape(groups: u32, max_per_dim: u32) -> Result<(u32, u32), GpuEr
     Ok((x, y))
 }
 
-/// Output buffers for a grid: positions and normals, 16 bytes per point.
+/// Output buffers for a grid: positions and normals, 16 bytes per point. Both
+/// [`TrochoidPass`] and [`LayersPass`](crate::LayersPass) write into them.
 #[derive(Clone, Debug)]
 pub struct TrochoidTarget {
     /// Positions `(x, y, z, 1)` relative to the grid origin.
@@ -117,7 +118,7 @@ impl TrochoidTarget {
         Self { positions, normals }
     }
 
-    fn check(&self, points: u64) -> Result<(), GpuError> {
+    pub(crate) fn check(&self, points: u64) -> Result<(), GpuError> {
         let need = points * OUTPUT_STRIDE;
         for (what, b) in [
             ("positions buffer", &self.positions),
@@ -149,7 +150,7 @@ impl TrochoidTarget {
     }
 }
 
-fn output_bytes(device: &wgpu::Device, points: u64) -> Result<u64, GpuError> {
+pub(crate) fn output_bytes(device: &wgpu::Device, points: u64) -> Result<u64, GpuError> {
     let size = points * OUTPUT_STRIDE;
     let limits = device.limits();
     let limit = limits
@@ -157,7 +158,7 @@ fn output_bytes(device: &wgpu::Device, points: u64) -> Result<u64, GpuError> {
         .min(limits.max_buffer_size);
     if size > limit {
         return Err(GpuError::TooLarge {
-            what: "trochoid output buffer (16 bytes per grid point)",
+            what: "output buffer (16 bytes per grid point)",
             needed: size,
             limit,
         });
@@ -273,11 +274,11 @@ struct Prepared {
 /// The size of a buffer that must hold `needed` bytes and now holds `current`: at least double,
 /// so a slowly growing grid reallocates O(log n) times, but never past the binding limit (which
 /// `needed` is known to respect).
-fn grown_size(current: u64, needed: u64, limit: u64) -> u64 {
+pub(crate) fn grown_size(current: u64, needed: u64, limit: u64) -> u64 {
     needed.max(current.saturating_mul(2).min(limit))
 }
 
-fn input_buffer(
+pub(crate) fn input_buffer(
     device: &wgpu::Device,
     label: &str,
     size: u64,

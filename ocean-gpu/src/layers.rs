@@ -1,0 +1,863 @@
+//! The layered displacement pass: the GPU twin of [`ocean_core::evaluate_layers`], the
+//! evaluation primitive of wave train boxes.
+//!
+//! A [`Layer`] is a wave set acting on a rectangle of the grid, its contribution at each point
+//! of the rectangle multiplied by a complex amplitude μ = m·e^{iφ}, given as
+//! `[m cos φ, m sin φ]`: the point's trains are evaluated with amplitude m·Aᵢ and phase θᵢ + φ
+//! (wave-train-boxes Eq. 6-7: p = p₀ − Σ k̂ m A sin(θ + φ), y = Σ m A cos(θ + φ)). The factor m
+//! carries what scales a box's waves locally (side smoothing, build-up envelope, land, shadow,
+//! shoaling), the phase φ what shifts them (depth refraction, round waves). Layers add up where
+//! they overlap; outside its rectangle a layer contributes nothing; an optional additive height
+//! field (capillary noise, run-up) is added to every height last. The normals treat μ as
+//! locally constant, as the CPU does. See the [`ocean_core::layers`] module documentation.
+//!
+//! The arithmetic is the CPU kernel's, in its order: per layer and wave, sin θ and cos θ by
+//! angle addition of the host's row and column tables ([`ocean_core::WaveSet::grid_sin_cos`], phases
+//! reduced in `f64`, so neither t = 10⁶ s nor 100 km from the origin degrades the result and
+//! the GPU evaluates no sine or cosine), then
+//!
+//! m sin(θ + φ) = sin θ·(m cos φ) + cos θ·(m sin φ),  m cos(θ + φ) = cos θ·(m cos φ) − sin θ·(m sin φ),
+//!
+//! accumulated like the trochoid pass's waves, layer after layer, wave after wave; then the
+//! height field, the position and the normal (same degenerate-normal rule). On Mesa's software
+//! drivers the result is bit-identical to the CPU's.
+//!
+//! # Buffers
+//!
+//! Four storage buffers (the WebGPU downlevel per-stage limit) and a uniform block
+//! (see `shaders/layers.wgsl`):
+//!
+//! | binding | contents |
+//! |---------|----------|
+//! | 0 | uniform [`LayersParams`]: grid size, layer count, dispatch width, height offset, spacing |
+//! | 1 | storage, read: one [`LayerDesc`] per layer (its rectangle and word offsets into `data`) |
+//! | 2 | storage, read: `data`, `f32` words: per layer its coefficients (8 words a wave) then its sin/cos tables restricted to its rectangle (rows, then columns; 2 words a pair), then each layer's modulation (2 words a rectangle point), then the height field (1 word a grid point) |
+//! | 3, 4 | the output positions and normals of a [`TrochoidTarget`] (16 bytes a point, row-major) |
+//!
+//! The pass keeps its input buffers and rewrites them each run, growing them only when a run
+//! needs more room than any before, so a frame loop allocates nothing on the GPU (nor on the
+//! host) once its sizes are settled; [`LayersPass::stats`] shows it.
+
+use std::sync::{Mutex, MutexGuard, PoisonError};
+
+use glam::Vec3;
+use ocean_core::{EvalError, Grid, Layer};
+
+use crate::readback::{GpuTimer, read_buffer_as};
+use crate::trochoid::{
+    OUTPUT_STRIDE, WORKGROUP_SIZE, dispatch_shape, grown_size, input_buffer, output_bytes,
+};
+use crate::{GpuContext, GpuError, GridOutput, TrochoidTarget, shaders};
+
+/// The pass's uniform block, byte for byte the WGSL `Params` struct of `layers.wgsl`
+/// (32 bytes, std140).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct LayersParams {
+    /// Grid columns (along x).
+    pub nx: u32,
+    /// Grid rows (along z).
+    pub nz: u32,
+    /// Number of [`LayerDesc`]s.
+    pub layers: u32,
+    /// Workgroups along x of the dispatch; the linear workgroup index is
+    /// `workgroup_id.y · groups_x + workgroup_id.x`.
+    pub groups_x: u32,
+    /// 1 when a height field is given (at word `height` of `data`), else 0.
+    pub has_height: u32,
+    /// Word offset in `data` of the height field (0 without one).
+    pub height: u32,
+    /// Grid spacing along x, metres (`f32`, as the CPU kernel rounds it).
+    pub spacing_x: f32,
+    /// Grid spacing along z, metres.
+    pub spacing_z: f32,
+}
+
+/// One layer as the shader sees it, byte for byte the WGSL `LayerDesc` (48 bytes). Offsets are
+/// in `f32` words of the `data` buffer.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct LayerDesc {
+    /// First grid column of the rectangle.
+    pub i0: u32,
+    /// First grid row of the rectangle.
+    pub j0: u32,
+    /// Columns of the rectangle.
+    pub nx: u32,
+    /// Rows of the rectangle.
+    pub nz: u32,
+    /// Number of waves.
+    pub waves: u32,
+    /// Wave `w`'s [`ocean_core::WaveCoeffs`] at words `coeffs + 8w ..= coeffs + 8w + 7`.
+    pub coeffs: u32,
+    /// `[sin R, cos R]` of wave `w` at rectangle row `r` (grid row `j0 + r`) at word
+    /// `rows + 2(w · nz + r)`.
+    pub rows: u32,
+    /// `[sin C, cos C]` of wave `w` at rectangle column `c` (grid column `i0 + c`) at word
+    /// `cols + 2(w · nx + c)`.
+    pub cols: u32,
+    /// `[m cos φ, m sin φ]` at rectangle point (c, r) at word `modulation + 2(r · nx + c)`.
+    pub modulation: u32,
+    /// Explicit padding, 0 (the struct is a whole number of 16-byte rows).
+    pub _pad: [u32; 3],
+}
+
+/// What one run of the pass evaluates: layers (and a height field) on a grid at a time; the
+/// arguments of [`ocean_core::evaluate_layers`].
+#[derive(Clone, Copy, Debug)]
+pub struct LayersInput<'a> {
+    /// The grid of rest positions.
+    pub grid: &'a Grid,
+    /// Time in seconds (`f64`: phases are reduced on the host, so any finite time works).
+    pub time: f64,
+    /// The layers, summed in order.
+    pub layers: &'a [Layer<'a>],
+    /// An additive height field, one value per grid point (row-major), or `None`.
+    pub height: Option<&'a [f32]>,
+}
+
+/// Counters and capacities of a [`LayersPass`]'s own GPU objects, to check that a frame loop
+/// has reached a steady state (no counter moves from one frame to the next).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LayersStats {
+    /// Input buffers created so far: three in [`LayersPass::new`] (uniform block, layer
+    /// descriptors, data), then one each time the descriptors or the data outgrow theirs.
+    pub buffers_created: u64,
+    /// Bind groups created so far: one per target seen (at most [`BIND_GROUP_CACHE`] are
+    /// kept), and again for every target after an input buffer grew.
+    pub bind_groups_created: u64,
+    /// Layers the descriptor buffer holds.
+    pub layer_capacity: u64,
+    /// `f32` words the data buffer holds (coefficients, tables, modulation, height).
+    pub data_capacity: u64,
+}
+
+/// Bind groups a [`LayersPass`] keeps (least recently used evicted first).
+pub const BIND_GROUP_CACHE: usize = crate::trochoid::BIND_GROUP_CACHE;
+
+/// Initial capacity of the descriptor buffer, in layers.
+const INITIAL_LAYERS: u64 = 8;
+/// Initial capacity of the data buffer, in words (64 KiB).
+const INITIAL_DATA_WORDS: u64 = 16 * 1024;
+/// Bytes of one [`LayerDesc`].
+const DESC_STRIDE: u64 = std::mem::size_of::<LayerDesc>() as u64;
+/// Bytes of one data word.
+const WORD: u64 = 4;
+/// Words of one wave's coefficients.
+const COEFF_WORDS: u64 = (std::mem::size_of::<ocean_core::WaveCoeffs>() / 4) as u64;
+
+/// The checks of [`ocean_core::evaluate_layers`], in its order and with its errors (the output
+/// slices it also checks are the pass's target here, checked separately): a finite time, a
+/// valid grid, every rectangle non-empty and inside the grid, one finite modulation entry per
+/// rectangle point, one finite height per grid point. Returns the grid's point count.
+pub fn validate_layers(
+    grid: &Grid,
+    t: f64,
+    layers: &[Layer<'_>],
+    height: Option<&[f32]>,
+) -> Result<usize, EvalError> {
+    if !t.is_finite() {
+        return Err(EvalError::Time(t));
+    }
+    let n = grid.point_count()?;
+    let (gx, gz) = grid.size;
+    for layer in layers {
+        let r = layer.rect;
+        let inside = |start: usize, len: usize, size: usize| {
+            start.checked_add(len).is_some_and(|end| end <= size)
+        };
+        if r.is_empty() || !inside(r.i0, r.nx, gx) || !inside(r.j0, r.nz, gz) {
+            return Err(EvalError::Grid("layer rectangle empty or outside the grid"));
+        }
+        if layer.modulation.len() != r.len() {
+            return Err(EvalError::Grid(
+                "layer modulation must hold one entry per point of its rectangle",
+            ));
+        }
+        if let Some(index) = layer
+            .modulation
+            .iter()
+            .position(|m| !(m[0].is_finite() && m[1].is_finite()))
+        {
+            return Err(EvalError::Position { index });
+        }
+    }
+    if let Some(h) = height {
+        if h.len() != n {
+            return Err(EvalError::Grid(
+                "height field must hold one value per grid point",
+            ));
+        }
+        if let Some(index) = h.iter().position(|v| !v.is_finite()) {
+            return Err(EvalError::Position { index });
+        }
+    }
+    Ok(n)
+}
+
+/// The input buffers of a pass, host staging areas, and the bind groups built on them.
+#[derive(Debug)]
+struct Inputs {
+    params: wgpu::Buffer,
+    descs: wgpu::Buffer,
+    data: wgpu::Buffer,
+    /// The descriptors as uploaded; kept to avoid a host allocation per run.
+    desc_scratch: Vec<LayerDesc>,
+    /// Coefficients and rectangle tables of every layer, as uploaded to the start of `data`.
+    scratch: Vec<f32>,
+    /// One layer's full-grid tables from [`ocean_core::WaveSet::grid_sin_cos`] (rows, then
+    /// columns).
+    full_tables: Vec<[f32; 2]>,
+    /// Least recently used first.
+    bind_groups: Vec<CachedBindGroup>,
+    stats: LayersStats,
+}
+
+#[derive(Debug)]
+struct CachedBindGroup {
+    positions: wgpu::Buffer,
+    normals: wgpu::Buffer,
+    out_size: u64,
+    group: wgpu::BindGroup,
+}
+
+/// Everything one dispatch needs besides the data, checked on the host.
+struct Prepared {
+    params: LayersParams,
+    groups: (u32, u32),
+    points: u64,
+    /// Words of coefficients and tables (the start of `data`, staged in `scratch`).
+    scratch_words: u64,
+    /// Words of `data` the run uses.
+    data_words: u64,
+    /// Largest binding the device allows, bytes.
+    binding_limit: u64,
+}
+
+impl Inputs {
+    fn new(device: &wgpu::Device) -> Self {
+        let storage = wgpu::BufferUsages::STORAGE;
+        Self {
+            params: input_buffer(
+                device,
+                "ocean layers params",
+                std::mem::size_of::<LayersParams>() as u64,
+                wgpu::BufferUsages::UNIFORM,
+            ),
+            descs: input_buffer(
+                device,
+                "ocean layers descriptors",
+                INITIAL_LAYERS * DESC_STRIDE,
+                storage,
+            ),
+            data: input_buffer(
+                device,
+                "ocean layers data",
+                INITIAL_DATA_WORDS * WORD,
+                storage,
+            ),
+            desc_scratch: Vec::new(),
+            scratch: Vec::new(),
+            full_tables: Vec::new(),
+            bind_groups: Vec::new(),
+            stats: LayersStats {
+                buffers_created: 3,
+                bind_groups_created: 0,
+                layer_capacity: INITIAL_LAYERS,
+                data_capacity: INITIAL_DATA_WORDS,
+            },
+        }
+    }
+
+    /// Replaces the descriptor and data buffers that are too small for `p` (their contents are
+    /// rewritten by every run, so nothing is copied). Cached bind groups refer to the old
+    /// buffers and are dropped with them.
+    fn reserve(&mut self, device: &wgpu::Device, p: &Prepared) -> Result<(), GpuError> {
+        let desc_bytes = u64::from(p.params.layers) * DESC_STRIDE;
+        let data_bytes = p.data_words * WORD;
+        let grow_descs = desc_bytes > self.descs.size();
+        let grow_data = data_bytes > self.data.size();
+        if !grow_descs && !grow_data {
+            return Ok(());
+        }
+        let storage = wgpu::BufferUsages::STORAGE;
+        // Create inside an error scope and install only on success, so an out-of-memory
+        // failure leaves the pass with its old, valid buffers.
+        let (descs, data) = crate::scoped(device, || {
+            let descs = grow_descs.then(|| {
+                let size = grown_size(self.descs.size(), desc_bytes, p.binding_limit);
+                input_buffer(device, "ocean layers descriptors", size, storage)
+            });
+            let data = grow_data.then(|| {
+                let size = grown_size(self.data.size(), data_bytes, p.binding_limit);
+                input_buffer(device, "ocean layers data", size, storage)
+            });
+            Ok((descs, data))
+        })?;
+        if let Some(b) = descs {
+            self.stats.layer_capacity = b.size() / DESC_STRIDE;
+            self.stats.buffers_created += 1;
+            self.descs = b;
+        }
+        if let Some(b) = data {
+            self.stats.data_capacity = b.size() / WORD;
+            self.stats.buffers_created += 1;
+            self.data = b;
+        }
+        self.bind_groups.clear();
+        Ok(())
+    }
+
+    /// Fills `desc_scratch` and `scratch` (coefficients and rectangle tables) for `input`,
+    /// with the offsets `p` was sized for. Time and grid were validated.
+    fn stage(&mut self, input: &LayersInput<'_>, p: &Prepared) -> Result<(), GpuError> {
+        let grid = input.grid;
+        let (gnx, gnz) = grid.size;
+        self.desc_scratch.clear();
+        self.scratch.clear();
+        self.scratch.reserve(p.scratch_words as usize);
+        // Modulation follows the coefficients and tables, in layer order.
+        let mut modulation = p.scratch_words;
+        for layer in input.layers {
+            let r = layer.rect;
+            let coeffs = layer.waves.coeffs();
+            let w = coeffs.len();
+            // Offsets fit u32: the total was checked in `prepare`.
+            let coeff_offset = self.scratch.len() as u32;
+            self.scratch.extend_from_slice(bytemuck::cast_slice(coeffs));
+            // The CPU's own tables for the whole grid, then the rectangle's rows and columns.
+            self.full_tables.clear();
+            self.full_tables.resize(w * (gnz + gnx), [0.0; 2]);
+            let (rows, cols) = self.full_tables.split_at_mut(w * gnz);
+            layer.waves.grid_sin_cos(grid, input.time, rows, cols)?;
+            let rows_offset = self.scratch.len() as u32;
+            for wi in 0..w {
+                let start = wi * gnz + r.j0;
+                self.scratch
+                    .extend_from_slice(bytemuck::cast_slice(&rows[start..start + r.nz]));
+            }
+            let cols_offset = self.scratch.len() as u32;
+            for wi in 0..w {
+                let start = wi * gnx + r.i0;
+                self.scratch
+                    .extend_from_slice(bytemuck::cast_slice(&cols[start..start + r.nx]));
+            }
+            self.desc_scratch.push(LayerDesc {
+                i0: r.i0 as u32,
+                j0: r.j0 as u32,
+                nx: r.nx as u32,
+                nz: r.nz as u32,
+                waves: w as u32,
+                coeffs: coeff_offset,
+                rows: rows_offset,
+                cols: cols_offset,
+                modulation: modulation as u32,
+                _pad: [0; 3],
+            });
+            modulation += 2 * r.len() as u64;
+        }
+        debug_assert_eq!(self.scratch.len() as u64, p.scratch_words);
+        Ok(())
+    }
+
+    /// The bind group of the current input buffers and `target`, from the cache or new.
+    fn bind_group(
+        &mut self,
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        target: &TrochoidTarget,
+        out_size: u64,
+    ) -> wgpu::BindGroup {
+        let hit = self.bind_groups.iter().position(|c| {
+            c.positions == target.positions && c.normals == target.normals && c.out_size == out_size
+        });
+        if let Some(i) = hit {
+            let cached = self.bind_groups.remove(i);
+            let group = cached.group.clone();
+            self.bind_groups.push(cached);
+            return group;
+        }
+        let output = |buffer| {
+            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer,
+                offset: 0,
+                size: wgpu::BufferSize::new(out_size),
+            })
+        };
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ocean layers bind group"),
+            layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.params.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: self.descs.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: self.data.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: output(&target.positions),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: output(&target.normals),
+                },
+            ],
+        });
+        self.stats.bind_groups_created += 1;
+        if self.bind_groups.len() == BIND_GROUP_CACHE {
+            self.bind_groups.remove(0);
+        }
+        self.bind_groups.push(CachedBindGroup {
+            positions: target.positions.clone(),
+            normals: target.normals.clone(),
+            out_size,
+            group: group.clone(),
+        });
+        group
+    }
+}
+
+/// The layered displacement compute pipeline and the input buffers it reuses from run to run:
+/// the GPU twin of [`ocean_core::evaluate_layers`] (see the [module documentation](self)).
+///
+/// Create it once per device. Each [`encode`](Self::encode) writes the inputs (uniform block,
+/// layer descriptors, and one data buffer with every layer's wave coefficients, sin/cos tables
+/// and modulation, and the height field) with `Queue::write_buffer` into buffers the pass
+/// keeps, growing them only when a run needs more than any run before.
+///
+/// As with [`TrochoidPass`](crate::TrochoidPass), the written inputs take effect at the
+/// caller's next `Queue::submit`: one pass holds one set of inputs between two submits.
+#[derive(Debug)]
+pub struct LayersPass {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+    max_groups_per_dim: u32,
+    /// The reusable inputs, behind a `Mutex` so one pass can be shared like the wgpu objects
+    /// it wraps; `encode` holds it while it writes and records.
+    inputs: Mutex<Inputs>,
+}
+
+impl LayersPass {
+    /// Builds the pipeline on `ctx`'s device.
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        let device = ctx.device();
+        let entry = shaders::get("layers").ok_or_else(|| {
+            GpuError::Shader(shaders::ShaderError::UnknownShader {
+                name: "layers".to_owned(),
+                available: String::new(),
+            })
+        })?;
+        crate::scoped(device, || {
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("ocean layers.wgsl"),
+                source: wgpu::ShaderSource::Wgsl(entry.source.into()),
+            });
+            let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+                binding,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Storage { read_only },
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            };
+            let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("ocean layers bind group layout"),
+                entries: &[
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 0,
+                        visibility: wgpu::ShaderStages::COMPUTE,
+                        ty: wgpu::BindingType::Buffer {
+                            ty: wgpu::BufferBindingType::Uniform,
+                            has_dynamic_offset: false,
+                            min_binding_size: wgpu::BufferSize::new(
+                                std::mem::size_of::<LayersParams>() as u64,
+                            ),
+                        },
+                        count: None,
+                    },
+                    storage(1, true),
+                    storage(2, true),
+                    storage(3, false),
+                    storage(4, false),
+                ],
+            });
+            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("ocean layers pipeline layout"),
+                bind_group_layouts: &[Some(&layout)],
+                immediate_size: 0,
+            });
+            let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("ocean layers pipeline"),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some("displace"),
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                cache: None,
+            });
+            Ok(Self {
+                pipeline,
+                layout,
+                max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
+                inputs: Mutex::new(Inputs::new(device)),
+            })
+        })
+    }
+
+    /// Caps the workgroups per dispatch dimension below the device limit (at least 1), so the
+    /// folding of large grids into two dimensions can be exercised on small ones.
+    pub fn with_max_workgroups_per_dimension(mut self, max: u32) -> Self {
+        self.max_groups_per_dim = max.clamp(1, self.max_groups_per_dim);
+        self
+    }
+
+    /// The counters and capacities of the pass's own buffers and bind groups.
+    pub fn stats(&self) -> LayersStats {
+        self.lock_inputs().stats
+    }
+
+    /// The inputs, also after a panic in another thread: every field is replaced whole, so a
+    /// poisoned lock still guards consistent buffers.
+    fn lock_inputs(&self) -> MutexGuard<'_, Inputs> {
+        self.inputs.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// Validates the input as the CPU does, then checks sizes against the shader's u32 indices
+    /// and the device limits.
+    fn prepare(&self, ctx: &GpuContext, input: &LayersInput<'_>) -> Result<Prepared, GpuError> {
+        let grid = input.grid;
+        let points = validate_layers(grid, input.time, input.layers, input.height)? as u64;
+        let (nx, nz) = grid.size;
+        let too_large = |what, needed: u64, limit: u64| GpuError::TooLarge {
+            what,
+            needed,
+            limit,
+        };
+        let u32max = u64::from(u32::MAX);
+        if points > u32max {
+            return Err(too_large("grid points (u32 index)", points, u32max));
+        }
+        let layer_count = input.layers.len() as u64;
+        let (mut scratch_words, mut modulation_words) = (0u64, 0u64);
+        for layer in input.layers {
+            let r = layer.rect;
+            let w = layer.waves.coeffs().len() as u64;
+            // Rectangles lie inside the grid (validated), so these products stay far below
+            // u64::MAX.
+            scratch_words += w * COEFF_WORDS + 2 * w * (r.nz as u64 + r.nx as u64);
+            modulation_words += 2 * r.len() as u64;
+        }
+        let height_words = if input.height.is_some() { points } else { 0 };
+        let data_words = scratch_words + modulation_words + height_words;
+        // The shader indexes `data` with u32 word offsets.
+        if data_words > u32max {
+            return Err(too_large(
+                "layer data words (u32 index)",
+                data_words,
+                u32max,
+            ));
+        }
+        let limits = ctx.device().limits();
+        let binding_limit = limits
+            .max_storage_buffer_binding_size
+            .min(limits.max_buffer_size);
+        if data_words * WORD > binding_limit {
+            return Err(too_large(
+                "layer data buffer (coefficients, tables, modulation, height; bytes)",
+                data_words * WORD,
+                binding_limit,
+            ));
+        }
+        if layer_count * DESC_STRIDE > binding_limit {
+            return Err(too_large(
+                "layer descriptor buffer (bytes)",
+                layer_count * DESC_STRIDE,
+                binding_limit,
+            ));
+        }
+        output_bytes(ctx.device(), points)?;
+        let groups = points.div_ceil(u64::from(WORKGROUP_SIZE));
+        let groups = dispatch_shape(
+            u32::try_from(groups).map_err(|_| too_large("workgroups", groups, u32max))?,
+            self.max_groups_per_dim,
+        )?;
+        Ok(Prepared {
+            params: LayersParams {
+                nx: nx as u32,
+                nz: nz as u32,
+                layers: layer_count as u32,
+                groups_x: groups.0,
+                has_height: u32::from(input.height.is_some()),
+                height: if input.height.is_some() {
+                    (scratch_words + modulation_words) as u32
+                } else {
+                    0
+                },
+                spacing_x: grid.spacing.x as f32,
+                spacing_z: grid.spacing.y as f32,
+            },
+            groups,
+            points,
+            scratch_words,
+            data_words,
+            binding_limit,
+        })
+    }
+
+    /// Uploads the inputs and records the dispatch into the caller's `encoder`; `timer`, if
+    /// given, timestamps the pass (call [`GpuTimer::resolve`] on the encoder afterwards).
+    ///
+    /// The input is checked as [`ocean_core::evaluate_layers`] checks it (the same
+    /// [`EvalError`]s, as [`GpuError::Eval`]), then against the device's limits and `target`;
+    /// nothing is written or recorded if anything is invalid.
+    ///
+    /// The inputs go into the pass's own buffers by `Queue::write_buffer`, so they reach the
+    /// GPU with the caller's next `Queue::submit`: submit between two `encode` calls on the
+    /// same pass ([`run`](Self::run) submits for you). The buffers grow when a run needs more
+    /// than any run before; otherwise nothing is allocated, and the bind group for `target`
+    /// comes from a small cache (see [`LayersStats`]).
+    pub fn encode(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        input: &LayersInput<'_>,
+        target: &TrochoidTarget,
+        timer: Option<&GpuTimer>,
+    ) -> Result<(), GpuError> {
+        let p = self.prepare(ctx, input)?;
+        target.check(p.points)?;
+        let device = ctx.device();
+        let mut guard = self.lock_inputs();
+        let inputs = &mut *guard;
+        inputs.stage(input, &p)?;
+        inputs.reserve(device, &p)?;
+        let recorded = crate::scoped(device, || {
+            let queue = ctx.queue();
+            queue.write_buffer(&inputs.params, 0, bytemuck::bytes_of(&p.params));
+            if !inputs.desc_scratch.is_empty() {
+                queue.write_buffer(&inputs.descs, 0, bytemuck::cast_slice(&inputs.desc_scratch));
+            }
+            if !inputs.scratch.is_empty() {
+                queue.write_buffer(&inputs.data, 0, bytemuck::cast_slice(&inputs.scratch));
+            }
+            // Modulation and height straight from the caller's slices (no host copy).
+            for (layer, desc) in input.layers.iter().zip(&inputs.desc_scratch) {
+                queue.write_buffer(
+                    &inputs.data,
+                    u64::from(desc.modulation) * WORD,
+                    bytemuck::cast_slice(layer.modulation),
+                );
+            }
+            if let Some(h) = input.height {
+                queue.write_buffer(
+                    &inputs.data,
+                    u64::from(p.params.height) * WORD,
+                    bytemuck::cast_slice(h),
+                );
+            }
+            let bind_group =
+                inputs.bind_group(device, &self.layout, target, p.points * OUTPUT_STRIDE);
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("ocean layers"),
+                timestamp_writes: timer.map(GpuTimer::compute_pass_writes),
+            });
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, &bind_group, &[]);
+            pass.dispatch_workgroups(p.groups.0, p.groups.1, 1);
+            Ok(())
+        });
+        if recorded.is_err() {
+            // A bind group created under a validation error is invalid: never reuse it.
+            inputs.bind_groups.clear();
+        }
+        recorded
+    }
+
+    /// Records, submits and returns: the pass writes into `target` (timed when `timer` is
+    /// given; read it with [`GpuTimer::read`]).
+    pub fn run(
+        &self,
+        ctx: &GpuContext,
+        input: &LayersInput<'_>,
+        target: &TrochoidTarget,
+        timer: Option<&GpuTimer>,
+    ) -> Result<(), GpuError> {
+        let mut encoder = ctx
+            .device()
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("ocean layers"),
+            });
+        self.encode(ctx, &mut encoder, input, target, timer)?;
+        if let Some(timer) = timer {
+            timer.resolve(&mut encoder);
+        }
+        crate::scoped(ctx.device(), || {
+            ctx.queue().submit([encoder.finish()]);
+            Ok(())
+        })
+    }
+
+    /// Evaluates `layers` (plus `height`) on `grid` at time `t` on the GPU and reads the result
+    /// back: the GPU twin of [`ocean_core::evaluate_layers`] (same layout, positions relative
+    /// to `grid.origin`), with the pass's GPU time when the device supports timestamps.
+    ///
+    /// A one-off query: it allocates the output and readback buffers each call and waits for
+    /// the GPU. A frame loop keeps a [`TrochoidTarget`] and calls [`run`](Self::run) or
+    /// [`encode`](Self::encode).
+    pub fn evaluate(
+        &self,
+        ctx: &GpuContext,
+        grid: &Grid,
+        t: f64,
+        layers: &[Layer<'_>],
+        height: Option<&[f32]>,
+    ) -> Result<GridOutput, GpuError> {
+        let input = LayersInput {
+            grid,
+            time: t,
+            layers,
+            height,
+        };
+        // Validate before allocating the target, so bad input costs no GPU allocation.
+        self.prepare(ctx, &input)?;
+        let target = TrochoidTarget::new(ctx, grid)?;
+        let timer = GpuTimer::new(ctx);
+        self.run(ctx, &input, &target, timer.as_ref())?;
+        let n = grid.point_count()?;
+        let to_vec3 = |v: Vec<[f32; 4]>| -> Vec<Vec3> {
+            v.into_iter()
+                .take(n)
+                .map(|p| Vec3::new(p[0], p[1], p[2]))
+                .collect()
+        };
+        let positions = to_vec3(read_buffer_as(ctx, &target.positions)?);
+        let normals = to_vec3(read_buffer_as(ctx, &target.normals)?);
+        let gpu_time = match &timer {
+            Some(t) => t.read(ctx)?,
+            None => None,
+        };
+        Ok(GridOutput {
+            positions,
+            normals,
+            gpu_time,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn structs_match_the_wgsl_layout() {
+        let b = shaders::get("layers").unwrap().bindings().unwrap();
+        assert_eq!(std::mem::size_of::<LayersParams>(), 32);
+        assert_eq!(b[0].size as usize, std::mem::size_of::<LayersParams>());
+        let params: Vec<(&str, u32)> = b[0]
+            .members
+            .iter()
+            .map(|m| (m.name.as_str(), m.offset))
+            .collect();
+        assert_eq!(
+            params,
+            [
+                ("nx", 0),
+                ("nz", 4),
+                ("layers", 8),
+                ("groups_x", 12),
+                ("has_height", 16),
+                ("height", 20),
+                ("spacing_x", 24),
+                ("spacing_z", 28),
+            ]
+        );
+        // The descriptor array's element is the 48-byte LayerDesc.
+        assert_eq!(std::mem::size_of::<LayerDesc>(), 48);
+        assert_eq!(b[1].size as usize, std::mem::size_of::<LayerDesc>());
+        assert_eq!(b[2].size, 4, "data is an array of f32 words");
+    }
+
+    #[test]
+    fn validation_is_the_cpus() {
+        use glam::DVec2;
+        use ocean_core::{Depth, GridRect, WaveDesc, WaveSet};
+        let grid = Grid {
+            origin: DVec2::ZERO,
+            spacing: DVec2::ONE,
+            size: (8, 6),
+        };
+        let waves = WaveSet::from_descs(&[WaveDesc {
+            amplitude: 0.1,
+            wavelength: 10.0,
+            direction: DVec2::X,
+            phase: 0.0,
+            depth: Depth::Deep,
+        }])
+        .unwrap();
+        let m = vec![[1.0f32, 0.0]; 48];
+        let mut m_nan = m.clone();
+        m_nan[17][1] = f32::NAN;
+        let h = vec![0.5f32; 48];
+        let mut h_inf = h.clone();
+        h_inf[40] = f32::INFINITY;
+        let full = GridRect {
+            i0: 0,
+            j0: 0,
+            nx: 8,
+            nz: 6,
+        };
+        let layer = |rect: GridRect, modulation| Layer {
+            waves: &waves,
+            rect,
+            modulation,
+        };
+        type Case<'a> = (f64, Vec<Layer<'a>>, Option<&'a [f32]>);
+        let cases: Vec<Case<'_>> = vec![
+            (0.0, vec![layer(full, &m)], Some(&h)),
+            (0.0, vec![], None),
+            (f64::NAN, vec![layer(full, &m)], None),
+            (f64::INFINITY, vec![], None),
+            (0.0, vec![layer(GridRect { i0: 1, ..full }, &m)], None),
+            (0.0, vec![layer(GridRect { j0: 1, ..full }, &m)], None),
+            (0.0, vec![layer(GridRect { nx: 0, ..full }, &m[..0])], None),
+            (0.0, vec![layer(GridRect { nx: 4, ..full }, &m)], None),
+            (0.0, vec![layer(full, &m_nan)], None),
+            (0.0, vec![layer(full, &m)], Some(&h[..47])),
+            (0.0, vec![layer(full, &m)], Some(&h_inf)),
+        ];
+        for (k, (t, layers, height)) in cases.iter().enumerate() {
+            let mut pos = vec![Vec3::ZERO; 48];
+            let mut nrm = vec![Vec3::ZERO; 48];
+            let cpu = ocean_core::evaluate_layers(&grid, *t, layers, *height, &mut pos, &mut nrm);
+            let gpu = validate_layers(&grid, *t, layers, *height);
+            // Compared as text: EvalError::Time(NaN) != itself under PartialEq.
+            assert_eq!(
+                format!("{:?}", cpu.err()),
+                format!("{:?}", gpu.err()),
+                "case {k}"
+            );
+            assert_eq!(cpu.is_ok(), k < 2, "case {k}");
+        }
+        // A rectangle whose end overflows usize is outside the grid, not an overflow panic.
+        let far = layer(
+            GridRect {
+                i0: usize::MAX,
+                nx: 2,
+                ..full
+            },
+            &m[..12],
+        );
+        assert_eq!(
+            validate_layers(&grid, 0.0, &[far], None),
+            Err(EvalError::Grid("layer rectangle empty or outside the grid"))
+        );
+    }
+}
