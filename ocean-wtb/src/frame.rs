@@ -489,27 +489,25 @@ impl Traversal {
         n: f64,
         max: f64,
     ) -> Option<u32> {
-        let cmp = |t: f64| -> Ordering {
-            let (p1, e1) = two_product(p, q);
-            let (p2, e2) = two_product(m, n);
-            expansion_sign(&[e1, e2, c, -t, p1, p2])
-        };
-        // Inside: 0 ≤ x ≤ max.
         if approx < -FILTER || approx > max + FILTER {
             return None;
         }
-        if (approx < FILTER && cmp(0.0) == Ordering::Less)
-            || (approx > max - FILTER && cmp(max) == Ordering::Greater)
-        {
+        let n_hi = ceil_i64(approx);
+        let clear = approx > FILTER
+            && approx < max - FILTER
+            && (n_hi as f64 - approx) > FILTER
+            && (approx - (n_hi as f64 - 1.0)) > FILTER;
+        if clear {
+            return Some(n_hi as u32);
+        }
+        // Within 2⁻²⁰ cells of an edge: decide exactly.
+        let x = ExactSum::new(c, p, q, m, n);
+        if x.cmp(0.0) == Ordering::Less || x.cmp(max) == Ordering::Greater {
             return None;
         }
-        // Cell: ⌈x⌉.
-        let n_hi = ceil_i64(approx);
-        let k = if (n_hi as f64 - approx) > FILTER && (approx - (n_hi as f64 - 1.0)) > FILTER {
-            n_hi
-        } else if cmp(n_hi as f64) == Ordering::Greater {
+        let k = if x.cmp(n_hi as f64) == Ordering::Greater {
             n_hi + 1
-        } else if cmp(n_hi as f64 - 1.0) != Ordering::Greater {
+        } else if x.cmp(n_hi as f64 - 1.0) != Ordering::Greater {
             n_hi - 1
         } else {
             n_hi
@@ -597,6 +595,39 @@ impl Traversal {
         for r in self.rays() {
             let ray = self.ray(r);
             self.for_each_cell_in_ray(r, |k, pts| f(&ray, k, pts));
+        }
+    }
+}
+
+/// The exact value of `c + p·q + m·n` for comparisons.
+enum ExactSum {
+    /// The sum is exactly this double (every product and sum was exact: the common case of
+    /// axis-aligned boxes, whose grid points lie on cell edges).
+    Double(f64),
+    /// The terms `[e₁, e₂, c, p₁, p₂]` of an exact expansion.
+    Terms([f64; 5]),
+}
+
+impl ExactSum {
+    #[inline]
+    fn new(c: f64, p: f64, q: f64, m: f64, n: f64) -> Self {
+        let (p1, e1) = two_product(p, q);
+        let (p2, e2) = two_product(m, n);
+        let (s1, f1) = two_sum(c, p1);
+        let (s2, f2) = two_sum(s1, p2);
+        if e1 == 0.0 && e2 == 0.0 && f1 == 0.0 && f2 == 0.0 {
+            ExactSum::Double(s2)
+        } else {
+            ExactSum::Terms([e1, e2, c, p1, p2])
+        }
+    }
+
+    /// The exact ordering of the sum against `t`.
+    #[inline]
+    fn cmp(&self, t: f64) -> Ordering {
+        match self {
+            ExactSum::Double(s) => s.partial_cmp(&t).unwrap_or(Ordering::Equal),
+            ExactSum::Terms([e1, e2, c, p1, p2]) => expansion_sign(&[*e1, *e2, *c, -t, *p1, *p2]),
         }
     }
 }
