@@ -84,4 +84,10 @@ pub enum WtbError {
         /// The reason.
         source: WaveError,
     },
+    /// No box has this id in the scene (removed, or from another scene).
+    #[error("no box with id {0} in this scene")]
+    UnknownBox(u32),
+    /// An evaluation was refused by `ocean-core` (output buffers of the wrong length, ...).
+    #[error("evaluation: {0}")]
+    Eval(ocean_core::EvalError),
 }

@@ -14,9 +14,12 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+pub mod budget;
+pub mod effects;
 pub mod error;
 pub mod frame;
 pub mod grid;
+pub mod scene;
 pub mod terrain;
 pub mod wind;
 

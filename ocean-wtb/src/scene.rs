@@ -1,0 +1,987 @@
+//! The wave model of §2: boxes over a water grid and terrain, evaluated frame by frame.
+//!
+//! A [`Scene`] holds the water grid, the terrain and the wave train boxes. [`Scene::frame`]
+//! prepares one instant, in the paper's layered order (§2.3):
+//!
+//! 1. **culling**: a box is skipped when its oriented bounding box, extruded by the summed
+//!    maximum heights of every box overlapping it (§2.2), is outside the view frustum;
+//! 2. **basic trains**: each visible box contributes its trains, the largest first when a
+//!    [`Budget`] limits them;
+//! 3. **effects**: the per-point factors and phases of [`crate::effects`];
+//! 4. **noise** last.
+//!
+//! Each box's static modulation is computed by marching its wave rays in order (§2, Fig. 2):
+//! along a ray the amplitude drops to zero on land, recovers linearly over a distance behind it
+//! (Fig. 5), grows by Green's law as the water shoals, is capped on beaches, and the phase lag
+//! of depth refraction accumulates. The ray events (land starts and ends, depth bands) are kept
+//! as action points. The result is cached until the box moves, grows, or the terrain or the
+//! static effects change, so a still box costs nothing per frame beyond evaluating its trains.
+//!
+//! The [`Frame`] then evaluates the grid with `ocean_core::evaluate_layers` (every box a layer
+//! with its complex amplitude m·e^{iφ}) and answers height queries on the same surface.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use glam::{DVec2, DVec3, Vec3};
+use ocean_core::frustum::{Containment, Frustum};
+use ocean_core::layers::{GridRect, Layer, evaluate_layers};
+use ocean_core::math;
+use ocean_core::{PointSums, Wave, WaveDesc, WaveSet};
+
+use crate::budget::{Budget, BoxLoad, CostModel, Selection, select, train_order};
+use crate::effects::{self, Effects, Refraction};
+use crate::error::WtbError;
+use crate::frame::BoxFrame;
+use crate::grid::{WaterGrid, ceil_i64, floor_i64};
+use crate::terrain::Terrain;
+use crate::wind::{TrainSource, Wind};
+
+/// How a box is made: its wind (placement, size, lifecycle, trains) and its local parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BoxSpec {
+    /// The wind raising the box (§2).
+    pub wind: Wind,
+    /// Where the trains come from: the wind's seeded mapping or explicit trains.
+    pub trains: TrainSource,
+    /// Width of the smoothing area along the box's edges, metres (Fig. 4).
+    pub smoothing: f64,
+    /// Distance behind land over which the amplitude recovers to full, metres (Fig. 5);
+    /// `None` for two peak wavelengths.
+    pub recovery: Option<f64>,
+}
+
+/// A box's handle in a [`Scene`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct BoxId(u32);
+
+impl BoxId {
+    /// The number behind the handle (stable for the box's life).
+    pub fn get(self) -> u32 {
+        self.0
+    }
+}
+
+/// What happens at an action point of a ray.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ActionKind {
+    /// The ray reaches land: the amplitude is zero from here.
+    LandStart,
+    /// The ray leaves land: the amplitude recovers from here (Fig. 5).
+    LandEnd,
+    /// The water becomes shallower than half the peak wavelength: shoaling and refraction start.
+    Shallow,
+    /// The water becomes deep again.
+    Deep,
+}
+
+/// A point along a wave ray where the trains' parameters change (Fig. 2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ActionPoint {
+    /// The ray.
+    pub ray: u32,
+    /// Distance along the ray (internal coordinate a), metres.
+    pub a: f64,
+    /// The grid point where it happens.
+    pub index: usize,
+    /// What happens.
+    pub kind: ActionKind,
+}
+
+/// The part of the effects that the static cache depends on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct StaticKey {
+    refraction: bool,
+    shoaling: bool,
+    round_waves: bool,
+    beach: Option<effects::Beach>,
+}
+
+impl StaticKey {
+    fn of(e: &Effects) -> Self {
+        Self {
+            refraction: e.refraction == Refraction::PhaseShift,
+            shoaling: e.shoaling,
+            round_waves: e.round_waves,
+            beach: e.beach,
+        }
+    }
+}
+
+/// A box's static modulation over its grid rectangle.
+#[derive(Clone, Debug)]
+struct Cache {
+    frame: BoxFrame,
+    terrain_version: u64,
+    key: StaticKey,
+    rect: GridRect,
+    mu: Vec<[f32; 2]>,
+    actions: Vec<ActionPoint>,
+}
+
+#[derive(Clone, Debug)]
+struct Slot {
+    id: BoxId,
+    spec: BoxSpec,
+    trains: Vec<WaveDesc>,
+    /// Σ A of the trains.
+    amplitude: f64,
+    /// Wavenumber and length of the largest train: the box's reference for depth effects.
+    peak_k: f64,
+    peak_wavelength: f64,
+    cache: Option<Cache>,
+}
+
+/// Counters of one frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FrameStats {
+    /// Boxes alive at the frame's time.
+    pub alive: usize,
+    /// Of those, culled by the frustum.
+    pub culled: usize,
+    /// Boxes whose static modulation was recomputed this frame (moved, grown, new terrain).
+    pub rebuilt: usize,
+    /// Trains evaluated, over all boxes.
+    pub trains: usize,
+    /// The work chosen by the budget.
+    pub selection: Option<Selection>,
+    /// The cost model's estimate for it, nanoseconds.
+    pub estimated_ns: f64,
+}
+
+/// Water grid, terrain and wave train boxes (see the module documentation).
+#[derive(Clone, Debug)]
+pub struct Scene {
+    grid: WaterGrid,
+    terrain: Terrain,
+    terrain_version: u64,
+    boxes: Vec<Slot>,
+    next_id: u32,
+    effects: Effects,
+    budget: Budget,
+    cost: CostModel,
+}
+
+/// Largest number of boxes in a scene.
+pub const MAX_BOXES: usize = 4096;
+
+impl Scene {
+    /// A scene on `grid` over `terrain` (which must be sampled on the same grid), with the
+    /// default effects and no budget limit.
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::TerrainSize`] when the terrain belongs to another grid.
+    pub fn new(grid: WaterGrid, terrain: Terrain) -> Result<Self, WtbError> {
+        check_terrain(&grid, &terrain)?;
+        Ok(Self {
+            grid,
+            terrain,
+            terrain_version: 0,
+            boxes: Vec::new(),
+            next_id: 0,
+            effects: Effects::default(),
+            budget: Budget::Unlimited,
+            cost: CostModel::default(),
+        })
+    }
+
+    /// The water grid.
+    pub fn grid(&self) -> &WaterGrid {
+        &self.grid
+    }
+
+    /// Replaces the terrain; every box's static modulation is recomputed at the next frame.
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::TerrainSize`] when the terrain belongs to another grid.
+    pub fn set_terrain(&mut self, terrain: Terrain) -> Result<(), WtbError> {
+        check_terrain(&self.grid, &terrain)?;
+        self.terrain = terrain;
+        self.terrain_version += 1;
+        Ok(())
+    }
+
+    /// The effects enabled (the budget may run fewer).
+    pub fn effects(&self) -> &Effects {
+        &self.effects
+    }
+
+    /// Enables and parameterises the effects.
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::NotFinite`] or [`WtbError::OutOfRange`] for a bad parameter.
+    pub fn set_effects(&mut self, effects: Effects) -> Result<(), WtbError> {
+        check_effects(&effects)?;
+        self.effects = effects;
+        Ok(())
+    }
+
+    /// Sets the frame budget (§2.3).
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::OutOfRange`] for a negative or non-finite time.
+    pub fn set_budget(&mut self, budget: Budget) -> Result<(), WtbError> {
+        if let Budget::Seconds(s) = budget {
+            if !(s.is_finite() && s >= 0.0) {
+                return Err(WtbError::OutOfRange {
+                    name: "budget seconds",
+                    value: s,
+                    min: 0.0,
+                    max: f64::MAX,
+                });
+            }
+        }
+        if let Budget::Explicit(sel) = budget {
+            check_effects(&sel.effects)?;
+        }
+        self.budget = budget;
+        Ok(())
+    }
+
+    /// The cost model the budget uses; refine it with measured frame times.
+    pub fn cost_model_mut(&mut self) -> &mut CostModel {
+        &mut self.cost
+    }
+
+    /// Adds a box.
+    ///
+    /// # Errors
+    ///
+    /// Any error of the wind, its trains or the smoothing and recovery distances; too many boxes.
+    pub fn add_box(&mut self, spec: BoxSpec) -> Result<BoxId, WtbError> {
+        if self.boxes.len() >= MAX_BOXES {
+            return Err(WtbError::OutOfRange {
+                name: "box count",
+                value: (self.boxes.len() + 1) as f64,
+                min: 0.0,
+                max: MAX_BOXES as f64,
+            });
+        }
+        let id = BoxId(self.next_id);
+        let slot = self.make_slot(id, spec)?;
+        self.next_id += 1;
+        self.boxes.push(slot);
+        Ok(id)
+    }
+
+    /// Replaces a box's description: moving its origin or turning it (a boat's wake, the
+    /// paper's future work) recomputes its action points at the next frame.
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::UnknownBox`] for a removed or foreign id; as [`Scene::add_box`].
+    pub fn update_box(&mut self, id: BoxId, spec: BoxSpec) -> Result<(), WtbError> {
+        let k = self.position(id)?;
+        self.boxes[k] = self.make_slot(id, spec)?;
+        Ok(())
+    }
+
+    /// Removes a box.
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::UnknownBox`] for a removed or foreign id.
+    pub fn remove_box(&mut self, id: BoxId) -> Result<(), WtbError> {
+        let k = self.position(id)?;
+        self.boxes.remove(k);
+        Ok(())
+    }
+
+    /// The boxes, in creation order.
+    pub fn box_ids(&self) -> impl Iterator<Item = BoxId> + '_ {
+        self.boxes.iter().map(|s| s.id)
+    }
+
+    /// The action points of a box as last computed (empty before its first frame).
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::UnknownBox`] for a removed or foreign id.
+    pub fn action_points(&self, id: BoxId) -> Result<&[ActionPoint], WtbError> {
+        let k = self.position(id)?;
+        Ok(self.boxes[k].cache.as_ref().map_or(&[][..], |c| &c.actions))
+    }
+
+    fn position(&self, id: BoxId) -> Result<usize, WtbError> {
+        self.boxes
+            .iter()
+            .position(|s| s.id == id)
+            .ok_or(WtbError::UnknownBox(id.0))
+    }
+
+    fn make_slot(&self, id: BoxId, spec: BoxSpec) -> Result<Slot, WtbError> {
+        spec.wind.validate()?;
+        finite_at_least("smoothing", spec.smoothing, 0.0)?;
+        if let Some(r) = spec.recovery {
+            finite_at_least("recovery", r, 0.0)?;
+        }
+        let trains = spec.trains.resolve(&spec.wind)?;
+        let amplitude = trains.iter().map(|d| d.amplitude).sum();
+        let peak = trains
+            .iter()
+            .max_by(|a, b| a.amplitude.total_cmp(&b.amplitude))
+            .ok_or(WtbError::OutOfRange {
+                name: "trains",
+                value: 0.0,
+                min: 1.0,
+                max: f64::MAX,
+            })?;
+        Ok(Slot {
+            id,
+            spec,
+            peak_k: effects::wavenumber(peak.wavelength),
+            peak_wavelength: peak.wavelength,
+            trains,
+            amplitude,
+            cache: None,
+        })
+    }
+
+    /// Prepares the instant `t` (seconds): culls boxes outside `view` (none when `None`),
+    /// chooses the work within the budget, refreshes the static modulation of boxes that moved
+    /// or grew, and computes the time-dependent effects. Evaluate the grid and answer height
+    /// queries on the returned [`Frame`].
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::NotFinite`] for a non-finite time.
+    pub fn frame(&mut self, t: f64, view: Option<&Frustum>) -> Result<Frame<'_>, WtbError> {
+        if !t.is_finite() {
+            return Err(WtbError::NotFinite("time"));
+        }
+        let spacing = self.grid.spacing();
+        let mut stats = FrameStats::default();
+        // 1. Alive boxes and their frames at t.
+        let mut alive: Vec<(usize, BoxFrame, f64)> = Vec::new();
+        for (k, slot) in self.boxes.iter().enumerate() {
+            let Some(state) = slot.spec.wind.state(t) else {
+                continue;
+            };
+            if let Some(frame) = slot.spec.wind.frame(t, spacing)? {
+                if frame.length() > 0.0 && state.envelope > 0.0 {
+                    alive.push((k, frame, state.envelope));
+                }
+            }
+        }
+        stats.alive = alive.len();
+        // Culling (§2.2): each OBB is extruded by the maximum heights of all overlapping boxes.
+        let noise = self.effects.noise.map_or(0.0, |n| n.amplitude.abs());
+        let heights: Vec<f64> = alive
+            .iter()
+            .map(|(k, _, env)| self.boxes[*k].amplitude * env * effects::MAX_SHOALING)
+            .collect();
+        let mut visible = Vec::new();
+        for (n, (k, frame, env)) in alive.iter().enumerate() {
+            let mut h = noise;
+            for (m, (_, other, _)) in alive.iter().enumerate() {
+                if m == n || rectangles_overlap(frame, other) {
+                    h += heights[m];
+                }
+            }
+            let keep = match view {
+                None => true,
+                Some(f) => f.test_obb(&frame.obb(h.max(1e-3))?) != Containment::Outside,
+            };
+            if keep {
+                visible.push((*k, *frame, *env));
+            } else {
+                stats.culled += 1;
+            }
+        }
+        // 2.–4. The budget's choice.
+        let loads: Vec<BoxLoad> = visible
+            .iter()
+            .map(|(k, frame, _)| BoxLoad {
+                points: covered_points(frame, spacing),
+                trains: self.boxes[*k].trains.len(),
+            })
+            .collect();
+        let selection = select(&self.budget, &self.cost, self.grid.len(), &loads, &self.effects);
+        stats.selection = Some(selection);
+        stats.estimated_ns = self.cost.estimate(self.grid.len(), &loads, &selection);
+        let key = StaticKey::of(&selection.effects);
+        // Refresh the caches that are stale.
+        for (k, frame, _) in &visible {
+            let fresh = self.boxes[*k].cache.as_ref().is_some_and(|c| {
+                c.frame == *frame && c.terrain_version == self.terrain_version && c.key == key
+            });
+            if !fresh {
+                let cache = build_cache(&self.grid, &self.terrain, &self.boxes[*k], frame, key, self.terrain_version)?;
+                self.boxes[*k].cache = Some(cache);
+                stats.rebuilt += 1;
+            }
+        }
+        // Per-frame layers.
+        let mut layers = Vec::new();
+        for (k, frame, env) in &visible {
+            let slot = &self.boxes[*k];
+            let cache = slot.cache.as_ref().expect("refreshed above");
+            if cache.rect.is_empty() {
+                continue;
+            }
+            let order = train_order(&slot.trains.iter().map(|d| d.amplitude).collect::<Vec<_>>());
+            let take = order.len().min(selection.max_trains);
+            let waves: Vec<Wave> = order[..take]
+                .iter()
+                .map(|&i| {
+                    let d = slot.trains[i];
+                    d.build().and_then(|w| w.scaled(*env))
+                })
+                .collect::<Result<_, _>>()
+                .map_err(|source| WtbError::Wave { index: 0, source })?;
+            if waves.is_empty() {
+                continue;
+            }
+            stats.trains += waves.len();
+            let waves = WaveSet::new(&waves).map_err(|source| WtbError::Wave { index: 0, source })?;
+            let mu = time_modulation(&self.grid, &self.terrain, slot, frame, cache, &selection.effects, t);
+            layers.push(FrameLayer {
+                waves,
+                rect: cache.rect,
+                mu,
+                cache: &cache.mu,
+            });
+        }
+        let height = height_field(&self.grid, &self.terrain, &selection.effects, t);
+        Ok(Frame {
+            grid: &self.grid,
+            t,
+            layers,
+            height,
+            stats,
+        })
+    }
+}
+
+fn check_terrain(grid: &WaterGrid, terrain: &Terrain) -> Result<(), WtbError> {
+    if terrain.grid() != grid {
+        return Err(WtbError::TerrainSize {
+            expected: grid.len(),
+            got: terrain.grid().len(),
+        });
+    }
+    Ok(())
+}
+
+fn finite_at_least(name: &'static str, v: f64, min: f64) -> Result<(), WtbError> {
+    if !v.is_finite() {
+        return Err(WtbError::NotFinite(name));
+    }
+    if v < min {
+        return Err(WtbError::OutOfRange {
+            name,
+            value: v,
+            min,
+            max: f64::MAX,
+        });
+    }
+    Ok(())
+}
+
+fn check_effects(e: &Effects) -> Result<(), WtbError> {
+    if let Some(n) = e.noise {
+        finite_at_least("noise amplitude", n.amplitude, 0.0)?;
+    }
+    if let Some(p) = e.irregular {
+        finite_at_least("irregular scale", p.scale, 0.0)?;
+        if p.scale > 1.0 {
+            return Err(WtbError::OutOfRange {
+                name: "irregular scale",
+                value: p.scale,
+                min: 0.0,
+                max: 1.0,
+            });
+        }
+        finite_at_least("irregular frequency", p.frequency, 0.0)?;
+        finite_at_least("irregular envelope wavenumber", p.envelope_wavenumber, 0.0)?;
+        if !p.envelope_speed.is_finite() {
+            return Err(WtbError::NotFinite("irregular envelope speed"));
+        }
+    }
+    if let Some(b) = e.beach {
+        finite_at_least("beach run-up", b.run_up, 0.0)?;
+        finite_at_least("beach run-up depth", b.run_up_depth, 0.0)?;
+        if !(b.max_depth_share > 0.0 && b.max_depth_share <= 1.0) {
+            return Err(WtbError::OutOfRange {
+                name: "beach max depth share",
+                value: b.max_depth_share,
+                min: 0.0,
+                max: 1.0,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Whether two boxes' rectangles overlap (separating-axis test on their four edge normals).
+pub fn rectangles_overlap(a: &BoxFrame, b: &BoxFrame) -> bool {
+    let corners = |f: &BoxFrame| {
+        let (o, u, v) = (f.origin(), f.u() * f.length(), f.v() * f.width());
+        [o, o + u, o + u + v, o + v]
+    };
+    let (ca, cb) = (corners(a), corners(b));
+    for axis in [a.u(), a.v(), b.u(), b.v()] {
+        let span = |c: &[DVec2; 4]| {
+            c.iter()
+                .map(|p| p.dot(axis))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)))
+        };
+        let ((a0, a1), (b0, b1)) = (span(&ca), span(&cb));
+        if a1 < b0 || b1 < a0 {
+            return false;
+        }
+    }
+    true
+}
+
+/// Grid points a box covers, estimated from its area (for the budget).
+fn covered_points(frame: &BoxFrame, spacing: f64) -> usize {
+    (frame.length() * frame.width() / (spacing * spacing)) as usize
+}
+
+/// The grid rectangle that holds every grid point of the box (its corners' bounding box,
+/// clipped to the grid).
+fn box_rect(grid: &WaterGrid, frame: &BoxFrame) -> GridRect {
+    let (o, u, v) = (frame.origin(), frame.u() * frame.length(), frame.v() * frame.width());
+    let corners = [o, o + u, o + u + v, o + v];
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for c in corners {
+        let l = grid.to_local(c) / grid.spacing();
+        lo = lo.min(l);
+        hi = hi.max(l);
+    }
+    let (nx, nz) = (grid.nx() as f64, grid.nz() as f64);
+    // Corners may lie far outside the grid (up to 2²⁴ cells): clamp before converting.
+    let clamp = |v: f64, n: f64| v.clamp(-1.0, n + 1.0);
+    let (nxi, nzi) = (grid.nx() as i64, grid.nz() as i64);
+    let i0 = (floor_i64(clamp(lo.x, nx)) - 1).clamp(0, nxi) as usize;
+    let j0 = (floor_i64(clamp(lo.y, nz)) - 1).clamp(0, nzi) as usize;
+    let i1 = (ceil_i64(clamp(hi.x, nx)) + 2).clamp(0, nxi) as usize;
+    let j1 = (ceil_i64(clamp(hi.y, nz)) + 2).clamp(0, nzi) as usize;
+    GridRect {
+        i0,
+        j0,
+        nx: i1.saturating_sub(i0),
+        nz: j1.saturating_sub(j0),
+    }
+}
+
+/// Marches every wave ray of the box (§2, Fig. 2, Fig. 5) and records the static modulation
+/// m·e^{iφ} of each covered grid point and the action points.
+fn build_cache(
+    grid: &WaterGrid,
+    terrain: &Terrain,
+    slot: &Slot,
+    frame: &BoxFrame,
+    key: StaticKey,
+    terrain_version: u64,
+) -> Result<Cache, WtbError> {
+    let rect = box_rect(grid, frame);
+    let mut mu = vec![[0.0f32; 2]; rect.len()];
+    let mut actions = Vec::new();
+    let traversal = frame.traversal(grid)?;
+    let (length, width) = (frame.length(), frame.width());
+    let smoothing = slot.spec.smoothing;
+    let recovery = slot.spec.recovery.unwrap_or(2.0 * slot.peak_wavelength);
+    let k_p = slot.peak_k;
+    let shallow_depth = effects::shoaling_reference(slot.peak_wavelength);
+    for r in traversal.rays() {
+        let mut on_land = false;
+        let mut land_end: Option<f64> = None;
+        let mut shallow = false;
+        let mut lag = 0.0f64;
+        let mut last_a: Option<f64> = None;
+        traversal.for_each_cell_in_ray(r, |_, points| {
+            for p in points {
+                let (i, j) = (p.i as usize, p.j as usize);
+                let depth = terrain.depth(i, j);
+                let land = terrain.is_land(i, j);
+                // Refraction: the phase lag of the shorter shallow-water wave, integrated along
+                // the ray at fixed frequency (midpoint of the step's two depths' integrands).
+                if key.refraction {
+                    if let Some(prev) = last_a {
+                        let integrand = if land { 0.0 } else { effects::shortening(k_p, depth) };
+                        lag += k_p * integrand * (p.a - prev);
+                    }
+                }
+                last_a = Some(p.a);
+                if land != on_land {
+                    actions.push(ActionPoint {
+                        ray: r,
+                        a: p.a,
+                        index: p.index,
+                        kind: if land { ActionKind::LandStart } else { ActionKind::LandEnd },
+                    });
+                    if !land {
+                        land_end = Some(p.a);
+                    }
+                    on_land = land;
+                }
+                let is_shallow = !land && depth < shallow_depth;
+                if is_shallow != shallow && !land {
+                    actions.push(ActionPoint {
+                        ray: r,
+                        a: p.a,
+                        index: p.index,
+                        kind: if is_shallow { ActionKind::Shallow } else { ActionKind::Deep },
+                    });
+                    shallow = is_shallow;
+                }
+                let mut m = if land {
+                    0.0
+                } else {
+                    land_end.map_or(1.0, |e| {
+                        if recovery > 0.0 { ((p.a - e) / recovery).clamp(0.0, 1.0) } else { 1.0 }
+                    })
+                };
+                if key.shoaling && !land {
+                    m *= effects::shoaling(depth, shallow_depth);
+                }
+                if !land {
+                    let cap = effects::beach_amplitude_cap(key.beach.as_ref(), depth);
+                    if cap.is_finite() && slot.amplitude > 0.0 {
+                        m = m.min(cap / slot.amplitude);
+                    }
+                }
+                let edge_v = p.b.min(width - p.b);
+                let edge_u = p.a.min(length - p.a);
+                m *= effects::side_fade(edge_v, smoothing) * effects::side_fade(edge_u, smoothing);
+                let mut phase = lag;
+                if key.round_waves && width > 0.0 {
+                    phase += effects::round_wave_phase(k_p, p.b, width);
+                }
+                let phase = ocean_core::phase::reduce_angle(phase);
+                if let Some(q) = rect.index(i, j) {
+                    mu[q] = [(m * math::cos(phase)) as f32, (m * math::sin(phase)) as f32];
+                }
+            }
+        });
+    }
+    Ok(Cache {
+        frame: *frame,
+        terrain_version,
+        key,
+        rect,
+        mu,
+        actions,
+    })
+}
+
+/// The time-dependent part of a box's modulation (irregular height, Eq. 8; dispersion
+/// refraction, Eq. 4), applied to the cached static one; `None` when neither runs, and the
+/// cache is used as it is.
+fn time_modulation(
+    grid: &WaterGrid,
+    terrain: &Terrain,
+    slot: &Slot,
+    frame: &BoxFrame,
+    cache: &Cache,
+    e: &Effects,
+    t: f64,
+) -> Option<Vec<[f32; 2]>> {
+    let dispersion = e.refraction == Refraction::Dispersion;
+    if e.irregular.is_none() && !dispersion {
+        return None;
+    }
+    let r = cache.rect;
+    let mut out = cache.mu.clone();
+    for dj in 0..r.nz {
+        for di in 0..r.nx {
+            let q = dj * r.nx + di;
+            let [re, im] = out[q];
+            if re == 0.0 && im == 0.0 {
+                continue;
+            }
+            let (i, j) = (r.i0 + di, r.j0 + dj);
+            let mut m = 1.0;
+            let mut phase = 0.0;
+            if let Some(p) = &e.irregular {
+                let ab = frame.internal(grid.point(i, j));
+                m *= effects::irregular_factor(p, ab.x, ab.y, t);
+            }
+            if dispersion {
+                phase += effects::dispersion_phase(slot.peak_k, terrain.depth(i, j), t);
+            }
+            let (c, s) = (m * math::cos(phase), m * math::sin(phase));
+            let (re, im) = (f64::from(re), f64::from(im));
+            out[q] = [(re * c - im * s) as f32, (re * s + im * c) as f32];
+        }
+    }
+    Some(out)
+}
+
+/// Height-only terms: capillary noise on every grid point (Eq. 9) and the beach run-up.
+fn height_field(grid: &WaterGrid, terrain: &Terrain, e: &Effects, t: f64) -> Option<Vec<f32>> {
+    if e.noise.is_none() && e.beach.is_none_or(|b| b.run_up == 0.0) {
+        return None;
+    }
+    let mut h = vec![0.0f32; grid.len()];
+    for j in 0..grid.nz() {
+        for i in 0..grid.nx() {
+            let k = j * grid.nx() + i;
+            let mut v = 0.0;
+            if let Some(n) = &e.noise {
+                v += effects::noise_height(n, k as u64, t);
+            }
+            if let Some(b) = &e.beach {
+                if !terrain.is_land(i, j) {
+                    v += effects::run_up(b, terrain.depth(i, j));
+                }
+            }
+            h[k] = v as f32;
+        }
+    }
+    Some(h)
+}
+
+/// One box's contribution to a frame.
+#[derive(Clone, Debug)]
+struct FrameLayer<'a> {
+    waves: WaveSet,
+    rect: GridRect,
+    /// This frame's modulation, when time-dependent effects change the cached one.
+    mu: Option<Vec<[f32; 2]>>,
+    cache: &'a [[f32; 2]],
+}
+
+impl FrameLayer<'_> {
+    fn modulation(&self) -> &[[f32; 2]] {
+        self.mu.as_deref().unwrap_or(self.cache)
+    }
+}
+
+/// A height query's answer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeightSample {
+    /// Water height at the queried (x, z), metres.
+    pub height: f64,
+    /// Unit surface normal there.
+    pub normal: DVec3,
+    /// The rest position whose displaced point lies over the queried (x, z).
+    pub rest: DVec2,
+    /// Horizontal distance between the displaced rest position and the query, metres.
+    pub residual: f64,
+}
+
+/// Horizontal residual at which a height query stops, metres.
+pub const QUERY_TOLERANCE: f64 = 1e-4;
+
+/// Newton steps a height query may take.
+pub const QUERY_MAX_ITERATIONS: usize = 16;
+
+/// One prepared instant of a [`Scene`] (see [`Scene::frame`]).
+#[derive(Clone, Debug)]
+pub struct Frame<'a> {
+    grid: &'a WaterGrid,
+    t: f64,
+    layers: Vec<FrameLayer<'a>>,
+    height: Option<Vec<f32>>,
+    stats: FrameStats,
+}
+
+impl Frame<'_> {
+    /// What this frame runs.
+    pub fn stats(&self) -> &FrameStats {
+        &self.stats
+    }
+
+    fn core_layers(&self) -> Vec<Layer<'_>> {
+        self.layers
+            .iter()
+            .map(|l| Layer {
+                waves: &l.waves,
+                rect: l.rect,
+                modulation: l.modulation(),
+            })
+            .collect()
+    }
+
+    /// Evaluates every grid point: positions relative to the grid origin and unit normals,
+    /// row-major, into the caller's buffers (the paper's frame-independent recomputation from
+    /// the rest state).
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::Eval`] for buffers of the wrong length; nothing is written then.
+    pub fn evaluate(&self, out_pos: &mut [Vec3], out_nrm: &mut [Vec3]) -> Result<(), WtbError> {
+        evaluate_layers(self.grid.grid(), self.t, &self.core_layers(), self.height.as_deref(), out_pos, out_nrm)
+            .map_err(WtbError::Eval)
+    }
+
+    /// [`Frame::evaluate`] on the current rayon thread pool; bit-identical to it.
+    ///
+    /// # Errors
+    ///
+    /// As [`Frame::evaluate`].
+    #[cfg(feature = "std")]
+    pub fn evaluate_par(&self, out_pos: &mut [Vec3], out_nrm: &mut [Vec3]) -> Result<(), WtbError> {
+        ocean_core::evaluate_layers_par(
+            self.grid.grid(),
+            self.t,
+            &self.core_layers(),
+            self.height.as_deref(),
+            out_pos,
+            out_nrm,
+        )
+        .map_err(WtbError::Eval)
+    }
+
+    /// The water surface over world (x, z) = `at`, as the grid shows it: Gerstner waves move
+    /// points horizontally, so the rest position p₀ whose displaced point lies over `at` is
+    /// found first by Newton's method on p₀ + D(p₀) = `at` (the Jacobian is ∂p/∂p₀, positive
+    /// definite while no crest folds, so the iteration converges quadratically from p₀ = `at`;
+    /// where it is singular a fixed-point step is taken instead). The modulation and the height
+    /// field are interpolated bilinearly between grid points, so at grid points the answer is
+    /// the grid's own. Outside the grid the water is at rest.
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::NotFinite`] for a non-finite position.
+    pub fn height_at(&self, at: DVec2) -> Result<HeightSample, WtbError> {
+        if !at.is_finite() {
+            return Err(WtbError::NotFinite("query position"));
+        }
+        let mut p0 = at;
+        let mut sums = self.sums(p0);
+        let mut residual = f64::INFINITY;
+        for _ in 0..QUERY_MAX_ITERATIONS {
+            let f = p0 + DVec2::new(sums.dx, sums.dz) - at;
+            residual = f.length();
+            if residual <= QUERY_TOLERANCE {
+                break;
+            }
+            let det = sums.jacobian_det();
+            let step = if det > 1e-6 {
+                DVec2::new(sums.jzz * f.x - sums.jxz * f.y, sums.jxx * f.y - sums.jxz * f.x) / det
+            } else {
+                f
+            };
+            p0 -= step;
+            sums = self.sums(p0);
+        }
+        Ok(HeightSample {
+            height: sums.y + self.height_offset(p0),
+            normal: sums.normal(),
+            rest: p0,
+            residual,
+        })
+    }
+
+    /// [`Frame::height_at`] for many points.
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::Eval`] when `out` is not as long as `at`; [`WtbError::NotFinite`] for a
+    /// non-finite position. Nothing is written on error.
+    pub fn heights(&self, at: &[DVec2], out: &mut [HeightSample]) -> Result<(), WtbError> {
+        if at.len() != out.len() || at.is_empty() {
+            return Err(WtbError::Eval(ocean_core::EvalError::OutputLength {
+                expected: at.len(),
+                positions: out.len(),
+                normals: out.len(),
+            }));
+        }
+        if !at.iter().all(|p| p.is_finite()) {
+            return Err(WtbError::NotFinite("query position"));
+        }
+        for (p, o) in at.iter().zip(out.iter_mut()) {
+            *o = self.height_at(*p)?;
+        }
+        Ok(())
+    }
+
+    /// [`Frame::heights`] on the current rayon thread pool.
+    ///
+    /// # Errors
+    ///
+    /// As [`Frame::heights`].
+    #[cfg(feature = "std")]
+    pub fn heights_par(&self, at: &[DVec2], out: &mut [HeightSample]) -> Result<(), WtbError> {
+        use rayon::prelude::*;
+        if at.len() != out.len() || at.is_empty() {
+            return Err(WtbError::Eval(ocean_core::EvalError::OutputLength {
+                expected: at.len(),
+                positions: out.len(),
+                normals: out.len(),
+            }));
+        }
+        if !at.iter().all(|p| p.is_finite()) {
+            return Err(WtbError::NotFinite("query position"));
+        }
+        at.par_iter().zip(out.par_iter_mut()).for_each(|(p, o)| {
+            *o = self.height_at(*p).expect("finite positions checked above");
+        });
+        Ok(())
+    }
+
+    /// The surface sums of every layer at rest position `p0`, with bilinearly interpolated
+    /// modulation.
+    fn sums(&self, p0: DVec2) -> PointSums {
+        let mut sums = PointSums::REST;
+        let Some(cell) = self.cell(p0) else {
+            return sums;
+        };
+        for l in &self.layers {
+            let mu = bilinear(&cell, |i, j| {
+                l.rect.index(i, j).map_or([0.0, 0.0], |q| {
+                    let m = l.modulation()[q];
+                    [f64::from(m[0]), f64::from(m[1])]
+                })
+            });
+            if mu != [0.0, 0.0] {
+                l.waves
+                    .add_sums_f64(p0, self.t, mu, &mut sums)
+                    .expect("finite position, time and modulation");
+            }
+        }
+        sums
+    }
+
+    fn height_offset(&self, p0: DVec2) -> f64 {
+        let (Some(h), Some(cell)) = (&self.height, self.cell(p0)) else {
+            return 0.0;
+        };
+        let nx = self.grid.nx();
+        bilinear(&cell, |i, j| [f64::from(h[j * nx + i]), 0.0])[0]
+    }
+
+    /// The grid cell holding `p` and the fractions across it; `None` outside the grid.
+    fn cell(&self, p: DVec2) -> Option<Cell> {
+        let l = self.grid.to_local(p) / self.grid.spacing();
+        let (nx, nz) = (self.grid.nx(), self.grid.nz());
+        if !(l.x >= 0.0 && l.y >= 0.0 && l.x <= (nx - 1) as f64 && l.y <= (nz - 1) as f64) {
+            return None;
+        }
+        // 0 ≤ l < n here, so truncation is the floor.
+        let i = (l.x as usize).min(nx - 2);
+        let j = (l.y as usize).min(nz - 2);
+        Some(Cell {
+            i,
+            j,
+            fx: l.x - i as f64,
+            fz: l.y - j as f64,
+        })
+    }
+}
+
+struct Cell {
+    i: usize,
+    j: usize,
+    fx: f64,
+    fz: f64,
+}
+
+fn bilinear(c: &Cell, f: impl Fn(usize, usize) -> [f64; 2]) -> [f64; 2] {
+    let (a, b, d, e) = (f(c.i, c.j), f(c.i + 1, c.j), f(c.i, c.j + 1), f(c.i + 1, c.j + 1));
+    let mut out = [0.0; 2];
+    for n in 0..2 {
+        let top = a[n] + (b[n] - a[n]) * c.fx;
+        let bottom = d[n] + (e[n] - d[n]) * c.fx;
+        out[n] = top + (bottom - top) * c.fz;
+    }
+    out
+}

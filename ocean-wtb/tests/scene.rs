@@ -1,0 +1,273 @@
+//! The wave model end to end: the paper's scenario 1, land, culling, queries, threads.
+
+use glam::{DVec2, DVec3, Vec3};
+use ocean_core::camera::{Camera, DepthConvention, Far, Projection};
+use ocean_core::frustum::Frustum;
+use ocean_wtb::effects::{Effects, Refraction};
+use ocean_wtb::scene::{ActionKind, BoxSpec, Scene, rectangles_overlap};
+use ocean_wtb::{TrainSource, WaterGrid, Wind, Terrain};
+
+/// A wind that is fully developed from t = 0 on and never dies.
+fn wind(speed: f64, direction: DVec2, origin: DVec2, width: f64, fetch: f64, trains: u32, seed: u64) -> Wind {
+    Wind {
+        speed,
+        direction,
+        origin,
+        width,
+        fetch,
+        start: -1.0,
+        build_up: 0.0,
+        sustain: f64::INFINITY,
+        decay: 0.0,
+        seed,
+        trains,
+    }
+}
+
+fn spec(w: Wind) -> BoxSpec {
+    BoxSpec {
+        wind: w,
+        trains: TrainSource::FromWind,
+        smoothing: 4.0,
+        recovery: None,
+    }
+}
+
+/// 64 × 64 points, 1 m apart, on a floor sloping from 30 m deep (x = 0) to 1 m (x = 63).
+fn sloping() -> (WaterGrid, Terrain) {
+    let grid = WaterGrid::new(DVec2::ZERO, 1.0, 64, 64).unwrap();
+    let terrain = Terrain::from_fn(&grid, |p| -(30.0 - 29.0 * p.x / 63.0) as f32).unwrap();
+    (grid, terrain)
+}
+
+/// The paper's scenario 1 (§3): two boxes covering most of the grid, one with one train and one
+/// with two; basic Gerstner waves and depth refraction.
+fn scenario_1() -> Scene {
+    let (grid, terrain) = sloping();
+    let mut s = Scene::new(grid, terrain).unwrap();
+    s.set_effects(Effects {
+        refraction: Refraction::PhaseShift,
+        shoaling: false,
+        ..Effects::default()
+    })
+    .unwrap();
+    s.add_box(spec(wind(7.0, DVec2::new(1.0, 0.15), DVec2::new(-2.0, -4.0), 66.0, 70.0, 1, 11)))
+        .unwrap();
+    s.add_box(spec(wind(5.0, DVec2::new(0.7, 1.0), DVec2::new(30.0, -30.0), 60.0, 90.0, 2, 12)))
+        .unwrap();
+    s
+}
+
+fn evaluate(scene: &mut Scene, t: f64) -> (Vec<Vec3>, Vec<Vec3>) {
+    let n = scene.grid().len();
+    let (mut p, mut q) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    scene.frame(t, None).unwrap().evaluate(&mut p, &mut q).unwrap();
+    (p, q)
+}
+
+fn height_table(p: &[Vec3]) -> String {
+    let mut out = String::new();
+    for row in p.chunks(64) {
+        for v in row {
+            // Centimetres: far above f32 and platform-libm differences, fine enough to see waves.
+            out += &format!("{:>5}", (v.y * 100.0).round() as i32);
+        }
+        out.push('\n');
+    }
+    out
+}
+
+#[test]
+fn scenario_1_snapshot() {
+    let mut s = scenario_1();
+    let (p, _) = evaluate(&mut s, 12.0);
+    insta::assert_snapshot!(height_table(&p));
+}
+
+/// An island: a disc of land 8 m across at (32, 32) on the sloping floor, with a beach ring.
+fn island() -> Scene {
+    let grid = WaterGrid::new(DVec2::ZERO, 1.0, 64, 64).unwrap();
+    let terrain = Terrain::from_fn(&grid, |p| {
+        let r = p.distance(DVec2::new(32.0, 32.0));
+        if r < 4.0 { 2.0 } else { -((r - 4.0) * 0.8).min(12.0) as f32 }
+    })
+    .unwrap();
+    let mut s = Scene::new(grid, terrain).unwrap();
+    s.set_effects(Effects::default()).unwrap();
+    s.add_box(BoxSpec {
+        recovery: Some(20.0),
+        ..spec(wind(6.0, DVec2::X, DVec2::new(0.0, 0.0), 64.0, 64.0, 1, 5))
+    })
+    .unwrap();
+    s
+}
+
+#[test]
+fn land_scenario_snapshot() {
+    let mut s = island();
+    let (p, _) = evaluate(&mut s, 7.5);
+    insta::assert_snapshot!(height_table(&p));
+}
+
+#[test]
+fn land_damps_and_shadows_then_recovers() {
+    // Waves travel along +x. On the island the amplitude is zero; right behind it (the rays
+    // that crossed land) it starts from zero and recovers linearly over 20 m (Fig. 5); rays
+    // that missed the island keep their amplitude. Measured as the largest |y| over a period.
+    let mut s = island();
+    let id = s.box_ids().next().unwrap();
+    let mut peak = vec![0.0f32; 64 * 64];
+    for step in 0..40 {
+        let (p, _) = evaluate(&mut s, step as f64 * 0.25);
+        for (m, v) in peak.iter_mut().zip(&p) {
+            *m = m.max(v.y.abs());
+        }
+    }
+    let at = |x: usize, z: usize| peak[z * 64 + x];
+    // On land: nothing.
+    assert_eq!(at(32, 32), 0.0);
+    // In the shadow, 2 m behind the island (x = 38), against open water at the same x.
+    assert!(at(38, 32) < 0.25 * at(38, 8), "shadow {} vs open {}", at(38, 32), at(38, 8));
+    // Recovery: further behind the shadow is weaker (x = 58 is ~22 m behind the island's edge).
+    assert!(at(58, 32) > 3.0 * at(38, 32), "recovered {} vs shadow {}", at(58, 32), at(38, 32));
+    // The action points of the ray through the island's centre: land starts, then ends.
+    let actions = s.action_points(id).unwrap();
+    let starts = actions.iter().filter(|a| a.kind == ActionKind::LandStart).count();
+    let ends = actions.iter().filter(|a| a.kind == ActionKind::LandEnd).count();
+    assert!(starts >= 7 && starts == ends, "{starts} land starts, {ends} ends");
+    assert!(actions.iter().any(|a| a.kind == ActionKind::Shallow));
+}
+
+#[test]
+fn refraction_by_phase_shift_does_not_queue_but_dispersion_does() {
+    // §2.1, Fig. 7. With a depth-dependent frequency ω(D) (Eq. 4) the phase difference between
+    // shallow and deep water grows linearly with time, so crests pile up towards land: the
+    // number of zero crossings along a ray in the shallow half keeps growing. The default phase
+    // shift bends the fronts once and for all: the count stays what it is.
+    let (grid, terrain) = sloping();
+    let one = |refraction| {
+        let mut s = Scene::new(grid, terrain.clone()).unwrap();
+        s.set_effects(Effects { refraction, shoaling: false, ..Effects::default() }).unwrap();
+        s.add_box(spec(wind(7.0, DVec2::X, DVec2::new(-2.0, -2.0), 68.0, 68.0, 1, 3))).unwrap();
+        s
+    };
+    // Sign changes of y along row z = 32, x = 32..63 (15 m down to 1 m deep).
+    let crossings = |s: &mut Scene, t: f64| {
+        let (p, _) = evaluate(s, t);
+        let row: Vec<f32> = (32..64).map(|x| p[32 * 64 + x].y).collect();
+        row.windows(2).filter(|w| (w[0] < 0.0) != (w[1] < 0.0)).count()
+    };
+    let mut shift = one(Refraction::PhaseShift);
+    let mut disp = one(Refraction::Dispersion);
+    let (s5, s60) = (crossings(&mut shift, 5.0), crossings(&mut shift, 60.0));
+    let (d5, d60) = (crossings(&mut disp, 5.0), crossings(&mut disp, 60.0));
+    println!("zero crossings at t = 5, 60 s: phase shift {s5}, {s60}; dispersion {d5}, {d60}");
+    assert!(s60.abs_diff(s5) <= 1, "phase shift queued: {s5} -> {s60}");
+    assert!(d60 >= 2 * d5 + 4, "dispersion did not queue: {d5} -> {d60}");
+    // And at t = 0 the dispersion offset (ω∞ − ω(D))·t vanishes: it equals no refraction.
+    let mut off = one(Refraction::Off);
+    assert_eq!(evaluate(&mut disp, 0.0).0, evaluate(&mut off, 0.0).0);
+}
+
+#[test]
+fn overlap_heights_and_culling() {
+    let mut s = scenario_1();
+    // Both boxes of scenario 1 overlap.
+    let far = spec(wind(6.0, DVec2::X, DVec2::new(5000.0, 5000.0), 40.0, 40.0, 1, 9));
+    s.add_box(far).unwrap();
+    let frames: Vec<_> = {
+        let t = 3.0;
+        let ws: Vec<Wind> = [
+            wind(7.0, DVec2::new(1.0, 0.15), DVec2::new(-2.0, -4.0), 66.0, 70.0, 1, 11),
+            wind(5.0, DVec2::new(0.7, 1.0), DVec2::new(30.0, -30.0), 60.0, 90.0, 2, 12),
+            wind(6.0, DVec2::X, DVec2::new(5000.0, 5000.0), 40.0, 40.0, 1, 9),
+        ]
+        .to_vec();
+        ws.iter().map(|w| w.frame(t, 1.0).unwrap().unwrap()).collect()
+    };
+    assert!(rectangles_overlap(&frames[0], &frames[1]));
+    assert!(!rectangles_overlap(&frames[0], &frames[2]));
+    // A camera 40 m above the grid's centre looking down sees the grid but not the far box.
+    let cam = |target: DVec3| {
+        Camera::look_at(
+            DVec3::new(32.0, 40.0, 32.0),
+            target,
+            DVec3::Z,
+            Projection::Perspective { fov_y: 1.2, aspect: 1.0, near: 0.1, far: Far::Finite(500.0) },
+            DepthConvention::ZERO_TO_ONE,
+        )
+        .unwrap()
+    };
+    let down = Frustum::from_camera(&cam(DVec3::new(32.0, 0.0, 32.0001))).unwrap();
+    let f = s.frame(3.0, Some(&down)).unwrap();
+    assert_eq!((f.stats().alive, f.stats().culled), (3, 1));
+    drop(f);
+    // Looking straight up, every box is culled, and the grid is at rest.
+    let up = Frustum::from_camera(&cam(DVec3::new(32.0, 80.0, 32.0001))).unwrap();
+    let f = s.frame(3.0, Some(&up)).unwrap();
+    assert_eq!(f.stats().culled, 3);
+    let n = 64 * 64;
+    let (mut p, mut q) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    f.evaluate(&mut p, &mut q).unwrap();
+    assert!(p.iter().all(|v| v.y == 0.0) && q.iter().all(|v| *v == Vec3::Y));
+}
+
+#[test]
+fn queries_agree_with_the_grid_within_1_mm() {
+    // Query the world (x, z) where each interior grid point was displaced to: the answer must
+    // be that grid point's height, within 1 mm (the bound); the residual of the
+    // horizontal inversion stays below its 0.1 mm tolerance.
+    for mut s in [scenario_1(), island()] {
+        let t = 9.25;
+        let (p, q) = evaluate(&mut s, t);
+        let f = s.frame(t, None).unwrap();
+        let mut worst = 0.0f64;
+        let mut worst_n = 0.0f64;
+        let mut at = Vec::new();
+        let mut expect = Vec::new();
+        for z in (2..62).step_by(3) {
+            for x in (2..62).step_by(3) {
+                let k = z * 64 + x;
+                at.push(DVec2::new(f64::from(p[k].x), f64::from(p[k].z)));
+                expect.push((p[k].y, q[k]));
+            }
+        }
+        let mut out = vec![ocean_wtb::scene::HeightSample { height: 0.0, normal: DVec3::Y, rest: DVec2::ZERO, residual: 0.0 }; at.len()];
+        f.heights(&at, &mut out).unwrap();
+        for (o, (y, n)) in out.iter().zip(&expect) {
+            assert!(o.residual <= ocean_wtb::scene::QUERY_TOLERANCE);
+            worst = worst.max((o.height - f64::from(*y)).abs());
+            worst_n = worst_n.max((o.normal - n.as_dvec3()).length());
+        }
+        println!("queries: worst height error {worst:e} m, normal {worst_n:e}");
+        assert!(worst < 1e-3, "height error {worst} m");
+        assert!(worst_n < 1e-3, "normal error {worst_n}");
+    }
+}
+
+#[test]
+fn threads_give_identical_bits() {
+    let mut s = island();
+    let (p1, q1) = evaluate(&mut s, 4.0);
+    let f = s.frame(4.0, None).unwrap();
+    for threads in [1, 2, 8] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let (mut p, mut q) = (vec![Vec3::ZERO; 4096], vec![Vec3::ZERO; 4096]);
+        pool.install(|| f.evaluate_par(&mut p, &mut q)).unwrap();
+        assert!(p == p1 && q == q1, "{threads} threads");
+    }
+}
+
+#[test]
+fn still_boxes_are_cached_and_moving_boxes_rebuilt() {
+    let mut s = scenario_1();
+    assert_eq!(s.frame(1.0, None).unwrap().stats().rebuilt, 2);
+    assert_eq!(s.frame(2.0, None).unwrap().stats().rebuilt, 0);
+    let id = s.box_ids().next().unwrap();
+    let moved = spec(wind(7.0, DVec2::new(1.0, 0.15), DVec2::new(-1.0, -4.0), 66.0, 70.0, 1, 11));
+    s.update_box(id, moved).unwrap();
+    assert_eq!(s.frame(3.0, None).unwrap().stats().rebuilt, 1);
+    s.remove_box(id).unwrap();
+    assert!(s.remove_box(id).is_err());
+    assert!(s.frame(f64::NAN, None).is_err());
+}
