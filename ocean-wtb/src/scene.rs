@@ -789,6 +789,28 @@ impl Frame<'_> {
         &self.stats
     }
 
+    /// The frame's time, seconds.
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// The water grid.
+    pub fn grid(&self) -> &WaterGrid {
+        self.grid
+    }
+
+    /// The additive height field (noise, run-up), one value per grid point, if any effect
+    /// produces one.
+    pub fn height_field(&self) -> Option<&[f32]> {
+        self.height.as_deref()
+    }
+
+    /// The visible boxes as `ocean_core` layers: everything [`Frame::evaluate`] sums, for the
+    /// GPU twin (`ocean_gpu::LayersPass`) or any other evaluator.
+    pub fn layers(&self) -> Vec<Layer<'_>> {
+        self.core_layers()
+    }
+
     fn core_layers(&self) -> Vec<Layer<'_>> {
         self.layers
             .iter()
