@@ -19,6 +19,7 @@ pub mod effects;
 pub mod error;
 pub mod frame;
 pub mod grid;
+pub mod scenarios;
 pub mod scene;
 pub mod terrain;
 pub mod wind;

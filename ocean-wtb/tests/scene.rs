@@ -4,64 +4,31 @@ use glam::{DVec2, DVec3, Vec3};
 use ocean_core::camera::{Camera, DepthConvention, Far, Projection};
 use ocean_core::frustum::Frustum;
 use ocean_wtb::effects::{Effects, Refraction};
-use ocean_wtb::scene::{ActionKind, BoxSpec, Scene, rectangles_overlap};
-use ocean_wtb::{TrainSource, WaterGrid, Wind, Terrain};
+use ocean_wtb::scene::{ActionKind, Scene, rectangles_overlap};
+use ocean_wtb::{Terrain, WaterGrid, Wind};
 
-/// A wind that is fully developed from t = 0 on and never dies.
-fn wind(speed: f64, direction: DVec2, origin: DVec2, width: f64, fetch: f64, trains: u32, seed: u64) -> Wind {
-    Wind {
-        speed,
-        direction,
-        origin,
-        width,
-        fetch,
-        start: -1.0,
-        build_up: 0.0,
-        sustain: f64::INFINITY,
-        decay: 0.0,
-        seed,
-        trains,
-    }
-}
+use ocean_wtb::scenarios::{self, spec, steady_wind as wind};
 
-fn spec(w: Wind) -> BoxSpec {
-    BoxSpec {
-        wind: w,
-        trains: TrainSource::FromWind,
-        smoothing: 4.0,
-        recovery: None,
-    }
-}
-
-/// 64 × 64 points, 1 m apart, on a floor sloping from 30 m deep (x = 0) to 1 m (x = 63).
 fn sloping() -> (WaterGrid, Terrain) {
-    let grid = WaterGrid::new(DVec2::ZERO, 1.0, 64, 64).unwrap();
-    let terrain = Terrain::from_fn(&grid, |p| -(30.0 - 29.0 * p.x / 63.0) as f32).unwrap();
-    (grid, terrain)
+    scenarios::sloping(64).unwrap()
 }
 
-/// The paper's scenario 1 (§3): two boxes covering most of the grid, one with one train and one
-/// with two; basic Gerstner waves and depth refraction.
 fn scenario_1() -> Scene {
-    let (grid, terrain) = sloping();
-    let mut s = Scene::new(grid, terrain).unwrap();
-    s.set_effects(Effects {
-        refraction: Refraction::PhaseShift,
-        shoaling: false,
-        ..Effects::default()
-    })
-    .unwrap();
-    s.add_box(spec(wind(7.0, DVec2::new(1.0, 0.15), DVec2::new(-2.0, -4.0), 66.0, 70.0, 1, 11)))
-        .unwrap();
-    s.add_box(spec(wind(5.0, DVec2::new(0.7, 1.0), DVec2::new(30.0, -30.0), 60.0, 90.0, 2, 12)))
-        .unwrap();
-    s
+    scenarios::scenario_1(64).unwrap()
+}
+
+fn island() -> Scene {
+    scenarios::island(64).unwrap()
 }
 
 fn evaluate(scene: &mut Scene, t: f64) -> (Vec<Vec3>, Vec<Vec3>) {
     let n = scene.grid().len();
     let (mut p, mut q) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
-    scene.frame(t, None).unwrap().evaluate(&mut p, &mut q).unwrap();
+    scene
+        .frame(t, None)
+        .unwrap()
+        .evaluate(&mut p, &mut q)
+        .unwrap();
     (p, q)
 }
 
@@ -82,24 +49,6 @@ fn scenario_1_snapshot() {
     let mut s = scenario_1();
     let (p, _) = evaluate(&mut s, 12.0);
     insta::assert_snapshot!(height_table(&p));
-}
-
-/// An island: a disc of land 8 m across at (32, 32) on the sloping floor, with a beach ring.
-fn island() -> Scene {
-    let grid = WaterGrid::new(DVec2::ZERO, 1.0, 64, 64).unwrap();
-    let terrain = Terrain::from_fn(&grid, |p| {
-        let r = p.distance(DVec2::new(32.0, 32.0));
-        if r < 4.0 { 2.0 } else { -((r - 4.0) * 0.8).min(12.0) as f32 }
-    })
-    .unwrap();
-    let mut s = Scene::new(grid, terrain).unwrap();
-    s.set_effects(Effects::default()).unwrap();
-    s.add_box(BoxSpec {
-        recovery: Some(20.0),
-        ..spec(wind(6.0, DVec2::X, DVec2::new(0.0, 0.0), 64.0, 64.0, 1, 5))
-    })
-    .unwrap();
-    s
 }
 
 #[test]
@@ -127,14 +76,33 @@ fn land_damps_and_shadows_then_recovers() {
     // On land: nothing.
     assert_eq!(at(32, 32), 0.0);
     // In the shadow, 2 m behind the island (x = 38), against open water at the same x.
-    assert!(at(38, 32) < 0.25 * at(38, 8), "shadow {} vs open {}", at(38, 32), at(38, 8));
+    assert!(
+        at(38, 32) < 0.25 * at(38, 8),
+        "shadow {} vs open {}",
+        at(38, 32),
+        at(38, 8)
+    );
     // Recovery: further behind the shadow is weaker (x = 58 is ~22 m behind the island's edge).
-    assert!(at(58, 32) > 3.0 * at(38, 32), "recovered {} vs shadow {}", at(58, 32), at(38, 32));
+    assert!(
+        at(58, 32) > 3.0 * at(38, 32),
+        "recovered {} vs shadow {}",
+        at(58, 32),
+        at(38, 32)
+    );
     // The action points of the ray through the island's centre: land starts, then ends.
     let actions = s.action_points(id).unwrap();
-    let starts = actions.iter().filter(|a| a.kind == ActionKind::LandStart).count();
-    let ends = actions.iter().filter(|a| a.kind == ActionKind::LandEnd).count();
-    assert!(starts >= 7 && starts == ends, "{starts} land starts, {ends} ends");
+    let starts = actions
+        .iter()
+        .filter(|a| a.kind == ActionKind::LandStart)
+        .count();
+    let ends = actions
+        .iter()
+        .filter(|a| a.kind == ActionKind::LandEnd)
+        .count();
+    assert!(
+        starts >= 7 && starts == ends,
+        "{starts} land starts, {ends} ends"
+    );
     assert!(actions.iter().any(|a| a.kind == ActionKind::Shallow));
 }
 
@@ -147,15 +115,31 @@ fn refraction_by_phase_shift_does_not_queue_but_dispersion_does() {
     let (grid, terrain) = sloping();
     let one = |refraction| {
         let mut s = Scene::new(grid, terrain.clone()).unwrap();
-        s.set_effects(Effects { refraction, shoaling: false, ..Effects::default() }).unwrap();
-        s.add_box(spec(wind(7.0, DVec2::X, DVec2::new(-2.0, -2.0), 68.0, 68.0, 1, 3))).unwrap();
+        s.set_effects(Effects {
+            refraction,
+            shoaling: false,
+            ..Effects::default()
+        })
+        .unwrap();
+        s.add_box(spec(wind(
+            7.0,
+            DVec2::X,
+            DVec2::new(-2.0, -2.0),
+            68.0,
+            68.0,
+            1,
+            3,
+        )))
+        .unwrap();
         s
     };
     // Sign changes of y along row z = 32, x = 32..63 (15 m down to 1 m deep).
     let crossings = |s: &mut Scene, t: f64| {
         let (p, _) = evaluate(s, t);
         let row: Vec<f32> = (32..64).map(|x| p[32 * 64 + x].y).collect();
-        row.windows(2).filter(|w| (w[0] < 0.0) != (w[1] < 0.0)).count()
+        row.windows(2)
+            .filter(|w| (w[0] < 0.0) != (w[1] < 0.0))
+            .count()
     };
     let mut shift = one(Refraction::PhaseShift);
     let mut disp = one(Refraction::Dispersion);
@@ -173,17 +157,43 @@ fn refraction_by_phase_shift_does_not_queue_but_dispersion_does() {
 fn overlap_heights_and_culling() {
     let mut s = scenario_1();
     // Both boxes of scenario 1 overlap.
-    let far = spec(wind(6.0, DVec2::X, DVec2::new(5000.0, 5000.0), 40.0, 40.0, 1, 9));
+    let far = spec(wind(
+        6.0,
+        DVec2::X,
+        DVec2::new(5000.0, 5000.0),
+        40.0,
+        40.0,
+        1,
+        9,
+    ));
     s.add_box(far).unwrap();
     let frames: Vec<_> = {
         let t = 3.0;
         let ws: Vec<Wind> = [
-            wind(7.0, DVec2::new(1.0, 0.15), DVec2::new(-2.0, -4.0), 66.0, 70.0, 1, 11),
-            wind(5.0, DVec2::new(0.7, 1.0), DVec2::new(30.0, -30.0), 60.0, 90.0, 2, 12),
+            wind(
+                7.0,
+                DVec2::new(1.0, 0.15),
+                DVec2::new(-2.0, -4.0),
+                66.0,
+                70.0,
+                1,
+                11,
+            ),
+            wind(
+                5.0,
+                DVec2::new(0.7, 1.0),
+                DVec2::new(30.0, -30.0),
+                60.0,
+                90.0,
+                2,
+                12,
+            ),
             wind(6.0, DVec2::X, DVec2::new(5000.0, 5000.0), 40.0, 40.0, 1, 9),
         ]
         .to_vec();
-        ws.iter().map(|w| w.frame(t, 1.0).unwrap().unwrap()).collect()
+        ws.iter()
+            .map(|w| w.frame(t, 1.0).unwrap().unwrap())
+            .collect()
     };
     assert!(rectangles_overlap(&frames[0], &frames[1]));
     assert!(!rectangles_overlap(&frames[0], &frames[2]));
@@ -193,7 +203,12 @@ fn overlap_heights_and_culling() {
             DVec3::new(32.0, 40.0, 32.0),
             target,
             DVec3::Z,
-            Projection::Perspective { fov_y: 1.2, aspect: 1.0, near: 0.1, far: Far::Finite(500.0) },
+            Projection::Perspective {
+                fov_y: 1.2,
+                aspect: 1.0,
+                near: 0.1,
+                far: Far::Finite(500.0),
+            },
             DepthConvention::ZERO_TO_ONE,
         )
         .unwrap()
@@ -232,7 +247,15 @@ fn queries_agree_with_the_grid_within_1_mm() {
                 expect.push((p[k].y, q[k]));
             }
         }
-        let mut out = vec![ocean_wtb::scene::HeightSample { height: 0.0, normal: DVec3::Y, rest: DVec2::ZERO, residual: 0.0 }; at.len()];
+        let mut out = vec![
+            ocean_wtb::scene::HeightSample {
+                height: 0.0,
+                normal: DVec3::Y,
+                rest: DVec2::ZERO,
+                residual: 0.0
+            };
+            at.len()
+        ];
         f.heights(&at, &mut out).unwrap();
         for (o, (y, n)) in out.iter().zip(&expect) {
             assert!(o.residual <= ocean_wtb::scene::QUERY_TOLERANCE);
@@ -251,7 +274,10 @@ fn threads_give_identical_bits() {
     let (p1, q1) = evaluate(&mut s, 4.0);
     let f = s.frame(4.0, None).unwrap();
     for threads in [1, 2, 8] {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
         let (mut p, mut q) = (vec![Vec3::ZERO; 4096], vec![Vec3::ZERO; 4096]);
         pool.install(|| f.evaluate_par(&mut p, &mut q)).unwrap();
         assert!(p == p1 && q == q1, "{threads} threads");
@@ -264,7 +290,15 @@ fn still_boxes_are_cached_and_moving_boxes_rebuilt() {
     assert_eq!(s.frame(1.0, None).unwrap().stats().rebuilt, 2);
     assert_eq!(s.frame(2.0, None).unwrap().stats().rebuilt, 0);
     let id = s.box_ids().next().unwrap();
-    let moved = spec(wind(7.0, DVec2::new(1.0, 0.15), DVec2::new(-1.0, -4.0), 66.0, 70.0, 1, 11));
+    let moved = spec(wind(
+        7.0,
+        DVec2::new(1.0, 0.15),
+        DVec2::new(-1.0, -4.0),
+        66.0,
+        70.0,
+        1,
+        11,
+    ));
     s.update_box(id, moved).unwrap();
     assert_eq!(s.frame(3.0, None).unwrap().stats().rebuilt, 1);
     s.remove_box(id).unwrap();
