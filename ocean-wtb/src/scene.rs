@@ -29,7 +29,7 @@ use ocean_core::layers::{GridRect, Layer, evaluate_layers};
 use ocean_core::math;
 use ocean_core::{PointSums, Wave, WaveDesc, WaveSet};
 
-use crate::budget::{Budget, BoxLoad, CostModel, Selection, select, train_order};
+use crate::budget::{BoxLoad, Budget, CostModel, Selection, select, train_order};
 use crate::effects::{self, Effects, Refraction};
 use crate::error::WtbError;
 use crate::frame::BoxFrame;
@@ -400,7 +400,13 @@ impl Scene {
                 trains: self.boxes[*k].trains.len(),
             })
             .collect();
-        let selection = select(&self.budget, &self.cost, self.grid.len(), &loads, &self.effects);
+        let selection = select(
+            &self.budget,
+            &self.cost,
+            self.grid.len(),
+            &loads,
+            &self.effects,
+        );
         stats.selection = Some(selection);
         stats.estimated_ns = self.cost.estimate(self.grid.len(), &loads, &selection);
         let key = StaticKey::of(&selection.effects);
@@ -410,7 +416,14 @@ impl Scene {
                 c.frame == *frame && c.terrain_version == self.terrain_version && c.key == key
             });
             if !fresh {
-                let cache = build_cache(&self.grid, &self.terrain, &self.boxes[*k], frame, key, self.terrain_version)?;
+                let cache = build_cache(
+                    &self.grid,
+                    &self.terrain,
+                    &self.boxes[*k],
+                    frame,
+                    key,
+                    self.terrain_version,
+                )?;
                 self.boxes[*k].cache = Some(cache);
                 stats.rebuilt += 1;
             }
@@ -437,8 +450,17 @@ impl Scene {
                 continue;
             }
             stats.trains += waves.len();
-            let waves = WaveSet::new(&waves).map_err(|source| WtbError::Wave { index: 0, source })?;
-            let mu = time_modulation(&self.grid, &self.terrain, slot, frame, cache, &selection.effects, t);
+            let waves =
+                WaveSet::new(&waves).map_err(|source| WtbError::Wave { index: 0, source })?;
+            let mu = time_modulation(
+                &self.grid,
+                &self.terrain,
+                slot,
+                frame,
+                cache,
+                &selection.effects,
+                t,
+            );
             layers.push(FrameLayer {
                 waves,
                 rect: cache.rect,
@@ -528,7 +550,9 @@ pub fn rectangles_overlap(a: &BoxFrame, b: &BoxFrame) -> bool {
         let span = |c: &[DVec2; 4]| {
             c.iter()
                 .map(|p| p.dot(axis))
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                    (lo.min(x), hi.max(x))
+                })
         };
         let ((a0, a1), (b0, b1)) = (span(&ca), span(&cb));
         if a1 < b0 || b1 < a0 {
@@ -546,7 +570,11 @@ fn covered_points(frame: &BoxFrame, spacing: f64) -> usize {
 /// The grid rectangle that holds every grid point of the box (its corners' bounding box,
 /// clipped to the grid).
 fn box_rect(grid: &WaterGrid, frame: &BoxFrame) -> GridRect {
-    let (o, u, v) = (frame.origin(), frame.u() * frame.length(), frame.v() * frame.width());
+    let (o, u, v) = (
+        frame.origin(),
+        frame.u() * frame.length(),
+        frame.v() * frame.width(),
+    );
     let corners = [o, o + u, o + u + v, o + v];
     let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
     for c in corners {
@@ -604,7 +632,11 @@ fn build_cache(
                 // the ray at fixed frequency (midpoint of the step's two depths' integrands).
                 if key.refraction {
                     if let Some(prev) = last_a {
-                        let integrand = if land { 0.0 } else { effects::shortening(k_p, depth) };
+                        let integrand = if land {
+                            0.0
+                        } else {
+                            effects::shortening(k_p, depth)
+                        };
                         lag += k_p * integrand * (p.a - prev);
                     }
                 }
@@ -614,7 +646,11 @@ fn build_cache(
                         ray: r,
                         a: p.a,
                         index: p.index,
-                        kind: if land { ActionKind::LandStart } else { ActionKind::LandEnd },
+                        kind: if land {
+                            ActionKind::LandStart
+                        } else {
+                            ActionKind::LandEnd
+                        },
                     });
                     if !land {
                         land_end = Some(p.a);
@@ -627,7 +663,11 @@ fn build_cache(
                         ray: r,
                         a: p.a,
                         index: p.index,
-                        kind: if is_shallow { ActionKind::Shallow } else { ActionKind::Deep },
+                        kind: if is_shallow {
+                            ActionKind::Shallow
+                        } else {
+                            ActionKind::Deep
+                        },
                     });
                     shallow = is_shallow;
                 }
@@ -635,7 +675,11 @@ fn build_cache(
                     0.0
                 } else {
                     land_end.map_or(1.0, |e| {
-                        if recovery > 0.0 { ((p.a - e) / recovery).clamp(0.0, 1.0) } else { 1.0 }
+                        if recovery > 0.0 {
+                            ((p.a - e) / recovery).clamp(0.0, 1.0)
+                        } else {
+                            1.0
+                        }
                     })
                 };
                 if key.shoaling && !land {
@@ -830,8 +874,15 @@ impl Frame<'_> {
     ///
     /// [`WtbError::Eval`] for buffers of the wrong length; nothing is written then.
     pub fn evaluate(&self, out_pos: &mut [Vec3], out_nrm: &mut [Vec3]) -> Result<(), WtbError> {
-        evaluate_layers(self.grid.grid(), self.t, &self.core_layers(), self.height.as_deref(), out_pos, out_nrm)
-            .map_err(WtbError::Eval)
+        evaluate_layers(
+            self.grid.grid(),
+            self.t,
+            &self.core_layers(),
+            self.height.as_deref(),
+            out_pos,
+            out_nrm,
+        )
+        .map_err(WtbError::Eval)
     }
 
     /// [`Frame::evaluate`] on the current rayon thread pool; bit-identical to it.
@@ -878,7 +929,10 @@ impl Frame<'_> {
             }
             let det = sums.jacobian_det();
             let step = if det > 1e-6 {
-                DVec2::new(sums.jzz * f.x - sums.jxz * f.y, sums.jxx * f.y - sums.jxz * f.x) / det
+                DVec2::new(
+                    sums.jzz * f.x - sums.jxz * f.y,
+                    sums.jxx * f.y - sums.jxz * f.x,
+                ) / det
             } else {
                 f
             };
@@ -998,7 +1052,12 @@ struct Cell {
 }
 
 fn bilinear(c: &Cell, f: impl Fn(usize, usize) -> [f64; 2]) -> [f64; 2] {
-    let (a, b, d, e) = (f(c.i, c.j), f(c.i + 1, c.j), f(c.i, c.j + 1), f(c.i + 1, c.j + 1));
+    let (a, b, d, e) = (
+        f(c.i, c.j),
+        f(c.i + 1, c.j),
+        f(c.i, c.j + 1),
+        f(c.i + 1, c.j + 1),
+    );
     let mut out = [0.0; 2];
     for n in 0..2 {
         let top = a[n] + (b[n] - a[n]) * c.fx;
