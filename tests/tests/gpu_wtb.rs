@@ -23,7 +23,13 @@ fn check(pass: &LayersPass, ctx: &ocean_gpu::GpuContext, scene: &mut Scene, t: f
     let (mut pos, mut nrm) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
     frame.evaluate(&mut pos, &mut nrm).unwrap();
     let gpu = pass
-        .evaluate(ctx, frame.grid().grid(), frame.time(), &frame.layers(), frame.height_field())
+        .evaluate(
+            ctx,
+            frame.grid().grid(),
+            frame.time(),
+            &frame.layers(),
+            frame.height_field(),
+        )
         .unwrap();
     let mut sq = 0.0f64;
     let mut worst_h = 0.0f64;
@@ -37,7 +43,9 @@ fn check(pass: &LayersPass, ctx: &ocean_gpu::GpuContext, scene: &mut Scene, t: f
     let rms = (sq / n as f64).sqrt();
     // The scene must actually have waves for the comparison to mean anything.
     let top = pos.iter().map(|p| p.y.abs()).fold(0.0f32, f32::max);
-    println!("{label}: {n} points, |y| up to {top:.3} m; height RMS {rms:.3e} m, max {worst_h:.3e} m; normal max {worst_n:.3e} deg");
+    println!(
+        "{label}: {n} points, |y| up to {top:.3} m; height RMS {rms:.3e} m, max {worst_h:.3e} m; normal max {worst_n:.3e} deg"
+    );
     assert!(top > 0.1, "{label}: no waves ({top} m)");
     assert!(rms <= 1e-3, "{label}: height RMS {rms} m");
     assert!(worst_n <= 0.1, "{label}: normal off by {worst_n} deg");
@@ -50,9 +58,27 @@ fn paper_scenarios_match_the_cpu() {
     };
     let pass = LayersPass::new(&ctx).unwrap();
     for n in [64, 256] {
-        check(&pass, &ctx, &mut scenarios::scenario_1(n).unwrap(), 12.0, &format!("scenario 1, {n}²"));
-        check(&pass, &ctx, &mut scenarios::scenario_2(n).unwrap(), 3.5, &format!("scenario 2, {n}²"));
-        check(&pass, &ctx, &mut scenarios::island(n).unwrap(), 1.0e5, &format!("island, {n}²"));
+        check(
+            &pass,
+            &ctx,
+            &mut scenarios::scenario_1(n).unwrap(),
+            12.0,
+            &format!("scenario 1, {n}²"),
+        );
+        check(
+            &pass,
+            &ctx,
+            &mut scenarios::scenario_2(n).unwrap(),
+            3.5,
+            &format!("scenario 2, {n}²"),
+        );
+        check(
+            &pass,
+            &ctx,
+            &mut scenarios::island(n).unwrap(),
+            1.0e5,
+            &format!("island, {n}²"),
+        );
     }
 }
 
@@ -86,6 +112,12 @@ fn every_effect_matches_the_cpu() {
         })
         .unwrap();
     for t in [0.0, 42.0, 1.0e6] {
-        check(&pass, &ctx, &mut scene, t, &format!("island 128², every effect, t = {t}"));
+        check(
+            &pass,
+            &ctx,
+            &mut scene,
+            t,
+            &format!("island 128², every effect, t = {t}"),
+        );
     }
 }
