@@ -90,4 +90,7 @@ pub enum WtbError {
     /// An evaluation was refused by `ocean-core` (output buffers of the wrong length, ...).
     #[error("evaluation: {0}")]
     Eval(ocean_core::EvalError),
+    /// A box that can never touch the water grid, even at its full fetch.
+    #[error("the box lies entirely outside the water grid")]
+    OutsideGrid,
 }

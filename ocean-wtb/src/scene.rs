@@ -251,7 +251,9 @@ impl Scene {
     ///
     /// # Errors
     ///
-    /// Any error of the wind, its trains or the smoothing and recovery distances; too many boxes.
+    /// Any error of the wind, its trains or the smoothing and recovery distances;
+    /// [`WtbError::OutsideGrid`] for a box that cannot touch the grid even at its full fetch;
+    /// too many boxes.
     pub fn add_box(&mut self, spec: BoxSpec) -> Result<BoxId, WtbError> {
         if self.boxes.len() >= MAX_BOXES {
             return Err(WtbError::OutOfRange {
@@ -318,6 +320,18 @@ impl Scene {
         finite_at_least("smoothing", spec.smoothing, 0.0)?;
         if let Some(r) = spec.recovery {
             finite_at_least("recovery", r, 0.0)?;
+        }
+        // A box that cannot reach the grid even fully grown is a mistake, not an empty box.
+        let w = &spec.wind;
+        let full = BoxFrame::new(w.origin, w.direction, w.fetch, w.width, self.grid.spacing())?;
+        let s = self.grid.spacing();
+        let extent = DVec2::new(
+            (self.grid.nx() - 1) as f64 * s,
+            (self.grid.nz() - 1) as f64 * s,
+        );
+        let whole = BoxFrame::new(self.grid.origin(), DVec2::X, extent.x, extent.y, s)?;
+        if !rectangles_overlap(&full, &whole) {
+            return Err(WtbError::OutsideGrid);
         }
         let trains = spec.trains.resolve(&spec.wind)?;
         let amplitude = trains.iter().map(|d| d.amplitude).sum();

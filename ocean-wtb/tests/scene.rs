@@ -156,51 +156,47 @@ fn refraction_by_phase_shift_does_not_queue_but_dispersion_does() {
 #[test]
 fn overlap_heights_and_culling() {
     let mut s = scenario_1();
-    // Both boxes of scenario 1 overlap.
-    let far = spec(wind(
+    // A third, small box in the grid's far corner.
+    s.add_box(spec(wind(
         6.0,
         DVec2::X,
-        DVec2::new(5000.0, 5000.0),
-        40.0,
-        40.0,
+        DVec2::new(50.0, 50.0),
+        12.0,
+        12.0,
         1,
         9,
-    ));
-    s.add_box(far).unwrap();
-    let frames: Vec<_> = {
-        let t = 3.0;
-        let ws: Vec<Wind> = [
-            wind(
-                7.0,
-                DVec2::new(1.0, 0.15),
-                DVec2::new(-2.0, -4.0),
-                66.0,
-                70.0,
-                1,
-                11,
-            ),
-            wind(
-                5.0,
-                DVec2::new(0.7, 1.0),
-                DVec2::new(30.0, -30.0),
-                60.0,
-                90.0,
-                2,
-                12,
-            ),
-            wind(6.0, DVec2::X, DVec2::new(5000.0, 5000.0), 40.0, 40.0, 1, 9),
-        ]
-        .to_vec();
-        ws.iter()
-            .map(|w| w.frame(t, 1.0).unwrap().unwrap())
-            .collect()
-    };
+    )))
+    .unwrap();
+    // The two boxes of scenario 1 overlap; a box far away overlaps neither.
+    let frames: Vec<_> = [
+        wind(
+            7.0,
+            DVec2::new(1.0, 0.15),
+            DVec2::new(-2.0, -4.0),
+            66.0,
+            70.0,
+            1,
+            11,
+        ),
+        wind(
+            5.0,
+            DVec2::new(0.7, 1.0),
+            DVec2::new(30.0, -30.0),
+            60.0,
+            90.0,
+            2,
+            12,
+        ),
+        wind(6.0, DVec2::X, DVec2::new(-400.0, 0.0), 12.0, 12.0, 1, 9),
+    ]
+    .iter()
+    .map(|w| w.frame(3.0, 1.0).unwrap().unwrap())
+    .collect();
     assert!(rectangles_overlap(&frames[0], &frames[1]));
     assert!(!rectangles_overlap(&frames[0], &frames[2]));
-    // A camera 40 m above the grid's centre looking down sees the grid but not the far box.
-    let cam = |target: DVec3| {
+    let cam = |eye: DVec3, target: DVec3| {
         Camera::look_at(
-            DVec3::new(32.0, 40.0, 32.0),
+            eye,
             target,
             DVec3::Z,
             Projection::Perspective {
@@ -213,13 +209,22 @@ fn overlap_heights_and_culling() {
         )
         .unwrap()
     };
-    let down = Frustum::from_camera(&cam(DVec3::new(32.0, 0.0, 32.0001))).unwrap();
-    let f = s.frame(3.0, Some(&down)).unwrap();
+    // 12 m above the near corner looking straight down, the view covers about ±8 m around
+    // (10, 10): the two large boxes reach there, the corner box (50..62) does not.
+    let down = cam(DVec3::new(10.0, 12.0, 10.0), DVec3::new(10.0, 0.0, 10.0001));
+    let f = s
+        .frame(3.0, Some(&Frustum::from_camera(&down).unwrap()))
+        .unwrap();
     assert_eq!((f.stats().alive, f.stats().culled), (3, 1));
     drop(f);
     // Looking straight up, every box is culled, and the grid is at rest.
-    let up = Frustum::from_camera(&cam(DVec3::new(32.0, 80.0, 32.0001))).unwrap();
-    let f = s.frame(3.0, Some(&up)).unwrap();
+    let up = cam(
+        DVec3::new(32.0, 40.0, 32.0),
+        DVec3::new(32.0, 80.0, 32.0001),
+    );
+    let f = s
+        .frame(3.0, Some(&Frustum::from_camera(&up).unwrap()))
+        .unwrap();
     assert_eq!(f.stats().culled, 3);
     let n = 64 * 64;
     let (mut p, mut q) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
@@ -304,4 +309,85 @@ fn still_boxes_are_cached_and_moving_boxes_rebuilt() {
     s.remove_box(id).unwrap();
     assert!(s.remove_box(id).is_err());
     assert!(s.frame(f64::NAN, None).is_err());
+}
+
+#[test]
+fn bad_input_is_refused() {
+    let mut s = scenario_1();
+    // Zero wind, NaN width, a box far outside the grid, negative smoothing.
+    let ok = wind(6.0, DVec2::X, DVec2::ZERO, 20.0, 20.0, 1, 1);
+    for bad in [
+        Wind { speed: 0.0, ..ok },
+        Wind {
+            width: f64::NAN,
+            ..ok
+        },
+        Wind {
+            origin: DVec2::new(1.0e5, 0.0),
+            ..ok
+        },
+        Wind {
+            direction: DVec2::ZERO,
+            ..ok
+        },
+    ] {
+        assert!(s.add_box(spec(bad)).is_err(), "{bad:?}");
+    }
+    assert!(matches!(
+        s.add_box(spec(Wind {
+            origin: DVec2::new(-500.0, -500.0),
+            ..ok
+        })),
+        Err(ocean_wtb::WtbError::OutsideGrid)
+    ));
+    assert!(
+        s.add_box(ocean_wtb::scene::BoxSpec {
+            smoothing: -1.0,
+            ..spec(ok)
+        })
+        .is_err()
+    );
+    // Terrain of another grid.
+    let other = WaterGrid::new(DVec2::ZERO, 1.0, 32, 32).unwrap();
+    assert!(s.set_terrain(Terrain::deep(&other)).is_err());
+    // A budget that is not a time.
+    assert!(
+        s.set_budget(ocean_wtb::budget::Budget::Seconds(f64::NAN))
+            .is_err()
+    );
+    // Output buffers of the wrong size: an error, nothing written.
+    let f = s.frame(1.0, None).unwrap();
+    let (mut p, mut q) = (vec![Vec3::splat(5.0); 100], vec![Vec3::splat(5.0); 100]);
+    assert!(f.evaluate(&mut p, &mut q).is_err());
+    assert!(p.iter().all(|v| *v == Vec3::splat(5.0)));
+    assert!(f.height_at(DVec2::new(f64::NAN, 0.0)).is_err());
+    // The scene still works.
+    assert_eq!(s.box_ids().count(), 2);
+}
+
+#[test]
+fn a_time_budget_drops_effects_then_trains() {
+    // §2.3: work is admitted trains first, effects after: a budget a little below the full
+    // cost drops the refraction but keeps all three trains of scenario 1; a budget too small
+    // for any train leaves only the base (the grid at rest).
+    let mut s = scenario_1();
+    let full = s.frame(1.0, None).unwrap().stats().estimated_ns;
+    assert_eq!(s.frame(1.0, None).unwrap().stats().trains, 3);
+    s.set_budget(ocean_wtb::budget::Budget::Seconds(0.9 * full * 1e-9))
+        .unwrap();
+    let f = s.frame(1.0, None).unwrap();
+    let sel = f.stats().selection.unwrap();
+    assert_eq!(
+        (f.stats().trains, sel.effects.refraction),
+        (3, Refraction::Off)
+    );
+    assert!(f.stats().estimated_ns <= 0.9 * full);
+    drop(f);
+    s.set_budget(ocean_wtb::budget::Budget::Seconds(1e-9))
+        .unwrap();
+    let f = s.frame(1.0, None).unwrap();
+    assert_eq!(f.stats().trains, 0);
+    let (mut p, mut q) = (vec![Vec3::ZERO; 4096], vec![Vec3::ZERO; 4096]);
+    f.evaluate(&mut p, &mut q).unwrap();
+    assert!(p.iter().all(|v| v.y == 0.0));
 }
