@@ -110,6 +110,10 @@ impl PointSums {
 pub struct WaveSet {
     waves: Vec<Wave>,
     coeffs: Vec<WaveCoeffs>,
+    /// The `f64` twins of `coeffs` for the point paths: A, A kₓ/|k|, A k_z/|k|, A kₓ²/|k|,
+    /// A kₓk_z/|k|, A k_z²/|k|, A kₓ, A k_z, each formed in the order the reference once
+    /// formed it per call (so results are unchanged) but without a division per evaluation.
+    coeffs64: Vec<[f64; 8]>,
 }
 
 /// Per-wave `f64` constants for one evaluation time.
@@ -205,6 +209,22 @@ impl WaveSet {
         Ok(Self {
             waves: waves.to_vec(),
             coeffs: waves.iter().map(WaveCoeffs::of).collect(),
+            coeffs64: waves
+                .iter()
+                .map(|w| {
+                    let (a, k, m) = (w.amplitude(), w.wave_vector(), w.wavenumber());
+                    [
+                        a,
+                        a * k.x / m,
+                        a * k.y / m,
+                        a * k.x * k.x / m,
+                        a * k.x * k.y / m,
+                        a * k.y * k.y / m,
+                        a * k.x,
+                        a * k.y,
+                    ]
+                })
+                .collect(),
         })
     }
 
@@ -278,25 +298,57 @@ impl WaveSet {
         if !(mu[0].is_finite() && mu[1].is_finite()) {
             return Err(EvalError::Position { index: 0 });
         }
-        for w in &self.waves {
-            let theta = w.phase_at(rest, t);
-            let (sin, cos) = (math::sin(theta), math::cos(theta));
+        self.accumulate_sums(rest, t, mu, sums, |theta| {
+            (math::sin(theta), math::cos(theta))
+        });
+        Ok(())
+    }
+
+    /// [`WaveSet::add_sums_f64`] with each phase reduced in `f64` and its sine and cosine from
+    /// the kernel's deterministic [`sincos`] (absolute error ≤ 1.5·10⁻⁷), several times faster:
+    /// for height queries, where micrometres do not matter and throughput does.
+    pub fn add_sums(
+        &self,
+        rest: DVec2,
+        t: f64,
+        mu: [f64; 2],
+        sums: &mut PointSums,
+    ) -> Result<(), EvalError> {
+        check_time(t)?;
+        if !(rest.is_finite() && mu[0].is_finite() && mu[1].is_finite()) {
+            return Err(EvalError::Position { index: 0 });
+        }
+        self.accumulate_sums(rest, t, mu, sums, |theta| {
+            let (s, c) = sincos(reduce_angle_f32(theta));
+            (f64::from(s), f64::from(c))
+        });
+        Ok(())
+    }
+
+    #[inline(always)]
+    fn accumulate_sums(
+        &self,
+        rest: DVec2,
+        t: f64,
+        mu: [f64; 2],
+        sums: &mut PointSums,
+        sin_cos: impl Fn(f64) -> (f64, f64),
+    ) {
+        for (w, c64) in self.waves.iter().zip(&self.coeffs64) {
+            let (sin, cos) = sin_cos(w.phase_at(rest, t));
             // m sin(θ + φ) and m cos(θ + φ), as in the layers kernel.
             let s = sin * mu[0] + cos * mu[1];
             let c = cos * mu[0] - sin * mu[1];
-            let a = w.amplitude();
-            let k = w.wave_vector();
-            let m = w.wavenumber();
-            sums.dx -= a * k.x / m * s;
-            sums.dz -= a * k.y / m * s;
+            let [a, ahx, ahz, cxx, cxz, czz, gx, gz] = *c64;
+            sums.dx -= ahx * s;
+            sums.dz -= ahz * s;
             sums.y += a * c;
-            sums.jxx -= a * k.x * k.x / m * c;
-            sums.jxz -= a * k.x * k.y / m * c;
-            sums.jzz -= a * k.y * k.y / m * c;
-            sums.sx -= a * k.x * s;
-            sums.sz -= a * k.y * s;
+            sums.jxx -= cxx * c;
+            sums.jxz -= cxz * c;
+            sums.jzz -= czz * c;
+            sums.sx -= gx * s;
+            sums.sz -= gz * s;
         }
-        Ok(())
     }
 
     /// Displacement and normal at one world rest position, through the `f32` kernel (the same

@@ -485,6 +485,7 @@ impl Scene {
         let height = height_field(&self.grid, &self.terrain, &selection.effects, t);
         Ok(Frame {
             grid: &self.grid,
+            inv_spacing: 1.0 / self.grid.spacing(),
             t,
             layers,
             height,
@@ -810,6 +811,20 @@ impl FrameLayer<'_> {
     fn modulation(&self) -> &[[f32; 2]] {
         self.mu.as_deref().unwrap_or(self.cache)
     }
+
+    /// The modulation interpolated bilinearly over `cell`; zero outside the rectangle.
+    fn modulation_at(&self, cell: &Cell) -> [f64; 2] {
+        let r = self.rect;
+        let m = self.modulation();
+        let at = |q: usize| [f64::from(m[q][0]), f64::from(m[q][1])];
+        // The common case: the whole cell inside the rectangle, corners at fixed offsets.
+        if cell.i >= r.i0 && cell.j >= r.j0 && cell.i + 1 < r.i0 + r.nx && cell.j + 1 < r.j0 + r.nz
+        {
+            let q = (cell.j - r.j0) * r.nx + (cell.i - r.i0);
+            return lerp2(cell, at(q), at(q + 1), at(q + r.nx), at(q + r.nx + 1));
+        }
+        bilinear(cell, |i, j| r.index(i, j).map_or([0.0, 0.0], at))
+    }
 }
 
 /// A height query's answer.
@@ -825,8 +840,9 @@ pub struct HeightSample {
     pub residual: f64,
 }
 
-/// Horizontal residual at which a height query stops, metres.
-pub const QUERY_TOLERANCE: f64 = 1e-4;
+/// Horizontal residual at which a height query stops, metres: half a millimetre, so the
+/// answer is within 1 mm horizontally of the surface the grid shows, with margin.
+pub const QUERY_TOLERANCE: f64 = 5e-4;
 
 /// Newton steps a height query may take.
 pub const QUERY_MAX_ITERATIONS: usize = 16;
@@ -835,6 +851,7 @@ pub const QUERY_MAX_ITERATIONS: usize = 16;
 #[derive(Clone, Debug)]
 pub struct Frame<'a> {
     grid: &'a WaterGrid,
+    inv_spacing: f64,
     t: f64,
     layers: Vec<FrameLayer<'a>>,
     height: Option<Vec<f32>>,
@@ -1016,15 +1033,10 @@ impl Frame<'_> {
             return sums;
         };
         for l in &self.layers {
-            let mu = bilinear(&cell, |i, j| {
-                l.rect.index(i, j).map_or([0.0, 0.0], |q| {
-                    let m = l.modulation()[q];
-                    [f64::from(m[0]), f64::from(m[1])]
-                })
-            });
+            let mu = l.modulation_at(&cell);
             if mu != [0.0, 0.0] {
                 l.waves
-                    .add_sums_f64(p0, self.t, mu, &mut sums)
+                    .add_sums(p0, self.t, mu, &mut sums)
                     .expect("finite position, time and modulation");
             }
         }
@@ -1041,7 +1053,7 @@ impl Frame<'_> {
 
     /// The grid cell holding `p` and the fractions across it; `None` outside the grid.
     fn cell(&self, p: DVec2) -> Option<Cell> {
-        let l = self.grid.to_local(p) / self.grid.spacing();
+        let l = (p - self.grid.origin()) * self.inv_spacing;
         let (nx, nz) = (self.grid.nx(), self.grid.nz());
         if !(l.x >= 0.0 && l.y >= 0.0 && l.x <= (nx - 1) as f64 && l.y <= (nz - 1) as f64) {
             return None;
@@ -1066,12 +1078,19 @@ struct Cell {
 }
 
 fn bilinear(c: &Cell, f: impl Fn(usize, usize) -> [f64; 2]) -> [f64; 2] {
-    let (a, b, d, e) = (
+    lerp2(
+        c,
         f(c.i, c.j),
         f(c.i + 1, c.j),
         f(c.i, c.j + 1),
         f(c.i + 1, c.j + 1),
-    );
+    )
+}
+
+/// Bilinear interpolation across `c` of the values at its corners (i, j), (i+1, j), (i, j+1),
+/// (i+1, j+1).
+#[inline]
+fn lerp2(c: &Cell, a: [f64; 2], b: [f64; 2], d: [f64; 2], e: [f64; 2]) -> [f64; 2] {
     let mut out = [0.0; 2];
     for n in 0..2 {
         let top = a[n] + (b[n] - a[n]) * c.fx;
