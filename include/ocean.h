@@ -94,6 +94,16 @@ enum OceanStatus
    * buffers of an evaluation may then hold partial results.
    */
   OCEAN_STATUS_PANIC = 8,
+  /**
+   * A handle's member named by the caller does not exist (a wave train box id that was
+   * removed, never issued, or belongs to another scene).
+   */
+  OCEAN_STATUS_NOT_FOUND = 9,
+  /**
+   * A wave train box cannot touch the water grid: its rectangle at full fetch lies wholly
+   * outside the grid's rectangle, so it could never move a single point.
+   */
+  OCEAN_STATUS_OUTSIDE_GRID = 10,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -102,6 +112,78 @@ typedef enum OceanStatus OceanStatus;
 typedef uint32_t OceanStatus;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
+
+/**
+ * Depth refraction (paper section 2.1), for `OceanEffects::refraction`.
+ */
+enum OceanRefraction
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * No depth-dependent phase.
+   */
+  OCEAN_REFRACTION_OFF = 0,
+  /**
+   * The paper's default: a depth-dependent phase lag accumulated along each wave ray, so
+   * fronts bend towards shallow water while the frequency never changes (Fig. 6).
+   */
+  OCEAN_REFRACTION_PHASE_SHIFT = 1,
+  /**
+   * Each point runs at its depth's frequency from the dispersion relation (Eq. 4): waves
+   * slow down and queue up towards land as time passes (Fig. 7). Offered for comparison.
+   */
+  OCEAN_REFRACTION_DISPERSION = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanRefraction OceanRefraction;
+#else
+typedef uint32_t OceanRefraction;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * Depth convention of a view-projection matrix, for `ocean_scene_evaluate`.
+ */
+enum OceanDepthConvention
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Depth in [0, 1], near at 0: wgpu, Vulkan, D3D, Metal (GLM with
+   * GLM_FORCE_DEPTH_ZERO_TO_ONE).
+   */
+  OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE = 0,
+  /**
+   * Depth in [0, 1], near at 1 (reversed Z).
+   */
+  OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE_REVERSED = 1,
+  /**
+   * Depth in [-1, 1], near at -1: OpenGL and GLM's default.
+   */
+  OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanDepthConvention OceanDepthConvention;
+#else
+typedef uint32_t OceanDepthConvention;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * A Wave Train Boxes scene (opaque): water grid, terrain, boxes, effects and budget. Create
+ * with `ocean_scene_create`, free with `ocean_scene_destroy`.
+ *
+ * Every function taking an `OceanScene *` may be called from several threads at once on the
+ * same scene: a lock inside the scene serialises them (they do not run concurrently with each
+ * other; evaluations and height queries spread their own work over the library's worker
+ * threads). Destroying must not race with any other use.
+ */
+typedef struct OceanScene OceanScene;
 
 /**
  * An immutable set of trochoid waves (opaque). Create with `ocean_waves_create`, free with
@@ -216,6 +298,328 @@ typedef struct OceanGrid {
    */
   size_t nz;
 } OceanGrid;
+
+/**
+ * Irregular height along the box's width (Eq. 8):
+ * A' = A (1 - scale sin(envelope_wavenumber (a - envelope_speed t)) sin(frequency b)), with
+ * (a, b) the box's internal coordinates.
+ */
+typedef struct OceanIrregular {
+  /**
+   * 1: on; 0: off (the other members are then ignored). Other values are refused.
+   */
+  uint8_t enabled;
+  /**
+   * Share of the amplitude, in [0, 1].
+   */
+  double scale;
+  /**
+   * Radians per metre across the box, finite and >= 0.
+   */
+  double frequency;
+  /**
+   * Wavenumber of the envelope along the box, radians per metre, finite and >= 0.
+   */
+  double envelope_wavenumber;
+  /**
+   * Speed of the envelope along the box, m/s, finite.
+   */
+  double envelope_speed;
+} OceanIrregular;
+
+/**
+ * Capillary noise on every grid point, inside boxes or not (Eq. 9): y' = y + amplitude
+ * sin(r t), with a rate r in [0, 1) hashed from the seed and the point's index, so it is
+ * deterministic and independent of threads.
+ */
+typedef struct OceanNoise {
+  /**
+   * 1: on; 0: off (the other members are then ignored). Other values are refused.
+   */
+  uint8_t enabled;
+  /**
+   * Amplitude, metres, finite and >= 0.
+   */
+  double amplitude;
+  /**
+   * Seed of the per-point rates.
+   */
+  uint64_t seed;
+} OceanNoise;
+
+/**
+ * Beach adjustments (end of paper section 2): the summed amplitude is capped at a share of
+ * the local depth so troughs stay above the sea floor, and the water level rises near the
+ * shore.
+ */
+typedef struct OceanBeach {
+  /**
+   * 1: on; 0: off (the other members are then ignored). Other values are refused.
+   */
+  uint8_t enabled;
+  /**
+   * Largest share of the local depth the summed amplitude may take, in (0, 1].
+   */
+  double max_depth_share;
+  /**
+   * Extra water level at the shoreline, metres, finite and >= 0.
+   */
+  double run_up;
+  /**
+   * Depth at which the run-up has faded out, metres, finite and >= 0.
+   */
+  double run_up_depth;
+} OceanBeach;
+
+/**
+ * The switchable effects of paper section 2.1. `ocean_effects_default` fills in the library's
+ * defaults (phase-shift refraction and shoaling on, everything else off).
+ */
+typedef struct OceanEffects {
+  /**
+   * Depth refraction: an `OceanRefraction` value (other values are refused).
+   */
+  uint32_t refraction;
+  /**
+   * 1: shoaling on (Green's law: the amplitude grows as (D_ref/D)^(1/4) in water shallower
+   * than half a wavelength, at most 1.5 times); 0: off. Other values are refused.
+   */
+  uint8_t shoaling;
+  /**
+   * 1: round waves on (Eq. 10: fronts curve forward around the middle of each box); 0: off.
+   * Other values are refused.
+   */
+  uint8_t round_waves;
+  /**
+   * Irregular height (Eq. 8).
+   */
+  struct OceanIrregular irregular;
+  /**
+   * Capillary noise (Eq. 9).
+   */
+  struct OceanNoise noise;
+  /**
+   * Beach adjustments.
+   */
+  struct OceanBeach beach;
+} OceanEffects;
+
+/**
+ * The water grid of a scene: `nx * nz` points, point (i, j) resting at world
+ * (origin_x + i*spacing, 0, origin_z + j*spacing), stored row-major at j*nx + i. The spacing is
+ * the same along x and z (a box's internal frame steps by it along both of its axes).
+ */
+typedef struct OceanWaterGridDesc {
+  /**
+   * World x of point (0, 0), metres, finite, |origin_x| <= 1e9.
+   */
+  double origin_x;
+  /**
+   * World z of point (0, 0), metres, finite, |origin_z| <= 1e9.
+   */
+  double origin_z;
+  /**
+   * Distance between neighbouring points along x and z, metres, in [1e-3, 1e4].
+   */
+  double spacing;
+  /**
+   * Columns (along x), 2 to 4096.
+   */
+  size_t nx;
+  /**
+   * Rows (along z), 2 to 4096.
+   */
+  size_t nz;
+} OceanWaterGridDesc;
+
+/**
+ * A wind, which creates one wave train box (paper section 2).
+ *
+ * The box is the rectangle origin + a*u + b*v, a in [0, length], b in [0, width], with u the
+ * unit wind direction and v = (-u.z, u.x) (u turned 90 degrees clockwise seen from above, so
+ * for u = +x, v = +z): `origin` is the rear corner on the left when looking along the wind.
+ * Its length grows from 0 to `fetch` during the build-up. Fully developed, the trains reach a
+ * crest-to-trough height H = 0.21 speed^2 / 9.81 (Eq. 1): their amplitudes sum to H/2.
+ *
+ * Lifecycle, with age = time - start: build-up for age in [0, build_up) (length and amplitude
+ * grow linearly from 0), sustain for `sustain` seconds at full size, then decay for `decay`
+ * seconds (amplitude falls linearly to 0); before `start` and after the decay the box does not
+ * exist.
+ */
+typedef struct OceanWindDesc {
+  /**
+   * Wind speed, m/s, in (0, 100]. A zero wind is refused.
+   */
+  double speed;
+  /**
+   * x component of the direction the wind blows towards; with `direction_z` a finite,
+   * non-zero vector (normalised here).
+   */
+  double direction_x;
+  /**
+   * z component of the wind direction.
+   */
+  double direction_z;
+  /**
+   * World x of the box's origin corner, metres, |origin_x| <= 1e9.
+   */
+  double origin_x;
+  /**
+   * World z of the box's origin corner, metres, |origin_z| <= 1e9.
+   */
+  double origin_z;
+  /**
+   * Width across the wind, metres, in (0, 1e7] and at most 2^24 grid spacings.
+   */
+  double width;
+  /**
+   * Fetch: the full length along the wind, metres, in (0, 1e7] and at most 2^24 grid
+   * spacings.
+   */
+  double fetch;
+  /**
+   * Time the wind starts, seconds, finite.
+   */
+  double start;
+  /**
+   * Build-up duration, seconds, finite and >= 0.
+   */
+  double build_up;
+  /**
+   * Sustain duration, seconds, >= 0; `INFINITY` for a wind that never dies.
+   */
+  double sustain;
+  /**
+   * Decay duration, seconds, finite and >= 0.
+   */
+  double decay;
+  /**
+   * Seed of the documented wind-to-trains mapping (PCG32); the same seed gives the same
+   * trains on every platform.
+   */
+  uint64_t seed;
+  /**
+   * Number of wave trains the wind raises, 1 to 8 (ignored when explicit trains are given).
+   */
+  uint32_t trains;
+} OceanWindDesc;
+
+/**
+ * A wave train box: its wind and its local parameters.
+ */
+typedef struct OceanBoxDesc {
+  /**
+   * The wind that raises the box.
+   */
+  struct OceanWindDesc wind;
+  /**
+   * Width of the smoothing area along the box's edges, metres, finite and >= 0: the
+   * amplitude rises linearly from 0 on an edge to full at this distance inside (Fig. 4);
+   * 0 gives hard edges.
+   */
+  double smoothing;
+  /**
+   * 1: `recovery` is used; 0: the recovery distance is the default, two peak wavelengths.
+   * Other values are refused.
+   */
+  uint8_t has_recovery;
+  /**
+   * Distance behind land over which the amplitude recovers linearly to full, metres, finite
+   * and >= 0 (0: at once). Read only when `has_recovery` is 1.
+   */
+  double recovery;
+} OceanBoxDesc;
+
+/**
+ * What one evaluation ran.
+ */
+typedef struct OceanFrameStats {
+  /**
+   * Boxes alive at the frame's time.
+   */
+  size_t alive;
+  /**
+   * Of those, culled by the view frustum.
+   */
+  size_t culled;
+  /**
+   * Boxes whose static modulation (land, shoaling, refraction along the rays) was recomputed
+   * this frame because they are new, moved, grew, or the terrain or effects changed.
+   */
+  size_t rebuilt;
+  /**
+   * Wave trains evaluated, over all boxes.
+   */
+  size_t trains;
+  /**
+   * The budget's choice: at most this many trains per box (its largest); `SIZE_MAX` for all.
+   */
+  size_t max_trains;
+  /**
+   * The budget's choice: the effects that ran (a subset of those enabled).
+   */
+  struct OceanEffects effects;
+  /**
+   * The cost model's estimate of the frame's work, seconds of one core.
+   */
+  double estimated_seconds;
+} OceanFrameStats;
+
+/**
+ * A point on the sea plane in double precision: world x and z in metres.
+ */
+typedef struct OceanDVec2 {
+  /**
+   * x, metres.
+   */
+  double x;
+  /**
+   * z, metres.
+   */
+  double z;
+} OceanDVec2;
+
+/**
+ * A 3D vector in double precision (right-handed, y up).
+ */
+typedef struct OceanDVec3 {
+  /**
+   * x.
+   */
+  double x;
+  /**
+   * y (up).
+   */
+  double y;
+  /**
+   * z.
+   */
+  double z;
+} OceanDVec3;
+
+/**
+ * The answer of a height query at world (x, z).
+ */
+typedef struct OceanHeightSample {
+  /**
+   * Water height there, metres above the sea at rest.
+   */
+  double height;
+  /**
+   * Unit surface normal there.
+   */
+  struct OceanDVec3 normal;
+  /**
+   * World (x, z) of the rest position whose displaced point lies over the query.
+   */
+  struct OceanDVec2 rest;
+  /**
+   * Horizontal distance between that displaced point and the query, metres: the query
+   * iterates until it is at most the library's tolerance (0.5 mm) or 16 Newton steps have
+   * run.
+   */
+  double residual;
+} OceanHeightSample;
 
 #ifdef __cplusplus
 extern "C" {
@@ -393,6 +797,268 @@ OceanStatus ocean_waves_steepness_sum(const struct OceanWaves *waves, double *ou
  * `waves` must be a live handle and `out_amplitude` writable.
  */
 OceanStatus ocean_waves_max_amplitude(const struct OceanWaves *waves, double *out_amplitude);
+
+/**
+ * Stores the library's default effects in `*out`: refraction `OCEAN_REFRACTION_PHASE_SHIFT`,
+ * shoaling on, round waves, irregular height, noise and beach off (as a new scene has them).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_effects_default(struct OceanEffects *out);
+
+/**
+ * Creates a scene: a water grid over a terrain, no boxes yet, the default effects
+ * (`ocean_effects_default`) and no budget limit. Stores the new handle in `*out`.
+ *
+ * `terrain_heights` holds one height per grid point, row-major (point (i, j) at j*nx + i):
+ * the ground's height above the sea at rest, metres. A height < 0 is sea floor at depth
+ * -height; a height >= 0 is land, where the water stays at rest. Pass NULL and 0 for an open
+ * sea of infinite depth. Outside the grid the sea is deep. The heights are copied.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` if `grid` or `out` is NULL, or `terrain_heights` is NULL
+ * with `terrain_len` != 0; `OCEAN_STATUS_MISALIGNED_POINTER`; `OCEAN_STATUS_EMPTY` if `nx` or
+ * `nz` is 0; `OCEAN_STATUS_LENGTH_OVERFLOW` if `nx * nz` overflows; `OCEAN_STATUS_NON_FINITE`
+ * for a NaN or infinite origin, spacing or height; `OCEAN_STATUS_INVALID_ARGUMENT` for a side
+ * outside 2 to 4096, a spacing outside [1e-3, 1e4] m, an origin beyond 1e9 m, or
+ * `terrain_len` != nx * nz. On failure `*out` is unchanged. Free the scene with
+ * `ocean_scene_destroy`.
+ *
+ * # Safety
+ *
+ * `grid` must point to a readable `OceanWaterGridDesc`, `terrain_heights` be NULL or point to
+ * `terrain_len` readable floats, and `out` point to a writable pointer; none is retained.
+ */
+OceanStatus ocean_scene_create(const struct OceanWaterGridDesc *grid,
+                               const float *terrain_heights,
+                               size_t terrain_len,
+                               struct OceanScene **out);
+
+/**
+ * Frees a scene and its boxes. NULL is ignored, and so is a pointer that is not even aligned.
+ * Never fails; leaves the last-error message alone.
+ *
+ * # Safety
+ *
+ * `scene` must be NULL or a handle from `ocean_scene_create` not yet destroyed, and no other
+ * thread may be using it.
+ */
+void ocean_scene_destroy(struct OceanScene *scene);
+
+/**
+ * Replaces the scene's terrain (same format as in `ocean_scene_create`; NULL and 0 for a deep
+ * sea). Every box's land, depth and refraction along its rays is recomputed at the next
+ * evaluation.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (or NULL with
+ * a length), `OCEAN_STATUS_INVALID_ARGUMENT` if `terrain_len` != nx * nz,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite height (the message gives its index). On
+ * failure the scene keeps its terrain.
+ *
+ * # Safety
+ *
+ * `scene` must be a live handle; `terrain_heights` NULL or `terrain_len` readable floats.
+ */
+OceanStatus ocean_scene_set_terrain(struct OceanScene *scene,
+                                    const float *terrain_heights,
+                                    size_t terrain_len);
+
+/**
+ * Adds a wave train box raised by `desc->wind`, and stores its id in `*out_id`. Ids are never
+ * reused within a scene.
+ *
+ * The trains: with `n_trains` = 0 (`trains` is then ignored and may be NULL) the wind raises
+ * `desc->wind.trains` trains by the library's seeded mapping (peak wavelength from the
+ * Pierson-Moskowitz spectrum, the others spread within 30 degrees, amplitudes summing to H/2);
+ * otherwise exactly the `n_trains` (at most 64) given trains are used, at full amplitude while
+ * the wind is sustained (the wind then sets only the box and its lifecycle; each train's depth
+ * sets its frequency, +INFINITY for deep water, and the terrain's depth effects apply on top).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (`trains` is
+ * checked only when `n_trains` > 0), `OCEAN_STATUS_NON_FINITE` for a NaN or infinite member
+ * (`sustain` may be +INFINITY, a train's `depth` too), `OCEAN_STATUS_INVALID_ARGUMENT` for a
+ * member out of range (zero wind speed, zero direction, width or fetch <= 0, negative
+ * durations, `trains` outside 1 to 8, negative smoothing or recovery, `has_recovery` not 0 or
+ * 1, more than 64 explicit trains, a box longer or wider than 2^24 grid spacings),
+ * `OCEAN_STATUS_TOO_STEEP` if explicit trains have k*A > 1 each or a summed k*A above 1,
+ * `OCEAN_STATUS_LENGTH_OVERFLOW` for an absurd `n_trains`, `OCEAN_STATUS_OUTSIDE_GRID` when
+ * the box's rectangle at full fetch lies wholly outside the water grid. On failure nothing is
+ * added and `*out_id` is unchanged.
+ *
+ * # Safety
+ *
+ * `scene` must be a live handle, `desc` readable, `trains` NULL or `n_trains` readable
+ * descriptions, `out_id` writable; nothing is retained.
+ */
+OceanStatus ocean_scene_add_box(struct OceanScene *scene,
+                                const struct OceanBoxDesc *desc,
+                                const struct OceanWaveDesc *trains,
+                                size_t n_trains,
+                                uint32_t *out_id);
+
+/**
+ * Replaces box `id`'s description (same arguments as `ocean_scene_add_box`): move or turn it
+ * (a boat's wake), change its wind or trains. A moved box's action points along its rays are
+ * recomputed at the next evaluation.
+ *
+ * Returns `OCEAN_STATUS_NOT_FOUND` for an id that is not in the scene (removed, never issued)
+ * and otherwise as `ocean_scene_add_box`. On failure the box is unchanged.
+ *
+ * # Safety
+ *
+ * As `ocean_scene_add_box`.
+ */
+OceanStatus ocean_scene_update_box(struct OceanScene *scene,
+                                   uint32_t id,
+                                   const struct OceanBoxDesc *desc,
+                                   const struct OceanWaveDesc *trains,
+                                   size_t n_trains);
+
+/**
+ * Removes box `id`. Returns `OCEAN_STATUS_NOT_FOUND` for an id not in the scene (also when
+ * it was removed already).
+ *
+ * # Safety
+ *
+ * `scene` must be a live handle.
+ */
+OceanStatus ocean_scene_remove_box(struct OceanScene *scene, uint32_t id);
+
+/**
+ * Stores the number of boxes in the scene (alive at any time or not) in `*out_count`.
+ *
+ * # Safety
+ *
+ * `scene` must be a live handle and `out_count` writable.
+ */
+OceanStatus ocean_scene_box_count(struct OceanScene *scene, size_t *out_count);
+
+/**
+ * Enables and parameterises the effects (a budget may run fewer of them).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER`, `OCEAN_STATUS_NON_FINITE` for a
+ * NaN or infinite parameter of an enabled effect, `OCEAN_STATUS_INVALID_ARGUMENT` for an
+ * unknown refraction, a flag other than 0 or 1, or a parameter out of its range (see
+ * `OceanEffects`). On failure the scene keeps its effects.
+ *
+ * # Safety
+ *
+ * `scene` must be a live handle and `effects` readable.
+ */
+OceanStatus ocean_scene_set_effects(struct OceanScene *scene, const struct OceanEffects *effects);
+
+/**
+ * Removes any budget limit: every enabled train and effect runs (the default).
+ *
+ * # Safety
+ *
+ * `scene` must be a live handle.
+ */
+OceanStatus ocean_scene_set_budget_unlimited(struct OceanScene *scene);
+
+/**
+ * Limits each evaluation to about `seconds` of estimated work (paper section 2.3): culling
+ * first, then trains rank by rank (every visible box's largest train, then its second, ...),
+ * then the effects in the order refraction, shoaling, round waves, irregular height, beach,
+ * and the noise last, each admitted while the estimate fits. `OceanFrameStats` reports the
+ * choice.
+ *
+ * Returns `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `seconds`,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for a negative one; the budget is then unchanged.
+ *
+ * # Safety
+ *
+ * `scene` must be a live handle.
+ */
+OceanStatus ocean_scene_set_budget_seconds(struct OceanScene *scene, double seconds);
+
+/**
+ * Fixes each evaluation's work explicitly: at most `max_trains` trains per box (its largest;
+ * `SIZE_MAX` for all, 0 for none) and exactly the effects in `*effects` (validated as in
+ * `ocean_scene_set_effects`), whatever the effects enabled with `ocean_scene_set_effects`.
+ *
+ * # Safety
+ *
+ * `scene` must be a live handle and `effects` readable.
+ */
+OceanStatus ocean_scene_set_budget_explicit(struct OceanScene *scene,
+                                            size_t max_trains,
+                                            const struct OceanEffects *effects);
+
+/**
+ * Evaluates the whole water grid at `time` seconds into the caller's buffers.
+ *
+ * For grid point (i, j), element j*nx + i of `out_pos` receives its displaced position
+ * **relative to the grid origin** (rest position (i*spacing, 0, j*spacing), so float precision
+ * does not degrade far from the world origin; add (origin_x, 0, origin_z) for world space),
+ * and `out_normal` the unit surface normal (right-handed, y up). Each frame is recomputed from
+ * the rest state (the paper's frame independence): any time may be evaluated in any order.
+ * Boxes that are alive at `time` add their trains, modulated by land (zero on land, recovering
+ * behind it), depth (shoaling, refraction), the side smoothing and the enabled effects; grid
+ * points on land stay exactly at rest.
+ *
+ * `view_projection`: NULL for no culling, or 16 floats, column-major (GLM's
+ * layout, `&m[0][0]`), the world-space projection * view matrix, with `depth_convention` an
+ * `OceanDepthConvention` (ignored when NULL). A box whose bounding box (raised by the maximum
+ * heights of all boxes that overlap it) lies wholly outside the frustum is skipped: its
+ * points stay at rest in this frame. Height queries never cull.
+ *
+ * `n` must equal nx * nz. `out_stats`, when not NULL, receives what ran.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
+ * alignment for floats and OceanVec3, 8 for the scene and stats), `OCEAN_STATUS_EMPTY` if `n`
+ * is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanVec3)` exceeds `PTRDIFF_MAX`,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `n` != nx * nz, the outputs overlap, `depth_convention`
+ * is unknown or the matrix is not a projection, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite
+ * `time` or matrix element. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `scene` must be a live handle, `view_projection` NULL or 16 readable floats, `out_pos` and
+ * `out_normal` `n` writable `OceanVec3`s each, `out_stats` NULL or writable; no other thread
+ * may touch the buffers during the call.
+ */
+OceanStatus ocean_scene_evaluate(struct OceanScene *scene,
+                                 double time,
+                                 const float *view_projection,
+                                 uint32_t depth_convention,
+                                 struct OceanVec3 *out_pos,
+                                 struct OceanVec3 *out_normal,
+                                 size_t n,
+                                 struct OceanFrameStats *out_stats);
+
+/**
+ * Answers `n` height queries at world (x, z) = `xz[k]` and `time` seconds, into `out[k]`:
+ * the water surface exactly as `ocean_scene_evaluate` shows it (same boxes, depth, land,
+ * effects and budget, but never culled), between grid points too. Gerstner waves move points
+ * sideways, so the rest position whose displaced point lies over the query is found by
+ * Newton's method (from the query itself, while no crest folds) to a horizontal residual of
+ * at most 0.5 mm or for at most 16 steps (see `OceanHeightSample::residual`), then the height
+ * and normal are taken there; the
+ * modulation and height field are bilinear between grid points, so at a displaced grid point
+ * the answer is the grid's own. Outside the grid the water is at rest. The batch is spread
+ * over the library's worker threads; results do not depend on their number.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` (8-byte alignment),
+ * `OCEAN_STATUS_EMPTY` if `n` is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if
+ * `n * sizeof(OceanHeightSample)` exceeds `PTRDIFF_MAX`, `OCEAN_STATUS_INVALID_ARGUMENT` if
+ * `xz` and `out` overlap, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or
+ * coordinate (the message gives the first bad index). Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `scene` must be a live handle, `xz` `n` readable `OceanDVec2`s and `out` `n` writable
+ * `OceanHeightSample`s, untouched by other threads during the call.
+ */
+OceanStatus ocean_scene_heights(struct OceanScene *scene,
+                                double time,
+                                const struct OceanDVec2 *xz,
+                                size_t n,
+                                struct OceanHeightSample *out);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -26,6 +26,7 @@
 mod status;
 mod version;
 mod waves;
+mod wtb;
 
 pub use status::{OceanStatus, ocean_last_error_message, ocean_status_message};
 pub use version::{OCEAN_VERSION_MAJOR, OCEAN_VERSION_MINOR, OCEAN_VERSION_PATCH, ocean_version};
@@ -33,4 +34,13 @@ pub use waves::{
     OceanGrid, OceanVec2, OceanVec3, OceanWaveDesc, OceanWaves, ocean_waves_count,
     ocean_waves_create, ocean_waves_destroy, ocean_waves_evaluate, ocean_waves_evaluate_grid,
     ocean_waves_max_amplitude, ocean_waves_steepness_sum,
+};
+pub use wtb::{
+    OceanBeach, OceanBoxDesc, OceanDVec2, OceanDVec3, OceanDepthConvention, OceanEffects,
+    OceanFrameStats, OceanHeightSample, OceanIrregular, OceanNoise, OceanRefraction, OceanScene,
+    OceanWaterGridDesc, OceanWindDesc, ocean_effects_default, ocean_scene_add_box,
+    ocean_scene_box_count, ocean_scene_create, ocean_scene_destroy, ocean_scene_evaluate,
+    ocean_scene_heights, ocean_scene_remove_box, ocean_scene_set_budget_explicit,
+    ocean_scene_set_budget_seconds, ocean_scene_set_budget_unlimited, ocean_scene_set_effects,
+    ocean_scene_set_terrain, ocean_scene_update_box,
 };

@@ -36,10 +36,16 @@ pub enum OceanStatus {
     /// The library panicked (a bug in ocean); the panic was caught at the boundary. Output
     /// buffers of an evaluation may then hold partial results.
     Panic = 8,
+    /// A handle's member named by the caller does not exist (a wave train box id that was
+    /// removed, never issued, or belongs to another scene).
+    NotFound = 9,
+    /// A wave train box cannot touch the water grid: its rectangle at full fetch lies wholly
+    /// outside the grid's rectangle, so it could never move a single point.
+    OutsideGrid = 10,
 }
 
 /// Every status, in numeric order.
-const ALL_STATUSES: [OceanStatus; 9] = [
+const ALL_STATUSES: [OceanStatus; 11] = [
     OceanStatus::Ok,
     OceanStatus::NullPointer,
     OceanStatus::MisalignedPointer,
@@ -49,6 +55,8 @@ const ALL_STATUSES: [OceanStatus; 9] = [
     OceanStatus::LengthOverflow,
     OceanStatus::TooSteep,
     OceanStatus::Panic,
+    OceanStatus::NotFound,
+    OceanStatus::OutsideGrid,
 ];
 
 impl OceanStatus {
@@ -63,6 +71,8 @@ impl OceanStatus {
             OceanStatus::LengthOverflow => c"a count is too large: its size in bytes overflows",
             OceanStatus::TooSteep => c"a wave is too steep (k*A > 1): the trochoid would loop",
             OceanStatus::Panic => c"internal error: the library panicked",
+            OceanStatus::NotFound => c"no such object (an unknown or removed id)",
+            OceanStatus::OutsideGrid => c"a wave train box lies wholly outside the water grid",
         }
     }
 }
@@ -183,7 +193,7 @@ mod tests {
             assert!(!m.is_empty());
             assert!(seen.insert(m.to_owned()), "duplicate message {m:?}");
         }
-        for bad in [9, 1000, u32::MAX] {
+        for bad in [11, 1000, u32::MAX] {
             // SAFETY: as above.
             let m = unsafe { CStr::from_ptr(ocean_status_message(bad)) };
             assert_eq!(m, c"unknown status");

@@ -98,7 +98,7 @@ pub struct OceanWaves {
 /// bit-identical either way; below this the thread hand-off costs more than it saves).
 const PARALLEL_POINTS: usize = 16 * 1024;
 
-fn check_ptr<T>(p: *const T, name: &str) -> Result<(), Error> {
+pub(crate) fn check_ptr<T>(p: *const T, name: &str) -> Result<(), Error> {
     if p.is_null() {
         return Err(Error::new(
             OceanStatus::NullPointer,
@@ -119,7 +119,7 @@ fn check_ptr<T>(p: *const T, name: &str) -> Result<(), Error> {
 
 /// Size in bytes of `n` elements of `T`, if it fits in `isize::MAX` (the limit of every Rust and
 /// C object).
-fn byte_len<T>(n: usize, name: &str) -> Result<usize, Error> {
+pub(crate) fn byte_len<T>(n: usize, name: &str) -> Result<usize, Error> {
     n.checked_mul(size_of::<T>())
         .filter(|&b| b <= isize::MAX as usize)
         .ok_or_else(|| {
@@ -134,7 +134,7 @@ fn byte_len<T>(n: usize, name: &str) -> Result<usize, Error> {
 }
 
 /// Fails if the byte ranges `[a, a + a_len)` and `[b, b + b_len)` intersect.
-fn check_disjoint(
+pub(crate) fn check_disjoint(
     (a, a_len, a_name): (*const u8, usize, &str),
     (b, b_len, b_name): (*const u8, usize, &str),
 ) -> Result<(), Error> {
@@ -148,7 +148,7 @@ fn check_disjoint(
     Ok(())
 }
 
-fn check_time(time: f64) -> Result<(), Error> {
+pub(crate) fn check_time(time: f64) -> Result<(), Error> {
     if time.is_finite() {
         Ok(())
     } else {
@@ -161,7 +161,7 @@ fn check_time(time: f64) -> Result<(), Error> {
 
 /// `OCEAN_STATUS_NON_FINITE` naming the first of `fields` that is NaN or infinite, as
 /// `{prefix}{name}`.
-fn check_finite(prefix: &str, fields: &[(&str, f64)]) -> Result<(), Error> {
+pub(crate) fn check_finite(prefix: &str, fields: &[(&str, f64)]) -> Result<(), Error> {
     match fields.iter().find(|(_, v)| !v.is_finite()) {
         Some((name, v)) => Err(Error::new(
             OceanStatus::NonFinite,
@@ -172,6 +172,12 @@ fn check_finite(prefix: &str, fields: &[(&str, f64)]) -> Result<(), Error> {
 }
 
 fn wave_desc(i: usize, d: &OceanWaveDesc) -> Result<WaveDesc, Error> {
+    wave_desc_in("descs", i, d)
+}
+
+/// Converts element `i` of the caller's array `array` (named so in messages) to a core
+/// description, refusing NaN and infinities (a depth of +INFINITY is deep water).
+pub(crate) fn wave_desc_in(array: &str, i: usize, d: &OceanWaveDesc) -> Result<WaveDesc, Error> {
     let fields = [
         ("amplitude", d.amplitude),
         ("wavelength", d.wavelength),
@@ -179,14 +185,14 @@ fn wave_desc(i: usize, d: &OceanWaveDesc) -> Result<WaveDesc, Error> {
         ("direction_z", d.direction_z),
         ("phase", d.phase),
     ];
-    check_finite(&format!("descs[{i}]."), &fields)?;
+    check_finite(&format!("{array}[{i}]."), &fields)?;
     let depth = if d.depth == f64::INFINITY {
         Depth::Deep
     } else if !d.depth.is_finite() {
         return Err(Error::new(
             OceanStatus::NonFinite,
             format!(
-                "descs[{i}].depth must be finite metres or +INFINITY (deep water), got {}",
+                "{array}[{i}].depth must be finite metres or +INFINITY (deep water), got {}",
                 d.depth
             ),
         ));
@@ -202,7 +208,7 @@ fn wave_desc(i: usize, d: &OceanWaveDesc) -> Result<WaveDesc, Error> {
     })
 }
 
-fn wave_error(i: usize, e: WaveError) -> Error {
+pub(crate) fn wave_error(i: usize, e: WaveError) -> Error {
     let status = match e {
         WaveError::TooSteep(_) => OceanStatus::TooSteep,
         WaveError::Empty => OceanStatus::Empty,
@@ -211,7 +217,7 @@ fn wave_error(i: usize, e: WaveError) -> Error {
     Error::new(status, format!("descs[{i}]: {e}"))
 }
 
-fn eval_error(e: EvalError, positions: &str) -> Error {
+pub(crate) fn eval_error(e: EvalError, positions: &str) -> Error {
     let status = match e {
         EvalError::Time(_) => OceanStatus::NonFinite,
         EvalError::Position { .. } => OceanStatus::NonFinite,
@@ -502,7 +508,7 @@ pub unsafe extern "C" fn ocean_waves_evaluate_grid(
 /// # Safety
 ///
 /// `out` must be NULL, misaligned, or writable.
-unsafe fn write_out<T>(out: *mut T, name: &str, value: T) -> Result<(), Error> {
+pub(crate) unsafe fn write_out<T>(out: *mut T, name: &str, value: T) -> Result<(), Error> {
     check_ptr(out, name)?;
     // SAFETY: non-NULL and aligned (checked); writable (caller's guarantee).
     unsafe { out.write(value) };

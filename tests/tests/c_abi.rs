@@ -1,5 +1,5 @@
-//! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c` and
-//! `tests/cpp/test_waves.cpp` against `include/ocean.h` and the static library `libocean.a`
+//! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c`, `tests/c/test_wtb.c`
+//! and `tests/cpp/test_waves.cpp` against `include/ocean.h` and the static library `libocean.a`
 //! with the system compilers and `-Wall -Wextra -Werror -pedantic`, runs them, and fails unless
 //! each reports `0 failures` after a positive number of checks and exits 0.
 //!
@@ -193,6 +193,18 @@ fn c11_program_against_the_static_library() {
         "-std=c11",
         "tests/c/test_waves.c",
         "test_waves_c",
+    );
+}
+
+/// The Wave Train Boxes scene API (`ocean_scene_*`) from C11: scenario 1 with an island,
+/// culling, height queries, moving and removing boxes, and every error path.
+#[test]
+fn c11_wave_train_boxes_against_the_static_library() {
+    build_and_run(
+        compiler("CC", "cc"),
+        "-std=c11",
+        "tests/c/test_wtb.c",
+        "test_wtb_c",
     );
 }
 

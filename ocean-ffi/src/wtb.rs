@@ -1,0 +1,1494 @@
+//! Wave Train Boxes scenes (crate `ocean-wtb`, Yrjola & Larsson): a water grid over a terrain,
+//! wind-driven boxes of Gerstner wave trains, switchable effects, a frame budget, evaluation of
+//! the grid and batched height queries.
+
+use core::mem::size_of;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::{Mutex, MutexGuard, PoisonError};
+
+use glam::{DVec2, Mat4, Vec3};
+use ocean_core::camera::DepthConvention;
+use ocean_core::frustum::{Frustum, FrustumError};
+use ocean_core::{WaveDesc, WaveError};
+use ocean_wtb::budget::{Budget, Selection};
+use ocean_wtb::effects::{Beach, Effects, Irregular, Noise, Refraction};
+use ocean_wtb::scene::{BoxId, BoxSpec, FrameStats, HeightSample, Scene, rectangles_overlap};
+use ocean_wtb::wind::MAX_EXPLICIT_TRAINS;
+use ocean_wtb::{BoxFrame, Terrain, TrainSource, WaterGrid, Wind, WtbError};
+
+use crate::status::{Error, OceanStatus, guard};
+use crate::waves::{
+    OceanVec3, OceanWaveDesc, byte_len, check_disjoint, check_finite, check_ptr, check_time,
+    eval_error, wave_desc_in, wave_error, write_out,
+};
+
+/// A point on the sea plane in double precision: world x and z in metres.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanDVec2 {
+    /// x, metres.
+    pub x: f64,
+    /// z, metres.
+    pub z: f64,
+}
+
+/// A 3D vector in double precision (right-handed, y up).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanDVec3 {
+    /// x.
+    pub x: f64,
+    /// y (up).
+    pub y: f64,
+    /// z.
+    pub z: f64,
+}
+
+/// The water grid of a scene: `nx * nz` points, point (i, j) resting at world
+/// (origin_x + i*spacing, 0, origin_z + j*spacing), stored row-major at j*nx + i. The spacing is
+/// the same along x and z (a box's internal frame steps by it along both of its axes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanWaterGridDesc {
+    /// World x of point (0, 0), metres, finite, |origin_x| <= 1e9.
+    pub origin_x: f64,
+    /// World z of point (0, 0), metres, finite, |origin_z| <= 1e9.
+    pub origin_z: f64,
+    /// Distance between neighbouring points along x and z, metres, in [1e-3, 1e4].
+    pub spacing: f64,
+    /// Columns (along x), 2 to 4096.
+    pub nx: usize,
+    /// Rows (along z), 2 to 4096.
+    pub nz: usize,
+}
+
+/// A wind, which creates one wave train box (paper section 2).
+///
+/// The box is the rectangle origin + a*u + b*v, a in [0, length], b in [0, width], with u the
+/// unit wind direction and v = (-u.z, u.x) (u turned 90 degrees clockwise seen from above, so
+/// for u = +x, v = +z): `origin` is the rear corner on the left when looking along the wind.
+/// Its length grows from 0 to `fetch` during the build-up. Fully developed, the trains reach a
+/// crest-to-trough height H = 0.21 speed^2 / 9.81 (Eq. 1): their amplitudes sum to H/2.
+///
+/// Lifecycle, with age = time - start: build-up for age in [0, build_up) (length and amplitude
+/// grow linearly from 0), sustain for `sustain` seconds at full size, then decay for `decay`
+/// seconds (amplitude falls linearly to 0); before `start` and after the decay the box does not
+/// exist.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanWindDesc {
+    /// Wind speed, m/s, in (0, 100]. A zero wind is refused.
+    pub speed: f64,
+    /// x component of the direction the wind blows towards; with `direction_z` a finite,
+    /// non-zero vector (normalised here).
+    pub direction_x: f64,
+    /// z component of the wind direction.
+    pub direction_z: f64,
+    /// World x of the box's origin corner, metres, |origin_x| <= 1e9.
+    pub origin_x: f64,
+    /// World z of the box's origin corner, metres, |origin_z| <= 1e9.
+    pub origin_z: f64,
+    /// Width across the wind, metres, in (0, 1e7] and at most 2^24 grid spacings.
+    pub width: f64,
+    /// Fetch: the full length along the wind, metres, in (0, 1e7] and at most 2^24 grid
+    /// spacings.
+    pub fetch: f64,
+    /// Time the wind starts, seconds, finite.
+    pub start: f64,
+    /// Build-up duration, seconds, finite and >= 0.
+    pub build_up: f64,
+    /// Sustain duration, seconds, >= 0; `INFINITY` for a wind that never dies.
+    pub sustain: f64,
+    /// Decay duration, seconds, finite and >= 0.
+    pub decay: f64,
+    /// Seed of the documented wind-to-trains mapping (PCG32); the same seed gives the same
+    /// trains on every platform.
+    pub seed: u64,
+    /// Number of wave trains the wind raises, 1 to 8 (ignored when explicit trains are given).
+    pub trains: u32,
+}
+
+/// A wave train box: its wind and its local parameters.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanBoxDesc {
+    /// The wind that raises the box.
+    pub wind: OceanWindDesc,
+    /// Width of the smoothing area along the box's edges, metres, finite and >= 0: the
+    /// amplitude rises linearly from 0 on an edge to full at this distance inside (Fig. 4);
+    /// 0 gives hard edges.
+    pub smoothing: f64,
+    /// 1: `recovery` is used; 0: the recovery distance is the default, two peak wavelengths.
+    /// Other values are refused.
+    pub has_recovery: u8,
+    /// Distance behind land over which the amplitude recovers linearly to full, metres, finite
+    /// and >= 0 (0: at once). Read only when `has_recovery` is 1.
+    pub recovery: f64,
+}
+
+/// Depth refraction (paper section 2.1), for `OceanEffects::refraction`.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OceanRefraction {
+    /// No depth-dependent phase.
+    Off = 0,
+    /// The paper's default: a depth-dependent phase lag accumulated along each wave ray, so
+    /// fronts bend towards shallow water while the frequency never changes (Fig. 6).
+    PhaseShift = 1,
+    /// Each point runs at its depth's frequency from the dispersion relation (Eq. 4): waves
+    /// slow down and queue up towards land as time passes (Fig. 7). Offered for comparison.
+    Dispersion = 2,
+}
+
+/// Irregular height along the box's width (Eq. 8):
+/// A' = A (1 - scale sin(envelope_wavenumber (a - envelope_speed t)) sin(frequency b)), with
+/// (a, b) the box's internal coordinates.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanIrregular {
+    /// 1: on; 0: off (the other members are then ignored). Other values are refused.
+    pub enabled: u8,
+    /// Share of the amplitude, in [0, 1].
+    pub scale: f64,
+    /// Radians per metre across the box, finite and >= 0.
+    pub frequency: f64,
+    /// Wavenumber of the envelope along the box, radians per metre, finite and >= 0.
+    pub envelope_wavenumber: f64,
+    /// Speed of the envelope along the box, m/s, finite.
+    pub envelope_speed: f64,
+}
+
+/// Capillary noise on every grid point, inside boxes or not (Eq. 9): y' = y + amplitude
+/// sin(r t), with a rate r in [0, 1) hashed from the seed and the point's index, so it is
+/// deterministic and independent of threads.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanNoise {
+    /// 1: on; 0: off (the other members are then ignored). Other values are refused.
+    pub enabled: u8,
+    /// Amplitude, metres, finite and >= 0.
+    pub amplitude: f64,
+    /// Seed of the per-point rates.
+    pub seed: u64,
+}
+
+/// Beach adjustments (end of paper section 2): the summed amplitude is capped at a share of
+/// the local depth so troughs stay above the sea floor, and the water level rises near the
+/// shore.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanBeach {
+    /// 1: on; 0: off (the other members are then ignored). Other values are refused.
+    pub enabled: u8,
+    /// Largest share of the local depth the summed amplitude may take, in (0, 1].
+    pub max_depth_share: f64,
+    /// Extra water level at the shoreline, metres, finite and >= 0.
+    pub run_up: f64,
+    /// Depth at which the run-up has faded out, metres, finite and >= 0.
+    pub run_up_depth: f64,
+}
+
+/// The switchable effects of paper section 2.1. `ocean_effects_default` fills in the library's
+/// defaults (phase-shift refraction and shoaling on, everything else off).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanEffects {
+    /// Depth refraction: an `OceanRefraction` value (other values are refused).
+    pub refraction: u32,
+    /// 1: shoaling on (Green's law: the amplitude grows as (D_ref/D)^(1/4) in water shallower
+    /// than half a wavelength, at most 1.5 times); 0: off. Other values are refused.
+    pub shoaling: u8,
+    /// 1: round waves on (Eq. 10: fronts curve forward around the middle of each box); 0: off.
+    /// Other values are refused.
+    pub round_waves: u8,
+    /// Irregular height (Eq. 8).
+    pub irregular: OceanIrregular,
+    /// Capillary noise (Eq. 9).
+    pub noise: OceanNoise,
+    /// Beach adjustments.
+    pub beach: OceanBeach,
+}
+
+/// Depth convention of a view-projection matrix, for `ocean_scene_evaluate`.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OceanDepthConvention {
+    /// Depth in [0, 1], near at 0: wgpu, Vulkan, D3D, Metal (GLM with
+    /// GLM_FORCE_DEPTH_ZERO_TO_ONE).
+    ZeroToOne = 0,
+    /// Depth in [0, 1], near at 1 (reversed Z).
+    ZeroToOneReversed = 1,
+    /// Depth in [-1, 1], near at -1: OpenGL and GLM's default.
+    NegOneToOne = 2,
+}
+
+/// What one evaluation ran.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanFrameStats {
+    /// Boxes alive at the frame's time.
+    pub alive: usize,
+    /// Of those, culled by the view frustum.
+    pub culled: usize,
+    /// Boxes whose static modulation (land, shoaling, refraction along the rays) was recomputed
+    /// this frame because they are new, moved, grew, or the terrain or effects changed.
+    pub rebuilt: usize,
+    /// Wave trains evaluated, over all boxes.
+    pub trains: usize,
+    /// The budget's choice: at most this many trains per box (its largest); `SIZE_MAX` for all.
+    pub max_trains: usize,
+    /// The budget's choice: the effects that ran (a subset of those enabled).
+    pub effects: OceanEffects,
+    /// The cost model's estimate of the frame's work, seconds of one core.
+    pub estimated_seconds: f64,
+}
+
+/// The answer of a height query at world (x, z).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanHeightSample {
+    /// Water height there, metres above the sea at rest.
+    pub height: f64,
+    /// Unit surface normal there.
+    pub normal: OceanDVec3,
+    /// World (x, z) of the rest position whose displaced point lies over the query.
+    pub rest: OceanDVec2,
+    /// Horizontal distance between that displaced point and the query, metres: the query
+    /// iterates until it is at most the library's tolerance (0.5 mm) or 16 Newton steps have
+    /// run.
+    pub residual: f64,
+}
+
+/// A Wave Train Boxes scene (opaque): water grid, terrain, boxes, effects and budget. Create
+/// with `ocean_scene_create`, free with `ocean_scene_destroy`.
+///
+/// Every function taking an `OceanScene *` may be called from several threads at once on the
+/// same scene: a lock inside the scene serialises them (they do not run concurrently with each
+/// other; evaluations and height queries spread their own work over the library's worker
+/// threads). Destroying must not race with any other use.
+pub struct OceanScene {
+    scene: Mutex<Scene>,
+}
+
+impl OceanScene {
+    fn lock(&self) -> MutexGuard<'_, Scene> {
+        // A panic inside a call (a library bug, reported as OCEAN_STATUS_PANIC) poisons the
+        // lock; the scene stays consistent, since every mutation replaces whole values.
+        self.scene.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+}
+
+const _: () = {
+    const fn shareable<T: Send + Sync>() {}
+    shareable::<OceanScene>();
+};
+
+/// The status of an `ocean-wtb` error, and its message prefixed with `context`.
+fn wtb_error(context: &str, e: WtbError) -> Error {
+    let status = match e {
+        WtbError::NotFinite(_) | WtbError::TerrainNotFinite { .. } => OceanStatus::NonFinite,
+        WtbError::TooSteep { .. } => OceanStatus::TooSteep,
+        WtbError::Wave { index, source } => return wave_error(index, source),
+        WtbError::UnknownBox(_) => OceanStatus::NotFound,
+        WtbError::OutsideGrid => OceanStatus::OutsideGrid,
+        WtbError::Eval(e) => return eval_error(e, "xz"),
+        _ => OceanStatus::InvalidArgument,
+    };
+    Error::new(status, format!("{context}{e}"))
+}
+
+/// Explicit trains: errors name `trains[i]`.
+fn trains_error(e: WtbError) -> Error {
+    match e {
+        WtbError::Wave { index, source } => {
+            let status = match source {
+                WaveError::TooSteep(_) => OceanStatus::TooSteep,
+                _ => OceanStatus::InvalidArgument,
+            };
+            Error::new(status, format!("trains[{index}]: {source}"))
+        }
+        e => wtb_error("trains: ", e),
+    }
+}
+
+fn flag(name: &str, v: u8) -> Result<bool, Error> {
+    match v {
+        0 => Ok(false),
+        1 => Ok(true),
+        _ => Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("{name} must be 0 or 1, got {v}"),
+        )),
+    }
+}
+
+fn refraction_from(v: u32, name: &str) -> Result<Refraction, Error> {
+    match v {
+        0 => Ok(Refraction::Off),
+        1 => Ok(Refraction::PhaseShift),
+        2 => Ok(Refraction::Dispersion),
+        _ => Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("{name} = {v} is not an OceanRefraction (0, 1 or 2)"),
+        )),
+    }
+}
+
+fn effects_from(e: &OceanEffects, name: &str) -> Result<Effects, Error> {
+    let refraction = refraction_from(e.refraction, &format!("{name}->refraction"))?;
+    let shoaling = flag(&format!("{name}->shoaling"), e.shoaling)?;
+    let round_waves = flag(&format!("{name}->round_waves"), e.round_waves)?;
+    let irregular = if flag(&format!("{name}->irregular.enabled"), e.irregular.enabled)? {
+        let p = &e.irregular;
+        check_finite(
+            &format!("{name}->irregular."),
+            &[
+                ("scale", p.scale),
+                ("frequency", p.frequency),
+                ("envelope_wavenumber", p.envelope_wavenumber),
+                ("envelope_speed", p.envelope_speed),
+            ],
+        )?;
+        Some(Irregular {
+            scale: p.scale,
+            frequency: p.frequency,
+            envelope_wavenumber: p.envelope_wavenumber,
+            envelope_speed: p.envelope_speed,
+        })
+    } else {
+        None
+    };
+    let noise = if flag(&format!("{name}->noise.enabled"), e.noise.enabled)? {
+        check_finite(
+            &format!("{name}->noise."),
+            &[("amplitude", e.noise.amplitude)],
+        )?;
+        Some(Noise {
+            amplitude: e.noise.amplitude,
+            seed: e.noise.seed,
+        })
+    } else {
+        None
+    };
+    let beach = if flag(&format!("{name}->beach.enabled"), e.beach.enabled)? {
+        let b = &e.beach;
+        check_finite(
+            &format!("{name}->beach."),
+            &[
+                ("max_depth_share", b.max_depth_share),
+                ("run_up", b.run_up),
+                ("run_up_depth", b.run_up_depth),
+            ],
+        )?;
+        Some(Beach {
+            max_depth_share: b.max_depth_share,
+            run_up: b.run_up,
+            run_up_depth: b.run_up_depth,
+        })
+    } else {
+        None
+    };
+    Ok(Effects {
+        refraction,
+        shoaling,
+        irregular,
+        noise,
+        round_waves,
+        beach,
+    })
+}
+
+fn effects_to(e: &Effects) -> OceanEffects {
+    let refraction = match e.refraction {
+        Refraction::Off => OceanRefraction::Off,
+        Refraction::PhaseShift => OceanRefraction::PhaseShift,
+        Refraction::Dispersion => OceanRefraction::Dispersion,
+    };
+    OceanEffects {
+        refraction: refraction as u32,
+        shoaling: u8::from(e.shoaling),
+        round_waves: u8::from(e.round_waves),
+        irregular: e
+            .irregular
+            .map_or_else(OceanIrregular::default, |p| OceanIrregular {
+                enabled: 1,
+                scale: p.scale,
+                frequency: p.frequency,
+                envelope_wavenumber: p.envelope_wavenumber,
+                envelope_speed: p.envelope_speed,
+            }),
+        noise: e.noise.map_or_else(OceanNoise::default, |n| OceanNoise {
+            enabled: 1,
+            amplitude: n.amplitude,
+            seed: n.seed,
+        }),
+        beach: e.beach.map_or_else(OceanBeach::default, |b| OceanBeach {
+            enabled: 1,
+            max_depth_share: b.max_depth_share,
+            run_up: b.run_up,
+            run_up_depth: b.run_up_depth,
+        }),
+    }
+}
+
+fn stats_to(s: &FrameStats) -> OceanFrameStats {
+    let selection = s.selection.unwrap_or(Selection {
+        max_trains: usize::MAX,
+        effects: Effects::default(),
+    });
+    OceanFrameStats {
+        alive: s.alive,
+        culled: s.culled,
+        rebuilt: s.rebuilt,
+        trains: s.trains,
+        max_trains: selection.max_trains,
+        effects: effects_to(&selection.effects),
+        estimated_seconds: s.estimated_ns * 1e-9,
+    }
+}
+
+/// Reads and validates a grid description.
+fn water_grid(g: &OceanWaterGridDesc) -> Result<WaterGrid, Error> {
+    if g.nx == 0 || g.nz == 0 {
+        return Err(Error::new(
+            OceanStatus::Empty,
+            format!("grid is {} x {}: both sizes must be >= 2", g.nx, g.nz),
+        ));
+    }
+    g.nx.checked_mul(g.nz).ok_or_else(|| {
+        Error::new(
+            OceanStatus::LengthOverflow,
+            format!("grid point count {} x {} overflows size_t", g.nx, g.nz),
+        )
+    })?;
+    check_finite(
+        "grid->",
+        &[
+            ("origin_x", g.origin_x),
+            ("origin_z", g.origin_z),
+            ("spacing", g.spacing),
+        ],
+    )?;
+    WaterGrid::new(DVec2::new(g.origin_x, g.origin_z), g.spacing, g.nx, g.nz)
+        .map_err(|e| wtb_error("grid: ", e))
+}
+
+/// A terrain from the caller's heights: NULL with length 0 is deep sea.
+///
+/// # Safety
+///
+/// `heights` must be NULL or point to `len` readable floats.
+unsafe fn terrain(grid: &WaterGrid, heights: *const f32, len: usize) -> Result<Terrain, Error> {
+    if heights.is_null() {
+        if len != 0 {
+            return Err(Error::new(
+                OceanStatus::NullPointer,
+                format!(
+                    "`terrain_heights` is NULL but `terrain_len` is {len} (pass NULL and 0 for \
+                     a deep sea)"
+                ),
+            ));
+        }
+        return Ok(Terrain::deep(grid));
+    }
+    check_ptr(heights, "terrain_heights")?;
+    byte_len::<f32>(len, "terrain_heights")?;
+    if len != grid.len() {
+        return Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!(
+                "`terrain_len` is {len}, the water grid has {} x {} = {} points: give one height \
+                 per point, row-major",
+                grid.nx(),
+                grid.nz(),
+                grid.len()
+            ),
+        ));
+    }
+    // SAFETY: non-NULL and aligned (checked), the byte size fits in isize (checked), and the
+    // caller guarantees `len` readable floats that nobody writes during the call.
+    let h = unsafe { core::slice::from_raw_parts(heights, len) };
+    Terrain::from_slice(grid, h).map_err(|e| wtb_error("terrain_heights: ", e))
+}
+
+/// Reads a box description and its explicit trains, and checks them against the scene's grid.
+///
+/// # Safety
+///
+/// `desc` must be NULL, misaligned or readable; `trains` NULL, misaligned or `n_trains`
+/// readable descriptions.
+unsafe fn box_spec(
+    grid: &WaterGrid,
+    desc: *const OceanBoxDesc,
+    trains: *const OceanWaveDesc,
+    n_trains: usize,
+) -> Result<BoxSpec, Error> {
+    check_ptr(desc, "desc")?;
+    // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
+    let d = unsafe { desc.read() };
+    let w = &d.wind;
+    check_finite(
+        "desc->wind.",
+        &[
+            ("speed", w.speed),
+            ("direction_x", w.direction_x),
+            ("direction_z", w.direction_z),
+            ("origin_x", w.origin_x),
+            ("origin_z", w.origin_z),
+            ("width", w.width),
+            ("fetch", w.fetch),
+            ("start", w.start),
+            ("build_up", w.build_up),
+            ("decay", w.decay),
+        ],
+    )?;
+    if w.sustain.is_nan() || w.sustain == f64::NEG_INFINITY {
+        return Err(Error::new(
+            OceanStatus::NonFinite,
+            format!(
+                "desc->wind.sustain must be finite seconds or +INFINITY (never dies), got {}",
+                w.sustain
+            ),
+        ));
+    }
+    check_finite("desc->", &[("smoothing", d.smoothing)])?;
+    let recovery = if flag("desc->has_recovery", d.has_recovery)? {
+        check_finite("desc->", &[("recovery", d.recovery)])?;
+        Some(d.recovery)
+    } else {
+        None
+    };
+    if w.speed == 0.0 {
+        return Err(Error::new(
+            OceanStatus::InvalidArgument,
+            "desc->wind.speed is 0: a wind that does not blow raises no waves (speed in (0, 100] m/s)",
+        ));
+    }
+    let wind = Wind {
+        speed: w.speed,
+        direction: DVec2::new(w.direction_x, w.direction_z),
+        origin: DVec2::new(w.origin_x, w.origin_z),
+        width: w.width,
+        fetch: w.fetch,
+        start: w.start,
+        build_up: w.build_up,
+        sustain: w.sustain,
+        decay: w.decay,
+        seed: w.seed,
+        trains: w.trains,
+    };
+    let explicit = if n_trains == 0 {
+        None
+    } else {
+        check_ptr(trains, "trains")?;
+        byte_len::<OceanWaveDesc>(n_trains, "trains")?;
+        if n_trains > MAX_EXPLICIT_TRAINS {
+            return Err(Error::new(
+                OceanStatus::InvalidArgument,
+                format!("`n_trains` is {n_trains}: a box takes at most {MAX_EXPLICIT_TRAINS}"),
+            ));
+        }
+        // SAFETY: non-NULL and aligned (checked), the byte size fits in isize (checked), and the
+        // caller guarantees `n_trains` readable descriptions that nobody writes during the call.
+        let src = unsafe { core::slice::from_raw_parts(trains, n_trains) };
+        let descs: Vec<WaveDesc> = src
+            .iter()
+            .enumerate()
+            .map(|(i, t)| wave_desc_in("trains", i, t))
+            .collect::<Result<_, _>>()?;
+        Some(descs)
+    };
+    wind.validate().map_err(|e| wtb_error("desc->wind: ", e))?;
+    check_reaches_grid(grid, &wind)?;
+    let source = match explicit {
+        None => TrainSource::FromWind,
+        Some(descs) => {
+            let source = TrainSource::Explicit(descs);
+            source.resolve(&wind).map_err(trains_error)?;
+            source
+        }
+    };
+    Ok(BoxSpec {
+        wind,
+        trains: source,
+        smoothing: d.smoothing,
+        recovery,
+    })
+}
+
+/// Fails with `OCEAN_STATUS_OUTSIDE_GRID` when the box's rectangle at its full fetch cannot
+/// touch the water grid's rectangle (a separating-axis test; touching counts as reaching).
+fn check_reaches_grid(grid: &WaterGrid, wind: &Wind) -> Result<(), Error> {
+    let s = grid.spacing();
+    let full =
+        BoxFrame::new(wind.origin, wind.direction, wind.fetch, wind.width, s).map_err(|e| {
+            wtb_error(
+                "desc->wind: the box at full fetch, in units of the grid spacing: ",
+                e,
+            )
+        })?;
+    let extent = grid.max_corner() - grid.origin();
+    let whole = BoxFrame::new(grid.origin(), DVec2::X, extent.x, extent.y, s)
+        .map_err(|e| wtb_error("grid: ", e))?;
+    if rectangles_overlap(&full, &whole) {
+        return Ok(());
+    }
+    let (o, u, v) = (
+        full.origin(),
+        full.u() * full.length(),
+        full.v() * full.width(),
+    );
+    let (lo, hi) = (grid.origin(), grid.max_corner());
+    Err(Error::new(
+        OceanStatus::OutsideGrid,
+        format!(
+            "the box (corners ({:.3}, {:.3}), ({:.3}, {:.3}), ({:.3}, {:.3}), ({:.3}, {:.3}) at \
+             full fetch) lies wholly outside the water grid [{}, {}] x [{}, {}]: it could never \
+             move a point",
+            o.x,
+            o.y,
+            (o + u).x,
+            (o + u).y,
+            (o + u + v).x,
+            (o + u + v).y,
+            (o + v).x,
+            (o + v).y,
+            lo.x,
+            hi.x,
+            lo.y,
+            hi.y
+        ),
+    ))
+}
+
+/// Borrows a scene handle after checking it for NULL and alignment.
+///
+/// # Safety
+///
+/// `scene` must be NULL, misaligned, or a live handle from `ocean_scene_create`.
+unsafe fn handle<'a>(scene: *mut OceanScene) -> Result<&'a OceanScene, Error> {
+    check_ptr(scene.cast_const(), "scene")?;
+    // SAFETY: non-NULL and aligned (checked); live and not being destroyed (caller's
+    // guarantee); only shared references are made, and the scene is behind a mutex.
+    Ok(unsafe { &*scene })
+}
+
+/// The box with the caller's id.
+fn box_id(scene: &Scene, id: u32) -> Result<BoxId, Error> {
+    scene.box_ids().find(|b| b.get() == id).ok_or_else(|| {
+        Error::new(
+            OceanStatus::NotFound,
+            format!("no box with id {id} in this scene (removed, never added, or another scene's)"),
+        )
+    })
+}
+
+/// Stores the library's default effects in `*out`: refraction `OCEAN_REFRACTION_PHASE_SHIFT`,
+/// shoaling on, round waves, irregular height, noise and beach off (as a new scene has them).
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+/// then left unchanged.
+///
+/// # Safety
+///
+/// `out` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_effects_default(out: *mut OceanEffects) -> OceanStatus {
+    guard("ocean_effects_default", || {
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out, "out", effects_to(&Effects::default())) }
+    })
+}
+
+/// Creates a scene: a water grid over a terrain, no boxes yet, the default effects
+/// (`ocean_effects_default`) and no budget limit. Stores the new handle in `*out`.
+///
+/// `terrain_heights` holds one height per grid point, row-major (point (i, j) at j*nx + i):
+/// the ground's height above the sea at rest, metres. A height < 0 is sea floor at depth
+/// -height; a height >= 0 is land, where the water stays at rest. Pass NULL and 0 for an open
+/// sea of infinite depth. Outside the grid the sea is deep. The heights are copied.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` if `grid` or `out` is NULL, or `terrain_heights` is NULL
+/// with `terrain_len` != 0; `OCEAN_STATUS_MISALIGNED_POINTER`; `OCEAN_STATUS_EMPTY` if `nx` or
+/// `nz` is 0; `OCEAN_STATUS_LENGTH_OVERFLOW` if `nx * nz` overflows; `OCEAN_STATUS_NON_FINITE`
+/// for a NaN or infinite origin, spacing or height; `OCEAN_STATUS_INVALID_ARGUMENT` for a side
+/// outside 2 to 4096, a spacing outside [1e-3, 1e4] m, an origin beyond 1e9 m, or
+/// `terrain_len` != nx * nz. On failure `*out` is unchanged. Free the scene with
+/// `ocean_scene_destroy`.
+///
+/// # Safety
+///
+/// `grid` must point to a readable `OceanWaterGridDesc`, `terrain_heights` be NULL or point to
+/// `terrain_len` readable floats, and `out` point to a writable pointer; none is retained.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_scene_create(
+    grid: *const OceanWaterGridDesc,
+    terrain_heights: *const f32,
+    terrain_len: usize,
+    out: *mut *mut OceanScene,
+) -> OceanStatus {
+    guard("ocean_scene_create", || {
+        check_ptr(grid, "grid")?;
+        check_ptr(out.cast_const(), "out")?;
+        // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
+        let g = water_grid(&unsafe { grid.read() })?;
+        // SAFETY: forwarded from this function's contract.
+        let t = unsafe { terrain(&g, terrain_heights, terrain_len) }?;
+        let scene = Scene::new(g, t).map_err(|e| wtb_error("", e))?;
+        let handle = Box::into_raw(Box::new(OceanScene {
+            scene: Mutex::new(scene),
+        }));
+        // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
+        unsafe { out.write(handle) };
+        Ok(())
+    })
+}
+
+/// Frees a scene and its boxes. NULL is ignored, and so is a pointer that is not even aligned.
+/// Never fails; leaves the last-error message alone.
+///
+/// # Safety
+///
+/// `scene` must be NULL or a handle from `ocean_scene_create` not yet destroyed, and no other
+/// thread may be using it.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_scene_destroy(scene: *mut OceanScene) {
+    if scene.is_null() || !scene.is_aligned() {
+        return;
+    }
+    // SAFETY: the caller guarantees a live handle from `ocean_scene_create` (a `Box::into_raw`)
+    // used by nobody else; it is not used again.
+    let boxed = unsafe { Box::from_raw(scene) };
+    let _ = catch_unwind(AssertUnwindSafe(move || drop(boxed)));
+}
+
+/// Replaces the scene's terrain (same format as in `ocean_scene_create`; NULL and 0 for a deep
+/// sea). Every box's land, depth and refraction along its rays is recomputed at the next
+/// evaluation.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (or NULL with
+/// a length), `OCEAN_STATUS_INVALID_ARGUMENT` if `terrain_len` != nx * nz,
+/// `OCEAN_STATUS_NON_FINITE` for a NaN or infinite height (the message gives its index). On
+/// failure the scene keeps its terrain.
+///
+/// # Safety
+///
+/// `scene` must be a live handle; `terrain_heights` NULL or `terrain_len` readable floats.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_scene_set_terrain(
+    scene: *mut OceanScene,
+    terrain_heights: *const f32,
+    terrain_len: usize,
+) -> OceanStatus {
+    guard("ocean_scene_set_terrain", || {
+        // SAFETY: forwarded from this function's contract.
+        let scene = unsafe { handle(scene) }?;
+        let mut scene = scene.lock();
+        let grid = *scene.grid();
+        // SAFETY: forwarded from this function's contract.
+        let t = unsafe { terrain(&grid, terrain_heights, terrain_len) }?;
+        scene.set_terrain(t).map_err(|e| wtb_error("", e))
+    })
+}
+
+/// Adds a wave train box raised by `desc->wind`, and stores its id in `*out_id`. Ids are never
+/// reused within a scene.
+///
+/// The trains: with `n_trains` = 0 (`trains` is then ignored and may be NULL) the wind raises
+/// `desc->wind.trains` trains by the library's seeded mapping (peak wavelength from the
+/// Pierson-Moskowitz spectrum, the others spread within 30 degrees, amplitudes summing to H/2);
+/// otherwise exactly the `n_trains` (at most 64) given trains are used, at full amplitude while
+/// the wind is sustained (the wind then sets only the box and its lifecycle; each train's depth
+/// sets its frequency, +INFINITY for deep water, and the terrain's depth effects apply on top).
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (`trains` is
+/// checked only when `n_trains` > 0), `OCEAN_STATUS_NON_FINITE` for a NaN or infinite member
+/// (`sustain` may be +INFINITY, a train's `depth` too), `OCEAN_STATUS_INVALID_ARGUMENT` for a
+/// member out of range (zero wind speed, zero direction, width or fetch <= 0, negative
+/// durations, `trains` outside 1 to 8, negative smoothing or recovery, `has_recovery` not 0 or
+/// 1, more than 64 explicit trains, a box longer or wider than 2^24 grid spacings),
+/// `OCEAN_STATUS_TOO_STEEP` if explicit trains have k*A > 1 each or a summed k*A above 1,
+/// `OCEAN_STATUS_LENGTH_OVERFLOW` for an absurd `n_trains`, `OCEAN_STATUS_OUTSIDE_GRID` when
+/// the box's rectangle at full fetch lies wholly outside the water grid. On failure nothing is
+/// added and `*out_id` is unchanged.
+///
+/// # Safety
+///
+/// `scene` must be a live handle, `desc` readable, `trains` NULL or `n_trains` readable
+/// descriptions, `out_id` writable; nothing is retained.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_scene_add_box(
+    scene: *mut OceanScene,
+    desc: *const OceanBoxDesc,
+    trains: *const OceanWaveDesc,
+    n_trains: usize,
+    out_id: *mut u32,
+) -> OceanStatus {
+    guard("ocean_scene_add_box", || {
+        // SAFETY: forwarded from this function's contract.
+        let scene = unsafe { handle(scene) }?;
+        check_ptr(out_id.cast_const(), "out_id")?;
+        let mut scene = scene.lock();
+        let grid = *scene.grid();
+        // SAFETY: forwarded from this function's contract.
+        let spec = unsafe { box_spec(&grid, desc, trains, n_trains) }?;
+        let id = scene.add_box(spec).map_err(|e| wtb_error("", e))?;
+        // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
+        unsafe { out_id.write(id.get()) };
+        Ok(())
+    })
+}
+
+/// Replaces box `id`'s description (same arguments as `ocean_scene_add_box`): move or turn it
+/// (a boat's wake), change its wind or trains. A moved box's action points along its rays are
+/// recomputed at the next evaluation.
+///
+/// Returns `OCEAN_STATUS_NOT_FOUND` for an id that is not in the scene (removed, never issued)
+/// and otherwise as `ocean_scene_add_box`. On failure the box is unchanged.
+///
+/// # Safety
+///
+/// As `ocean_scene_add_box`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_scene_update_box(
+    scene: *mut OceanScene,
+    id: u32,
+    desc: *const OceanBoxDesc,
+    trains: *const OceanWaveDesc,
+    n_trains: usize,
+) -> OceanStatus {
+    guard("ocean_scene_update_box", || {
+        // SAFETY: forwarded from this function's contract.
+        let scene = unsafe { handle(scene) }?;
+        let mut scene = scene.lock();
+        let id = box_id(&scene, id)?;
+        let grid = *scene.grid();
+        // SAFETY: forwarded from this function's contract.
+        let spec = unsafe { box_spec(&grid, desc, trains, n_trains) }?;
+        scene.update_box(id, spec).map_err(|e| wtb_error("", e))
+    })
+}
+
+/// Removes box `id`. Returns `OCEAN_STATUS_NOT_FOUND` for an id not in the scene (also when
+/// it was removed already).
+///
+/// # Safety
+///
+/// `scene` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_scene_remove_box(scene: *mut OceanScene, id: u32) -> OceanStatus {
+    guard("ocean_scene_remove_box", || {
+        // SAFETY: forwarded from this function's contract.
+        let scene = unsafe { handle(scene) }?;
+        let mut scene = scene.lock();
+        let id = box_id(&scene, id)?;
+        scene.remove_box(id).map_err(|e| wtb_error("", e))
+    })
+}
+
+/// Stores the number of boxes in the scene (alive at any time or not) in `*out_count`.
+///
+/// # Safety
+///
+/// `scene` must be a live handle and `out_count` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_scene_box_count(
+    scene: *mut OceanScene,
+    out_count: *mut usize,
+) -> OceanStatus {
+    guard("ocean_scene_box_count", || {
+        // SAFETY: forwarded from this function's contract.
+        let scene = unsafe { handle(scene) }?;
+        let count = scene.lock().box_ids().count();
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out_count, "out_count", count) }
+    })
+}
+
+/// Enables and parameterises the effects (a budget may run fewer of them).
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER`, `OCEAN_STATUS_NON_FINITE` for a
+/// NaN or infinite parameter of an enabled effect, `OCEAN_STATUS_INVALID_ARGUMENT` for an
+/// unknown refraction, a flag other than 0 or 1, or a parameter out of its range (see
+/// `OceanEffects`). On failure the scene keeps its effects.
+///
+/// # Safety
+///
+/// `scene` must be a live handle and `effects` readable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_scene_set_effects(
+    scene: *mut OceanScene,
+    effects: *const OceanEffects,
+) -> OceanStatus {
+    guard("ocean_scene_set_effects", || {
+        // SAFETY: forwarded from this function's contract.
+        let scene = unsafe { handle(scene) }?;
+        check_ptr(effects, "effects")?;
+        // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
+        let e = effects_from(&unsafe { effects.read() }, "effects")?;
+        scene
+            .lock()
+            .set_effects(e)
+            .map_err(|e| wtb_error("effects: ", e))
+    })
+}
+
+/// Removes any budget limit: every enabled train and effect runs (the default).
+///
+/// # Safety
+///
+/// `scene` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_scene_set_budget_unlimited(scene: *mut OceanScene) -> OceanStatus {
+    guard("ocean_scene_set_budget_unlimited", || {
+        // SAFETY: forwarded from this function's contract.
+        let scene = unsafe { handle(scene) }?;
+        scene
+            .lock()
+            .set_budget(Budget::Unlimited)
+            .map_err(|e| wtb_error("", e))
+    })
+}
+
+/// Limits each evaluation to about `seconds` of estimated work (paper section 2.3): culling
+/// first, then trains rank by rank (every visible box's largest train, then its second, ...),
+/// then the effects in the order refraction, shoaling, round waves, irregular height, beach,
+/// and the noise last, each admitted while the estimate fits. `OceanFrameStats` reports the
+/// choice.
+///
+/// Returns `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `seconds`,
+/// `OCEAN_STATUS_INVALID_ARGUMENT` for a negative one; the budget is then unchanged.
+///
+/// # Safety
+///
+/// `scene` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_scene_set_budget_seconds(
+    scene: *mut OceanScene,
+    seconds: f64,
+) -> OceanStatus {
+    guard("ocean_scene_set_budget_seconds", || {
+        // SAFETY: forwarded from this function's contract.
+        let scene = unsafe { handle(scene) }?;
+        check_finite("", &[("seconds", seconds)])?;
+        scene
+            .lock()
+            .set_budget(Budget::Seconds(seconds))
+            .map_err(|e| wtb_error("", e))
+    })
+}
+
+/// Fixes each evaluation's work explicitly: at most `max_trains` trains per box (its largest;
+/// `SIZE_MAX` for all, 0 for none) and exactly the effects in `*effects` (validated as in
+/// `ocean_scene_set_effects`), whatever the effects enabled with `ocean_scene_set_effects`.
+///
+/// # Safety
+///
+/// `scene` must be a live handle and `effects` readable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_scene_set_budget_explicit(
+    scene: *mut OceanScene,
+    max_trains: usize,
+    effects: *const OceanEffects,
+) -> OceanStatus {
+    guard("ocean_scene_set_budget_explicit", || {
+        // SAFETY: forwarded from this function's contract.
+        let scene = unsafe { handle(scene) }?;
+        check_ptr(effects, "effects")?;
+        // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
+        let e = effects_from(&unsafe { effects.read() }, "effects")?;
+        scene
+            .lock()
+            .set_budget(Budget::Explicit(Selection {
+                max_trains,
+                effects: e,
+            }))
+            .map_err(|e| wtb_error("effects: ", e))
+    })
+}
+
+fn depth_convention(v: u32) -> Result<DepthConvention, Error> {
+    match v {
+        0 => Ok(DepthConvention::ZERO_TO_ONE),
+        1 => Ok(DepthConvention::ZERO_TO_ONE_REVERSED),
+        2 => Ok(DepthConvention::NEG_ONE_TO_ONE),
+        _ => Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("`depth_convention` = {v} is not an OceanDepthConvention (0, 1 or 2)"),
+        )),
+    }
+}
+
+/// The frustum of the caller's matrix, read (copied) before any output is touched.
+///
+/// # Safety
+///
+/// `m` must be NULL, misaligned, or point to 16 readable floats.
+unsafe fn frustum(m: *const f32, depth: u32) -> Result<Option<Frustum>, Error> {
+    if m.is_null() {
+        return Ok(None);
+    }
+    check_ptr(m, "view_projection")?;
+    // SAFETY: non-NULL and 4-aligned (checked), 16 readable floats (caller's guarantee); copied.
+    let a: [f32; 16] = unsafe { m.cast::<[f32; 16]>().read() };
+    if let Some(k) = a.iter().position(|v| !v.is_finite()) {
+        return Err(Error::new(
+            OceanStatus::NonFinite,
+            format!("view_projection[{k}] = {} is not finite", a[k]),
+        ));
+    }
+    let convention = depth_convention(depth)?;
+    Frustum::from_view_projection_f32(Mat4::from_cols_array(&a), convention)
+        .map(Some)
+        .map_err(|e| {
+            let status = match e {
+                FrustumError::NotFinite(_) => OceanStatus::NonFinite,
+                _ => OceanStatus::InvalidArgument,
+            };
+            Error::new(status, format!("view_projection is not a projection: {e}"))
+        })
+}
+
+/// Evaluates the whole water grid at `time` seconds into the caller's buffers.
+///
+/// For grid point (i, j), element j*nx + i of `out_pos` receives its displaced position
+/// **relative to the grid origin** (rest position (i*spacing, 0, j*spacing), so float precision
+/// does not degrade far from the world origin; add (origin_x, 0, origin_z) for world space),
+/// and `out_normal` the unit surface normal (right-handed, y up). Each frame is recomputed from
+/// the rest state (the paper's frame independence): any time may be evaluated in any order.
+/// Boxes that are alive at `time` add their trains, modulated by land (zero on land, recovering
+/// behind it), depth (shoaling, refraction), the side smoothing and the enabled effects; grid
+/// points on land stay exactly at rest.
+///
+/// `view_projection`: NULL for no culling, or 16 floats, column-major (GLM's
+/// layout, `&m[0][0]`), the world-space projection * view matrix, with `depth_convention` an
+/// `OceanDepthConvention` (ignored when NULL). A box whose bounding box (raised by the maximum
+/// heights of all boxes that overlap it) lies wholly outside the frustum is skipped: its
+/// points stay at rest in this frame. Height queries never cull.
+///
+/// `n` must equal nx * nz. `out_stats`, when not NULL, receives what ran.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
+/// alignment for floats and OceanVec3, 8 for the scene and stats), `OCEAN_STATUS_EMPTY` if `n`
+/// is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanVec3)` exceeds `PTRDIFF_MAX`,
+/// `OCEAN_STATUS_INVALID_ARGUMENT` if `n` != nx * nz, the outputs overlap, `depth_convention`
+/// is unknown or the matrix is not a projection, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite
+/// `time` or matrix element. Nothing is written on failure.
+///
+/// # Safety
+///
+/// `scene` must be a live handle, `view_projection` NULL or 16 readable floats, `out_pos` and
+/// `out_normal` `n` writable `OceanVec3`s each, `out_stats` NULL or writable; no other thread
+/// may touch the buffers during the call.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn ocean_scene_evaluate(
+    scene: *mut OceanScene,
+    time: f64,
+    view_projection: *const f32,
+    depth_convention: u32,
+    out_pos: *mut OceanVec3,
+    out_normal: *mut OceanVec3,
+    n: usize,
+    out_stats: *mut OceanFrameStats,
+) -> OceanStatus {
+    guard("ocean_scene_evaluate", || {
+        // SAFETY: forwarded from this function's contract.
+        let scene = unsafe { handle(scene) }?;
+        check_ptr(out_pos.cast_const(), "out_pos")?;
+        check_ptr(out_normal.cast_const(), "out_normal")?;
+        if !out_stats.is_null() {
+            check_ptr(out_stats.cast_const(), "out_stats")?;
+        }
+        if n == 0 {
+            return Err(Error::new(
+                OceanStatus::Empty,
+                "`n` is 0: it must be the grid's point count nx * nz",
+            ));
+        }
+        let bytes = byte_len::<OceanVec3>(n, "out_pos")?;
+        let pos_range = (out_pos.cast_const().cast::<u8>(), bytes, "out_pos");
+        let nrm_range = (out_normal.cast_const().cast::<u8>(), bytes, "out_normal");
+        check_disjoint(pos_range, nrm_range)?;
+        if !out_stats.is_null() {
+            let stats_range = (
+                out_stats.cast_const().cast::<u8>(),
+                size_of::<OceanFrameStats>(),
+                "out_stats",
+            );
+            check_disjoint(pos_range, stats_range)?;
+            check_disjoint(nrm_range, stats_range)?;
+        }
+        check_time(time)?;
+        // SAFETY: forwarded from this function's contract.
+        let view = unsafe { frustum(view_projection, depth_convention) }?;
+        let mut scene = scene.lock();
+        let grid = *scene.grid();
+        if n != grid.len() {
+            return Err(Error::new(
+                OceanStatus::InvalidArgument,
+                format!(
+                    "`n` is {n}, the water grid has {} x {} = {} points",
+                    grid.nx(),
+                    grid.nz(),
+                    grid.len()
+                ),
+            ));
+        }
+        let frame = scene
+            .frame(time, view.as_ref())
+            .map_err(|e| wtb_error("", e))?;
+        // SAFETY: both pointers are non-NULL and aligned, the byte size fits in isize and the
+        // ranges are disjoint (all checked above); the caller guarantees `n` writable elements
+        // in each, untouched by others during the call.
+        let (pos, nrm) = unsafe {
+            (
+                core::slice::from_raw_parts_mut(out_pos, n),
+                core::slice::from_raw_parts_mut(out_normal, n),
+            )
+        };
+        let pos: &mut [Vec3] = bytemuck::cast_slice_mut(pos);
+        let nrm: &mut [Vec3] = bytemuck::cast_slice_mut(nrm);
+        frame.evaluate_par(pos, nrm).map_err(|e| wtb_error("", e))?;
+        if !out_stats.is_null() {
+            // SAFETY: non-NULL and aligned (checked), writable and disjoint from the outputs
+            // (checked; the slices above are no longer used).
+            unsafe { out_stats.write(stats_to(frame.stats())) };
+        }
+        Ok(())
+    })
+}
+
+/// Answers `n` height queries at world (x, z) = `xz[k]` and `time` seconds, into `out[k]`:
+/// the water surface exactly as `ocean_scene_evaluate` shows it (same boxes, depth, land,
+/// effects and budget, but never culled), between grid points too. Gerstner waves move points
+/// sideways, so the rest position whose displaced point lies over the query is found by
+/// Newton's method (from the query itself, while no crest folds) to a horizontal residual of
+/// at most 0.5 mm or for at most 16 steps (see `OceanHeightSample::residual`), then the height
+/// and normal are taken there; the
+/// modulation and height field are bilinear between grid points, so at a displaced grid point
+/// the answer is the grid's own. Outside the grid the water is at rest. The batch is spread
+/// over the library's worker threads; results do not depend on their number.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` (8-byte alignment),
+/// `OCEAN_STATUS_EMPTY` if `n` is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if
+/// `n * sizeof(OceanHeightSample)` exceeds `PTRDIFF_MAX`, `OCEAN_STATUS_INVALID_ARGUMENT` if
+/// `xz` and `out` overlap, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or
+/// coordinate (the message gives the first bad index). Nothing is written on failure.
+///
+/// # Safety
+///
+/// `scene` must be a live handle, `xz` `n` readable `OceanDVec2`s and `out` `n` writable
+/// `OceanHeightSample`s, untouched by other threads during the call.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_scene_heights(
+    scene: *mut OceanScene,
+    time: f64,
+    xz: *const OceanDVec2,
+    n: usize,
+    out: *mut OceanHeightSample,
+) -> OceanStatus {
+    guard("ocean_scene_heights", || {
+        // SAFETY: forwarded from this function's contract.
+        let scene = unsafe { handle(scene) }?;
+        check_ptr(xz, "xz")?;
+        check_ptr(out.cast_const(), "out")?;
+        if n == 0 {
+            return Err(Error::new(
+                OceanStatus::Empty,
+                "`n` is 0: no points to query",
+            ));
+        }
+        let in_bytes = byte_len::<OceanDVec2>(n, "xz")?;
+        let out_bytes = byte_len::<OceanHeightSample>(n, "out")?;
+        check_disjoint(
+            (xz.cast::<u8>(), in_bytes, "xz"),
+            (out.cast_const().cast::<u8>(), out_bytes, "out"),
+        )?;
+        check_time(time)?;
+        // SAFETY: non-NULL and aligned (checked), the byte size fits in isize (checked), `n`
+        // readable elements (caller's guarantee), disjoint from `out` (checked).
+        let src = unsafe { core::slice::from_raw_parts(xz, n) };
+        if let Some(k) = src
+            .iter()
+            .position(|p| !(p.x.is_finite() && p.z.is_finite()))
+        {
+            return Err(Error::new(
+                OceanStatus::NonFinite,
+                format!("xz[{k}] = ({}, {}) is not finite", src[k].x, src[k].z),
+            ));
+        }
+        let at: Vec<DVec2> = src.iter().map(|p| DVec2::new(p.x, p.z)).collect();
+        let mut samples = vec![
+            HeightSample {
+                height: 0.0,
+                normal: glam::DVec3::Y,
+                rest: DVec2::ZERO,
+                residual: 0.0,
+            };
+            n
+        ];
+        {
+            let mut scene = scene.lock();
+            let frame = scene.frame(time, None).map_err(|e| wtb_error("", e))?;
+            frame
+                .heights_par(&at, &mut samples)
+                .map_err(|e| wtb_error("", e))?;
+        }
+        // SAFETY: non-NULL and aligned (checked), byte size fits (checked), `n` writable
+        // elements (caller's guarantee), disjoint from `xz` (checked, and `src` is not used
+        // any more).
+        let dst = unsafe { core::slice::from_raw_parts_mut(out, n) };
+        for (d, s) in dst.iter_mut().zip(&samples) {
+            *d = OceanHeightSample {
+                height: s.height,
+                normal: OceanDVec3 {
+                    x: s.normal.x,
+                    y: s.normal.y,
+                    z: s.normal.z,
+                },
+                rest: OceanDVec2 {
+                    x: s.rest.x,
+                    z: s.rest.y,
+                },
+                residual: s.residual,
+            };
+        }
+        Ok(())
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use core::ffi::CStr;
+    use ocean_wtb::scenarios;
+
+    fn last_error() -> String {
+        // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
+        unsafe { CStr::from_ptr(crate::ocean_last_error_message()) }
+            .to_string_lossy()
+            .into_owned()
+    }
+
+    const GRID: OceanWaterGridDesc = OceanWaterGridDesc {
+        origin_x: 0.0,
+        origin_z: 0.0,
+        spacing: 1.0,
+        nx: 64,
+        nz: 64,
+    };
+
+    /// The wind of `scenarios::steady_wind` in the C layout.
+    fn wind(
+        speed: f64,
+        dir: (f64, f64),
+        origin: (f64, f64),
+        width: f64,
+        fetch: f64,
+    ) -> OceanWindDesc {
+        OceanWindDesc {
+            speed,
+            direction_x: dir.0,
+            direction_z: dir.1,
+            origin_x: origin.0,
+            origin_z: origin.1,
+            width,
+            fetch,
+            start: -1.0,
+            build_up: 0.0,
+            sustain: f64::INFINITY,
+            decay: 0.0,
+            seed: 0,
+            trains: 1,
+        }
+    }
+
+    /// Scenario 1 of `ocean_wtb::scenarios` built through the C ABI.
+    fn scenario_1() -> *mut OceanScene {
+        let (grid, terrain) = scenarios::sloping(64).unwrap();
+        let heights = terrain.heights().unwrap().to_vec();
+        assert_eq!(grid.len(), heights.len());
+        let mut s = core::ptr::null_mut();
+        // SAFETY: valid pointers and lengths.
+        let st = unsafe { ocean_scene_create(&GRID, heights.as_ptr(), heights.len(), &mut s) };
+        assert_eq!(st, OceanStatus::Ok, "{}", last_error());
+        let mut e = OceanEffects::default();
+        // SAFETY: valid pointer.
+        assert_eq!(unsafe { ocean_effects_default(&mut e) }, OceanStatus::Ok);
+        e.shoaling = 0;
+        // SAFETY: live scene, valid pointer.
+        assert_eq!(unsafe { ocean_scene_set_effects(s, &e) }, OceanStatus::Ok);
+        for (w, trains, seed) in [
+            (wind(7.0, (1.0, 0.15), (-2.0, -4.0), 66.0, 70.0), 1, 11),
+            (wind(5.0, (0.7, 1.0), (30.0, -30.0), 60.0, 90.0), 2, 12),
+        ] {
+            let desc = OceanBoxDesc {
+                wind: OceanWindDesc { trains, seed, ..w },
+                smoothing: 4.0,
+                has_recovery: 0,
+                recovery: 0.0,
+            };
+            let mut id = u32::MAX;
+            // SAFETY: live scene, valid pointers, no explicit trains.
+            let st = unsafe { ocean_scene_add_box(s, &desc, core::ptr::null(), 0, &mut id) };
+            assert_eq!(st, OceanStatus::Ok, "{}", last_error());
+        }
+        s
+    }
+
+    /// The wrapper adds nothing to the arithmetic: grid and height queries equal
+    /// `ocean_wtb::scenarios::scenario_1` evaluated directly, bit for bit.
+    #[test]
+    fn matches_the_rust_scene_bit_for_bit() {
+        let s = scenario_1();
+        let mut direct = scenarios::scenario_1(64).unwrap();
+        for t in [0.0, 3.25, 1.0e6] {
+            let n = 64 * 64;
+            let mut pos = vec![OceanVec3::default(); n];
+            let mut nrm = pos.clone();
+            let mut stats = OceanFrameStats::default();
+            // SAFETY: n elements in each buffer.
+            let st = unsafe {
+                ocean_scene_evaluate(
+                    s,
+                    t,
+                    core::ptr::null(),
+                    0,
+                    pos.as_mut_ptr(),
+                    nrm.as_mut_ptr(),
+                    n,
+                    &mut stats,
+                )
+            };
+            assert_eq!(st, OceanStatus::Ok, "{}", last_error());
+            let frame = direct.frame(t, None).unwrap();
+            let mut cp = vec![Vec3::ZERO; n];
+            let mut cn = cp.clone();
+            frame.evaluate(&mut cp, &mut cn).unwrap();
+            let bits = |v: &[OceanVec3]| -> Vec<u32> {
+                v.iter()
+                    .flat_map(|p| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()])
+                    .collect()
+            };
+            let cbits = |v: &[Vec3]| -> Vec<u32> {
+                v.iter()
+                    .flat_map(|p| p.to_array().map(f32::to_bits))
+                    .collect()
+            };
+            assert_eq!(bits(&pos), cbits(&cp));
+            assert_eq!(bits(&nrm), cbits(&cn));
+            assert_eq!((stats.alive, stats.culled, stats.trains), (2, 0, 3));
+            assert!(pos.iter().any(|p| p.y.abs() > 0.05), "no waves at t = {t}");
+
+            let xz = [
+                OceanDVec2 { x: 10.3, z: 20.7 },
+                OceanDVec2 { x: 50.0, z: 5.5 },
+            ];
+            let mut out = [OceanHeightSample::default(); 2];
+            // SAFETY: two elements each.
+            let st = unsafe { ocean_scene_heights(s, t, xz.as_ptr(), 2, out.as_mut_ptr()) };
+            assert_eq!(st, OceanStatus::Ok, "{}", last_error());
+            for (q, o) in xz.iter().zip(&out) {
+                let h = frame.height_at(DVec2::new(q.x, q.z)).unwrap();
+                assert_eq!(o.height.to_bits(), h.height.to_bits());
+                assert_eq!([o.rest.x, o.rest.z], h.rest.to_array());
+                assert_eq!([o.normal.x, o.normal.y, o.normal.z], h.normal.to_array());
+            }
+        }
+        // SAFETY: live handle, destroyed once.
+        unsafe { ocean_scene_destroy(s) };
+    }
+
+    /// Misaligned pointers are refused before any access, and nothing is written.
+    #[test]
+    fn misaligned_pointers_are_refused() {
+        let s = scenario_1();
+        let mut storage = [0u64; 64];
+        let base = storage.as_mut_ptr().cast::<u8>();
+        let bad_vec3 = base.wrapping_add(1).cast::<OceanVec3>();
+        let good = base.wrapping_add(256).cast::<OceanVec3>();
+        // SAFETY: refused before any access.
+        let st = unsafe {
+            ocean_scene_evaluate(
+                s,
+                0.0,
+                core::ptr::null(),
+                0,
+                bad_vec3,
+                good,
+                4096,
+                core::ptr::null_mut(),
+            )
+        };
+        assert_eq!(st, OceanStatus::MisalignedPointer);
+        assert!(last_error().contains("out_pos"), "{}", last_error());
+        let bad_stats = base.wrapping_add(4).cast::<OceanFrameStats>();
+        let mut pos = vec![OceanVec3::default(); 4096];
+        let mut nrm = pos.clone();
+        // SAFETY: refused before any access.
+        let st = unsafe {
+            ocean_scene_evaluate(
+                s,
+                0.0,
+                core::ptr::null(),
+                0,
+                pos.as_mut_ptr(),
+                nrm.as_mut_ptr(),
+                4096,
+                bad_stats,
+            )
+        };
+        assert_eq!(st, OceanStatus::MisalignedPointer);
+        assert!(pos.iter().chain(&nrm).all(|p| *p == OceanVec3::default()));
+        let bad_xz = base.wrapping_add(4).cast::<OceanDVec2>().cast_const();
+        let mut out = [OceanHeightSample::default(); 1];
+        // SAFETY: refused before any access.
+        let st = unsafe { ocean_scene_heights(s, 0.0, bad_xz, 1, out.as_mut_ptr()) };
+        assert_eq!(st, OceanStatus::MisalignedPointer);
+        let bad_scene = base.wrapping_add(4).cast::<OceanScene>();
+        // SAFETY: refused before any access.
+        let st = unsafe { ocean_scene_remove_box(bad_scene, 0) };
+        assert_eq!(st, OceanStatus::MisalignedPointer);
+        assert!(
+            storage.iter().all(|&v| v == 0),
+            "a refused call wrote memory"
+        );
+        // SAFETY: misaligned pointers are ignored; live handle destroyed once.
+        unsafe {
+            ocean_scene_destroy(bad_scene);
+            ocean_scene_destroy(s);
+        }
+    }
+
+    /// Error statuses of the mapping that the C test cannot reach by a single bad member.
+    #[test]
+    fn error_mapping() {
+        let e = wtb_error("x: ", WtbError::UnknownBox(3));
+        assert_eq!(e.status, OceanStatus::NotFound);
+        let e = wtb_error("", WtbError::OutsideGrid);
+        assert_eq!(e.status, OceanStatus::OutsideGrid);
+        let e = wtb_error("", WtbError::TerrainNotFinite { index: 7 });
+        assert_eq!(e.status, OceanStatus::NonFinite);
+        let e = trains_error(WtbError::TooSteep {
+            total: 1.2,
+            max: 1.0,
+        });
+        assert_eq!(e.status, OceanStatus::TooSteep);
+        let e = trains_error(WtbError::Wave {
+            index: 2,
+            source: WaveError::TooSteep(1.5),
+        });
+        assert_eq!(
+            (e.status, e.message.starts_with("trains[2]")),
+            (OceanStatus::TooSteep, true)
+        );
+        // Flags and enums accept exactly their documented values.
+        assert!(flag("f", 2).is_err() && flag("f", 1).unwrap() && !flag("f", 0).unwrap());
+        assert!(refraction_from(3, "r").is_err());
+        assert!(depth_convention(3).is_err());
+        // The defaults round-trip through the C layout.
+        let d = effects_to(&Effects::default());
+        assert_eq!(effects_from(&d, "e").unwrap(), Effects::default());
+    }
+}
