@@ -593,7 +593,8 @@ fn box_rect(grid: &WaterGrid, frame: &BoxFrame) -> GridRect {
     let corners = [o, o + u, o + u + v, o + v];
     let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
     for c in corners {
-        let l = grid.to_local(c) / grid.spacing();
+        // Fractional grid coordinates (to_local already divides by the spacing).
+        let l = grid.to_local(c);
         lo = lo.min(l);
         hi = hi.max(l);
     }

@@ -391,3 +391,68 @@ fn a_time_budget_drops_effects_then_trains() {
     f.evaluate(&mut p, &mut q).unwrap();
     assert!(p.iter().all(|v| v.y == 0.0));
 }
+
+#[test]
+fn any_grid_spacing_gives_the_same_sea() {
+    // The model is in metres: the same wind over the same terrain sampled 0.5 m, 1 m or 2 m
+    // apart (grids covering the same 63 m square, from an origin off zero) must put the same
+    // waves at the points the three grids share (every 2 m). Smoothing, land recovery and
+    // shoaling depend on a point's position only; the refraction lag is summed along each ray
+    // with the grid's own step, so it differs slightly between spacings.
+    let origin = DVec2::new(-17.0, 5.0);
+    let make = |spacing: f64| {
+        let n = (63.0 / spacing) as usize + 1;
+        let grid = WaterGrid::new(origin, spacing, n, n).unwrap();
+        let terrain = Terrain::from_fn(&grid, |p| -(25.0 - 0.3 * (p.x - origin.x)) as f32).unwrap();
+        let mut s = Scene::new(grid, terrain).unwrap();
+        s.add_box(spec(wind(
+            7.0,
+            DVec2::new(1.0, 0.3),
+            origin + DVec2::new(-3.0, -6.0),
+            70.0,
+            75.0,
+            2,
+            4,
+        )))
+        .unwrap();
+        s
+    };
+    let heights = |mut s: Scene, step: usize| {
+        let n = s.grid().nx();
+        let (mut p, mut q) = (vec![Vec3::ZERO; n * n], vec![Vec3::ZERO; n * n]);
+        s.frame(8.0, None)
+            .unwrap()
+            .evaluate(&mut p, &mut q)
+            .unwrap();
+        // Every 2 m: every `step`-th point of every `step`-th row.
+        (0..n)
+            .step_by(step)
+            .flat_map(|j| (0..n).step_by(step).map(move |i| (i, j)))
+            .map(|(i, j)| p[j * n + i].y)
+            .collect::<Vec<f32>>()
+    };
+    let coarse = heights(make(2.0), 1);
+    let medium = heights(make(1.0), 2);
+    let fine = heights(make(0.5), 4);
+    assert_eq!(coarse.len(), medium.len());
+    assert_eq!(coarse.len(), fine.len());
+    let top = coarse.iter().fold(0.0f32, |m, v| m.max(v.abs()));
+    assert!(top > 0.2, "waves present: {top}");
+    let worst = |a: &[f32], b: &[f32]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0f32, f32::max)
+    };
+    // A centimetre bounds the refraction's discretisation difference.
+    assert!(
+        worst(&coarse, &medium) < 0.01,
+        "2 m vs 1 m: {}",
+        worst(&coarse, &medium)
+    );
+    assert!(
+        worst(&medium, &fine) < 0.01,
+        "1 m vs 0.5 m: {}",
+        worst(&medium, &fine)
+    );
+}
