@@ -13,7 +13,7 @@ use ocean_core::{Depth, Grid, WaveDesc, WaveSet};
 use rayon::prelude::*;
 use serde_json::{Value, json};
 
-use crate::bench_gpu;
+use crate::{bench_gpu, bench_wtb};
 
 #[derive(Args)]
 pub struct BenchArgs {
@@ -21,14 +21,14 @@ pub struct BenchArgs {
     suite: Suite,
     /// Print one JSON document instead of a table.
     #[arg(long)]
-    json: bool,
-    /// Grid side length (points per side).
+    pub json: bool,
+    /// Grid side length (points per side; `gerstner` only).
     #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(8..=8192))]
     size: u32,
     /// Timed repetitions per figure (the median is reported).
     #[arg(long, default_value_t = 15, value_parser = clap::value_parser!(u32).range(1..=1000))]
-    runs: u32,
-    /// Skip the GPU figures.
+    pub runs: u32,
+    /// Skip the GPU figures (`wtb` has none yet and accepts it).
     #[arg(long)]
     no_gpu: bool,
 }
@@ -37,6 +37,9 @@ pub struct BenchArgs {
 enum Suite {
     /// The trochoid (Gerstner) wave sum on a grid: CPU single-thread, all threads, GPU.
     Gerstner,
+    /// Wave train boxes (issue 3): scenario 1 from 64² to 2048², scaling, culling, effect
+    /// costs, height queries.
+    Wtb,
 }
 
 /// A wave set of `n` deep-water trochoids, wavelengths in geometric progression from 0.5 m to
@@ -95,9 +98,25 @@ pub fn interleaved_medians<const N: usize>(runs: u32, mut fs: [&mut dyn FnMut();
     })
 }
 
+/// The memory baseline of a grid `nx` points wide: writing the same output buffers once, with
+/// the same threads and task partition as the grid evaluations, so a ratio to it isolates the
+/// cost of the arithmetic.
+pub fn memory_baseline(nx: usize, pos: &mut [Vec3], nrm: &mut [Vec3]) {
+    let task = nx * rows_per_task(nx);
+    pos.par_chunks_mut(task)
+        .zip(nrm.par_chunks_mut(task))
+        .enumerate()
+        .for_each(|(j, (p, q))| {
+            p.fill(Vec3::splat(j as f32));
+            q.fill(Vec3::Y);
+        });
+    std::hint::black_box((pos, nrm));
+}
+
 pub fn run(args: &BenchArgs) -> Result<(), String> {
     match args.suite {
         Suite::Gerstner => gerstner(args),
+        Suite::Wtb => bench_wtb::wtb(args),
     }
 }
 
@@ -110,19 +129,7 @@ fn gerstner(args: &BenchArgs) -> Result<(), String> {
     let mut nrm = vec![Vec3::ZERO; n];
     let t = 1234.5;
 
-    // The memory baseline: writing the same output buffers once, with the same threads and
-    // task partition as the evaluation, so the ratio isolates the cost of the arithmetic.
-    let task = side * rows_per_task(side);
-    let baseline = |pos: &mut [Vec3], nrm: &mut [Vec3]| {
-        pos.par_chunks_mut(task)
-            .zip(nrm.par_chunks_mut(task))
-            .enumerate()
-            .for_each(|(j, (p, q))| {
-                p.fill(Vec3::splat(j as f32));
-                q.fill(Vec3::Y);
-            });
-        std::hint::black_box((pos, nrm));
-    };
+    let baseline = |pos: &mut [Vec3], nrm: &mut [Vec3]| memory_baseline(side, pos, nrm);
 
     let gpu = if args.no_gpu {
         Err("skipped (--no-gpu)".to_string())
@@ -237,7 +244,7 @@ fn print_gerstner(r: &Value) {
 }
 
 /// The CPU model from /proc/cpuinfo where there is one.
-fn cpu_name() -> String {
+pub fn cpu_name() -> String {
     std::fs::read_to_string("/proc/cpuinfo")
         .ok()
         .and_then(|s| {

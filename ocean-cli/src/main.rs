@@ -3,6 +3,7 @@
 
 mod bench;
 mod bench_gpu;
+mod bench_wtb;
 mod shaders;
 
 use std::process::ExitCode;
