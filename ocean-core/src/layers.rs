@@ -95,6 +95,7 @@ impl<'a> Plan<'a> {
         height: Option<&'a [f32]>,
         out_pos: &[Vec3],
         out_nrm: &[Vec3],
+        parallel: bool,
     ) -> Result<Self, EvalError> {
         check_time(t)?;
         let n = grid.point_count()?;
@@ -110,11 +111,12 @@ impl<'a> Plan<'a> {
                     "layer modulation must hold one entry per point of its rectangle",
                 ));
             }
-            if let Some(index) = layer
-                .modulation
-                .iter()
-                .position(|m| !(m[0].is_finite() && m[1].is_finite()))
-            {
+            if !all_finite(bytemuck::cast_slice(layer.modulation), parallel) {
+                let index = layer
+                    .modulation
+                    .iter()
+                    .position(|m| !(m[0].is_finite() && m[1].is_finite()))
+                    .unwrap_or(0);
                 return Err(EvalError::Position { index });
             }
         }
@@ -124,7 +126,8 @@ impl<'a> Plan<'a> {
                     "height field must hold one value per grid point",
                 ));
             }
-            if let Some(index) = h.iter().position(|v| !v.is_finite()) {
+            if !all_finite(h, parallel) {
+                let index = h.iter().position(|v| !v.is_finite()).unwrap_or(0);
                 return Err(EvalError::Position { index });
             }
         }
@@ -250,6 +253,15 @@ fn layer_row_kernel(
                     [re[l], im[l]] = layer.modulation[i - layer.i0];
                 }
             }
+            // Outside its box a layer's modulation is exactly zero, and its terms would add
+            // exactly ±0 to every sum: skipping it changes no bit.
+            let mut any = 0.0f32;
+            for l in 0..LANES {
+                any += re[l].abs() + im[l].abs();
+            }
+            if any == 0.0 {
+                continue;
+            }
             let waves = layer.coeffs.len();
             let table = &layer.cols[c * waves..(c + 1) * waves];
             add_half::<0>(&mut lo, layer, table, &re, &im);
@@ -294,6 +306,29 @@ fn add_half<const OFFSET: usize>(
     }
 }
 
+/// Whether every value is finite, in a form LLVM vectorises: x·0 is 0 for finite x and NaN
+/// for infinities and NaN, and a NaN survives the sums. With `parallel` (and `std`) the slice
+/// is split over the current rayon pool.
+fn all_finite(v: &[f32], parallel: bool) -> bool {
+    #[cfg(feature = "std")]
+    if parallel && v.len() >= 1 << 16 {
+        use rayon::prelude::*;
+        return v.par_chunks(1 << 15).all(|c| all_finite(c, false));
+    }
+    let _ = parallel;
+    let mut acc = [0.0f32; 16];
+    let mut chunks = v.chunks_exact(16);
+    for c in &mut chunks {
+        for l in 0..16 {
+            acc[l] += c[l] * 0.0;
+        }
+    }
+    for (l, x) in chunks.remainder().iter().enumerate() {
+        acc[l] += x * 0.0;
+    }
+    acc.iter().all(|a| *a == 0.0)
+}
+
 /// Evaluates the sum of `layers` (plus `height`, if given, added to every point's height) on
 /// every point of `grid` at time `t`: positions relative to `grid.origin` and unit normals,
 /// row-major, as [`WaveSet::evaluate_grid`] writes them. Points no layer covers stay at rest
@@ -306,7 +341,7 @@ pub fn evaluate_layers(
     out_pos: &mut [Vec3],
     out_nrm: &mut [Vec3],
 ) -> Result<(), EvalError> {
-    let plan = Plan::new(grid, t, layers, height, out_pos, out_nrm)?;
+    let plan = Plan::new(grid, t, layers, height, out_pos, out_nrm, false)?;
     let nx = grid.size.0;
     for (j, (p, n)) in out_pos
         .chunks_mut(nx)
@@ -329,7 +364,7 @@ pub fn evaluate_layers_par(
     out_nrm: &mut [Vec3],
 ) -> Result<(), EvalError> {
     use rayon::prelude::*;
-    let plan = Plan::new(grid, t, layers, height, out_pos, out_nrm)?;
+    let plan = Plan::new(grid, t, layers, height, out_pos, out_nrm, true)?;
     let nx = grid.size.0;
     let rows = crate::trochoid::rows_per_task(nx);
     out_pos

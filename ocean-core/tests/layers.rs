@@ -404,3 +404,58 @@ fn f64_point_sums_agree_with_the_layer_kernel() {
         }
     }
 }
+
+#[test]
+fn every_non_finite_value_is_found_with_its_index() {
+    // The finiteness check is vectorised (x·0 sums); an infinity or NaN anywhere, in the
+    // unrolled part or the remainder, on either component, must still be reported exactly.
+    let g = Grid {
+        size: (333, 211),
+        ..grid()
+    };
+    let set = waves(0.0);
+    let n = 333 * 211;
+    let (mut p, mut q) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    let full = GridRect {
+        i0: 0,
+        j0: 0,
+        nx: 333,
+        nz: 211,
+    };
+    for (index, bad) in [
+        (0, f32::INFINITY),
+        (37, f32::NEG_INFINITY),
+        (n - 1, f32::NAN),
+        (n / 2, f32::INFINITY),
+    ] {
+        for component in 0..2 {
+            let mut m = vec![[0.5f32, -0.25]; n];
+            m[index][component] = bad;
+            let layer = [Layer {
+                waves: &set,
+                rect: full,
+                modulation: &m,
+            }];
+            assert_eq!(
+                evaluate_layers(&g, 1.0, &layer, None, &mut p, &mut q),
+                Err(EvalError::Position { index })
+            );
+            assert_eq!(
+                evaluate_layers_par(&g, 1.0, &layer, None, &mut p, &mut q),
+                Err(EvalError::Position { index })
+            );
+        }
+        let m = vec![[0.5f32, -0.25]; n];
+        let mut h = vec![0.01f32; n];
+        h[index] = bad;
+        let layer = [Layer {
+            waves: &set,
+            rect: full,
+            modulation: &m,
+        }];
+        assert_eq!(
+            evaluate_layers_par(&g, 1.0, &layer, Some(&h), &mut p, &mut q),
+            Err(EvalError::Position { index })
+        );
+    }
+}
