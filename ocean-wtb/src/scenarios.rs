@@ -6,6 +6,7 @@
 use alloc::vec::Vec;
 
 use glam::DVec2;
+use ocean_core::math;
 
 use crate::effects::{Effects, Refraction};
 use crate::error::WtbError;
@@ -107,8 +108,8 @@ pub fn scenario_2(n: usize) -> Result<Scene, WtbError> {
             // Origins on a ring, winds turning with them, 24 m × 30 m boxes at 64².
             (
                 a,
-                32.0 + 18.0 * a.cos() - 12.0,
-                32.0 + 18.0 * a.sin() - 12.0,
+                32.0 + 18.0 * math::cos(a) - 12.0,
+                32.0 + 18.0 * math::sin(a) - 12.0,
                 5.0 + 0.5 * k as f64,
             )
         })
@@ -116,7 +117,7 @@ pub fn scenario_2(n: usize) -> Result<Scene, WtbError> {
     for (k, (a, x, z, speed)) in boxes.into_iter().enumerate() {
         scene.add_box(spec(steady_wind(
             speed,
-            DVec2::new((a + 0.5).cos(), (a + 0.5).sin()),
+            DVec2::new(math::cos(a + 0.5), math::sin(a + 0.5)),
             DVec2::new(x, z) * s,
             24.0 * s,
             30.0 * s,

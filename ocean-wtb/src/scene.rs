@@ -27,6 +27,7 @@ use glam::{DVec2, DVec3, Vec3};
 use ocean_core::frustum::{Containment, Frustum};
 use ocean_core::layers::{GridRect, Layer, evaluate_layers};
 use ocean_core::math;
+use ocean_core::sincos::sincos;
 use ocean_core::{PointSums, Wave, WaveDesc, WaveSet};
 
 use crate::budget::{BoxLoad, Budget, CostModel, Selection, select, train_order};
@@ -633,6 +634,7 @@ fn build_cache(
     let recovery = slot.spec.recovery.unwrap_or(2.0 * slot.peak_wavelength);
     let k_p = slot.peak_k;
     let shallow_depth = effects::shoaling_reference(slot.peak_wavelength);
+    let shortening = effects::ShorteningTable::new(k_p);
     for r in traversal.rays() {
         let mut on_land = false;
         let mut land_end: Option<f64> = None;
@@ -648,11 +650,7 @@ fn build_cache(
                 // the ray at fixed frequency (midpoint of the step's two depths' integrands).
                 if key.refraction {
                     if let Some(prev) = last_a {
-                        let integrand = if land {
-                            0.0
-                        } else {
-                            effects::shortening(k_p, depth)
-                        };
+                        let integrand = if land { 0.0 } else { shortening.get(depth) };
                         lag += k_p * integrand * (p.a - prev);
                     }
                 }
@@ -749,10 +747,9 @@ fn time_modulation(
     }
     let r = cache.rect;
     let mut out = cache.mu.clone();
-    for dj in 0..r.nz {
-        for di in 0..r.nx {
-            let q = dj * r.nx + di;
-            let [re, im] = out[q];
+    let row = |dj: usize, row: &mut [[f32; 2]]| {
+        for (di, v) in row.iter_mut().enumerate() {
+            let [re, im] = *v;
             if re == 0.0 && im == 0.0 {
                 continue;
             }
@@ -766,12 +763,31 @@ fn time_modulation(
             if dispersion {
                 phase += effects::dispersion_phase(slot.peak_k, terrain.depth(i, j), t);
             }
-            let (c, s) = (m * math::cos(phase), m * math::sin(phase));
+            let (s, c) = sincos(phase as f32);
+            let (c, s) = (m * f64::from(c), m * f64::from(s));
             let (re, im) = (f64::from(re), f64::from(im));
-            out[q] = [(re * c - im * s) as f32, (re * s + im * c) as f32];
+            *v = [(re * c - im * s) as f32, (re * s + im * c) as f32];
         }
-    }
+    };
+    for_rows(&mut out, r.nx, row);
     Some(out)
+}
+
+/// Runs `f(row index, row)` over the rows of `data` (rows of `width` values), on the rayon pool
+/// with `std`. Each row is computed independently, so the result is the same on any thread
+/// count.
+fn for_rows<T: Send>(data: &mut [T], width: usize, f: impl Fn(usize, &mut [T]) + Sync) {
+    #[cfg(feature = "std")]
+    {
+        use rayon::prelude::*;
+        data.par_chunks_mut(width)
+            .enumerate()
+            .for_each(|(j, row)| f(j, row));
+    }
+    #[cfg(not(feature = "std"))]
+    for (j, row) in data.chunks_mut(width).enumerate() {
+        f(j, row);
+    }
 }
 
 /// Height-only terms: capillary noise on every grid point (Eq. 9) and the beach run-up.
@@ -780,21 +796,21 @@ fn height_field(grid: &WaterGrid, terrain: &Terrain, e: &Effects, t: f64) -> Opt
         return None;
     }
     let mut h = vec![0.0f32; grid.len()];
-    for j in 0..grid.nz() {
-        for i in 0..grid.nx() {
-            let k = j * grid.nx() + i;
-            let mut v = 0.0;
+    let nx = grid.nx();
+    for_rows(&mut h, nx, |j, row| {
+        for (i, v) in row.iter_mut().enumerate() {
+            let mut y = 0.0;
             if let Some(n) = &e.noise {
-                v += effects::noise_height(n, k as u64, t);
+                y += effects::noise_height(n, (j * nx + i) as u64, t);
             }
             if let Some(b) = &e.beach {
                 if !terrain.is_land(i, j) {
-                    v += effects::run_up(b, terrain.depth(i, j));
+                    y += effects::run_up(b, terrain.depth(i, j));
                 }
             }
-            h[k] = v as f32;
+            *v = y as f32;
         }
-    }
+    });
     Some(h)
 }
 
