@@ -247,10 +247,19 @@ fn layer_row_kernel(
             // The modulation of this chunk's lanes; zero outside the layer's rectangle.
             let mut re = [0.0f32; LANES];
             let mut im = [0.0f32; LANES];
-            for l in 0..LANES {
-                let i = first_col + l;
-                if i >= layer.i0 && i < end {
-                    [re[l], im[l]] = layer.modulation[i - layer.i0];
+            if first_col >= layer.i0 && first_col + LANES <= end {
+                // The whole chunk inside the rectangle: one contiguous run to de-interleave.
+                let run = &layer.modulation[first_col - layer.i0..][..LANES];
+                for l in 0..LANES {
+                    re[l] = run[l][0];
+                    im[l] = run[l][1];
+                }
+            } else {
+                for l in 0..LANES {
+                    let i = first_col + l;
+                    if i >= layer.i0 && i < end {
+                        [re[l], im[l]] = layer.modulation[i - layer.i0];
+                    }
                 }
             }
             // Outside its box a layer's modulation is exactly zero, and its terms would add
