@@ -615,6 +615,9 @@ fn box_rect(grid: &WaterGrid, frame: &BoxFrame) -> GridRect {
     }
 }
 
+/// One ray's result: (rectangle index, modulation) per covered point, and its action points.
+type MarchedRay = (Vec<(usize, [f32; 2])>, Vec<ActionPoint>);
+
 /// Marches every wave ray of the box (§2, Fig. 2, Fig. 5) and records the static modulation
 /// m·e^{iφ} of each covered grid point and the action points.
 fn build_cache(
@@ -635,7 +638,9 @@ fn build_cache(
     let k_p = slot.peak_k;
     let shallow_depth = effects::shoaling_reference(slot.peak_wavelength);
     let shortening = effects::ShorteningTable::new(k_p);
-    for r in traversal.rays() {
+    let march = |r: u32| {
+        let mut values: Vec<(usize, [f32; 2])> = Vec::new();
+        let mut actions: Vec<ActionPoint> = Vec::new();
         let mut on_land = false;
         let mut land_end: Option<f64> = None;
         let mut shallow = false;
@@ -714,10 +719,30 @@ fn build_cache(
                 }
                 let phase = ocean_core::phase::reduce_angle(phase);
                 if let Some(q) = rect.index(i, j) {
-                    mu[q] = [(m * math::cos(phase)) as f32, (m * math::sin(phase)) as f32];
+                    values.push((
+                        q,
+                        [(m * math::cos(phase)) as f32, (m * math::sin(phase)) as f32],
+                    ));
                 }
             }
         });
+        (values, actions)
+    };
+    // Rays are independent (their state, land recovery and refraction lag, lives along the
+    // ray), so they march in parallel; results are applied in ray order, as sequentially.
+    let rays: Vec<u32> = traversal.rays().collect();
+    #[cfg(feature = "std")]
+    let marched: Vec<MarchedRay> = {
+        use rayon::prelude::*;
+        rays.par_iter().map(|&r| march(r)).collect()
+    };
+    #[cfg(not(feature = "std"))]
+    let marched: Vec<MarchedRay> = rays.iter().map(|&r| march(r)).collect();
+    for (points, ray_actions) in marched {
+        for (q, v) in points {
+            mu[q] = v;
+        }
+        actions.extend(ray_actions);
     }
     Ok(Cache {
         frame: *frame,
