@@ -153,8 +153,11 @@ impl<'a> Plan<'a> {
     }
 
     /// Evaluates row `j` into `pos` and `nrm` (one grid row each).
-    fn row(&self, j: usize, pos: &mut [Vec3], nrm: &mut [Vec3]) {
+    /// Evaluates the chunks `chunks` of row `j` into `pos` and `nrm` (that row, whole).
+    fn row(&self, j: usize, chunks: core::ops::Range<usize>, pos: &mut [Vec3], nrm: &mut [Vec3]) {
         let nx = self.grid.size.0;
+        let (c0, c1) = (chunks.start, chunks.end);
+        let (a, b) = (c0 * LANES, (c1 * LANES).min(nx));
         // The layers covering this row, with their row tables.
         let mut active = Vec::new();
         for ((layer, plan), cols) in self.layers.iter().zip(&self.plans).zip(&self.cols) {
@@ -177,10 +180,11 @@ impl<'a> Plan<'a> {
         dispatch(LayerRow {
             layers: &active,
             height,
+            first_chunk: c0,
             dx: self.grid.spacing.x as f32,
             z: self.grid.local(0, j).1,
-            pos,
-            nrm,
+            pos: &mut pos[a..b],
+            nrm: &mut nrm[a..b],
         });
     }
 }
@@ -201,6 +205,8 @@ struct ActiveLayer<'a> {
 struct LayerRow<'a> {
     layers: &'a [ActiveLayer<'a>],
     height: Option<&'a [f32]>,
+    /// Chunk of the row where `pos` and `nrm` start.
+    first_chunk: usize,
     dx: f32,
     z: f32,
     pos: &'a mut [Vec3],
@@ -214,6 +220,7 @@ impl pulp::WithSimd for LayerRow<'_> {
         layer_row_kernel(
             self.layers,
             self.height,
+            self.first_chunk,
             self.dx,
             self.z,
             self.pos,
@@ -226,16 +233,18 @@ impl pulp::WithSimd for LayerRow<'_> {
 fn layer_row_kernel(
     layers: &[ActiveLayer<'_>],
     height: Option<&[f32]>,
+    first_chunk: usize,
     dx: f32,
     z: f32,
     out_pos: &mut [Vec3],
     out_nrm: &mut [Vec3],
 ) {
-    for (c, (pos, nrm)) in out_pos
+    for (n, (pos, nrm)) in out_pos
         .chunks_mut(LANES)
         .zip(out_nrm.chunks_mut(LANES))
         .enumerate()
     {
+        let c = first_chunk + n;
         let first_col = c * LANES;
         let mut lo = Acc::<HALF>::new();
         let mut hi = Acc::<HALF>::new();
@@ -350,16 +359,65 @@ pub fn evaluate_layers(
     out_pos: &mut [Vec3],
     out_nrm: &mut [Vec3],
 ) -> Result<(), EvalError> {
+    let all = whole(grid);
+    evaluate_layers_region(grid, t, layers, height, all, out_pos, out_nrm)
+}
+
+/// [`evaluate_layers`] restricted to the points of `region`: every point of the region is
+/// written, with the value [`evaluate_layers`] gives it; points outside it may be written too
+/// (with that same value, the rest of their 16-column chunk), or left as they are. For callers
+/// that keep their buffers between frames and know where the surface changed.
+pub fn evaluate_layers_region(
+    grid: &Grid,
+    t: f64,
+    layers: &[Layer<'_>],
+    height: Option<&[f32]>,
+    region: GridRect,
+    out_pos: &mut [Vec3],
+    out_nrm: &mut [Vec3],
+) -> Result<(), EvalError> {
     let plan = Plan::new(grid, t, layers, height, out_pos, out_nrm, false)?;
+    let Some((rows, chunks)) = region_span(grid, region)? else {
+        return Ok(());
+    };
     let nx = grid.size.0;
-    for (j, (p, n)) in out_pos
-        .chunks_mut(nx)
-        .zip(out_nrm.chunks_mut(nx))
-        .enumerate()
-    {
-        plan.row(j, p, n);
+    for j in rows {
+        let (p, n) = (
+            &mut out_pos[j * nx..(j + 1) * nx],
+            &mut out_nrm[j * nx..(j + 1) * nx],
+        );
+        plan.row(j, chunks.clone(), p, n);
     }
     Ok(())
+}
+
+/// The whole grid as a rectangle.
+fn whole(grid: &Grid) -> GridRect {
+    GridRect {
+        i0: 0,
+        j0: 0,
+        nx: grid.size.0,
+        nz: grid.size.1,
+    }
+}
+
+/// The rows and 16-column chunks holding `region`; `None` for an empty region.
+#[allow(clippy::type_complexity)]
+fn region_span(
+    grid: &Grid,
+    r: GridRect,
+) -> Result<Option<(core::ops::Range<usize>, core::ops::Range<usize>)>, EvalError> {
+    if r.is_empty() {
+        return Ok(None);
+    }
+    let (nx, nz) = grid.size;
+    if r.i0 + r.nx > nx || r.j0 + r.nz > nz {
+        return Err(EvalError::Grid("region outside the grid"));
+    }
+    Ok(Some((
+        r.j0..r.j0 + r.nz,
+        r.i0 / LANES..(r.i0 + r.nx).div_ceil(LANES),
+    )))
 }
 
 /// [`evaluate_layers`] on the current rayon thread pool; bit-identical to it.
@@ -372,17 +430,36 @@ pub fn evaluate_layers_par(
     out_pos: &mut [Vec3],
     out_nrm: &mut [Vec3],
 ) -> Result<(), EvalError> {
+    let all = whole(grid);
+    evaluate_layers_region_par(grid, t, layers, height, all, out_pos, out_nrm)
+}
+
+/// [`evaluate_layers_region`] on the current rayon thread pool; bit-identical to it.
+#[cfg(feature = "std")]
+pub fn evaluate_layers_region_par(
+    grid: &Grid,
+    t: f64,
+    layers: &[Layer<'_>],
+    height: Option<&[f32]>,
+    region: GridRect,
+    out_pos: &mut [Vec3],
+    out_nrm: &mut [Vec3],
+) -> Result<(), EvalError> {
     use rayon::prelude::*;
     let plan = Plan::new(grid, t, layers, height, out_pos, out_nrm, true)?;
+    let Some((rows, chunks)) = region_span(grid, region)? else {
+        return Ok(());
+    };
     let nx = grid.size.0;
-    let rows = crate::trochoid::rows_per_task(nx);
-    out_pos
-        .par_chunks_mut(nx * rows)
-        .zip(out_nrm.par_chunks_mut(nx * rows))
+    let per_task = crate::trochoid::rows_per_task(nx);
+    let (first, last) = (rows.start, rows.end);
+    out_pos[first * nx..last * nx]
+        .par_chunks_mut(nx * per_task)
+        .zip(out_nrm[first * nx..last * nx].par_chunks_mut(nx * per_task))
         .enumerate()
         .for_each(|(task, (p, n))| {
             for (r, (p, n)) in p.chunks_mut(nx).zip(n.chunks_mut(nx)).enumerate() {
-                plan.row(task * rows + r, p, n);
+                plan.row(first + task * per_task + r, chunks.clone(), p, n);
             }
         });
     Ok(())

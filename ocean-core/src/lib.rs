@@ -87,9 +87,9 @@ pub use error::{EvalError, WaveError};
 pub use frustum::{Containment, Frustum, FrustumError};
 pub use grid::Grid;
 pub use kernel::WaveCoeffs;
+pub use layers::{GridRect, Layer, evaluate_layers, evaluate_layers_region};
 #[cfg(feature = "std")]
-pub use layers::evaluate_layers_par;
-pub use layers::{GridRect, Layer, evaluate_layers};
+pub use layers::{evaluate_layers_par, evaluate_layers_region_par};
 pub use rng::Pcg32;
 pub use trochoid::{PointSums, Sample, SampleF64, WaveSet};
 pub use wave::{Wave, WaveDesc};

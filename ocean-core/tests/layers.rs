@@ -5,7 +5,7 @@ use core::f64::consts::TAU;
 use glam::{DVec2, Vec3};
 use ocean_core::{
     Depth, EvalError, Grid, GridRect, Layer, Wave, WaveDesc, WaveSet, evaluate_layers,
-    evaluate_layers_par,
+    evaluate_layers_par, evaluate_layers_region, evaluate_layers_region_par,
 };
 
 fn waves(seed: f64) -> WaveSet {
@@ -458,4 +458,105 @@ fn every_non_finite_value_is_found_with_its_index() {
             Err(EvalError::Position { index })
         );
     }
+}
+
+#[test]
+fn region_evaluation_writes_the_full_result_inside_and_nothing_outside() {
+    // Inside the region every point gets the bits evaluate_layers gives it; outside the region's
+    // rows and 16-column chunks nothing is written (sentinels survive).
+    let g = Grid {
+        size: (101, 37),
+        ..grid()
+    };
+    let set = waves(0.3);
+    let rect = GridRect {
+        i0: 5,
+        j0: 3,
+        nx: 90,
+        nz: 30,
+    };
+    let m: Vec<[f32; 2]> = (0..rect.len())
+        .map(|k| [0.7, (k % 9) as f32 * 0.03])
+        .collect();
+    let h: Vec<f32> = (0..101 * 37).map(|k| (k % 5) as f32 * 0.01).collect();
+    let layers = [Layer {
+        waves: &set,
+        rect,
+        modulation: &m,
+    }];
+    let (full_p, full_q) = run(&g, 21.0, &layers, Some(&h));
+    let sentinel = Vec3::splat(-9.0);
+    for region in [
+        GridRect {
+            i0: 0,
+            j0: 0,
+            nx: 101,
+            nz: 37,
+        },
+        GridRect {
+            i0: 17,
+            j0: 4,
+            nx: 30,
+            nz: 9,
+        },
+        GridRect {
+            i0: 99,
+            j0: 36,
+            nx: 2,
+            nz: 1,
+        },
+        GridRect {
+            i0: 40,
+            j0: 10,
+            nx: 0,
+            nz: 5,
+        },
+    ] {
+        for parallel in [false, true] {
+            let (mut p, mut q) = (vec![sentinel; 101 * 37], vec![sentinel; 101 * 37]);
+            if parallel {
+                evaluate_layers_region_par(&g, 21.0, &layers, Some(&h), region, &mut p, &mut q)
+                    .unwrap();
+            } else {
+                evaluate_layers_region(&g, 21.0, &layers, Some(&h), region, &mut p, &mut q)
+                    .unwrap();
+            }
+            let (c0, c1) = (
+                region.i0 / 16 * 16,
+                (region.i0 + region.nx).div_ceil(16) * 16,
+            );
+            for j in 0..37 {
+                for i in 0..101 {
+                    let k = j * 101 + i;
+                    if region.index(i, j).is_some() {
+                        assert!(
+                            p[k] == full_p[k] && q[k] == full_q[k],
+                            "{region:?} ({i},{j})"
+                        );
+                    } else if j < region.j0
+                        || j >= region.j0 + region.nz
+                        || i < c0
+                        || i >= c1
+                        || region.is_empty()
+                    {
+                        assert!(
+                            p[k] == sentinel && q[k] == sentinel,
+                            "{region:?} wrote ({i},{j})"
+                        );
+                    } else {
+                        // Same chunk as the region: written with the full result, or untouched.
+                        assert!(p[k] == full_p[k] || p[k] == sentinel);
+                    }
+                }
+            }
+        }
+    }
+    let outside = GridRect {
+        i0: 95,
+        j0: 0,
+        nx: 10,
+        nz: 1,
+    };
+    let (mut p, mut q) = (vec![sentinel; 101 * 37], vec![sentinel; 101 * 37]);
+    assert!(evaluate_layers_region(&g, 21.0, &layers, None, outside, &mut p, &mut q).is_err());
 }
