@@ -869,6 +869,49 @@ impl FrameLayer<'_> {
     }
 }
 
+/// Where a grid's buffers may differ from the sea at rest, carried between calls of
+/// [`Frame::evaluate_incremental`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Coverage {
+    rect: Option<GridRect>,
+}
+
+impl Coverage {
+    /// Nothing is known of the buffers: the next incremental evaluation writes the whole grid.
+    pub fn everything(grid: &WaterGrid) -> Self {
+        Self {
+            rect: Some(GridRect {
+                i0: 0,
+                j0: 0,
+                nx: grid.nx(),
+                nz: grid.nz(),
+            }),
+        }
+    }
+
+    /// The rectangle that may differ from rest, if any.
+    pub fn rect(&self) -> Option<GridRect> {
+        self.rect
+    }
+}
+
+/// The smallest rectangle holding `a` (if any) and `b`.
+#[cfg(feature = "std")]
+fn union(a: Option<GridRect>, b: GridRect) -> GridRect {
+    let Some(a) = a else { return b };
+    let (i0, j0) = (a.i0.min(b.i0), a.j0.min(b.j0));
+    let (i1, j1) = (
+        (a.i0 + a.nx).max(b.i0 + b.nx),
+        (a.j0 + a.nz).max(b.j0 + b.nz),
+    );
+    GridRect {
+        i0,
+        j0,
+        nx: i1 - i0,
+        nz: j1 - j0,
+    }
+}
+
 /// A height query's answer.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HeightSample {
@@ -974,6 +1017,70 @@ impl Frame<'_> {
             out_nrm,
         )
         .map_err(WtbError::Eval)
+    }
+
+    /// [`Frame::evaluate_par`] for callers that keep their buffers from frame to frame (an
+    /// engine's vertex buffers): only the grid rectangle that the visible boxes cover now or
+    /// covered at the previous call (to return it to rest) is written, with exactly the values
+    /// of a full evaluation; everything else is already at rest in the buffers. A frame in
+    /// which no box is visible, after one that had none either, writes nothing.
+    ///
+    /// `coverage` carries the covered rectangle from call to call: start from
+    /// [`Coverage::everything`] (or after a full [`Frame::evaluate`]), and pass the same value
+    /// and the same buffers every frame. With a height field (noise, run-up) the whole grid
+    /// changes and is written.
+    ///
+    /// # Errors
+    ///
+    /// As [`Frame::evaluate`]; `coverage` is unchanged then.
+    #[cfg(feature = "std")]
+    pub fn evaluate_incremental(
+        &self,
+        coverage: &mut Coverage,
+        out_pos: &mut [Vec3],
+        out_nrm: &mut [Vec3],
+    ) -> Result<(), WtbError> {
+        let now = self
+            .layers
+            .iter()
+            .map(|l| l.rect)
+            .fold(None, |acc: Option<GridRect>, r| Some(union(acc, r)));
+        let whole = GridRect {
+            i0: 0,
+            j0: 0,
+            nx: self.grid.nx(),
+            nz: self.grid.nz(),
+        };
+        let region = if self.height.is_some() {
+            Some(whole)
+        } else {
+            match (coverage.rect, now) {
+                (Some(a), Some(b)) => Some(union(Some(a), b)),
+                (a, b) => a.or(b),
+            }
+        };
+        let empty = GridRect {
+            i0: 0,
+            j0: 0,
+            nx: 0,
+            nz: 0,
+        };
+        ocean_core::evaluate_layers_region_par(
+            self.grid.grid(),
+            self.t,
+            &self.core_layers(),
+            self.height.as_deref(),
+            region.unwrap_or(empty),
+            out_pos,
+            out_nrm,
+        )
+        .map_err(WtbError::Eval)?;
+        coverage.rect = if self.height.is_some() {
+            Some(whole)
+        } else {
+            now
+        };
+        Ok(())
     }
 
     /// The water surface over world (x, z) = `at`, as the grid shows it: Gerstner waves move

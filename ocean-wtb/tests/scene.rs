@@ -456,3 +456,87 @@ fn any_grid_spacing_gives_the_same_sea() {
         worst(&medium, &fine)
     );
 }
+
+#[test]
+fn incremental_evaluation_equals_full_evaluation_frame_after_frame() {
+    // Persistent buffers updated incrementally must hold, after every frame, exactly what a full
+    // evaluation writes, while boxes appear, leave the view, come back, move and disappear.
+    let mut s = scenario_1();
+    s.add_box(spec(wind(
+        6.0,
+        DVec2::X,
+        DVec2::new(50.0, 50.0),
+        12.0,
+        12.0,
+        1,
+        9,
+    )))
+    .unwrap();
+    let cam = |eye: DVec3, target: DVec3| {
+        let c = Camera::look_at(
+            eye,
+            target,
+            DVec3::Z,
+            Projection::Perspective {
+                fov_y: 1.2,
+                aspect: 1.0,
+                near: 0.1,
+                far: Far::Finite(500.0),
+            },
+            DepthConvention::ZERO_TO_ONE,
+        )
+        .unwrap();
+        Frustum::from_camera(&c).unwrap()
+    };
+    let near_corner = cam(DVec3::new(10.0, 12.0, 10.0), DVec3::new(10.0, 0.0, 10.0001));
+    let sky = cam(
+        DVec3::new(32.0, 40.0, 32.0),
+        DVec3::new(32.0, 80.0, 32.0001),
+    );
+    let n = 64 * 64;
+    let mut coverage = ocean_wtb::scene::Coverage::everything(s.grid());
+    let (mut p, mut q) = (vec![Vec3::splat(7.0); n], vec![Vec3::splat(7.0); n]);
+    let ids: Vec<_> = s.box_ids().collect();
+    for (step, view) in [
+        None,
+        Some(&near_corner),
+        Some(&sky),
+        Some(&sky),
+        None,
+        Some(&near_corner),
+        None,
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        if step == 5 {
+            let moved = spec(wind(
+                6.0,
+                DVec2::X,
+                DVec2::new(40.0, 45.0),
+                12.0,
+                12.0,
+                1,
+                9,
+            ));
+            s.update_box(ids[2], moved).unwrap();
+        }
+        if step == 6 {
+            s.remove_box(ids[0]).unwrap();
+        }
+        let t = 1.0 + step as f64;
+        let f = s.frame(t, view).unwrap();
+        f.evaluate_incremental(&mut coverage, &mut p, &mut q)
+            .unwrap();
+        let (mut fp, mut fq) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+        f.evaluate(&mut fp, &mut fq).unwrap();
+        assert!(
+            p == fp && q == fq,
+            "frame {step} differs from a full evaluation"
+        );
+        if step == 3 {
+            // Two frames in a row with every box culled: nothing is covered any more.
+            assert_eq!(coverage.rect(), None);
+        }
+    }
+}
