@@ -40,10 +40,9 @@
 
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
-use glam::Vec3;
 use ocean_core::{EvalError, Grid, Layer};
 
-use crate::readback::{GpuTimer, read_buffer_as};
+use crate::readback::GpuTimer;
 use crate::trochoid::{
     OUTPUT_STRIDE, WORKGROUP_SIZE, dispatch_shape, grown_size, input_buffer, output_bytes,
 };
@@ -690,18 +689,8 @@ impl LayersPass {
         target: &TrochoidTarget,
         timer: Option<&GpuTimer>,
     ) -> Result<(), GpuError> {
-        let mut encoder = ctx
-            .device()
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("ocean layers"),
-            });
-        self.encode(ctx, &mut encoder, input, target, timer)?;
-        if let Some(timer) = timer {
-            timer.resolve(&mut encoder);
-        }
-        crate::scoped(ctx.device(), || {
-            ctx.queue().submit([encoder.finish()]);
-            Ok(())
+        crate::trochoid::submit(ctx, "ocean layers", timer, |encoder| {
+            self.encode(ctx, encoder, input, target, timer)
         })
     }
 
@@ -731,30 +720,14 @@ impl LayersPass {
         let target = TrochoidTarget::new(ctx, grid)?;
         let timer = GpuTimer::new(ctx);
         self.run(ctx, &input, &target, timer.as_ref())?;
-        let n = grid.point_count()?;
-        let to_vec3 = |v: Vec<[f32; 4]>| -> Vec<Vec3> {
-            v.into_iter()
-                .take(n)
-                .map(|p| Vec3::new(p[0], p[1], p[2]))
-                .collect()
-        };
-        let positions = to_vec3(read_buffer_as(ctx, &target.positions)?);
-        let normals = to_vec3(read_buffer_as(ctx, &target.normals)?);
-        let gpu_time = match &timer {
-            Some(t) => t.read(ctx)?,
-            None => None,
-        };
-        Ok(GridOutput {
-            positions,
-            normals,
-            gpu_time,
-        })
+        target.read(ctx, grid.point_count()?, timer.as_ref())
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
 
     #[test]
     fn structs_match_the_wgsl_layout() {

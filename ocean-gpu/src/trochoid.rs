@@ -655,18 +655,8 @@ impl TrochoidPass {
         target: &TrochoidTarget,
         timer: Option<&GpuTimer>,
     ) -> Result<(), GpuError> {
-        let mut encoder = ctx
-            .device()
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("ocean trochoid"),
-            });
-        self.encode(ctx, &mut encoder, input, target, timer)?;
-        if let Some(timer) = timer {
-            timer.resolve(&mut encoder);
-        }
-        crate::scoped(ctx.device(), || {
-            ctx.queue().submit([encoder.finish()]);
-            Ok(())
+        submit(ctx, "ocean trochoid", timer, |encoder| {
+            self.encode(ctx, encoder, input, target, timer)
         })
     }
 
@@ -692,16 +682,49 @@ impl TrochoidPass {
             time: t,
         };
         self.run(ctx, &input, &target, timer.as_ref())?;
-        let n = grid.point_count()?;
+        target.read(ctx, grid.point_count()?, timer.as_ref())
+    }
+}
+
+/// Records a pass with `record` into a new encoder, resolves `timer`'s queries, and submits:
+/// the `run` of every pass.
+pub(crate) fn submit(
+    ctx: &GpuContext,
+    label: &str,
+    timer: Option<&GpuTimer>,
+    record: impl FnOnce(&mut wgpu::CommandEncoder) -> Result<(), GpuError>,
+) -> Result<(), GpuError> {
+    let mut encoder = ctx
+        .device()
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
+    record(&mut encoder)?;
+    if let Some(timer) = timer {
+        timer.resolve(&mut encoder);
+    }
+    crate::scoped(ctx.device(), || {
+        ctx.queue().submit([encoder.finish()]);
+        Ok(())
+    })
+}
+
+impl TrochoidTarget {
+    /// Reads the first `n` points back (positions and normals, as `Vec3`) with the pass's GPU
+    /// time from `timer`: the one-off readback of every pass's `evaluate`. Waits for the GPU.
+    pub fn read(
+        &self,
+        ctx: &GpuContext,
+        n: usize,
+        timer: Option<&GpuTimer>,
+    ) -> Result<GridOutput, GpuError> {
         let to_vec3 = |v: Vec<[f32; 4]>| -> Vec<Vec3> {
             v.into_iter()
                 .take(n)
                 .map(|p| Vec3::new(p[0], p[1], p[2]))
                 .collect()
         };
-        let positions = to_vec3(read_buffer_as(ctx, &target.positions)?);
-        let normals = to_vec3(read_buffer_as(ctx, &target.normals)?);
-        let gpu_time = match &timer {
+        let positions = to_vec3(read_buffer_as(ctx, &self.positions)?);
+        let normals = to_vec3(read_buffer_as(ctx, &self.normals)?);
+        let gpu_time = match timer {
             Some(t) => t.read(ctx)?,
             None => None,
         };
