@@ -1032,6 +1032,43 @@ OceanStatus ocean_scene_evaluate(struct OceanScene *scene,
                                  struct OceanFrameStats *out_stats);
 
 /**
+ * `ocean_scene_evaluate` for buffers kept from frame to frame (an engine's vertex buffers):
+ * only the part of the grid that the visible boxes cover now, or covered at the previous call,
+ * is written, with exactly the values `ocean_scene_evaluate` would write; the rest of the
+ * buffers already holds the sea at rest. A frame in which no box is visible, after one with
+ * none either, writes nothing.
+ *
+ * Pass the same two buffers to every call. The first call after `ocean_scene_create` or
+ * `ocean_scene_reset_coverage` writes the whole grid. With noise or run-up enabled the whole
+ * grid changes and is written every time. Arguments, statuses and safety as for
+ * `ocean_scene_evaluate`.
+ *
+ * # Safety
+ *
+ * As `ocean_scene_evaluate`.
+ */
+OceanStatus ocean_scene_evaluate_incremental(struct OceanScene *scene,
+                                             double time,
+                                             const float *view_projection,
+                                             uint32_t depth_convention,
+                                             struct OceanVec3 *out_pos,
+                                             struct OceanVec3 *out_normal,
+                                             size_t n,
+                                             struct OceanFrameStats *out_stats);
+
+/**
+ * Forgets what `ocean_scene_evaluate_incremental` wrote: its next call writes the whole grid.
+ * Call it before passing other buffers.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` or `OCEAN_STATUS_MISALIGNED_POINTER` for a bad handle.
+ *
+ * # Safety
+ *
+ * `scene` must be a live handle.
+ */
+OceanStatus ocean_scene_reset_coverage(struct OceanScene *scene);
+
+/**
  * Answers `n` height queries at world (x, z) = `xz[k]` and `time` seconds, into `out[k]`:
  * the water surface exactly as `ocean_scene_evaluate` shows it (same boxes, depth, land,
  * effects and budget, but never culled), between grid points too. Gerstner waves move points

@@ -12,7 +12,9 @@ use ocean_core::frustum::{Frustum, FrustumError};
 use ocean_core::{WaveDesc, WaveError};
 use ocean_wtb::budget::{Budget, Selection};
 use ocean_wtb::effects::{Beach, Effects, Irregular, Noise, Refraction};
-use ocean_wtb::scene::{BoxId, BoxSpec, FrameStats, HeightSample, Scene, rectangles_overlap};
+use ocean_wtb::scene::{
+    BoxId, BoxSpec, Coverage, FrameStats, HeightSample, Scene, rectangles_overlap,
+};
 use ocean_wtb::wind::MAX_EXPLICIT_TRAINS;
 use ocean_wtb::{BoxFrame, Terrain, TrainSource, WaterGrid, Wind, WtbError};
 
@@ -268,6 +270,8 @@ pub struct OceanHeightSample {
 /// threads). Destroying must not race with any other use.
 pub struct OceanScene {
     scene: Mutex<Scene>,
+    /// What the buffers of `ocean_scene_evaluate_incremental` may hold besides rest.
+    coverage: Mutex<Coverage>,
 }
 
 impl OceanScene {
@@ -735,8 +739,10 @@ pub unsafe extern "C" fn ocean_scene_create(
         // SAFETY: forwarded from this function's contract.
         let t = unsafe { terrain(&g, terrain_heights, terrain_len) }?;
         let scene = Scene::new(g, t).map_err(|e| wtb_error("", e))?;
+        let coverage = Coverage::everything(scene.grid());
         let handle = Box::into_raw(Box::new(OceanScene {
             scene: Mutex::new(scene),
+            coverage: Mutex::new(coverage),
         }));
         // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
         unsafe { out.write(handle) };
@@ -1092,7 +1098,107 @@ pub unsafe extern "C" fn ocean_scene_evaluate(
     n: usize,
     out_stats: *mut OceanFrameStats,
 ) -> OceanStatus {
-    guard("ocean_scene_evaluate", || {
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        evaluate(
+            "ocean_scene_evaluate",
+            false,
+            scene,
+            time,
+            view_projection,
+            depth_convention,
+            out_pos,
+            out_normal,
+            n,
+            out_stats,
+        )
+    }
+}
+
+/// `ocean_scene_evaluate` for buffers kept from frame to frame (an engine's vertex buffers):
+/// only the part of the grid that the visible boxes cover now, or covered at the previous call,
+/// is written, with exactly the values `ocean_scene_evaluate` would write; the rest of the
+/// buffers already holds the sea at rest. A frame in which no box is visible, after one with
+/// none either, writes nothing.
+///
+/// Pass the same two buffers to every call. The first call after `ocean_scene_create` or
+/// `ocean_scene_reset_coverage` writes the whole grid. With noise or run-up enabled the whole
+/// grid changes and is written every time. Arguments, statuses and safety as for
+/// `ocean_scene_evaluate`.
+///
+/// # Safety
+///
+/// As `ocean_scene_evaluate`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn ocean_scene_evaluate_incremental(
+    scene: *mut OceanScene,
+    time: f64,
+    view_projection: *const f32,
+    depth_convention: u32,
+    out_pos: *mut OceanVec3,
+    out_normal: *mut OceanVec3,
+    n: usize,
+    out_stats: *mut OceanFrameStats,
+) -> OceanStatus {
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        evaluate(
+            "ocean_scene_evaluate_incremental",
+            true,
+            scene,
+            time,
+            view_projection,
+            depth_convention,
+            out_pos,
+            out_normal,
+            n,
+            out_stats,
+        )
+    }
+}
+
+/// Forgets what `ocean_scene_evaluate_incremental` wrote: its next call writes the whole grid.
+/// Call it before passing other buffers.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` or `OCEAN_STATUS_MISALIGNED_POINTER` for a bad handle.
+///
+/// # Safety
+///
+/// `scene` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_scene_reset_coverage(scene: *mut OceanScene) -> OceanStatus {
+    guard("ocean_scene_reset_coverage", || {
+        // SAFETY: forwarded from this function's contract.
+        let scene = unsafe { handle(scene) }?;
+        let grid = *scene.lock().grid();
+        *scene
+            .coverage
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner) = Coverage::everything(&grid);
+        Ok(())
+    })
+}
+
+/// The body of `ocean_scene_evaluate` and `ocean_scene_evaluate_incremental`.
+///
+/// # Safety
+///
+/// As `ocean_scene_evaluate`.
+#[allow(clippy::too_many_arguments)]
+unsafe fn evaluate(
+    name: &'static str,
+    incremental: bool,
+    scene: *mut OceanScene,
+    time: f64,
+    view_projection: *const f32,
+    depth_convention: u32,
+    out_pos: *mut OceanVec3,
+    out_normal: *mut OceanVec3,
+    n: usize,
+    out_stats: *mut OceanFrameStats,
+) -> OceanStatus {
+    guard(name, || {
         // SAFETY: forwarded from this function's contract.
         let scene = unsafe { handle(scene) }?;
         check_ptr(out_pos.cast_const(), "out_pos")?;
@@ -1122,6 +1228,10 @@ pub unsafe extern "C" fn ocean_scene_evaluate(
         check_time(time)?;
         // SAFETY: forwarded from this function's contract.
         let view = unsafe { frustum(view_projection, depth_convention) }?;
+        let mut coverage = scene
+            .coverage
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner);
         let mut scene = scene.lock();
         let grid = *scene.grid();
         if n != grid.len() {
@@ -1149,7 +1259,13 @@ pub unsafe extern "C" fn ocean_scene_evaluate(
         };
         let pos: &mut [Vec3] = bytemuck::cast_slice_mut(pos);
         let nrm: &mut [Vec3] = bytemuck::cast_slice_mut(nrm);
-        frame.evaluate_par(pos, nrm).map_err(|e| wtb_error("", e))?;
+        if incremental {
+            frame
+                .evaluate_incremental(&mut coverage, pos, nrm)
+                .map_err(|e| wtb_error("", e))?;
+        } else {
+            frame.evaluate_par(pos, nrm).map_err(|e| wtb_error("", e))?;
+        }
         if !out_stats.is_null() {
             // SAFETY: non-NULL and aligned (checked), writable and disjoint from the outputs
             // (checked; the slices above are no longer used).
@@ -1401,6 +1517,119 @@ mod tests {
     }
 
     /// Misaligned pointers are refused before any access, and nothing is written.
+    #[test]
+    fn incremental_evaluation_matches_full_evaluation() {
+        // Kept buffers updated by ocean_scene_evaluate_incremental must equal what
+        // ocean_scene_evaluate writes, frame after frame, while culling switches every box off
+        // (a view of the sky, column-major like GLM) and on again.
+        let s = scenario_1();
+        let n = 64 * 64;
+        let sky = {
+            let view = ocean_core::camera::look_at(
+                glam::DVec3::new(32.0, 40.0, 32.0),
+                glam::DVec3::new(32.0, 80.0, 32.0001),
+                glam::DVec3::Z,
+            )
+            .unwrap();
+            let proj = ocean_core::camera::Projection::Perspective {
+                fov_y: 1.2,
+                aspect: 1.0,
+                near: 0.1,
+                far: ocean_core::camera::Far::Finite(500.0),
+            }
+            .matrix_f64(DepthConvention::ZERO_TO_ONE)
+            .unwrap();
+            (proj * view).as_mat4().to_cols_array()
+        };
+        let mut kept = (vec![OceanVec3::default(); n], vec![OceanVec3::default(); n]);
+        for (step, culled) in [false, true, true, false, true, false]
+            .into_iter()
+            .enumerate()
+        {
+            let vp = if culled {
+                sky.as_ptr()
+            } else {
+                core::ptr::null()
+            };
+            let t = 1.0 + step as f64;
+            let mut full = (vec![OceanVec3::default(); n], vec![OceanVec3::default(); n]);
+            let mut stats = OceanFrameStats::default();
+            // SAFETY: live scene; buffers of n elements; 16 floats or NULL; stats writable.
+            let (a, b) = unsafe {
+                (
+                    ocean_scene_evaluate_incremental(
+                        s,
+                        t,
+                        vp,
+                        0,
+                        kept.0.as_mut_ptr(),
+                        kept.1.as_mut_ptr(),
+                        n,
+                        &mut stats,
+                    ),
+                    ocean_scene_evaluate(
+                        s,
+                        t,
+                        vp,
+                        0,
+                        full.0.as_mut_ptr(),
+                        full.1.as_mut_ptr(),
+                        n,
+                        core::ptr::null_mut(),
+                    ),
+                )
+            };
+            assert_eq!(
+                (a, b),
+                (OceanStatus::Ok, OceanStatus::Ok),
+                "{}",
+                last_error()
+            );
+            assert_eq!(stats.culled, if culled { 2 } else { 0 });
+            assert!(kept == full, "frame {step} differs");
+        }
+        // After a reset the next incremental call rewrites everything, even over garbage.
+        kept.0.fill(OceanVec3 {
+            x: 9.0,
+            y: 9.0,
+            z: 9.0,
+        });
+        // SAFETY: live scene.
+        assert_eq!(unsafe { ocean_scene_reset_coverage(s) }, OceanStatus::Ok);
+        let mut full = (vec![OceanVec3::default(); n], vec![OceanVec3::default(); n]);
+        // SAFETY: as above.
+        unsafe {
+            ocean_scene_evaluate_incremental(
+                s,
+                9.0,
+                sky.as_ptr(),
+                0,
+                kept.0.as_mut_ptr(),
+                kept.1.as_mut_ptr(),
+                n,
+                core::ptr::null_mut(),
+            );
+            ocean_scene_evaluate(
+                s,
+                9.0,
+                sky.as_ptr(),
+                0,
+                full.0.as_mut_ptr(),
+                full.1.as_mut_ptr(),
+                n,
+                core::ptr::null_mut(),
+            );
+        }
+        assert!(kept == full);
+        // SAFETY: NULL is refused, not dereferenced.
+        assert_eq!(
+            unsafe { ocean_scene_reset_coverage(core::ptr::null_mut()) },
+            OceanStatus::NullPointer
+        );
+        // SAFETY: live scene destroyed once.
+        unsafe { ocean_scene_destroy(s) };
+    }
+
     #[test]
     fn misaligned_pointers_are_refused() {
         let s = scenario_1();
