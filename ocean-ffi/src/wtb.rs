@@ -1622,10 +1622,8 @@ mod tests {
         }
         assert!(kept == full);
         // SAFETY: NULL is refused, not dereferenced.
-        assert_eq!(
-            unsafe { ocean_scene_reset_coverage(core::ptr::null_mut()) },
-            OceanStatus::NullPointer
-        );
+        let st = unsafe { ocean_scene_reset_coverage(core::ptr::null_mut()) };
+        assert_eq!(st, OceanStatus::NullPointer);
         // SAFETY: live scene destroyed once.
         unsafe { ocean_scene_destroy(s) };
     }
