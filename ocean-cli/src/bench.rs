@@ -28,9 +28,9 @@ pub struct BenchArgs {
     /// Timed repetitions per figure (the median is reported).
     #[arg(long, default_value_t = 15, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub runs: u32,
-    /// Skip the GPU figures (`wtb` has none yet and accepts it).
+    /// Skip the GPU figures.
     #[arg(long)]
-    no_gpu: bool,
+    pub no_gpu: bool,
 }
 
 #[derive(Clone, Copy, ValueEnum)]

@@ -3,13 +3,16 @@
 use std::time::Instant;
 
 use ocean_core::{Grid, WaveSet};
+use ocean_gpu::layers::LayersInput;
 use ocean_gpu::trochoid::TrochoidInput;
-use ocean_gpu::{GpuContext, GpuTimer, TrochoidPass, TrochoidTarget};
+use ocean_gpu::{GpuContext, GpuTimer, LayersPass, TrochoidPass, TrochoidTarget};
+use ocean_wtb::scene::Frame;
 use serde_json::{Value, json};
 
 pub struct Bench {
     ctx: GpuContext,
     trochoid: TrochoidPass,
+    layers: LayersPass,
 }
 
 impl Bench {
@@ -17,7 +20,12 @@ impl Bench {
     pub fn new() -> Result<Self, String> {
         let ctx = GpuContext::headless().map_err(|e| e.to_string())?;
         let trochoid = TrochoidPass::new(&ctx).map_err(|e| e.to_string())?;
-        Ok(Self { ctx, trochoid })
+        let layers = LayersPass::new(&ctx).map_err(|e| e.to_string())?;
+        Ok(Self {
+            ctx,
+            trochoid,
+            layers,
+        })
     }
 
     pub fn describe(&self) -> String {
@@ -56,6 +64,49 @@ impl Bench {
             }
         }
         Ok(json!({
+            "kernel_ms": median(&mut kernel),
+            "wall_ms": median(&mut wall),
+            "timestamps": timer.is_some(),
+        }))
+    }
+
+    /// The wave-train-box frame on the GPU: median GPU time of `LayersPass` (timestamps, when
+    /// the adapter has them) and median wall time of upload + dispatch + wait, for the
+    /// frame's layers and height field, over `runs` runs after two warm-ups.
+    pub fn layers(&self, frame: &Frame<'_>, runs: u32) -> Result<Value, String> {
+        let e = |e: ocean_gpu::GpuError| e.to_string();
+        let grid = frame.grid().grid();
+        let target = TrochoidTarget::new(&self.ctx, grid).map_err(e)?;
+        let timer = GpuTimer::new(&self.ctx);
+        let layers = frame.layers();
+        let input = LayersInput {
+            grid,
+            time: frame.time(),
+            layers: &layers,
+            height: frame.height_field(),
+        };
+        let mut kernel = Vec::new();
+        let mut wall = Vec::new();
+        for i in 0..runs + 2 {
+            let start = Instant::now();
+            self.layers
+                .run(&self.ctx, &input, &target, timer.as_ref())
+                .map_err(e)?;
+            self.ctx.wait_idle().map_err(e)?;
+            let elapsed = start.elapsed().as_secs_f64() * 1e3;
+            let gpu = match &timer {
+                Some(timer) => timer.read(&self.ctx).map_err(e)?,
+                None => None,
+            };
+            if i >= 2 {
+                wall.push(elapsed);
+                if let Some(d) = gpu {
+                    kernel.push(d.ms());
+                }
+            }
+        }
+        Ok(json!({
+            "points": grid.size.0 * grid.size.1,
             "kernel_ms": median(&mut kernel),
             "wall_ms": median(&mut wall),
             "timestamps": timer.is_some(),

@@ -514,6 +514,26 @@ pub fn wtb(args: &BenchArgs) -> Result<(), String> {
         })
     };
 
+    // 6. The same frames on the GPU (LayersPass), scenario 1 at 512² and 1024².
+    let gpu = if args.no_gpu {
+        json!({ "unavailable": "skipped (--no-gpu)" })
+    } else {
+        match crate::bench_gpu::Bench::new() {
+            Ok(bench) => {
+                let mut sizes = Vec::new();
+                for side in [512, 1024] {
+                    let (mut scene, _) = scenario_1(side, paper_effects());
+                    let frame = scene.frame(T0, None).map_err(|e| e.to_string())?;
+                    let mut v = bench.layers(&frame, runs)?;
+                    v["side"] = json!(side);
+                    sizes.push(v);
+                }
+                json!({ "device": bench.describe(), "scenario_1": sizes })
+            }
+            Err(e) => json!({ "unavailable": e }),
+        }
+    };
+
     // Judged on the incremental path: with buffers kept between frames, a grid no box covers
     // needs no rewriting, so the ratio measures the wave work culling removes (the paper's
     // "water calculation"); the full-rewrite ratio is reported beside it.
@@ -536,6 +556,7 @@ pub fn wtb(args: &BenchArgs) -> Result<(), String> {
         "culling": culling,
         "effects": effect_tables,
         "queries": queries,
+        "gpu": gpu,
         "targets": [
             target("scenario 1 at 1024²: frame / memory baseline", "max", json!(TARGET_RATIO_1024), ratio_1024, ratio_1024 <= TARGET_RATIO_1024),
             target("scaling t(2048²) / t(512²)", "range", json!([TARGET_SCALING.0, TARGET_SCALING.1]), scaling, (TARGET_SCALING.0..=TARGET_SCALING.1).contains(&scaling)),
@@ -864,6 +885,27 @@ fn print_wtb(r: &Value) {
         q["above_tolerance_within_1m_of_edge"],
         num(&q["worst_residual_m"]),
     );
+    let g = &r["gpu"];
+    println!();
+    match g["device"].as_str() {
+        Some(device) => {
+            println!("6. GPU, scenario 1 through LayersPass on {device}:");
+            for c in g["scenario_1"].as_array().into_iter().flatten() {
+                println!(
+                    "   {}²: kernel {} ms, upload + dispatch + wait {:.3} ms",
+                    c["side"],
+                    c["kernel_ms"]
+                        .as_f64()
+                        .map_or("-".to_string(), |v| format!("{v:.3}")),
+                    num(&c["wall_ms"]),
+                );
+            }
+        }
+        None => println!(
+            "6. GPU: {}",
+            g["unavailable"].as_str().unwrap_or("unavailable")
+        ),
+    }
     println!();
     println!("Targets (issue 3):");
     for t in r["targets"].as_array().into_iter().flatten() {
