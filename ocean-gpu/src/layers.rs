@@ -46,7 +46,7 @@ use crate::readback::GpuTimer;
 use crate::trochoid::{
     OUTPUT_STRIDE, WORKGROUP_SIZE, dispatch_shape, grown_size, input_buffer, output_bytes,
 };
-use crate::{GpuContext, GpuError, GridOutput, TrochoidTarget, shaders};
+use crate::{GpuContext, GpuError, GridOutput, TrochoidTarget};
 
 /// The pass's uniform block, byte for byte the WGSL `Params` struct of `layers.wgsl`
 /// (32 bytes, std140).
@@ -447,67 +447,16 @@ impl LayersPass {
     /// Builds the pipeline on `ctx`'s device.
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let device = ctx.device();
-        let entry = shaders::get("layers").ok_or_else(|| {
-            GpuError::Shader(shaders::ShaderError::UnknownShader {
-                name: "layers".to_owned(),
-                available: String::new(),
-            })
-        })?;
-        crate::scoped(device, || {
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("ocean layers.wgsl"),
-                source: wgpu::ShaderSource::Wgsl(entry.source.into()),
-            });
-            let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-                binding,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Storage { read_only },
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            };
-            let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("ocean layers bind group layout"),
-                entries: &[
-                    wgpu::BindGroupLayoutEntry {
-                        binding: 0,
-                        visibility: wgpu::ShaderStages::COMPUTE,
-                        ty: wgpu::BindingType::Buffer {
-                            ty: wgpu::BufferBindingType::Uniform,
-                            has_dynamic_offset: false,
-                            min_binding_size: wgpu::BufferSize::new(
-                                std::mem::size_of::<LayersParams>() as u64,
-                            ),
-                        },
-                        count: None,
-                    },
-                    storage(1, true),
-                    storage(2, true),
-                    storage(3, false),
-                    storage(4, false),
-                ],
-            });
-            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("ocean layers pipeline layout"),
-                bind_group_layouts: &[Some(&layout)],
-                immediate_size: 0,
-            });
-            let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some("ocean layers pipeline"),
-                layout: Some(&pipeline_layout),
-                module: &module,
-                entry_point: Some("displace"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                cache: None,
-            });
-            Ok(Self {
-                pipeline,
-                layout,
-                max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
-                inputs: Mutex::new(Inputs::new(device)),
-            })
+        let (pipeline, layout) = crate::pipeline::displace_pipeline(
+            device,
+            "layers",
+            std::mem::size_of::<LayersParams>(),
+        )?;
+        Ok(Self {
+            pipeline,
+            layout,
+            max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
+            inputs: Mutex::new(Inputs::new(device)),
         })
     }
 
@@ -731,7 +680,7 @@ mod tests {
 
     #[test]
     fn structs_match_the_wgsl_layout() {
-        let b = shaders::get("layers").unwrap().bindings().unwrap();
+        let b = crate::shaders::get("layers").unwrap().bindings().unwrap();
         assert_eq!(std::mem::size_of::<LayersParams>(), 32);
         assert_eq!(b[0].size as usize, std::mem::size_of::<LayersParams>());
         let params: Vec<(&str, u32)> = b[0]

@@ -33,6 +33,7 @@
 
 pub mod context;
 pub mod layers;
+mod pipeline;
 pub mod readback;
 pub mod shaders;
 pub mod trochoid;

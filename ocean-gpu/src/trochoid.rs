@@ -27,7 +27,7 @@ use glam::Vec3;
 use ocean_core::{Grid, WaveCoeffs, WaveSet};
 
 use crate::readback::{GpuDuration, GpuTimer, read_buffer_as};
-use crate::{GpuContext, GpuError, shaders};
+use crate::{GpuContext, GpuError};
 
 /// Invocations per workgroup (`@workgroup_size(64)` in the WGSL).
 pub const WORKGROUP_SIZE: u32 = 64;
@@ -433,68 +433,16 @@ impl TrochoidPass {
     /// Builds the pipeline on `ctx`'s device.
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let device = ctx.device();
-        let entry = shaders::get("trochoid").ok_or_else(|| {
-            GpuError::Shader(shaders::ShaderError::UnknownShader {
-                name: "trochoid".to_owned(),
-                available: String::new(),
-            })
-        })?;
-        crate::scoped(device, || {
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("ocean trochoid.wgsl"),
-                source: wgpu::ShaderSource::Wgsl(entry.source.into()),
-            });
-            let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-                binding,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Storage { read_only },
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            };
-            let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("ocean trochoid bind group layout"),
-                entries: &[
-                    wgpu::BindGroupLayoutEntry {
-                        binding: 0,
-                        visibility: wgpu::ShaderStages::COMPUTE,
-                        ty: wgpu::BindingType::Buffer {
-                            ty: wgpu::BufferBindingType::Uniform,
-                            has_dynamic_offset: false,
-                            min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<
-                                TrochoidParams,
-                            >()
-                                as u64),
-                        },
-                        count: None,
-                    },
-                    storage(1, true),
-                    storage(2, true),
-                    storage(3, false),
-                    storage(4, false),
-                ],
-            });
-            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("ocean trochoid pipeline layout"),
-                bind_group_layouts: &[Some(&layout)],
-                immediate_size: 0,
-            });
-            let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some("ocean trochoid pipeline"),
-                layout: Some(&pipeline_layout),
-                module: &module,
-                entry_point: Some("displace"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                cache: None,
-            });
-            Ok(Self {
-                pipeline,
-                layout,
-                max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
-                inputs: Mutex::new(Inputs::new(device)),
-            })
+        let (pipeline, layout) = crate::pipeline::displace_pipeline(
+            device,
+            "trochoid",
+            std::mem::size_of::<TrochoidParams>(),
+        )?;
+        Ok(Self {
+            pipeline,
+            layout,
+            max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
+            inputs: Mutex::new(Inputs::new(device)),
         })
     }
 
@@ -745,7 +693,7 @@ mod tests {
         // WGSL `Params`: five u32, one u32 pad, two f32 = 32 bytes (a multiple of 16, as
         // uniform blocks require).
         assert_eq!(std::mem::size_of::<TrochoidParams>(), 32);
-        let b = shaders::get("trochoid").unwrap().bindings().unwrap();
+        let b = crate::shaders::get("trochoid").unwrap().bindings().unwrap();
         assert_eq!(b[0].size as usize, std::mem::size_of::<TrochoidParams>());
         assert_eq!(b[0].members.last().unwrap().offset, 28);
     }
