@@ -94,19 +94,26 @@ pub struct ShaderEntry {
     pub description: &'static str,
 }
 
-/// Source of the trochoid displacement pass. It needs no shared snippet: the host uploads sines
-/// and cosines, which the shader combines by angle addition.
-pub const TROCHOID_WGSL: &str = include_str!("shaders/trochoid.wgsl");
+/// Source of the trochoid displacement pass, after the shared `surface.wgsl` (the unit normal
+/// of the CPU kernel). The host uploads sines and cosines, which the shader combines by angle
+/// addition.
+pub const TROCHOID_WGSL: &str = concat!(
+    include_str!("shaders/surface.wgsl"),
+    include_str!("shaders/trochoid.wgsl")
+);
 
 /// Source of the layered (wave-train-box) displacement pass: sums of wave sets modulated by
 /// complex amplitude fields over grid rectangles, plus an additive height field. Like the
 /// trochoid pass it combines host-made sines and cosines by angle addition.
-pub const LAYERS_WGSL: &str = include_str!("shaders/layers.wgsl");
+pub const LAYERS_WGSL: &str = concat!(
+    include_str!("shaders/surface.wgsl"),
+    include_str!("shaders/layers.wgsl")
+);
 
 static SHADERS: [ShaderEntry; 2] = [
     ShaderEntry {
         name: "trochoid",
-        files: &["trochoid.wgsl"],
+        files: &["surface.wgsl", "trochoid.wgsl"],
         source: TROCHOID_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[EntryPoint {
@@ -117,7 +124,7 @@ static SHADERS: [ShaderEntry; 2] = [
     },
     ShaderEntry {
         name: "layers",
-        files: &["layers.wgsl"],
+        files: &["surface.wgsl", "layers.wgsl"],
         source: LAYERS_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[EntryPoint {

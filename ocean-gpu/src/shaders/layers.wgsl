@@ -31,9 +31,6 @@
 // j·nx + i of both outputs; positions (x, y, z, 1), normals (nx, ny, nz, 0); 64 invocations per
 // workgroup, linear index (workgroup_id.y · groups_x + workgroup_id.x) · 64 + local index.
 
-// Rust's f32::MIN_POSITIVE (2^-126): the CPU kernel's threshold for a degenerate normal.
-const F32_MIN_POSITIVE: f32 = 1.17549435e-38;
-
 // Matches `ocean_gpu::layers::LayersParams` (32 bytes).
 struct Params {
     nx: u32,            // grid columns (along x)
@@ -128,15 +125,7 @@ fn displace(
 
     let x0 = f32(i) * params.spacing_x;
     let z0 = f32(j) * params.spacing_z;
-    // Normal = ∂p/∂z × ∂p/∂x with ∂p/∂x = (J_xx, s_x, J_xz), ∂p/∂z = (J_xz, s_z, J_zz); +y where
-    // |n|² falls below the smallest normal f32, as on the CPU.
-    let na = sz * jxz - jzz * sx;
-    let nb = jzz * jxx - jxz * jxz;
-    let nc = jxz * sx - sz * jxx;
-    let len2 = na * na + nb * nb + nc * nc;
-    let degenerate = len2 < F32_MIN_POSITIVE;
-    let inv = 1.0 / sqrt(select(len2, 1.0, degenerate));
-    let normal = select(vec3<f32>(na * inv, nb * inv, nc * inv), vec3<f32>(0.0, 1.0, 0.0), degenerate);
+    let normal = unit_normal(jxx, jxz, jzz, sx, sz);
 
     positions[index] = vec4<f32>(x0 + dx, y, z0 + dz, 1.0);
     normals[index] = vec4<f32>(normal, 0.0);

@@ -22,10 +22,6 @@
 // (workgroup_id.y · groups_x + workgroup_id.x) · 64 + local_invocation_index, so grids with more
 // than 65535 workgroups fold into a second dispatch dimension.
 
-// Rust's f32::MIN_POSITIVE, the smallest normal f32 (2^-126): the CPU kernel's threshold for a
-// degenerate normal.
-const F32_MIN_POSITIVE: f32 = 1.17549435e-38;
-
 struct WaveCoeffs {
     a: f32,    // A
     ahx: f32,  // A k_x/|k|
@@ -98,16 +94,7 @@ fn displace(
 
     let x0 = f32(i) * params.spacing_x;
     let z0 = f32(j) * params.spacing_z;
-    // Normal = ∂p/∂z × ∂p/∂x with ∂p/∂x = (J_xx, s_x, J_xz), ∂p/∂z = (J_xz, s_z, J_zz); its y
-    // component is det J. Where |n|² falls below the smallest normal f32 (next to a cusp, where
-    // the cross product has no meaningful direction) the normal is +y, as on the CPU.
-    let na = sz * jxz - jzz * sx;
-    let nb = jzz * jxx - jxz * jxz;
-    let nc = jxz * sx - sz * jxx;
-    let len2 = na * na + nb * nb + nc * nc;
-    let degenerate = len2 < F32_MIN_POSITIVE;
-    let inv = 1.0 / sqrt(select(len2, 1.0, degenerate));
-    let normal = select(vec3<f32>(na * inv, nb * inv, nc * inv), vec3<f32>(0.0, 1.0, 0.0), degenerate);
+    let normal = unit_normal(jxx, jxz, jzz, sx, sz);
 
     positions[index] = vec4<f32>(x0 + dx, y, z0 + dz, 1.0);
     normals[index] = vec4<f32>(normal, 0.0);
