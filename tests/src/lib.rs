@@ -139,6 +139,47 @@ pub fn realistic_waves() -> WaveSet {
     WaveSet::from_descs(&descs).expect("valid wave set")
 }
 
+/// The parity tolerances between the GPU and its CPU twin: heights within 1 mm RMS,
+/// horizontal positions within 1 mm at every point, normals within 0.1° at every point.
+pub const HEIGHT_RMS_TOL_M: f64 = 1e-3;
+/// See [`HEIGHT_RMS_TOL_M`].
+pub const HORIZONTAL_MAX_TOL_M: f64 = 1e-3;
+/// See [`HEIGHT_RMS_TOL_M`].
+pub const NORMAL_MAX_TOL_DEG: f64 = 0.1;
+
+/// Prints `d` under `label` and asserts the parity tolerances.
+///
+/// # Panics
+///
+/// When a difference exceeds its tolerance.
+pub fn assert_parity(label: &str, d: &GridDiff) {
+    println!("{label}: {d}");
+    assert!(
+        d.height_rms <= HEIGHT_RMS_TOL_M,
+        "{label}: height RMS {} m > {HEIGHT_RMS_TOL_M} m",
+        d.height_rms
+    );
+    assert!(
+        d.horizontal_max <= HORIZONTAL_MAX_TOL_M,
+        "{label}: horizontal difference {} m > {HORIZONTAL_MAX_TOL_M} m",
+        d.horizontal_max
+    );
+    assert!(
+        d.normal_max_deg <= NORMAL_MAX_TOL_DEG,
+        "{label}: max normal angle {} deg > {NORMAL_MAX_TOL_DEG} deg",
+        d.normal_max_deg
+    );
+}
+
+/// The 256 × 256 parity grid (0.5 m × 0.75 m cells) at `origin`.
+pub fn grid_256(origin: glam::DVec2) -> ocean_core::Grid {
+    ocean_core::Grid {
+        origin,
+        spacing: glam::DVec2::new(0.5, 0.75),
+        size: (256, 256),
+    }
+}
+
 /// Differences between two evaluations of the same grid.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct GridDiff {

@@ -19,11 +19,9 @@ use ocean_gpu::{
     GpuContext, GpuError, GridOutput, LayersInput, LayersPass, LayersStats, TrochoidPass,
     TrochoidTarget,
 };
-use ocean_tests::{GridDiff, compare, gpu_context_or_skip, realistic_waves};
-
-const HEIGHT_RMS_TOL_M: f64 = 1e-3;
-const HORIZONTAL_MAX_TOL_M: f64 = 1e-3;
-const NORMAL_MAX_TOL_DEG: f64 = 0.1;
+use ocean_tests::{
+    GridDiff, assert_parity, compare, gpu_context_or_skip, grid_256, realistic_waves,
+};
 
 /// An owned layer: waves, rectangle and modulation.
 struct LayerData {
@@ -128,25 +126,8 @@ fn identical(pos_a: &[Vec3], nrm_a: &[Vec3], pos_b: &[Vec3], nrm_b: &[Vec3]) -> 
 }
 
 fn assert_within(label: &str, d: &GridDiff, identical: usize) {
-    println!(
-        "{label}: {d}; {identical} of {} points bit-identical",
-        d.points
-    );
-    assert!(
-        d.height_rms <= HEIGHT_RMS_TOL_M,
-        "{label}: height RMS {} m > {HEIGHT_RMS_TOL_M} m",
-        d.height_rms
-    );
-    assert!(
-        d.normal_max_deg <= NORMAL_MAX_TOL_DEG,
-        "{label}: max normal angle {} deg > {NORMAL_MAX_TOL_DEG} deg",
-        d.normal_max_deg
-    );
-    assert!(
-        d.horizontal_max <= HORIZONTAL_MAX_TOL_M,
-        "{label}: horizontal difference {} m",
-        d.horizontal_max
-    );
+    println!("{label}: {identical} of {} points bit-identical", d.points);
+    assert_parity(label, d);
 }
 
 /// GPU vs CPU; asserts the tolerances and returns the GPU output.
@@ -172,14 +153,6 @@ fn parity(
         println!("{label}: GPU time {:.3} ms", time.ms());
     }
     gpu
-}
-
-fn grid_256(origin: DVec2) -> Grid {
-    Grid {
-        origin,
-        spacing: DVec2::new(0.5, 0.75),
-        size: (256, 256),
-    }
 }
 
 /// Two overlapping layers with rectangles hanging at the grid's edges, plus a one-row layer

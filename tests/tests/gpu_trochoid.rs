@@ -14,10 +14,10 @@
 use glam::{DVec2, Vec3};
 use ocean_core::{Depth, Grid, WaveDesc, WaveSet};
 use ocean_gpu::{GpuContext, GpuError, TrochoidInput, TrochoidPass, TrochoidStats, TrochoidTarget};
-use ocean_tests::{GridDiff, compare, gpu_context_or_skip, realistic_waves};
-
-const HEIGHT_RMS_TOL_M: f64 = 1e-3;
-const NORMAL_MAX_TOL_DEG: f64 = 0.1;
+use ocean_tests::{
+    GridDiff, NORMAL_MAX_TOL_DEG, assert_parity, compare, gpu_context_or_skip, grid_256,
+    realistic_waves,
+};
 
 fn cpu(waves: &WaveSet, grid: &Grid, t: f64) -> (Vec<Vec3>, Vec<Vec3>) {
     let n = grid.point_count().unwrap();
@@ -27,33 +27,13 @@ fn cpu(waves: &WaveSet, grid: &Grid, t: f64) -> (Vec<Vec3>, Vec<Vec3>) {
     (pos, nrm)
 }
 
-fn assert_within(label: &str, d: &GridDiff) {
-    println!("{label}: {d}");
-    assert!(
-        d.height_rms <= HEIGHT_RMS_TOL_M,
-        "{label}: height RMS {} m > {HEIGHT_RMS_TOL_M} m",
-        d.height_rms
-    );
-    assert!(
-        d.normal_max_deg <= NORMAL_MAX_TOL_DEG,
-        "{label}: max normal angle {} deg > {NORMAL_MAX_TOL_DEG} deg",
-        d.normal_max_deg
-    );
-    // Horizontal displacement has the same 1 mm budget as heights (a max, not an RMS).
-    assert!(
-        d.horizontal_max <= 1e-3,
-        "{label}: horizontal difference {} m",
-        d.horizontal_max
-    );
-}
-
 /// GPU vs CPU on `grid` at `t`; returns the differences after asserting the tolerances.
 fn parity(ctx: &GpuContext, pass: &TrochoidPass, grid: &Grid, t: f64, label: &str) -> GridDiff {
     let waves = realistic_waves();
     let gpu = pass.evaluate_grid(ctx, &waves, grid, t).unwrap();
     let (pos, nrm) = cpu(&waves, grid, t);
     let d = compare(&gpu.positions, &gpu.normals, &pos, &nrm);
-    assert_within(label, &d);
+    assert_parity(label, &d);
     // Every normal is unit length and points up (det J > 0 away from folds): a sanity check
     // that the comparison is not between two equally wrong outputs of zeros.
     assert!(gpu.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-5));
@@ -71,14 +51,6 @@ fn parity(ctx: &GpuContext, pass: &TrochoidPass, grid: &Grid, t: f64, label: &st
         println!("{label}: GPU time {:.3} ms", time.ms());
     }
     d
-}
-
-fn grid_256(origin: DVec2) -> Grid {
-    Grid {
-        origin,
-        spacing: DVec2::new(0.5, 0.75),
-        size: (256, 256),
-    }
 }
 
 /// The parity cases: 256 × 256 at t = 0, 100 and 10⁶ s (each labelled in failures).
@@ -257,7 +229,7 @@ fn caller_buffers_and_encoder() {
             .collect()
     };
     let (cpos, cnrm) = cpu(&waves, &grid, 3.0);
-    assert_within(
+    assert_parity(
         "caller buffers 33x17",
         &compare(&v3(&pos), &v3(&nrm), &cpos, &cnrm),
     );
@@ -435,7 +407,7 @@ fn repeated_runs_reuse_and_grow_the_input_buffers() {
             grid.size.0,
             grid.size.1
         );
-        assert_within(&label, &compare(&pos, &nrm, &cpos, &cnrm));
+        assert_parity(&label, &compare(&pos, &nrm, &cpos, &cnrm));
         pass.stats()
     };
 
