@@ -1,7 +1,8 @@
 //! Sums of modulated wave sets on a grid: the evaluation primitive of wave train boxes.
 //!
 //! A [`Layer`] is a wave set whose contribution at each point of a grid rectangle is multiplied
-//! by a complex amplitude μ = m·e^{iφ}, stored as `[m cos φ, m sin φ]`: the point's trains are
+//! by a complex amplitude μ = m·e^{iφ}, stored as `[m cos φ, m sin φ]` in a [`Modulation`]
+//! (checked once when built, with each row's span of non-zero values): the point's trains are
 //! evaluated with amplitude m·Aᵢ and phase θᵢ + φ (Yrjölä & Larsson Eq. 6, 7). The amplitude
 //! factor m carries everything that scales a box's waves locally (the side smoothing of Fig. 4,
 //! the build-up envelope, land, shadow and shoaling along the rays, the irregular height of
@@ -31,6 +32,7 @@ use glam::Vec3;
 use crate::error::EvalError;
 use crate::grid::Grid;
 use crate::kernel::{Acc, HALF, LANES, WaveCoeffs};
+use crate::modulation::Modulation;
 use crate::trochoid::{
     ColumnSinCos, GridPlan, LANE_INDEX, WaveSet, check_outputs, check_time, dispatch,
 };
@@ -59,6 +61,14 @@ impl GridRect {
         self.nx == 0 || self.nz == 0
     }
 
+    /// Whether the rectangle lies inside a grid of `size` (columns, rows) points; an empty
+    /// rectangle does if its first point does or it sits on the far edge.
+    pub fn fits(&self, size: (usize, usize)) -> bool {
+        let inside =
+            |start: usize, len: usize, n: usize| start.checked_add(len).is_some_and(|end| end <= n);
+        inside(self.i0, self.nx, size.0) && inside(self.j0, self.nz, size.1)
+    }
+
     /// Index into a row-major array over this rectangle of grid point (i, j), if inside.
     #[inline]
     pub fn index(&self, i: usize, j: usize) -> Option<usize> {
@@ -72,10 +82,15 @@ impl GridRect {
 pub struct Layer<'a> {
     /// The waves.
     pub waves: &'a WaveSet,
-    /// Where the layer acts; outside it the layer contributes nothing.
-    pub rect: GridRect,
-    /// `[m cos φ, m sin φ]` per point of `rect`, row-major (`rect.len()` entries).
-    pub modulation: &'a [[f32; 2]],
+    /// μ over the rectangle where the layer acts; outside it the layer contributes nothing.
+    pub modulation: &'a Modulation,
+}
+
+impl Layer<'_> {
+    /// Where the layer acts: its modulation's rectangle.
+    pub fn rect(&self) -> GridRect {
+        self.modulation.rect()
+    }
 }
 
 /// Validated inputs with their per-layer tables.
@@ -100,24 +115,10 @@ impl<'a> Plan<'a> {
         check_time(t)?;
         let n = grid.point_count()?;
         check_outputs(n, out_pos, out_nrm)?;
-        let (gx, gz) = grid.size;
         for layer in layers {
-            let r = layer.rect;
-            if r.is_empty() || r.i0 + r.nx > gx || r.j0 + r.nz > gz {
-                return Err(EvalError::Grid("layer rectangle empty or outside the grid"));
-            }
-            if layer.modulation.len() != r.len() {
-                return Err(EvalError::Grid(
-                    "layer modulation must hold one entry per point of its rectangle",
-                ));
-            }
-            if !all_finite(bytemuck::cast_slice(layer.modulation), parallel) {
-                let index = layer
-                    .modulation
-                    .iter()
-                    .position(|m| !(m[0].is_finite() && m[1].is_finite()))
-                    .unwrap_or(0);
-                return Err(EvalError::Position { index });
+            // The modulation's values were checked when it was built; only the fit is left.
+            if !layer.rect().fits(grid.size) {
+                return Err(EvalError::Grid("layer rectangle outside the grid"));
             }
         }
         if let Some(h) = height {
@@ -152,33 +153,47 @@ impl<'a> Plan<'a> {
         })
     }
 
-    /// Evaluates row `j` into `pos` and `nrm` (one grid row each).
     /// Evaluates the chunks `chunks` of row `j` into `pos` and `nrm` (that row, whole).
-    fn row(&self, j: usize, chunks: core::ops::Range<usize>, pos: &mut [Vec3], nrm: &mut [Vec3]) {
+    fn row<'p>(
+        &'p self,
+        j: usize,
+        chunks: core::ops::Range<usize>,
+        pos: &mut [Vec3],
+        nrm: &mut [Vec3],
+        scratch: &mut Scratch<'p>,
+    ) {
         let nx = self.grid.size.0;
         let (c0, c1) = (chunks.start, chunks.end);
         let (a, b) = (c0 * LANES, (c1 * LANES).min(nx));
-        // The layers covering this row, with their row tables.
-        let mut active = Vec::new();
+        // The layers with non-zero modulation on this row, with their row tables.
+        scratch.active.clear();
+        scratch.rows.clear();
         for ((layer, plan), cols) in self.layers.iter().zip(&self.plans).zip(&self.cols) {
-            let r = layer.rect;
+            let m = layer.modulation;
+            let r = m.rect();
             if j < r.j0 || j >= r.j0 + r.nz {
                 continue;
             }
-            let mut rows = vec![[0.0f32; 2]; layer.waves.coeffs().len()];
-            plan.row_sin_cos(j, &mut rows);
-            let start = (j - r.j0) * r.nx;
-            active.push(ActiveLayer {
+            let span = m.span(j - r.j0);
+            if span.is_empty() || r.i0 + span.end <= a || r.i0 + span.start >= b {
+                continue;
+            }
+            let waves = layer.waves.coeffs().len();
+            let start = scratch.rows.len();
+            scratch.rows.resize(start + waves, [0.0; 2]);
+            plan.row_sin_cos(j, &mut scratch.rows[start..]);
+            scratch.active.push(ActiveLayer {
                 coeffs: layer.waves.coeffs(),
-                rows,
+                rows: start..start + waves,
                 cols,
-                i0: r.i0,
-                modulation: &layer.modulation[start..start + r.nx],
+                first: r.i0 + span.start,
+                modulation: &m.row(j - r.j0)[span],
             });
         }
         let height = self.height.map(|h| &h[j * nx..(j + 1) * nx]);
         dispatch(LayerRow {
-            layers: &active,
+            layers: &scratch.active,
+            rows: &scratch.rows,
             height,
             first_chunk: c0,
             dx: self.grid.spacing.x as f32,
@@ -189,21 +204,32 @@ impl<'a> Plan<'a> {
     }
 }
 
+/// What [`Plan::row`] builds for each row, kept from row to row so that a row allocates
+/// nothing.
+#[derive(Default)]
+struct Scratch<'p> {
+    /// The active layers' row tables, one after another.
+    rows: Vec<[f32; 2]>,
+    active: Vec<ActiveLayer<'p>>,
+}
+
 /// One layer's data for one grid row.
 struct ActiveLayer<'a> {
     coeffs: &'a [WaveCoeffs],
-    /// sin and cos of each wave's row phase.
-    rows: Vec<[f32; 2]>,
+    /// Where the sin and cos of each wave's row phase lie in [`Scratch::rows`].
+    rows: core::ops::Range<usize>,
     /// The layer's column table (see [`GridPlan`]).
     cols: &'a [ColumnSinCos],
-    /// First column of the layer's rectangle.
-    i0: usize,
-    /// The layer's modulation along this row (its rectangle's width).
+    /// The grid column of `modulation[0]`.
+    first: usize,
+    /// The layer's modulation along this row, over the row's span of non-zero values: zero
+    /// on either side.
     modulation: &'a [[f32; 2]],
 }
 
 struct LayerRow<'a> {
     layers: &'a [ActiveLayer<'a>],
+    rows: &'a [[f32; 2]],
     height: Option<&'a [f32]>,
     /// Chunk of the row where `pos` and `nrm` start.
     first_chunk: usize,
@@ -217,28 +243,22 @@ impl pulp::WithSimd for LayerRow<'_> {
     type Output = ();
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _: S) {
-        layer_row_kernel(
-            self.layers,
-            self.height,
-            self.first_chunk,
-            self.dx,
-            self.z,
-            self.pos,
-            self.nrm,
-        );
+        layer_row_kernel(self);
     }
 }
 
 #[inline(always)]
-fn layer_row_kernel(
-    layers: &[ActiveLayer<'_>],
-    height: Option<&[f32]>,
-    first_chunk: usize,
-    dx: f32,
-    z: f32,
-    out_pos: &mut [Vec3],
-    out_nrm: &mut [Vec3],
-) {
+fn layer_row_kernel(row: LayerRow<'_>) {
+    let LayerRow {
+        layers,
+        rows,
+        height,
+        first_chunk,
+        dx,
+        z,
+        pos: out_pos,
+        nrm: out_nrm,
+    } = row;
     for (n, (pos, nrm)) in out_pos
         .chunks_mut(LANES)
         .zip(out_nrm.chunks_mut(LANES))
@@ -246,45 +266,10 @@ fn layer_row_kernel(
     {
         let c = first_chunk + n;
         let first_col = c * LANES;
-        let mut lo = Acc::<HALF>::new();
-        let mut hi = Acc::<HALF>::new();
-        for layer in layers {
-            let end = layer.i0 + layer.modulation.len();
-            if end <= first_col || layer.i0 >= first_col + LANES {
-                continue;
-            }
-            // The modulation of this chunk's lanes; zero outside the layer's rectangle.
-            let mut re = [0.0f32; LANES];
-            let mut im = [0.0f32; LANES];
-            if first_col >= layer.i0 && first_col + LANES <= end {
-                // The whole chunk inside the rectangle: one contiguous run to de-interleave.
-                let run = &layer.modulation[first_col - layer.i0..][..LANES];
-                for l in 0..LANES {
-                    re[l] = run[l][0];
-                    im[l] = run[l][1];
-                }
-            } else {
-                for l in 0..LANES {
-                    let i = first_col + l;
-                    if i >= layer.i0 && i < end {
-                        [re[l], im[l]] = layer.modulation[i - layer.i0];
-                    }
-                }
-            }
-            // Outside its box a layer's modulation is exactly zero, and its terms would add
-            // exactly ±0 to every sum: skipping it changes no bit.
-            let mut any = 0.0f32;
-            for l in 0..LANES {
-                any += re[l].abs() + im[l].abs();
-            }
-            if any == 0.0 {
-                continue;
-            }
-            let waves = layer.coeffs.len();
-            let table = &layer.cols[c * waves..(c + 1) * waves];
-            add_half::<0>(&mut lo, layer, table, &re, &im);
-            add_half::<HALF>(&mut hi, layer, table, &re, &im);
-        }
+        // Each half chunk sums every layer's waves with its sums in registers (eight AVX2
+        // registers), then the halves meet for the normalisation and the stores.
+        let lo = half_sums(layers, rows, c, first_col);
+        let hi = half_sums(layers, rows, c, first_col + HALF);
         let mut acc = Acc::from_halves(&lo, &hi);
         if let Some(h) = height {
             let mut add = [0.0f32; LANES];
@@ -301,27 +286,67 @@ fn layer_row_kernel(
     }
 }
 
-/// Adds one layer's waves, modulated by `re + i·im`, for lanes `OFFSET..OFFSET + HALF`.
+/// The sums of every layer over the [`HALF`] lanes from grid column `first_col` (in chunk `c`
+/// of the column tables).
 #[inline(always)]
-fn add_half<const OFFSET: usize>(
-    acc: &mut Acc<HALF>,
-    layer: &ActiveLayer<'_>,
-    table: &[ColumnSinCos],
-    re: &[f32; LANES],
-    im: &[f32; LANES],
-) {
-    for ((coeff, &[rs, rc]), col) in layer.coeffs.iter().zip(&layer.rows).zip(table) {
-        let mut s = [0.0f32; HALF];
-        let mut co = [0.0f32; HALF];
-        for l in 0..HALF {
-            let (cs, cc) = (col.sin[OFFSET + l], col.cos[OFFSET + l]);
-            let (sin, cos) = (rs * cc + rc * cs, rc * cc - rs * cs);
-            let (mr, mi) = (re[OFFSET + l], im[OFFSET + l]);
-            s[l] = sin * mr + cos * mi;
-            co[l] = cos * mr - sin * mi;
+fn half_sums(
+    layers: &[ActiveLayer<'_>],
+    rows: &[[f32; 2]],
+    c: usize,
+    first_col: usize,
+) -> Acc<HALF> {
+    let mut acc = Acc::<HALF>::new();
+    let offset = first_col - c * LANES;
+    for layer in layers {
+        let end = layer.first + layer.modulation.len();
+        if end <= first_col || layer.first >= first_col + HALF {
+            continue;
         }
-        acc.add_sin_cos(coeff, &s, &co);
+        // The modulation of these lanes; zero outside the row's span.
+        let mut re = [0.0f32; HALF];
+        let mut im = [0.0f32; HALF];
+        if first_col >= layer.first && first_col + HALF <= end {
+            // All lanes inside the span: one contiguous run to de-interleave.
+            let run = &layer.modulation[first_col - layer.first..][..HALF];
+            for l in 0..HALF {
+                re[l] = run[l][0];
+                im[l] = run[l][1];
+            }
+        } else {
+            for l in 0..HALF {
+                let i = first_col + l;
+                if i >= layer.first && i < end {
+                    [re[l], im[l]] = layer.modulation[i - layer.first];
+                }
+            }
+        }
+        // Where μ is zero (land inside a box), a layer's terms would add exactly ±0 to every
+        // sum: skipping it changes no bit. The test ORs the magnitude bits, a reduction LLVM
+        // vectorises (a float sum would be evaluated lane by lane, in order).
+        let mut bits = 0u32;
+        for l in 0..HALF {
+            bits |= (re[l].to_bits() | im[l].to_bits()) & 0x7fff_ffff;
+        }
+        if bits == 0 {
+            continue;
+        }
+        let waves = layer.coeffs.len();
+        let table = &layer.cols[c * waves..(c + 1) * waves];
+        let rows = &rows[layer.rows.clone()];
+        for ((coeff, &[rs, rc]), col) in layer.coeffs.iter().zip(rows).zip(table) {
+            let mut s = [0.0f32; HALF];
+            let mut co = [0.0f32; HALF];
+            for l in 0..HALF {
+                let (cs, cc) = (col.sin[offset + l], col.cos[offset + l]);
+                let (sin, cos) = (rs * cc + rc * cs, rc * cc - rs * cs);
+                let (mr, mi) = (re[l], im[l]);
+                s[l] = sin * mr + cos * mi;
+                co[l] = cos * mr - sin * mi;
+            }
+            acc.add_sin_cos(coeff, &s, &co);
+        }
     }
+    acc
 }
 
 /// Whether every value is finite, in a form LLVM vectorises: x·0 is 0 for finite x and NaN
@@ -381,12 +406,13 @@ pub fn evaluate_layers_region(
         return Ok(());
     };
     let nx = grid.size.0;
+    let mut scratch = Scratch::default();
     for j in rows {
         let (p, n) = (
             &mut out_pos[j * nx..(j + 1) * nx],
             &mut out_nrm[j * nx..(j + 1) * nx],
         );
-        plan.row(j, chunks.clone(), p, n);
+        plan.row(j, chunks.clone(), p, n, &mut scratch);
     }
     Ok(())
 }
@@ -410,8 +436,7 @@ fn region_span(
     if r.is_empty() {
         return Ok(None);
     }
-    let (nx, nz) = grid.size;
-    if r.i0 + r.nx > nx || r.j0 + r.nz > nz {
+    if !r.fits(grid.size) {
         return Err(EvalError::Grid("region outside the grid"));
     }
     Ok(Some((
@@ -458,8 +483,15 @@ pub fn evaluate_layers_region_par(
         .zip(out_nrm[first * nx..last * nx].par_chunks_mut(nx * per_task))
         .enumerate()
         .for_each(|(task, (p, n))| {
+            let mut scratch = Scratch::default();
             for (r, (p, n)) in p.chunks_mut(nx).zip(n.chunks_mut(nx)).enumerate() {
-                plan.row(first + task * per_task + r, chunks.clone(), p, n);
+                plan.row(
+                    first + task * per_task + r,
+                    chunks.clone(),
+                    p,
+                    n,
+                    &mut scratch,
+                );
             }
         });
     Ok(())

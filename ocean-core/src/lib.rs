@@ -73,6 +73,7 @@ pub mod grid;
 pub mod kernel;
 pub mod layers;
 pub mod math;
+pub mod modulation;
 pub mod phase;
 pub mod rng;
 pub mod sincos;
@@ -90,6 +91,7 @@ pub use kernel::WaveCoeffs;
 pub use layers::{GridRect, Layer, evaluate_layers, evaluate_layers_region};
 #[cfg(feature = "std")]
 pub use layers::{evaluate_layers_par, evaluate_layers_region_par};
+pub use modulation::Modulation;
 pub use rng::Pcg32;
 pub use trochoid::{PointSums, Sample, SampleF64, WaveSet};
 pub use wave::{Wave, WaveDesc};

@@ -4,7 +4,7 @@ use core::f64::consts::TAU;
 
 use glam::{DVec2, Vec3};
 use ocean_core::{
-    Depth, EvalError, Grid, GridRect, Layer, Wave, WaveDesc, WaveSet, evaluate_layers,
+    Depth, EvalError, Grid, GridRect, Layer, Modulation, Wave, WaveDesc, WaveSet, evaluate_layers,
     evaluate_layers_par, evaluate_layers_region, evaluate_layers_region_par,
 };
 
@@ -43,6 +43,10 @@ fn full(grid: &Grid) -> GridRect {
     }
 }
 
+fn modulation(rect: GridRect, values: &[[f32; 2]]) -> Modulation {
+    Modulation::new(rect, values.to_vec()).unwrap()
+}
+
 fn run(grid: &Grid, t: f64, layers: &[Layer], height: Option<&[f32]>) -> (Vec<Vec3>, Vec<Vec3>) {
     let n = grid.size.0 * grid.size.1;
     let (mut p, mut q) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
@@ -69,8 +73,7 @@ fn unit_modulation_is_the_plain_sum_bit_for_bit() {
         77.5,
         &[Layer {
             waves: &set,
-            rect: full(&g),
-            modulation: &m,
+            modulation: &modulation(full(&g), &m),
         }],
         None,
     );
@@ -94,8 +97,7 @@ fn constant_modulation_scales_amplitude_and_shifts_phase() {
         3.0e5,
         &[Layer {
             waves: &set,
-            rect: full(&g),
-            modulation: &mu,
+            modulation: &modulation(full(&g), &mu),
         }],
         None,
     );
@@ -147,13 +149,11 @@ fn overlapping_layers_add_and_rectangles_bound_them() {
         &[
             Layer {
                 waves: &a,
-                rect: ra,
-                modulation: &ma,
+                modulation: &modulation(ra, &ma),
             },
             Layer {
                 waves: &b,
-                rect: rb,
-                modulation: &mb,
+                modulation: &modulation(rb, &mb),
             },
         ],
         None,
@@ -206,8 +206,7 @@ fn height_field_adds_to_heights_only() {
     let h: Vec<f32> = (0..m.len()).map(|k| 0.01 * (k % 7) as f32 - 0.02).collect();
     let layer = [Layer {
         waves: &set,
-        rect: full(&g),
-        modulation: &m,
+        modulation: &modulation(full(&g), &m),
     }];
     let (p0, q0) = run(&g, 5.0, &layer, None);
     let (p1, q1) = run(&g, 5.0, &layer, Some(&h));
@@ -245,13 +244,11 @@ fn threads_give_identical_bits() {
     let layers = [
         Layer {
             waves: &a,
-            rect: ra,
-            modulation: &ma,
+            modulation: &modulation(ra, &ma),
         },
         Layer {
             waves: &b,
-            rect: rb,
-            modulation: &mb,
+            modulation: &modulation(rb, &mb),
         },
     ];
     let (p1, q1) = run(&g, 1.5e4, &layers, None);
@@ -282,66 +279,33 @@ fn bad_layers_are_refused_without_writing() {
         nx: 10,
         nz: 5,
     };
-    let short = vec![[1.0f32, 0.0]; 10];
-    let nan = vec![[f32::NAN, 0.0]; n];
     let bad_h = vec![0.0f32; n - 1];
-    // (layers, height field, time): each invalid in one way.
-    type Case<'a> = (Vec<Layer<'a>>, Option<&'a [f32]>, f64);
-    let cases: Vec<Case> = vec![
-        (
-            vec![Layer {
-                waves: &set,
-                rect: outside,
-                modulation: &m[..50],
-            }],
-            None,
-            0.0,
-        ),
-        (
-            vec![Layer {
-                waves: &set,
-                rect: full(&g),
-                modulation: &short,
-            }],
-            None,
-            0.0,
-        ),
-        (
-            vec![Layer {
-                waves: &set,
-                rect: full(&g),
-                modulation: &nan,
-            }],
-            None,
-            0.0,
-        ),
-        (
-            vec![Layer {
-                waves: &set,
-                rect: full(&g),
-                modulation: &m,
-            }],
-            Some(&bad_h),
-            0.0,
-        ),
-        (
-            vec![Layer {
-                waves: &set,
-                rect: full(&g),
-                modulation: &m,
-            }],
-            None,
-            f64::NAN,
-        ),
+    let nan_h = vec![f32::NAN; n];
+    let outside = modulation(outside, &m[..50]);
+    let fine = modulation(full(&g), &m);
+    // (layer modulation, height field, time): each invalid in one way.
+    let cases: [(&Modulation, Option<&[f32]>, f64); 4] = [
+        (&outside, None, 0.0),
+        (&fine, Some(&bad_h), 0.0),
+        (&fine, Some(&nan_h), 0.0),
+        (&fine, None, f64::NAN),
     ];
-    for (layers, h, t) in &cases {
-        assert!(evaluate_layers(&g, *t, layers, *h, &mut p, &mut q).is_err());
+    for (m, h, t) in cases {
+        let layers = [Layer {
+            waves: &set,
+            modulation: m,
+        }];
+        assert!(evaluate_layers(&g, t, &layers, h, &mut p, &mut q).is_err());
+        assert!(evaluate_layers_par(&g, t, &layers, h, &mut p, &mut q).is_err());
     }
     assert!(matches!(
         evaluate_layers(&g, 0.0, &[], None, &mut p[..3], &mut q),
         Err(EvalError::OutputLength { .. })
     ));
     assert!(p.iter().chain(&q).all(|v| *v == sentinel));
+    // Modulations themselves are checked when built.
+    assert!(Modulation::new(full(&g), vec![[1.0, 0.0]; 10]).is_err());
+    assert!(Modulation::new(full(&g), vec![[f32::NAN, 0.0]; n]).is_err());
 }
 
 #[test]
@@ -371,13 +335,11 @@ fn f64_point_sums_agree_with_the_layer_kernel() {
         &[
             Layer {
                 waves: &a,
-                rect: ra,
-                modulation: &ma,
+                modulation: &modulation(ra, &ma),
             },
             Layer {
                 waves: &b,
-                rect: rb,
-                modulation: &mb,
+                modulation: &modulation(rb, &mb),
             },
         ],
         None,
@@ -407,8 +369,9 @@ fn f64_point_sums_agree_with_the_layer_kernel() {
 
 #[test]
 fn every_non_finite_value_is_found_with_its_index() {
-    // The finiteness check is vectorised (x·0 sums); an infinity or NaN anywhere, in the
-    // unrolled part or the remainder, on either component, must still be reported exactly.
+    // The finiteness checks are vectorised (x·0 sums); an infinity or NaN anywhere, in the
+    // unrolled part or the remainder, on either component, must still be reported exactly:
+    // by Modulation::new for a modulation, by the evaluation for a height field.
     let g = Grid {
         size: (333, 211),
         ..grid()
@@ -422,6 +385,7 @@ fn every_non_finite_value_is_found_with_its_index() {
         nx: 333,
         nz: 211,
     };
+    let fine = modulation(full, &vec![[0.5f32, -0.25]; n]);
     for (index, bad) in [
         (0, f32::INFINITY),
         (37, f32::NEG_INFINITY),
@@ -431,33 +395,81 @@ fn every_non_finite_value_is_found_with_its_index() {
         for component in 0..2 {
             let mut m = vec![[0.5f32, -0.25]; n];
             m[index][component] = bad;
-            let layer = [Layer {
-                waves: &set,
-                rect: full,
-                modulation: &m,
-            }];
-            assert_eq!(
-                evaluate_layers(&g, 1.0, &layer, None, &mut p, &mut q),
-                Err(EvalError::Position { index })
-            );
-            assert_eq!(
-                evaluate_layers_par(&g, 1.0, &layer, None, &mut p, &mut q),
-                Err(EvalError::Position { index })
-            );
+            assert_eq!(Modulation::new(full, m), Err(EvalError::Position { index }));
         }
-        let m = vec![[0.5f32, -0.25]; n];
         let mut h = vec![0.01f32; n];
         h[index] = bad;
         let layer = [Layer {
             waves: &set,
-            rect: full,
-            modulation: &m,
+            modulation: &fine,
         }];
+        assert_eq!(
+            evaluate_layers(&g, 1.0, &layer, Some(&h), &mut p, &mut q),
+            Err(EvalError::Position { index })
+        );
         assert_eq!(
             evaluate_layers_par(&g, 1.0, &layer, Some(&h), &mut p, &mut q),
             Err(EvalError::Position { index })
         );
     }
+}
+
+#[test]
+fn zero_modulation_outside_a_rotated_box_leaves_rest_and_skips_nothing_inside() {
+    // A diamond (a box rotated 45°) inside its bounding rectangle: μ = [1, 0] inside, 0 outside,
+    // so each row's non-zero span starts and ends mid-chunk. Inside, the bits of the plain
+    // trochoid sum (unit modulation, see the first test); outside, the rest position and +y.
+    let g = Grid {
+        size: (131, 77),
+        ..grid()
+    };
+    let set = waves(0.7);
+    let rect = GridRect {
+        i0: 9,
+        j0: 4,
+        nx: 117,
+        nz: 69,
+    };
+    let (ci, cj) = (rect.i0 as f64 + 58.0, rect.j0 as f64 + 34.0);
+    let inside =
+        |i: usize, j: usize| (i as f64 - ci).abs() / 58.0 + (j as f64 - cj).abs() / 34.0 <= 1.0;
+    let mut m = vec![[0.0f32; 2]; rect.len()];
+    for j in 0..rect.nz {
+        for i in 0..rect.nx {
+            if inside(rect.i0 + i, rect.j0 + j) {
+                m[j * rect.nx + i] = [1.0, 0.0];
+            }
+        }
+    }
+    let m = modulation(rect, &m);
+    let layers = [Layer {
+        waves: &set,
+        modulation: &m,
+    }];
+    let t = 640.0;
+    let (p, q) = run(&g, t, &layers, None);
+    let n = p.len();
+    let (mut pe, mut qe) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    set.evaluate_grid(&g, t, &mut pe, &mut qe).unwrap();
+    let (mut pp, mut qp) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    evaluate_layers_par(&g, t, &layers, None, &mut pp, &mut qp).unwrap();
+    assert!(pp == p && qp == q, "threads");
+    let (nx, nz) = g.size;
+    let mut counted = [0usize; 2];
+    for j in 0..nz {
+        for i in 0..nx {
+            let k = j * nx + i;
+            if inside(i, j) {
+                assert!(p[k] == pe[k] && q[k] == qe[k], "({i},{j}) inside");
+                counted[0] += 1;
+            } else {
+                let (lx, lz) = g.local(i, j);
+                assert_eq!((p[k], q[k]), (Vec3::new(lx, 0.0, lz), Vec3::Y), "({i},{j})");
+                counted[1] += 1;
+            }
+        }
+    }
+    assert!(counted[0] > 3000 && counted[1] > 3000, "{counted:?}");
 }
 
 #[test]
@@ -479,9 +491,9 @@ fn region_evaluation_writes_the_full_result_inside_and_nothing_outside() {
         .map(|k| [0.7, (k % 9) as f32 * 0.03])
         .collect();
     let h: Vec<f32> = (0..101 * 37).map(|k| (k % 5) as f32 * 0.01).collect();
+    let m = modulation(rect, &m);
     let layers = [Layer {
         waves: &set,
-        rect,
         modulation: &m,
     }];
     let (full_p, full_q) = run(&g, 21.0, &layers, Some(&h));

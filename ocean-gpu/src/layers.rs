@@ -147,8 +147,8 @@ const COEFF_WORDS: u64 = (std::mem::size_of::<ocean_core::WaveCoeffs>() / 4) as 
 
 /// The checks of [`ocean_core::evaluate_layers`], in its order and with its errors (the output
 /// slices it also checks are the pass's target here, checked separately): a finite time, a
-/// valid grid, every rectangle non-empty and inside the grid, one finite modulation entry per
-/// rectangle point, one finite height per grid point. Returns the grid's point count.
+/// valid grid, every rectangle inside the grid (the modulations' values were checked when they
+/// were built), one finite height per grid point. Returns the grid's point count.
 pub fn validate_layers(
     grid: &Grid,
     t: f64,
@@ -159,26 +159,9 @@ pub fn validate_layers(
         return Err(EvalError::Time(t));
     }
     let n = grid.point_count()?;
-    let (gx, gz) = grid.size;
     for layer in layers {
-        let r = layer.rect;
-        let inside = |start: usize, len: usize, size: usize| {
-            start.checked_add(len).is_some_and(|end| end <= size)
-        };
-        if r.is_empty() || !inside(r.i0, r.nx, gx) || !inside(r.j0, r.nz, gz) {
-            return Err(EvalError::Grid("layer rectangle empty or outside the grid"));
-        }
-        if layer.modulation.len() != r.len() {
-            return Err(EvalError::Grid(
-                "layer modulation must hold one entry per point of its rectangle",
-            ));
-        }
-        if let Some(index) = layer
-            .modulation
-            .iter()
-            .position(|m| !(m[0].is_finite() && m[1].is_finite()))
-        {
-            return Err(EvalError::Position { index });
+        if !layer.rect().fits(grid.size) {
+            return Err(EvalError::Grid("layer rectangle outside the grid"));
         }
     }
     if let Some(h) = height {
@@ -318,7 +301,7 @@ impl Inputs {
         // Modulation follows the coefficients and tables, in layer order.
         let mut modulation = p.scratch_words;
         for layer in input.layers {
-            let r = layer.rect;
+            let r = layer.rect();
             let coeffs = layer.waves.coeffs();
             let w = coeffs.len();
             // Offsets fit u32: the total was checked in `prepare`.
@@ -496,7 +479,7 @@ impl LayersPass {
         let layer_count = input.layers.len() as u64;
         let (mut scratch_words, mut modulation_words) = (0u64, 0u64);
         for layer in input.layers {
-            let r = layer.rect;
+            let r = layer.rect();
             let w = layer.waves.coeffs().len() as u64;
             // Rectangles lie inside the grid (validated), so these products stay far below
             // u64::MAX.
@@ -601,7 +584,7 @@ impl LayersPass {
                 queue.write_buffer(
                     &inputs.data,
                     u64::from(desc.modulation) * WORD,
-                    bytemuck::cast_slice(layer.modulation),
+                    bytemuck::cast_slice(layer.modulation.values()),
                 );
             }
             if let Some(h) = input.height {
@@ -724,9 +707,6 @@ mod tests {
             depth: Depth::Deep,
         }])
         .unwrap();
-        let m = vec![[1.0f32, 0.0]; 48];
-        let mut m_nan = m.clone();
-        m_nan[17][1] = f32::NAN;
         let h = vec![0.5f32; 48];
         let mut h_inf = h.clone();
         h_inf[40] = f32::INFINITY;
@@ -736,24 +716,35 @@ mod tests {
             nx: 8,
             nz: 6,
         };
-        let layer = |rect: GridRect, modulation| Layer {
+        let m = |rect: GridRect| ocean_core::Modulation::unit(rect).unwrap();
+        let (m_full, m_right, m_down, m_wide) = (
+            m(full),
+            m(GridRect { i0: 1, ..full }),
+            m(GridRect { j0: 1, ..full }),
+            m(GridRect { nx: 9, ..full }),
+        );
+        // A rectangle whose end overflows usize is outside the grid, not an overflow panic.
+        let m_far = m(GridRect {
+            i0: usize::MAX,
+            nx: 2,
+            ..full
+        });
+        let layer = |modulation| Layer {
             waves: &waves,
-            rect,
             modulation,
         };
         type Case<'a> = (f64, Vec<Layer<'a>>, Option<&'a [f32]>);
         let cases: Vec<Case<'_>> = vec![
-            (0.0, vec![layer(full, &m)], Some(&h)),
+            (0.0, vec![layer(&m_full)], Some(&h)),
             (0.0, vec![], None),
-            (f64::NAN, vec![layer(full, &m)], None),
+            (f64::NAN, vec![layer(&m_full)], None),
             (f64::INFINITY, vec![], None),
-            (0.0, vec![layer(GridRect { i0: 1, ..full }, &m)], None),
-            (0.0, vec![layer(GridRect { j0: 1, ..full }, &m)], None),
-            (0.0, vec![layer(GridRect { nx: 0, ..full }, &m[..0])], None),
-            (0.0, vec![layer(GridRect { nx: 4, ..full }, &m)], None),
-            (0.0, vec![layer(full, &m_nan)], None),
-            (0.0, vec![layer(full, &m)], Some(&h[..47])),
-            (0.0, vec![layer(full, &m)], Some(&h_inf)),
+            (0.0, vec![layer(&m_right)], None),
+            (0.0, vec![layer(&m_down)], None),
+            (0.0, vec![layer(&m_wide)], None),
+            (0.0, vec![layer(&m_far)], None),
+            (0.0, vec![layer(&m_full)], Some(&h[..47])),
+            (0.0, vec![layer(&m_full)], Some(&h_inf)),
         ];
         for (k, (t, layers, height)) in cases.iter().enumerate() {
             let mut pos = vec![Vec3::ZERO; 48];
@@ -768,18 +759,9 @@ mod tests {
             );
             assert_eq!(cpu.is_ok(), k < 2, "case {k}");
         }
-        // A rectangle whose end overflows usize is outside the grid, not an overflow panic.
-        let far = layer(
-            GridRect {
-                i0: usize::MAX,
-                nx: 2,
-                ..full
-            },
-            &m[..12],
-        );
         assert_eq!(
-            validate_layers(&grid, 0.0, &[far], None),
-            Err(EvalError::Grid("layer rectangle empty or outside the grid"))
+            validate_layers(&grid, 0.0, &[layer(&m_far)], None),
+            Err(EvalError::Grid("layer rectangle outside the grid"))
         );
     }
 }

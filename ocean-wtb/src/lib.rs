@@ -68,6 +68,7 @@ pub mod frame;
 pub mod grid;
 pub mod scenarios;
 pub mod scene;
+pub mod shore;
 pub mod terrain;
 pub mod wind;
 

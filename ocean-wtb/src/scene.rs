@@ -14,7 +14,10 @@
 //! along a ray the amplitude drops to zero on land, recovers linearly over a distance behind it
 //! (Fig. 5), grows by Green's law as the water shoals, is capped on beaches, and the phase lag
 //! of depth refraction accumulates. The ray events (land starts and ends, depth bands) are kept
-//! as action points. The result is cached until the box moves, grows, or the terrain or the
+//! as action points. The land factor (zero on land, the recovery behind it) is then smoothed
+//! across the grid over a width in metres proportional to the box's amplitude
+//! ([`crate::shore`]), so that neither a cliff nor the side of a shadow folds the displaced
+//! surface, whatever the grid spacing. The result is cached until the box moves, grows, or the terrain or the
 //! static effects change, so a still box costs nothing per frame beyond evaluating its trains.
 //!
 //! The [`Frame`] then evaluates the grid with `ocean_core::evaluate_layers` (every box a layer
@@ -28,13 +31,14 @@ use ocean_core::frustum::{Containment, Frustum};
 use ocean_core::layers::{GridRect, Layer, evaluate_layers};
 use ocean_core::math;
 use ocean_core::sincos::sincos;
-use ocean_core::{PointSums, Wave, WaveDesc, WaveSet};
+use ocean_core::{Modulation, PointSums, Wave, WaveDesc, WaveSet};
 
 use crate::budget::{BoxLoad, Budget, CostModel, Selection, select, train_order};
 use crate::effects::{self, Effects, Refraction};
 use crate::error::WtbError;
 use crate::frame::BoxFrame;
 use crate::grid::{WaterGrid, ceil_i64, floor_i64};
+use crate::shore;
 use crate::terrain::Terrain;
 use crate::wind::{TrainSource, Wind};
 
@@ -115,8 +119,8 @@ struct Cache {
     frame: BoxFrame,
     terrain_version: u64,
     key: StaticKey,
-    rect: GridRect,
-    mu: Vec<[f32; 2]>,
+    /// `None` when the box covers no grid point.
+    mu: Option<Modulation>,
     actions: Vec<ActionPoint>,
 }
 
@@ -448,9 +452,9 @@ impl Scene {
         for (k, frame, env) in &visible {
             let slot = &self.boxes[*k];
             let cache = slot.cache.as_ref().expect("refreshed above");
-            if cache.rect.is_empty() {
+            let Some(static_mu) = &cache.mu else {
                 continue;
-            }
+            };
             let order = train_order(&slot.trains.iter().map(|d| d.amplitude).collect::<Vec<_>>());
             let take = order.len().min(selection.max_trains);
             let waves: Vec<Wave> = order[..take]
@@ -472,15 +476,14 @@ impl Scene {
                 &self.terrain,
                 slot,
                 frame,
-                cache,
+                static_mu,
                 &selection.effects,
                 t,
-            );
+            )?;
             layers.push(FrameLayer {
                 waves,
-                rect: cache.rect,
                 mu,
-                cache: &cache.mu,
+                cache: static_mu,
             });
         }
         let height = height_field(&self.grid, &self.terrain, &selection.effects, t);
@@ -615,8 +618,9 @@ fn box_rect(grid: &WaterGrid, frame: &BoxFrame) -> GridRect {
     }
 }
 
-/// One ray's result: (rectangle index, modulation) per covered point, and its action points.
-type MarchedRay = (Vec<(usize, [f32; 2])>, Vec<ActionPoint>);
+/// One ray's result: (rectangle index, modulation without the land factor, land factor) per
+/// covered point, and its action points.
+type MarchedRay = (Vec<(usize, [f64; 2], f32)>, Vec<ActionPoint>);
 
 /// Marches every wave ray of the box (§2, Fig. 2, Fig. 5) and records the static modulation
 /// m·e^{iφ} of each covered grid point and the action points.
@@ -639,7 +643,7 @@ fn build_cache(
     let shallow_depth = effects::shoaling_reference(slot.peak_wavelength);
     let shortening = effects::ShorteningTable::new(k_p);
     let march = |r: u32| {
-        let mut values: Vec<(usize, [f32; 2])> = Vec::new();
+        let mut values: Vec<(usize, [f64; 2], f32)> = Vec::new();
         let mut actions: Vec<ActionPoint> = Vec::new();
         let mut on_land = false;
         let mut land_end: Option<f64> = None;
@@ -690,7 +694,9 @@ fn build_cache(
                     });
                     shallow = is_shallow;
                 }
-                let mut m = if land {
+                // The land factor: zero on land, recovering behind it (Fig. 5); smoothed across
+                // the grid below (see `shore`).
+                let land_factor = if land {
                     0.0
                 } else {
                     land_end.map_or(1.0, |e| {
@@ -701,6 +707,7 @@ fn build_cache(
                         }
                     })
                 };
+                let mut m = 1.0;
                 if key.shoaling && !land {
                     m *= effects::shoaling(depth, shallow_depth);
                 }
@@ -721,7 +728,8 @@ fn build_cache(
                 if let Some(q) = rect.index(i, j) {
                     values.push((
                         q,
-                        [(m * math::cos(phase)) as f32, (m * math::sin(phase)) as f32],
+                        [m * math::cos(phase), m * math::sin(phase)],
+                        land_factor as f32,
                     ));
                 }
             }
@@ -738,17 +746,44 @@ fn build_cache(
     };
     #[cfg(not(feature = "std"))]
     let marched: Vec<MarchedRay> = rays.iter().map(|&r| march(r)).collect();
+    // The land factor of every rectangle point: land is 0 whether a ray covers it or not (a
+    // shore just outside the box still ramps the water inside it), open water 1.
+    let mut factor = vec![1.0f32; rect.len()];
+    let mut land = vec![false; rect.len()];
+    if terrain.has_land() {
+        for (q, (f, l)) in factor.iter_mut().zip(&mut land).enumerate() {
+            let (i, j) = (rect.i0 + q % rect.nx, rect.j0 + q / rect.nx);
+            if terrain.is_land(i, j) {
+                (*f, *l) = (0.0, true);
+            }
+        }
+    }
+    let mut base = vec![[0.0f64; 2]; rect.len()];
     for (points, ray_actions) in marched {
-        for (q, v) in points {
-            mu[q] = v;
+        for (q, v, f) in points {
+            base[q] = v;
+            factor[q] = f;
         }
         actions.extend(ray_actions);
     }
+    if factor.iter().any(|&f| f < 1.0) {
+        let r = shore::radius(slot.amplitude, grid.spacing());
+        shore::smooth(&mut factor, &land, rect.nx, rect.nz, r);
+    }
+    for ((m, b), f) in mu.iter_mut().zip(&base).zip(&factor) {
+        let f = f64::from(*f);
+        *m = [(b[0] * f) as f32, (b[1] * f) as f32];
+    }
+    // Every value is a product of finite factors; the check also records each row's span.
+    let mu = if rect.is_empty() {
+        None
+    } else {
+        Some(Modulation::new(rect, mu).map_err(WtbError::Eval)?)
+    };
     Ok(Cache {
         frame: *frame,
         terrain_version,
         key,
-        rect,
         mu,
         actions,
     })
@@ -762,16 +797,16 @@ fn time_modulation(
     terrain: &Terrain,
     slot: &Slot,
     frame: &BoxFrame,
-    cache: &Cache,
+    cache: &Modulation,
     e: &Effects,
     t: f64,
-) -> Option<Vec<[f32; 2]>> {
+) -> Result<Option<Modulation>, WtbError> {
     let dispersion = e.refraction == Refraction::Dispersion;
     if e.irregular.is_none() && !dispersion {
-        return None;
+        return Ok(None);
     }
-    let r = cache.rect;
-    let mut out = cache.mu.clone();
+    let r = cache.rect();
+    let mut out = cache.values().to_vec();
     let row = |dj: usize, row: &mut [[f32; 2]]| {
         for (di, v) in row.iter_mut().enumerate() {
             let [re, im] = *v;
@@ -795,7 +830,7 @@ fn time_modulation(
         }
     };
     for_rows(&mut out, r.nx, row);
-    Some(out)
+    Ok(Some(Modulation::new(r, out).map_err(WtbError::Eval)?))
 }
 
 /// Runs `f(row index, row)` over the rows of `data` (rows of `width` values), on the rayon pool
@@ -843,21 +878,24 @@ fn height_field(grid: &WaterGrid, terrain: &Terrain, e: &Effects, t: f64) -> Opt
 #[derive(Clone, Debug)]
 struct FrameLayer<'a> {
     waves: WaveSet,
-    rect: GridRect,
     /// This frame's modulation, when time-dependent effects change the cached one.
-    mu: Option<Vec<[f32; 2]>>,
-    cache: &'a [[f32; 2]],
+    mu: Option<Modulation>,
+    cache: &'a Modulation,
 }
 
 impl FrameLayer<'_> {
-    fn modulation(&self) -> &[[f32; 2]] {
-        self.mu.as_deref().unwrap_or(self.cache)
+    fn modulation(&self) -> &Modulation {
+        self.mu.as_ref().unwrap_or(self.cache)
+    }
+
+    fn rect(&self) -> GridRect {
+        self.cache.rect()
     }
 
     /// The modulation interpolated bilinearly over `cell`; zero outside the rectangle.
     fn modulation_at(&self, cell: &Cell) -> [f64; 2] {
-        let r = self.rect;
-        let m = self.modulation();
+        let r = self.rect();
+        let m = self.modulation().values();
         let at = |q: usize| [f64::from(m[q][0]), f64::from(m[q][1])];
         // The common case: the whole cell inside the rectangle, corners at fixed offsets.
         if cell.i >= r.i0 && cell.j >= r.j0 && cell.i + 1 < r.i0 + r.nx && cell.j + 1 < r.j0 + r.nz
@@ -976,7 +1014,6 @@ impl Frame<'_> {
             .iter()
             .map(|l| Layer {
                 waves: &l.waves,
-                rect: l.rect,
                 modulation: l.modulation(),
             })
             .collect()
@@ -1043,7 +1080,7 @@ impl Frame<'_> {
         let now = self
             .layers
             .iter()
-            .map(|l| l.rect)
+            .map(|l| l.rect())
             .fold(None, |acc: Option<GridRect>, r| Some(union(acc, r)));
         let whole = GridRect {
             i0: 0,
