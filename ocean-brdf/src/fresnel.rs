@@ -1,0 +1,1 @@
+//! Fresnel reflectance (§5.1, §5.2).

@@ -1,0 +1,1 @@
+//! The Ross BRDF (§4).
