@@ -10,6 +10,15 @@
 //! vectors in the surface's tangent frame (x along the wind, y across it, z along the normal),
 //! and conversion happens once, where a world-space normal and wind meet the BRDF.
 //!
+//! - [`spectrum`]: Pierson–Moskowitz amplitudes (Eq. 1), Hasselmann spreading, seeded
+//!   trochoids and the statistics a renderer needs.
+//! - [`filter`]: the weights w_p, w_n and w_r that move each wave from the geometry to the
+//!   normals to the BRDF (§3.2).
+//! - [`variance`]: the slope variance of the unresolved waves (Eq. 4, Appendix A).
+//! - [`ross`]: the Ross BRDF (§4) and the Sun's reflection (Eq. 15).
+//! - [`fresnel`]: Schlick's Fresnel (Eq. 14) and the effective Fresnel of rough water
+//!   (Eq. 24–26).
+//!
 //! Every transcendental function comes from `libm`, so results are the same on every
 //! platform.
 #![no_std]
@@ -21,7 +30,13 @@ extern crate alloc;
 extern crate std;
 
 pub mod error;
+pub mod filter;
 pub mod fresnel;
 pub mod ross;
+pub mod spectrum;
+pub mod variance;
 
 pub use error::BrdfError;
+pub use filter::Filter;
+pub use spectrum::{Spectrum, SpectrumParams};
+pub use variance::{SlopeVariance, VarianceTable};
