@@ -58,7 +58,7 @@ pub fn hasselmann_exponent(omega: f64, wind_speed: f64) -> f64 {
 /// falls towards 0, an isotropic sea, and the short waves that carry most of the slope variance
 /// would lose the anisotropy Cox & Munk measured (§3.1): a crosswind to upwind slope variance
 /// ratio of about 0.7 (0.0222 / 0.0316 at 10 m/s). For cos^{2s}(θ/2) that ratio is
-/// E[sin²θ] / E[cos²θ] = (1 − b₂)/(1 + b₂) with b₂ = E[cos 2θ] = s(s − 1)/((s + 1)(s + 2)),
+/// E(sin²θ) / E(cos²θ) = (1 − b₂)/(1 + b₂) with b₂ = E(cos 2θ) = s(s − 1)/((s + 1)(s + 2)),
 /// which is 0.70 at s = 2.06; s is held at 2 or more.
 pub const SPREAD_MIN_EXPONENT: f64 = 2.0;
 
