@@ -86,11 +86,6 @@ impl Modulation {
         &self.values
     }
 
-    /// The values, given back.
-    pub fn into_values(self) -> Vec<[f32; 2]> {
-        self.values
-    }
-
     /// Row `r` of the rectangle (`0..rect.nz`).
     ///
     /// # Panics

@@ -34,34 +34,14 @@ pub fn radius(amplitude: f64, spacing: f64) -> usize {
 }
 
 /// Erodes then box-filters `f` (`nx` × `nz`, row-major) with radius `r` in place, then sets
-/// every point of `land` back to exactly 0. Windows are clipped at the array's edges.
+/// every point of `land` back to exactly 0. Windows are clipped at the array's edges. Both
+/// filters are separable and cost O(nx·nz) whatever `r`.
 pub fn smooth(f: &mut [f32], land: &[bool], nx: usize, nz: usize, r: usize) {
     if r == 0 || nx == 0 || nz == 0 {
         return;
     }
-    let mut tmp = vec![0.0f32; f.len()];
-    // Erosion, separable: rows into tmp, then columns back into f.
-    for j in 0..nz {
-        min_line(&f[j * nx..(j + 1) * nx], &mut tmp[j * nx..(j + 1) * nx], r);
-    }
-    for i in 0..nx {
-        min_strided(&tmp, f, i, nx, nz, r);
-    }
-    // Box mean, separable, in f64 running sums (exact enough: at most 8193 terms of [0, 1]).
-    for j in 0..nz {
-        mean_line(&f[j * nx..(j + 1) * nx], &mut tmp[j * nx..(j + 1) * nx], r);
-    }
-    let mut column = vec![0.0f32; nz];
-    let mut out = vec![0.0f32; nz];
-    for i in 0..nx {
-        for j in 0..nz {
-            column[j] = tmp[j * nx + i];
-        }
-        mean_line(&column, &mut out, r);
-        for j in 0..nz {
-            f[j * nx + i] = out[j];
-        }
-    }
+    separable(f, nx, nz, |src, dst| min_line(src, dst, r));
+    separable(f, nx, nz, |src, dst| mean_line(src, dst, r));
     for (v, &l) in f.iter_mut().zip(land) {
         if l {
             *v = 0.0;
@@ -69,26 +49,49 @@ pub fn smooth(f: &mut [f32], land: &[bool], nx: usize, nz: usize, r: usize) {
     }
 }
 
-/// The minimum over the window of radius `r` around each element of a line.
+/// Applies the line filter `line(src, dst)` to every row of `f`, then to every column.
+fn separable(f: &mut [f32], nx: usize, nz: usize, mut line: impl FnMut(&[f32], &mut [f32])) {
+    let mut out = vec![0.0f32; nx.max(nz)];
+    for row in f.chunks_exact_mut(nx) {
+        line(row, &mut out[..nx]);
+        row.copy_from_slice(&out[..nx]);
+    }
+    let mut column = vec![0.0f32; nz];
+    for i in 0..nx {
+        for (j, c) in column.iter_mut().enumerate() {
+            *c = f[j * nx + i];
+        }
+        line(&column, &mut out[..nz]);
+        for (j, &v) in out[..nz].iter().enumerate() {
+            f[j * nx + i] = v;
+        }
+    }
+}
+
+/// The minimum over the window of radius `r` around each element of a line, with a monotone
+/// queue of candidate indices (each index enters and leaves once).
 fn min_line(src: &[f32], dst: &mut [f32], r: usize) {
     let n = src.len();
+    let mut queue = alloc::collections::VecDeque::with_capacity(2 * r + 1);
+    let mut next = 0;
     for (k, d) in dst.iter_mut().enumerate() {
-        let (a, b) = (k.saturating_sub(r), (k + r + 1).min(n));
-        *d = src[a..b].iter().copied().fold(f32::INFINITY, f32::min);
+        // Admit every index up to k + r; a new value retires the larger ones before it.
+        while next < n && next <= k + r {
+            while queue.back().is_some_and(|&b: &usize| src[b] >= src[next]) {
+                queue.pop_back();
+            }
+            queue.push_back(next);
+            next += 1;
+        }
+        while queue.front().is_some_and(|&a| a + r < k) {
+            queue.pop_front();
+        }
+        *d = src[*queue.front().expect("the window holds index k")];
     }
 }
 
-/// [`min_line`] down column `i` of `src` into column `i` of `dst`.
-fn min_strided(src: &[f32], dst: &mut [f32], i: usize, nx: usize, nz: usize, r: usize) {
-    for j in 0..nz {
-        let (a, b) = (j.saturating_sub(r), (j + r + 1).min(nz));
-        dst[j * nx + i] = (a..b)
-            .map(|jj| src[jj * nx + i])
-            .fold(f32::INFINITY, f32::min);
-    }
-}
-
-/// The mean over the window of radius `r` around each element of a line, by running sums.
+/// The mean over the window of radius `r` around each element of a line, by running sums in
+/// f64 (exact enough: at most 8193 terms of [0, 1]).
 fn mean_line(src: &[f32], dst: &mut [f32], r: usize) {
     let n = src.len();
     let mut prefix = Vec::with_capacity(n + 1);
@@ -127,6 +130,23 @@ mod tests {
                 assert!((v - expect).abs() < 1e-6, "column {k}: {v} vs {expect}");
             }
             assert_eq!(row[10 + 2 * r], 1.0);
+        }
+    }
+
+    #[test]
+    fn the_sliding_minimum_is_the_minimum_of_each_clipped_window() {
+        // Against the definition, on a line with repeats, plateaus and both edges.
+        let src: Vec<f32> = (0..97u32)
+            .map(|k| ((k * 37 + 11) % 23) as f32 * 0.125 - if k % 9 == 0 { 1.0 } else { 0.0 })
+            .collect();
+        for r in [1, 2, 5, 40, 200] {
+            let mut dst = vec![0.0f32; src.len()];
+            min_line(&src, &mut dst, r);
+            for (k, &d) in dst.iter().enumerate() {
+                let (a, b) = (k.saturating_sub(r), (k + r + 1).min(src.len()));
+                let expect = src[a..b].iter().copied().fold(f32::INFINITY, f32::min);
+                assert_eq!(d, expect, "r = {r}, element {k}");
+            }
         }
     }
 
