@@ -64,3 +64,77 @@ pub(crate) fn displace_pipeline(
         Ok((pipeline, layout))
     })
 }
+
+/// Bind groups kept for the targets a grid pass wrote last, least recently used first: a frame
+/// loop that alternates between a few targets builds each bind group once.
+#[derive(Debug, Default)]
+pub(crate) struct BindGroupCache {
+    entries: Vec<CachedBindGroup>,
+}
+
+#[derive(Debug)]
+struct CachedBindGroup {
+    positions: wgpu::Buffer,
+    normals: wgpu::Buffer,
+    out_size: u64,
+    group: wgpu::BindGroup,
+}
+
+impl BindGroupCache {
+    /// Forgets every bind group (the input buffers they hold were replaced).
+    pub(crate) fn clear(&mut self) {
+        self.entries.clear();
+    }
+
+    /// The bind group of a [`displace_pipeline`] layout over `inputs` (bindings 0, 1 and 2) and
+    /// `target` (3 and 4, `out_size` bytes each), and whether it had to be created. At most
+    /// [`crate::trochoid::BIND_GROUP_CACHE`] are kept.
+    pub(crate) fn get(
+        &mut self,
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        label: &str,
+        inputs: [&wgpu::Buffer; 3],
+        target: &crate::TrochoidTarget,
+        out_size: u64,
+    ) -> (wgpu::BindGroup, bool) {
+        let hit = self.entries.iter().position(|c| {
+            c.positions == target.positions && c.normals == target.normals && c.out_size == out_size
+        });
+        if let Some(i) = hit {
+            let cached = self.entries.remove(i);
+            let group = cached.group.clone();
+            self.entries.push(cached);
+            return (group, false);
+        }
+        let output = |buffer| {
+            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer,
+                offset: 0,
+                size: wgpu::BufferSize::new(out_size),
+            })
+        };
+        let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(label),
+            layout,
+            entries: &[
+                entry(0, inputs[0].as_entire_binding()),
+                entry(1, inputs[1].as_entire_binding()),
+                entry(2, inputs[2].as_entire_binding()),
+                entry(3, output(&target.positions)),
+                entry(4, output(&target.normals)),
+            ],
+        });
+        if self.entries.len() == crate::trochoid::BIND_GROUP_CACHE {
+            self.entries.remove(0);
+        }
+        self.entries.push(CachedBindGroup {
+            positions: target.positions.clone(),
+            normals: target.normals.clone(),
+            out_size,
+            group: group.clone(),
+        });
+        (group, true)
+    }
+}

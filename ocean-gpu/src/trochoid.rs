@@ -248,16 +248,8 @@ struct Inputs {
     /// Rows then columns, as uploaded to `tables`; kept to avoid a host allocation per run.
     scratch: Vec<[f32; 2]>,
     /// Least recently used first.
-    bind_groups: Vec<CachedBindGroup>,
+    bind_groups: crate::pipeline::BindGroupCache,
     stats: TrochoidStats,
-}
-
-#[derive(Debug)]
-struct CachedBindGroup {
-    positions: wgpu::Buffer,
-    normals: wgpu::Buffer,
-    out_size: u64,
-    group: wgpu::BindGroup,
 }
 
 /// Everything one dispatch needs besides the tables, checked on the host.
@@ -315,7 +307,7 @@ impl Inputs {
                 storage,
             ),
             scratch: Vec::new(),
-            bind_groups: Vec::new(),
+            bind_groups: Default::default(),
             stats: TrochoidStats {
                 buffers_created: 3,
                 bind_groups_created: 0,
@@ -373,58 +365,17 @@ impl Inputs {
         target: &TrochoidTarget,
         out_size: u64,
     ) -> wgpu::BindGroup {
-        let hit = self.bind_groups.iter().position(|c| {
-            c.positions == target.positions && c.normals == target.normals && c.out_size == out_size
-        });
-        if let Some(i) = hit {
-            let cached = self.bind_groups.remove(i);
-            let group = cached.group.clone();
-            self.bind_groups.push(cached);
-            return group;
-        }
-        let output = |buffer| {
-            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                buffer,
-                offset: 0,
-                size: wgpu::BufferSize::new(out_size),
-            })
-        };
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ocean trochoid bind group"),
+        let (group, created) = self.bind_groups.get(
+            device,
             layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: self.coeffs.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: self.tables.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: output(&target.positions),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: output(&target.normals),
-                },
-            ],
-        });
-        self.stats.bind_groups_created += 1;
-        if self.bind_groups.len() == BIND_GROUP_CACHE {
-            self.bind_groups.remove(0);
-        }
-        self.bind_groups.push(CachedBindGroup {
-            positions: target.positions.clone(),
-            normals: target.normals.clone(),
+            "ocean trochoid bind group",
+            [&self.params, &self.coeffs, &self.tables],
+            target,
             out_size,
-            group: group.clone(),
-        });
+        );
+        if created {
+            self.stats.bind_groups_created += 1;
+        }
         group
     }
 }
