@@ -18,6 +18,11 @@
 //! - [`ross`]: the Ross BRDF (§4) and the Sun's reflection (Eq. 15).
 //! - [`fresnel`]: Schlick's Fresnel (Eq. 14) and the effective Fresnel of rough water
 //!   (Eq. 24–26).
+//! - [`sky`]: the Sun, a default sky (CIE clear sky) and the stereographic parameterisation
+//!   (§5.2).
+//! - [`sky_map`]: the mip-mapped sky map and the filtered lookup of Eq. 27.
+//! - [`sea`]: Algorithm 5.1, the Sun's, the sky's and the refracted light for one pixel.
+//! - [`tonemap`]: exposure and sRGB encoding.
 //!
 //! Every transcendental function comes from `libm`, so results are the same on every
 //! platform.
@@ -32,11 +37,19 @@ extern crate std;
 pub mod error;
 pub mod filter;
 pub mod fresnel;
+mod quadrature;
 pub mod ross;
+pub mod sea;
+pub mod sky;
+pub mod sky_map;
 pub mod spectrum;
+pub mod tonemap;
 pub mod variance;
 
 pub use error::BrdfError;
 pub use filter::Filter;
+pub use sea::{Lighting, SeaLight, SeaParams};
+pub use sky::{Sky, SkyParams};
+pub use sky_map::SkyMap;
 pub use spectrum::{Spectrum, SpectrumParams};
 pub use variance::{SlopeVariance, VarianceTable};
