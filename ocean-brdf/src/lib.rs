@@ -22,6 +22,8 @@
 //!   (§5.2).
 //! - [`sky_map`]: the mip-mapped sky map and the filtered lookup of Eq. 27.
 //! - [`sea`]: Algorithm 5.1, the Sun's, the sky's and the refracted light for one pixel.
+//! - [`surface`]: the filtered surface (Eq. 2–4) at a screen point and the footprints it is
+//!   filtered on: the CPU twin of the GPU renderer's geometry.
 //! - [`tonemap`]: exposure and sRGB encoding.
 //!
 //! Every transcendental function comes from `libm`, so results are the same on every
@@ -43,6 +45,7 @@ pub mod sea;
 pub mod sky;
 pub mod sky_map;
 pub mod spectrum;
+pub mod surface;
 pub mod tonemap;
 pub mod variance;
 
@@ -52,4 +55,5 @@ pub use sea::{Lighting, SeaLight, SeaParams};
 pub use sky::{Sky, SkyParams};
 pub use sky_map::SkyMap;
 pub use spectrum::{Spectrum, SpectrumParams};
+pub use surface::FilteredSurface;
 pub use variance::{SlopeVariance, VarianceTable};

@@ -9,7 +9,6 @@ use ocean_brdf::sea::{
 use ocean_brdf::sky::{CieSky, Sky, SkyParams};
 use ocean_brdf::{BrdfError, Lighting, SeaParams, SkyMap, SlopeVariance};
 
-
 const UNIFORM: CieSky = CieSky {
     a: 0.0,
     b: -1.0,

@@ -304,6 +304,48 @@ impl WaveSet {
         Ok(())
     }
 
+    /// Adds `Σᵢ wᵢ · waveᵢ` at world rest position `rest` and time `t` to `sums`, in `f64`: each
+    /// wave scaled by its own real weight (`weights[i]` for wave `i`, one per wave), as the
+    /// lighting paper's filters do (Bruneton et al. Eq. 2 and 3, weights w_p and w_n). Waves of
+    /// weight zero are skipped, so the cost follows the number of resolved waves.
+    ///
+    /// # Errors
+    ///
+    /// [`EvalError::Position`] for a non-finite position or weight, or a weight slice whose
+    /// length is not the number of waves; [`EvalError::Time`] for a non-finite time.
+    pub fn add_weighted_sums_f64(
+        &self,
+        rest: DVec2,
+        t: f64,
+        weights: &[f64],
+        sums: &mut PointSums,
+    ) -> Result<(), EvalError> {
+        check_time(t)?;
+        if !rest.is_finite()
+            || weights.len() != self.waves.len()
+            || !weights.iter().all(|w| w.is_finite())
+        {
+            return Err(EvalError::Position { index: 0 });
+        }
+        for ((w, c64), &m) in self.waves.iter().zip(&self.coeffs64).zip(weights) {
+            if m == 0.0 {
+                continue;
+            }
+            let theta = w.phase_at(rest, t);
+            let (s, c) = (m * math::sin(theta), m * math::cos(theta));
+            let [a, ahx, ahz, cxx, cxz, czz, gx, gz] = *c64;
+            sums.dx -= ahx * s;
+            sums.dz -= ahz * s;
+            sums.y += a * c;
+            sums.jxx -= cxx * c;
+            sums.jxz -= cxz * c;
+            sums.jzz -= czz * c;
+            sums.sx -= gx * s;
+            sums.sz -= gz * s;
+        }
+        Ok(())
+    }
+
     /// [`WaveSet::add_sums_f64`] with each phase reduced in `f64` and its sine and cosine from
     /// the kernel's deterministic [`sincos`] (absolute error ≤ 1.5·10⁻⁷), several times faster:
     /// for height queries, where micrometres do not matter and throughput does.

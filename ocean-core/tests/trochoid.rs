@@ -398,3 +398,66 @@ fn grid_sin_cos_tables_give_each_phase() {
             .is_err()
     );
 }
+
+/// Per-wave weights: all ones is the plain sum bit for bit; a weight w gives the wave scaled
+/// by w (Bruneton et al. Eq. 2–3); zero weights skip their waves; bad weights are refused.
+#[test]
+fn weighted_sums_scale_each_wave() {
+    use ocean_core::trochoid::PointSums;
+    let descs = [
+        WaveDesc {
+            amplitude: 0.5,
+            wavelength: 20.0,
+            direction: DVec2::new(1.0, 0.0),
+            phase: 0.3,
+            depth: Depth::Deep,
+        },
+        WaveDesc {
+            amplitude: 0.1,
+            wavelength: 3.0,
+            direction: DVec2::new(0.6, 0.8),
+            phase: 1.1,
+            depth: Depth::Deep,
+        },
+    ];
+    let set = WaveSet::from_descs(&descs).unwrap();
+    let rest = DVec2::new(12.5, -3.25);
+    let t = 7.5;
+    let mut plain = PointSums::REST;
+    set.add_sums_f64(rest, t, [1.0, 0.0], &mut plain).unwrap();
+    let mut ones = PointSums::REST;
+    set.add_weighted_sums_f64(rest, t, &[1.0, 1.0], &mut ones)
+        .unwrap();
+    assert_eq!(plain, ones);
+
+    let mut weighted = PointSums::REST;
+    set.add_weighted_sums_f64(rest, t, &[0.25, 0.0], &mut weighted)
+        .unwrap();
+    let scaled = WaveSet::from_descs(&[WaveDesc {
+        amplitude: 0.125,
+        ..descs[0]
+    }])
+    .unwrap();
+    let mut expected = PointSums::REST;
+    scaled
+        .add_sums_f64(rest, t, [1.0, 0.0], &mut expected)
+        .unwrap();
+    let d = weighted.displacement() - expected.displacement();
+    assert!(d.length() < 1e-15, "{d}");
+    assert!((weighted.normal() - expected.normal()).length() < 1e-15);
+
+    let mut sums = PointSums::REST;
+    assert!(
+        set.add_weighted_sums_f64(rest, t, &[1.0], &mut sums)
+            .is_err()
+    );
+    assert!(
+        set.add_weighted_sums_f64(rest, t, &[1.0, f64::NAN], &mut sums)
+            .is_err()
+    );
+    assert!(
+        set.add_weighted_sums_f64(rest, f64::INFINITY, &[1.0, 1.0], &mut sums)
+            .is_err()
+    );
+    assert_eq!(sums, PointSums::REST);
+}

@@ -1,0 +1,206 @@
+//! The filtered sea surface of §3.2 for one screen point: position (Eq. 2), normal (Eq. 3) and
+//! slope variance (Eq. 4), with the footprints they are filtered on; the CPU twin of the GPU
+//! renderer's vertex and fragment stages.
+//!
+//! Footprints. The paper filters each wave on "the projected grid cell size L" (positions) and
+//! "the projected size of a pixel l" (normals). A pixel projects onto the sea as an ellipse,
+//! elongated by 1/sin(elevation) towards the viewer; this crate takes its **longer axis**
+//! (see [`pixel_footprint`]), so no wave aliases in either direction, and what the normals lose
+//! across the view goes into the BRDF, whose variance accounts for it. `L` is the same for a
+//! grid cell of `cell_px` pixels: `cell_px` times the pixel footprint at the vertex.
+//!
+//! World space is right-handed with y up; rest positions are `(x, z)` on the plane y = 0.
+
+use alloc::vec::Vec;
+
+use glam::{DVec2, DVec3};
+use ocean_core::trochoid::PointSums;
+use ocean_core::{Camera, WaveDesc, WaveSet};
+
+use crate::error::BrdfError;
+use crate::filter::Filter;
+use crate::spectrum::Spectrum;
+use crate::variance::{SlopeVariance, VarianceTable};
+
+/// A wave set filtered per wave, sorted by wavelength from the longest: the resolved waves for
+/// any footprint are then a prefix, and the GPU stops at the first zero weight.
+#[derive(Clone, Debug)]
+pub struct FilteredSurface {
+    waves: WaveSet,
+    wavelengths: Vec<f64>,
+    filter: Filter,
+    variance: VarianceTable,
+    wind: DVec2,
+}
+
+impl FilteredSurface {
+    /// The surface of a sampled spectrum.
+    pub fn new(spectrum: &Spectrum, filter: Filter) -> Result<Self, BrdfError> {
+        Self::from_waves(spectrum.waves(), spectrum.wind(), filter)
+    }
+
+    /// The surface of any deep- or finite-depth wave set (§6, local waves: any wave train whose
+    /// wavelength and slope variance are known), with variances measured along `wind` and
+    /// across it.
+    pub fn from_waves(waves: &[WaveDesc], wind: DVec2, filter: Filter) -> Result<Self, BrdfError> {
+        let len = wind.length();
+        if !len.is_finite() || len == 0.0 {
+            return Err(BrdfError::NotUnit("wind direction"));
+        }
+        let mut sorted: Vec<WaveDesc> = waves.to_vec();
+        // Longest first; ties keep their order (a stable sort), so equal inputs give equal sets.
+        sorted.sort_by(|a, b| b.wavelength.total_cmp(&a.wavelength));
+        let set = WaveSet::from_descs(&sorted).map_err(|_| BrdfError::OutOfRange {
+            name: "wave (a wave that ocean-core refuses)",
+            value: f64::NAN,
+            min: 0.0,
+            max: 0.0,
+        })?;
+        let wavelengths = set.waves().iter().map(|w| w.wavelength()).collect();
+        let variance = VarianceTable::new(&sorted, wind / len)?;
+        Ok(Self {
+            waves: set,
+            wavelengths,
+            filter,
+            variance,
+            wind: wind / len,
+        })
+    }
+
+    /// The waves, longest first.
+    pub fn wave_set(&self) -> &WaveSet {
+        &self.waves
+    }
+
+    /// The wavelengths, longest first.
+    pub fn wavelengths(&self) -> &[f64] {
+        &self.wavelengths
+    }
+
+    /// The filter thresholds.
+    pub fn filter(&self) -> &Filter {
+        &self.filter
+    }
+
+    /// The unit wind direction `(x, z)`: the x axis of the slope variances.
+    pub fn wind(&self) -> DVec2 {
+        self.wind
+    }
+
+    /// The variance table of every wave (total and per wave).
+    pub fn variance_table(&self) -> &VarianceTable {
+        &self.variance
+    }
+
+    /// The number of waves with a non-zero weight for a footprint `size` (metres): they are
+    /// the first ones, longest first.
+    pub fn resolved_count(&self, size: f64) -> usize {
+        self.wavelengths
+            .iter()
+            .take_while(|&&l| self.filter.weight(l, size) > 0.0)
+            .count()
+    }
+
+    /// Eq. 2: the displaced position of the rest point `rest` = (x, z) at time `t`, each wave
+    /// weighted by `w_p = w(N_min, N_max, λ/L)` for the grid-cell footprint `cell` (metres).
+    pub fn position(&self, rest: DVec2, t: f64, cell: f64) -> Result<DVec3, BrdfError> {
+        let sums = self.sums(rest, t, cell)?;
+        Ok(DVec3::new(rest.x, 0.0, rest.y) + sums.displacement())
+    }
+
+    /// Eq. 3: the unit normal at the rest point `rest`, each wave weighted by
+    /// `w_n = w(N_min, N_max, λ/l)` for the pixel footprint `pixel` (metres). Not derived from
+    /// the filtered positions: normals stay exact farther than the geometry (§3.2).
+    pub fn normal(&self, rest: DVec2, t: f64, pixel: f64) -> Result<DVec3, BrdfError> {
+        Ok(self.sums(rest, t, pixel)?.normal())
+    }
+
+    /// Eq. 4: the slope variances of what the normals of footprint `pixel` do not resolve,
+    /// `w_r = 1 − w_n`, as the total minus the resolved waves' share (§7.1).
+    pub fn variance(&self, pixel: f64) -> SlopeVariance {
+        self.variance.unresolved(&self.filter, pixel)
+    }
+
+    fn sums(&self, rest: DVec2, t: f64, size: f64) -> Result<PointSums, BrdfError> {
+        if !(size.is_finite() && size > 0.0) {
+            return Err(BrdfError::OutOfRange {
+                name: "footprint",
+                value: size,
+                min: f64::MIN_POSITIVE,
+                max: f64::MAX,
+            });
+        }
+        let n = self.resolved_count(size);
+        let mut weights = alloc::vec![0.0; self.wavelengths.len()];
+        for (w, &l) in weights.iter_mut().zip(&self.wavelengths[..n]) {
+            *w = self.filter.weight(l, size);
+        }
+        let mut sums = PointSums::REST;
+        self.waves
+            .add_weighted_sums_f64(rest, t, &weights, &mut sums)
+            .map_err(|_| BrdfError::NotFinite("rest position or time"))?;
+        Ok(sums)
+    }
+}
+
+/// The smallest depression of a view ray below the horizon for which the sea plane is hit: a
+/// ray above (or along) it meets the plane at [`sea_plane_hit`]'s distance cap instead.
+pub const MIN_DEPRESSION: f64 = 1e-6;
+
+/// Where the ray from `eye` (its origin) along the unit direction `dir` meets the sea at rest (y = 0),
+/// at most `max_distance` along the ray. Rays that go up, run along the horizon, or would meet
+/// the plane beyond the cap are stopped at the cap, projected onto the plane: the projected
+/// grid folds the sky part of the screen onto the far sea, as the paper's grid does, and the
+/// renderer draws those cells at the horizon. `None` if the eye is not above the sea
+/// (`eye.y ≤ 0`) or the inputs are not finite.
+pub fn sea_plane_hit(eye: DVec3, dir: DVec3, max_distance: f64) -> Option<DVec2> {
+    if !(eye.is_finite() && dir.is_finite() && max_distance > 0.0) || eye.y <= 0.0 {
+        return None;
+    }
+    let down = -dir.y;
+    let s = if down > MIN_DEPRESSION {
+        (eye.y / down).min(max_distance)
+    } else {
+        max_distance
+    };
+    let p = eye + dir * s;
+    Some(DVec2::new(p.x, p.z))
+}
+
+/// The view ray through the screen point `pixel` (pixel units, origin at the top-left corner,
+/// y down, pixel centres at half-integers) of a `width` × `height` viewport: its origin on the
+/// near plane and its unit direction (perspective or orthographic alike).
+pub fn pixel_ray(camera: &Camera, width: f64, height: f64, pixel: DVec2) -> Option<(DVec3, DVec3)> {
+    let ndc_x = pixel.x / width * 2.0 - 1.0;
+    let ndc_y = 1.0 - pixel.y / height * 2.0;
+    let depth = camera.depth();
+    let near = depth.near_ndc();
+    // Halfway to the far plane in NDC: finite even for an infinite far plane.
+    let mid = 0.5 * (near + depth.far_ndc());
+    let a = camera.ndc_to_world(DVec3::new(ndc_x, ndc_y, near)).ok()?;
+    let b = camera.ndc_to_world(DVec3::new(ndc_x, ndc_y, mid)).ok()?;
+    let d = b - a;
+    let len = d.length();
+    (len > 0.0 && len.is_finite()).then(|| (a, d / len))
+}
+
+/// The footprint `l` of a pixel on the sea plane (metres): the longer of the distances between
+/// the plane hits of the rays through the pixel's opposite edge midpoints, horizontally
+/// (`pixel ± (½, 0)`) and vertically (`pixel ± (0, ½)`). Rays beyond the horizon hit at
+/// `max_distance` (see [`sea_plane_hit`]). `None` where a ray is undefined or starts below the
+/// sea.
+pub fn pixel_footprint(
+    camera: &Camera,
+    width: f64,
+    height: f64,
+    pixel: DVec2,
+    max_distance: f64,
+) -> Option<f64> {
+    let hit = |p: DVec2| {
+        let (origin, dir) = pixel_ray(camera, width, height, p)?;
+        sea_plane_hit(origin, dir, max_distance)
+    };
+    let dx = hit(pixel + DVec2::new(0.5, 0.0))? - hit(pixel - DVec2::new(0.5, 0.0))?;
+    let dy = hit(pixel + DVec2::new(0.0, 0.5))? - hit(pixel - DVec2::new(0.0, 0.5))?;
+    Some(dx.length().max(dy.length()))
+}

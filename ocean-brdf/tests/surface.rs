@@ -1,0 +1,138 @@
+//! Tests of the filtered surface (Eq. 2–4) and its footprints (`ocean_brdf::surface`).
+
+use glam::{DVec2, DVec3};
+use ocean_brdf::surface::{pixel_footprint, pixel_ray, sea_plane_hit};
+use ocean_brdf::{Filter, FilteredSurface, Spectrum, SpectrumParams};
+use ocean_core::{Camera, DepthConvention, Far, Projection};
+
+fn surface() -> FilteredSurface {
+    FilteredSurface::new(
+        &Spectrum::new(SpectrumParams::default()).unwrap(),
+        Filter::PAPER,
+    )
+    .unwrap()
+}
+
+#[test]
+fn waves_are_sorted_longest_first_and_resolved_waves_are_a_prefix() {
+    let s = surface();
+    assert!(s.wavelengths().windows(2).all(|w| w[0] >= w[1]));
+    // λ/L ≥ N_max = 2.5 gives weight 1, λ/L ≤ N_min = 1 weight 0.
+    for size in [1e-3, 0.01, 0.1, 1.0, 10.0, 100.0] {
+        let n = s.resolved_count(size);
+        let expected = s.wavelengths().iter().filter(|&&l| l > size).count();
+        assert_eq!(n, expected, "{size}");
+    }
+}
+
+/// Footprints far below the shortest wave resolve every wave: Eq. 2–3 are the plain trochoid
+/// sum. Footprints beyond the longest wave resolve none: the sea at rest, flat.
+#[test]
+fn extreme_footprints_give_the_full_sum_or_the_rest_plane() {
+    let s = surface();
+    let rest = DVec2::new(13.0, -7.5);
+    let t = 4.25;
+    let full = s.wave_set().sample_f64(rest, t).unwrap();
+    let p = s.position(rest, t, 1e-4).unwrap();
+    let expected = DVec3::new(rest.x, 0.0, rest.y) + full.displacement;
+    assert!((p - expected).length() < 1e-12);
+    let n = s.normal(rest, t, 1e-4).unwrap();
+    assert!((n - full.normal).length() < 1e-12);
+    assert_eq!(
+        s.position(rest, t, 1e3).unwrap(),
+        DVec3::new(rest.x, 0.0, rest.y)
+    );
+    assert_eq!(s.normal(rest, t, 1e3).unwrap(), DVec3::Y);
+    // Eq. 4: what the normals lose, the variance gains.
+    let total = s.variance_table().total();
+    assert_eq!(s.variance(1e3), total);
+    let v = s.variance(1e-4);
+    assert!(v.x.abs() < 1e-15 && v.y.abs() < 1e-15, "{v:?}");
+    assert!(s.position(rest, t, 0.0).is_err());
+    assert!(s.normal(rest, f64::NAN, 1.0).is_err());
+}
+
+#[test]
+fn sea_plane_hits_and_the_distance_cap() {
+    let eye = DVec3::new(1.0, 4.0, 2.0);
+    let d = DVec3::new(0.0, -1.0, -1.0).normalize();
+    let h = sea_plane_hit(eye, d, 1e4).unwrap();
+    assert!((h - DVec2::new(1.0, -2.0)).length() < 1e-12);
+    // Up, along the horizon, or beyond the cap: stopped at the cap.
+    for dir in [
+        DVec3::new(0.0, 0.1, -1.0),
+        DVec3::NEG_Z,
+        DVec3::new(0.0, -1e-5, -1.0),
+    ] {
+        let dir = dir.normalize();
+        let h = sea_plane_hit(eye, dir, 100.0).unwrap();
+        let e = DVec2::new(eye.x, eye.z) + DVec2::new(dir.x, dir.z) * 100.0;
+        assert!((h - e).length() < 1e-9, "{dir}");
+    }
+    assert!(sea_plane_hit(DVec3::new(0.0, -1.0, 0.0), d, 1e4).is_none());
+    assert!(sea_plane_hit(eye, DVec3::NAN, 1e4).is_none());
+}
+
+/// Analytic case: a camera looking straight down from height h sees a pixel of size
+/// `2 h tan(fov/2) / height` on the sea, in both directions.
+#[test]
+fn pixel_footprint_looking_down_is_the_pinhole_size() {
+    let h = 10.0;
+    let fov = 60f64.to_radians();
+    let (w, ht) = (320.0, 240.0);
+    for depth in [
+        DepthConvention::ZERO_TO_ONE,
+        DepthConvention::NEG_ONE_TO_ONE,
+    ] {
+        for far in [Far::Finite(1000.0), Far::Infinite] {
+            let cam = Camera::look_at(
+                DVec3::new(0.0, h, 0.0),
+                DVec3::ZERO,
+                DVec3::NEG_Z,
+                Projection::Perspective {
+                    fov_y: fov,
+                    aspect: w / ht,
+                    near: 0.1,
+                    far,
+                },
+                depth,
+            )
+            .unwrap();
+            let centre = DVec2::new(w / 2.0, ht / 2.0);
+            let (_, dir) = pixel_ray(&cam, w, ht, centre).unwrap();
+            assert!((dir - DVec3::NEG_Y).length() < 1e-9);
+            let l = pixel_footprint(&cam, w, ht, centre, 1e5).unwrap();
+            let expected = 2.0 * h * (fov / 2.0).tan() / ht;
+            assert!((l - expected).abs() < 1e-9 * expected, "{l} {expected}");
+        }
+    }
+}
+
+/// Towards the horizon the footprint grows, and it is bounded by the distance cap.
+#[test]
+fn pixel_footprint_grows_towards_the_horizon() {
+    let cam = Camera::look_at(
+        DVec3::new(0.0, 4.0, 0.0),
+        DVec3::new(0.0, 4.0, -100.0),
+        DVec3::Y,
+        Projection::Perspective {
+            fov_y: 40f64.to_radians(),
+            aspect: 2.0,
+            near: 0.1,
+            far: Far::Infinite,
+        },
+        DepthConvention::ZERO_TO_ONE,
+    )
+    .unwrap();
+    let (w, h) = (256.0, 128.0);
+    let mut last = 0.0;
+    // From the bottom row up to the row just below the horizon (the middle of the screen).
+    for row in (65..128).rev() {
+        let l = pixel_footprint(&cam, w, h, DVec2::new(128.5, row as f64 + 0.5), 5e4).unwrap();
+        assert!(l.is_finite() && l > last, "{row}: {l} after {last}");
+        last = l;
+    }
+    // Above the horizon every hit is at the cap: a footprint of at most 2 × cap × pixel angle.
+    let l = pixel_footprint(&cam, w, h, DVec2::new(128.5, 20.5), 5e4).unwrap();
+    assert!(l < 2.0 * 5e4 * (40f64.to_radians() / 128.0), "{l}");
+}
