@@ -25,6 +25,8 @@
 //! - [`surface`]: the filtered surface (Eq. 2–4) at a screen point and the footprints it is
 //!   filtered on: the CPU twin of the GPU renderer's geometry.
 //! - [`tonemap`]: exposure and sRGB encoding.
+//! - `validation` (feature `std`): the paper's Fig. 10 comparison against a detailed-geometry,
+//!   perfect-mirror reference.
 //!
 //! Every transcendental function comes from `libm`, so results are the same on every
 //! platform.
@@ -47,6 +49,8 @@ pub mod sky_map;
 pub mod spectrum;
 pub mod surface;
 pub mod tonemap;
+#[cfg(feature = "std")]
+pub mod validation;
 pub mod variance;
 
 pub use error::BrdfError;

@@ -1,0 +1,479 @@
+//! The paper's validation (§7.2, Fig. 10): per-row mean radiance of the filtered model against
+//! a reference made of detailed geometry and a perfect mirror, for the Sun, the sky and the
+//! refracted light separately, with a constant-BRDF model alongside.
+//!
+//! Scene: a camera `eye_height` above the sea looking horizontally (along −z), a square image.
+//! Only rows below the horizon whose upper edge still meets the sea are compared.
+//!
+//! **Reference.** The image is cut into vertical planes through the eye (a horizontal camera
+//! without roll maps every pixel column `x_ndc` to one such plane); in each plane the sea's
+//! profile is sampled every `profile_step` metres (the paper rendered 5 cm triangles) with
+//! the waves at least `geometry_min_wavelength` long, each point found by inverting the
+//! trochoids' horizontal displacement (Newton), so it lies exactly in the plane. One sweep
+//! from the eye outwards gives, for every ray of the plane, the first profile point above it
+//! (occlusion by the waves included). At that point the normal is exact, from every wave; the
+//! surface is a perfect mirror with Schlick's Fresnel (Eq. 14): the sky term is
+//! `F L_env(r)` with the analytic sky (not the sky map), the refracted term `(1 − F) L_sea`,
+//! and the Sun term `F L_sun` when the mirror direction falls inside the Sun's disc.
+//! `rays_per_pixel` rays per pixel row and plane, stratified.
+//!
+//! **Model.** One ray per pixel row and plane, through the pixel centre, against the profile of
+//! the *filtered* surface (Eq. 2 with w_p for a grid cell of `cell_px` pixels); at the hit, the
+//! normal of Eq. 3 and the variance of Eq. 4 for the pixel's footprint, then Algorithm 5.1
+//! ([`sea_color_unchecked`]) with the sky map. The constant-BRDF model differs only in its
+//! variance: the foreground's (bottom row's), everywhere.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use glam::{DVec2, DVec3};
+use ocean_core::trochoid::PointSums;
+use ocean_core::{Camera, DepthConvention, Far, Projection, WaveSet};
+use rayon::prelude::*;
+
+use crate::error::{BrdfError, check};
+use crate::filter::Filter;
+use crate::fresnel::schlick;
+use crate::sea::{Lighting, SeaLight, SeaParams, sea_color_unchecked};
+use crate::sky::SkyParams;
+use crate::sky_map::SkyMap;
+use crate::spectrum::{Spectrum, SpectrumParams};
+use crate::surface::{FilteredSurface, pixel_footprint};
+
+/// The validation's scene and sampling.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ValidationParams {
+    /// The sea.
+    pub spectrum: SpectrumParams,
+    /// The Sun and the sky.
+    pub sky: SkyParams,
+    /// The water body.
+    pub sea: SeaParams,
+    /// Camera height above the sea at rest, metres.
+    pub eye_height: f64,
+    /// Image width and height, pixels (square pixels).
+    pub size: u32,
+    /// Vertical field of view, radians.
+    pub fov_y: f64,
+    /// Time, seconds.
+    pub time: f64,
+    /// Projected grid cell, pixels (the model's position filter, §3.2).
+    pub cell_px: f64,
+    /// Vertical planes of the reference, stratified across the width.
+    pub planes: usize,
+    /// Vertical planes of the two models (one ray per pixel row in each), stratified across
+    /// the width: their filtered profiles are cheap, so they can sample every column.
+    pub model_planes: usize,
+    /// Reference rays per pixel row and plane, stratified.
+    pub rays_per_pixel: usize,
+    /// Reference profile spacing, metres.
+    pub profile_step: f64,
+    /// Shortest wave of the reference's geometry; every wave shapes its normals.
+    pub geometry_min_wavelength: f64,
+    /// Where the profiles end, metres from the eye.
+    pub max_distance: f64,
+    /// Sky map size.
+    pub sky_map_size: u32,
+}
+
+impl Default for ValidationParams {
+    /// The paper's setting: a horizontal view 4 m above the sea, 256 pixels, out to about 6 km
+    /// (a 10° field of view puts the second row below the horizon at 2.9–5.9 km), 5 cm
+    /// geometry (waves from 10 cm) with every wave in the normals.
+    fn default() -> Self {
+        Self {
+            spectrum: SpectrumParams::default(),
+            sky: SkyParams::default(),
+            sea: SeaParams::default(),
+            eye_height: 4.0,
+            size: 256,
+            fov_y: 10f64.to_radians(),
+            time: 0.0,
+            cell_px: 8.0,
+            planes: 32,
+            model_planes: 256,
+            rays_per_pixel: 32,
+            profile_step: 0.05,
+            geometry_min_wavelength: 0.1,
+            max_distance: 8000.0,
+            sky_map_size: 512,
+        }
+    }
+}
+
+/// One image row's mean radiance per component (linear RGB), for the three methods.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RowMeans {
+    /// Pixel row, from the top.
+    pub row: u32,
+    /// Distance from the eye to where the row's centre ray meets the sea at rest, metres.
+    pub distance: f64,
+    /// Detailed geometry, perfect mirror.
+    pub reference: SeaLight,
+    /// The filtered model (§3–5).
+    pub model: SeaLight,
+    /// The same with the foreground's BRDF everywhere.
+    pub constant: SeaLight,
+}
+
+/// Runs the validation; rows from the bottom of the image (nearest) to the farthest compared.
+pub fn validate(params: &ValidationParams) -> Result<Vec<RowMeans>, BrdfError> {
+    let p = *params;
+    check("eye_height", p.eye_height, 0.1, 1e4)?;
+    check("fov_y", p.fov_y, 1e-3, 3.0)?;
+    check("time", p.time, -1e9, 1e9)?;
+    check("cell_px", p.cell_px, 1.0, 256.0)?;
+    check("profile_step", p.profile_step, 1e-3, 10.0)?;
+    check("max_distance", p.max_distance, 10.0, 1e6)?;
+    check(
+        "geometry_min_wavelength",
+        p.geometry_min_wavelength,
+        0.0,
+        1e4,
+    )?;
+    for (name, v) in [
+        ("size", p.size as usize),
+        ("planes", p.planes),
+        ("model_planes", p.model_planes),
+        ("rays_per_pixel", p.rays_per_pixel),
+    ] {
+        check(name, v as f64, 2.0, 1e5)?;
+    }
+    let spectrum = Spectrum::new(p.spectrum)?;
+    let lighting = Lighting::new(p.sky, p.sea)?;
+    let map = lighting.sky_map(p.sky_map_size)?;
+    let surface = FilteredSurface::new(&spectrum, Filter::PAPER)?;
+    let geometry = {
+        let long: Vec<_> = spectrum
+            .waves()
+            .iter()
+            .filter(|w| w.wavelength >= p.geometry_min_wavelength)
+            .copied()
+            .collect();
+        WaveSet::from_descs(&long).map_err(|_| BrdfError::NotFinite("geometry waves"))?
+    };
+    let n = p.size as f64;
+    let camera = Camera::look_at(
+        DVec3::new(0.0, p.eye_height, 0.0),
+        DVec3::new(0.0, p.eye_height, -1.0),
+        DVec3::Y,
+        Projection::Perspective {
+            fov_y: p.fov_y,
+            aspect: 1.0,
+            near: 0.05,
+            far: Far::Infinite,
+        },
+        DepthConvention::ZERO_TO_ONE,
+    )
+    .map_err(|_| BrdfError::NotFinite("camera"))?;
+    let tan_half = libm::tan(0.5 * p.fov_y);
+    // Rows whose upper edge is below the horizon and meets the sea within the profiles.
+    let first_row = (0..p.size)
+        .find(|&j| {
+            let y_top = 1.0 - 2.0 * j as f64 / n;
+            let depression = -y_top * tan_half;
+            depression > 0.0 && p.eye_height / depression < p.max_distance * 0.75
+        })
+        .ok_or(BrdfError::NotFinite("no row meets the sea"))?;
+    let rows: Vec<u32> = (first_row..p.size).rev().collect();
+
+    let ctx = Ctx {
+        p,
+        lighting: &lighting,
+        map: &map,
+        surface: &surface,
+        geometry: &geometry,
+        camera: &camera,
+        tan_half,
+        rows: &rows,
+    };
+    // Planes in parallel, summed in plane order: the same bits whatever the thread count.
+    let reference: Vec<Vec<SeaLight>> = (0..p.planes)
+        .into_par_iter()
+        .map(|k| ctx.reference_plane(k))
+        .collect();
+    let models: Vec<Vec<[SeaLight; 2]>> = (0..p.model_planes)
+        .into_par_iter()
+        .map(|k| ctx.model_plane(k))
+        .collect();
+    let mut out = Vec::with_capacity(rows.len());
+    for (i, &row) in rows.iter().enumerate() {
+        let mut sums = [SeaLight::default(); 3];
+        for plane in &reference {
+            add(&mut sums[0], &plane[i], 1.0 / p.planes as f64);
+        }
+        for plane in &models {
+            add(&mut sums[1], &plane[i][0], 1.0 / p.model_planes as f64);
+            add(&mut sums[2], &plane[i][1], 1.0 / p.model_planes as f64);
+        }
+        let y = 1.0 - 2.0 * (row as f64 + 0.5) / n;
+        out.push(RowMeans {
+            row,
+            distance: p.eye_height / (-y * tan_half),
+            reference: sums[0],
+            model: sums[1],
+            constant: sums[2],
+        });
+    }
+    Ok(out)
+}
+
+struct Ctx<'a> {
+    p: ValidationParams,
+    lighting: &'a Lighting,
+    map: &'a SkyMap,
+    surface: &'a FilteredSurface,
+    geometry: &'a WaveSet,
+    camera: &'a Camera,
+    tan_half: f64,
+    rows: &'a [u32],
+}
+
+/// A sea profile along one vertical plane: for each sample, the distance from the eye along
+/// the plane, the tangent of the elevation angle from the eye, and the rest position.
+struct Profile {
+    s: Vec<f64>,
+    elevation: Vec<f64>,
+    rest: Vec<DVec2>,
+}
+
+impl Ctx<'_> {
+    /// The plane of index `k` of `count`: its `x_ndc`, its horizontal direction (x, z), and the
+    /// factor from a ray's `y_ndc` to its slope per unit horizontal distance.
+    fn plane_geometry(&self, k: usize, count: usize) -> (f64, DVec2, f64) {
+        let x_ndc = -1.0 + 2.0 * (k as f64 + 0.5) / count as f64;
+        let hx = x_ndc * self.tan_half;
+        let hlen = libm::hypot(hx, 1.0);
+        (
+            x_ndc,
+            DVec2::new(hx / hlen, -1.0 / hlen),
+            self.tan_half / hlen,
+        )
+    }
+
+    /// Where the profiles start: well before the bottom row's rays meet the sea at rest (a
+    /// crest meets them earlier).
+    fn near(&self, slope_per_ndc: f64) -> f64 {
+        0.3 * self.p.eye_height / slope_per_ndc
+    }
+
+    /// The reference's mean radiance of every row for the plane `k`.
+    fn reference_plane(&self, k: usize) -> Vec<SeaLight> {
+        let p = &self.p;
+        let n = p.size as f64;
+        let (_, h, slope_per_ndc) = self.plane_geometry(k, p.planes);
+        let profile = self.profile(h, self.near(slope_per_ndc), |_| None, |_| p.profile_step);
+        let mut cursor = 0;
+        let m = p.rays_per_pixel;
+        self.rows
+            .iter()
+            .map(|&row| {
+                let mut acc = SeaLight::default();
+                // Stratified rays, nearest (steepest) first, so the cursor only moves forward.
+                for r in (0..m).rev() {
+                    let y_ndc = 1.0 - 2.0 * (row as f64 + (r as f64 + 0.5) / m as f64) / n;
+                    if let Some(light) =
+                        self.mirror(&profile, &mut cursor, h, y_ndc * slope_per_ndc)
+                    {
+                        add(&mut acc, &light, 1.0 / m as f64);
+                    }
+                }
+                acc
+            })
+            .collect()
+    }
+
+    /// The filtered model's and the constant-BRDF model's radiance of every row for the model
+    /// plane `k` (one ray per pixel row).
+    fn model_plane(&self, k: usize) -> Vec<[SeaLight; 2]> {
+        let p = &self.p;
+        let n = p.size as f64;
+        let (x_ndc, h, slope_per_ndc) = self.plane_geometry(k, p.model_planes);
+        let e = p.eye_height;
+        let pixel_angle = 2.0 * self.tan_half / n;
+        // ds/dδ for the ray meeting the plane at distance s is (s² + e²)/e per radian: the
+        // grid cell's footprint L for Eq. 2's w_p, and a profile step that resolves the
+        // filtered geometry (an eighth of L, at least the reference's step).
+        let cell = |s: f64| p.cell_px * (s * s + e * e) / e * pixel_angle;
+        let profile = self.profile(
+            h,
+            self.near(slope_per_ndc),
+            |s| Some(cell(s)),
+            |s| (cell(s) / 8.0).max(p.profile_step),
+        );
+        let bottom_pixel = DVec2::new((x_ndc + 1.0) * 0.5 * n, n - 0.5);
+        let l_bottom = pixel_footprint(self.camera, n, n, bottom_pixel, p.max_distance)
+            .unwrap_or(p.profile_step);
+        let constant_var = self.surface.variance(l_bottom);
+        let wind = self.surface.wind();
+        let mut cursor = 0;
+        self.rows
+            .iter()
+            .map(|&row| {
+                let y_ndc = 1.0 - 2.0 * (row as f64 + 0.5) / n;
+                let pixel = DVec2::new((x_ndc + 1.0) * 0.5 * n, row as f64 + 0.5);
+                let l = pixel_footprint(self.camera, n, n, pixel, p.max_distance)
+                    .unwrap_or(p.max_distance);
+                let Some((rest, v)) = hit(&profile, &mut cursor, h, y_ndc * slope_per_ndc) else {
+                    return [SeaLight::default(); 2];
+                };
+                let normal = self.surface.normal(rest, p.time, l).unwrap_or(DVec3::Y);
+                let var = self.surface.variance(l);
+                [
+                    sea_color_unchecked(self.lighting, self.map, v, normal, wind, var),
+                    sea_color_unchecked(self.lighting, self.map, v, normal, wind, constant_var),
+                ]
+            })
+            .collect()
+    }
+
+    /// Samples the sea along the plane of horizontal direction `h` from `near` to
+    /// `max_distance`: heights of the geometry waves (`cell` = None) or of the filtered
+    /// surface with w_p for the cell size `cell(s)`.
+    fn profile(
+        &self,
+        h: DVec2,
+        near: f64,
+        cell: impl Fn(f64) -> Option<f64>,
+        step: impl Fn(f64) -> f64,
+    ) -> Profile {
+        let p = &self.p;
+        let mut out = Profile {
+            s: Vec::new(),
+            elevation: Vec::new(),
+            rest: Vec::new(),
+        };
+        let mut weights = vec![0.0; self.surface.wavelengths().len()];
+        let mut x = h * near;
+        let mut s = near;
+        while s <= p.max_distance {
+            let target = h * s;
+            let size = cell(s);
+            let mut sums_at = |x: DVec2| -> PointSums {
+                let mut sums = PointSums::REST;
+                match size {
+                    None => {
+                        let _ = self.geometry.add_sums_f64(x, p.time, [1.0, 0.0], &mut sums);
+                    }
+                    Some(size) => {
+                        let filter = self.surface.filter();
+                        for (w, &l) in weights.iter_mut().zip(self.surface.wavelengths()) {
+                            *w = filter.position_weight(l, size);
+                        }
+                        let _ = self
+                            .surface
+                            .wave_set()
+                            .add_weighted_sums_f64(x, p.time, &weights, &mut sums);
+                    }
+                }
+                sums
+            };
+            // Newton on x + D(x) = target: the rest point whose displaced position lies in the
+            // plane at distance s (to 0.1 mm).
+            let mut sums = sums_at(x);
+            for _ in 0..6 {
+                let res = x + DVec2::new(sums.dx, sums.dz) - target;
+                if res.length() < 1e-4 {
+                    break;
+                }
+                let det = sums.jacobian_det();
+                if det.abs() < 1e-6 {
+                    // A fold: keep the last point, as a rasteriser keeps a folded triangle.
+                    break;
+                }
+                x -= DVec2::new(
+                    (sums.jzz * res.x - sums.jxz * res.y) / det,
+                    (sums.jxx * res.y - sums.jxz * res.x) / det,
+                );
+                sums = sums_at(x);
+            }
+            out.s.push(s);
+            out.elevation.push((sums.y - p.eye_height) / s);
+            out.rest.push(x);
+            let ds = step(s);
+            // The next rest point moves by about J⁻¹ h ds.
+            let det = sums.jacobian_det();
+            let d = h * ds;
+            x += if det.abs() > 1e-6 {
+                DVec2::new(
+                    (sums.jzz * d.x - sums.jxz * d.y) / det,
+                    (sums.jxx * d.y - sums.jxz * d.x) / det,
+                )
+            } else {
+                d
+            };
+            s += ds;
+        }
+        out
+    }
+
+    /// The reference's perfect mirror for the ray of slope `-slope` in the plane `h`.
+    fn mirror(
+        &self,
+        profile: &Profile,
+        cursor: &mut usize,
+        h: DVec2,
+        slope: f64,
+    ) -> Option<SeaLight> {
+        let (rest, v) = hit(profile, cursor, h, slope)?;
+        let mut sums = PointSums::REST;
+        self.surface
+            .wave_set()
+            .add_sums_f64(rest, self.p.time, [1.0, 0.0], &mut sums)
+            .ok()?;
+        let mut n = sums.normal();
+        let nv = n.dot(v);
+        if nv < 0.0 {
+            // A fold of the detailed surface seen from behind: the same rule as the model's.
+            n -= v * (2.0 * nv);
+        }
+        let cos = n.dot(v).clamp(0.0, 1.0);
+        let f = schlick(cos, self.lighting.sea().fresnel_r);
+        let r = n * (2.0 * cos) - v;
+        let sky = self.lighting.sky();
+        let sun_cos = libm::cos(crate::variance::SUN_ANGULAR_RADIUS);
+        let sun = if r.dot(sky.sun_direction()) >= sun_cos {
+            sky.sun_radiance() * f
+        } else {
+            DVec3::ZERO
+        };
+        Some(SeaLight {
+            sun,
+            sky: self.lighting.environment_radiance(r) * f,
+            sea: self.lighting.sea_radiance() * (1.0 - f),
+        })
+    }
+}
+
+/// The first profile point at or above the ray of slope `slope` (negative: downwards) (rays processed in order of
+/// decreasing slope, so `cursor` only moves forward): its rest position (interpolated between
+/// samples) and the unit direction towards the eye.
+fn hit(profile: &Profile, cursor: &mut usize, h: DVec2, slope: f64) -> Option<(DVec2, DVec3)> {
+    let ray = slope;
+    while *cursor < profile.s.len() && profile.elevation[*cursor] < ray {
+        *cursor += 1;
+    }
+    let i = *cursor;
+    if i >= profile.s.len() {
+        return None;
+    }
+    let rest = if i == 0 {
+        profile.rest[0]
+    } else {
+        let (a, b) = (profile.elevation[i - 1], profile.elevation[i]);
+        let t = if b > a {
+            ((ray - a) / (b - a)).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        profile.rest[i - 1].lerp(profile.rest[i], t)
+    };
+    let dir = DVec3::new(h.x, slope, h.y).normalize();
+    Some((rest, -dir))
+}
+
+fn add(acc: &mut SeaLight, v: &SeaLight, w: f64) {
+    acc.sun += v.sun * w;
+    acc.sky += v.sky * w;
+    acc.sea += v.sea * w;
+}

@@ -1,0 +1,113 @@
+//! The paper's validation (§7.2, Fig. 10): per-row mean radiance of the filtered model against
+//! detailed geometry with a perfect mirror (`ocean_brdf::validation`), for a calm and an
+//! agitated sea, with a constant-BRDF model alongside.
+//!
+//! Measured here (the default sampling: 32 reference planes × 32 rays per pixel row, 256 model
+//! planes; 256² image 4 m above the sea; rows from 46 m to 5.9 km), over both seas:
+//! - sky: the model is 10–16 % above the reference on most rows, 30.5 % on the worst (a near
+//!   row, where both are noisy); the paper's own form of Eq. 22, before this crate's
+//!   visible-slope footprint, was 20–35 % *below* it on every row;
+//! - refracted light: 5–12 % below on most rows, 21 % on the worst;
+//! - beyond 300 m the constant-BRDF model is off by 25–45 %, at least twice the model's error.
+//!
+//! The target is 5 % per row and component and is **not met yet**. The systematic part
+//! is the effective Fresnel fit at grazing views (Eq. 26: the sky is `F̄ L̄` and the refracted
+//! light `(1 − F̄) L_sea`, and they err in opposite directions); replacing the fit by the
+//! integral of Eq. 24 brought the far rows of both within 2–5 % (measured once, not kept: too
+//! slow per pixel). The rest is the Monte Carlo noise of the reference in the near rows. The
+//! Sun's term is not compared: a perfect mirror reflects the Sun's disc (7e-5 sr) into a
+//! handful of the reference's rays per row, too few for a row mean.
+
+use glam::DVec3;
+use ocean_brdf::SpectrumParams;
+use ocean_brdf::validation::{RowMeans, ValidationParams, validate};
+
+fn sum(c: DVec3) -> f64 {
+    c.x + c.y + c.z
+}
+
+fn run(wind_speed: f64) -> Vec<RowMeans> {
+    let params = ValidationParams {
+        spectrum: SpectrumParams {
+            wind_speed,
+            ..SpectrumParams::default()
+        },
+        ..ValidationParams::default()
+    };
+    validate(&params).unwrap()
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b
+}
+
+#[test]
+fn filtered_model_follows_the_reference_and_the_constant_brdf_diverges() {
+    let mut worst_sky: f64 = 0.0;
+    let mut worst_sea: f64 = 0.0;
+    for wind in [5.0, 15.0] {
+        let rows = run(wind);
+        // Rows from the bottom (centre at 46 m) to the row whose centre is at 3.9 km and upper
+        // edge at 5.9 km.
+        assert_eq!(rows.len(), 127);
+        assert!(rows[0].distance < 50.0 && rows.last().unwrap().distance > 3500.0);
+        println!("wind {wind} m/s: row, distance, sky ref/model/constant, sea ref/model/constant");
+        for r in &rows {
+            let (rs, ms, cs) = (sum(r.reference.sky), sum(r.model.sky), sum(r.constant.sky));
+            let (rw, mw, cw) = (sum(r.reference.sea), sum(r.model.sea), sum(r.constant.sea));
+            println!(
+                "{:3} {:7.0} m  sky {rs:.4} {ms:.4} {cs:.4}  sea {rw:.5} {mw:.5} {cw:.5}",
+                r.row, r.distance
+            );
+            worst_sky = worst_sky.max(rel(ms, rs));
+            worst_sea = worst_sea.max(rel(mw, rw));
+            if r.distance > 300.0 {
+                let (model, constant) =
+                    (rel(ms, rs).max(rel(mw, rw)), rel(cs, rs).max(rel(cw, rw)));
+                assert!(
+                    constant > 0.2,
+                    "row {}: constant BRDF off by only {constant}",
+                    r.row
+                );
+                assert!(
+                    constant > 2.0 * model,
+                    "row {}: {constant} vs {model}",
+                    r.row
+                );
+            }
+        }
+    }
+    println!(
+        "worst row: sky {:.1} %, sea {:.1} %",
+        worst_sky * 100.0,
+        worst_sea * 100.0
+    );
+    // The measured envelope (see the module documentation), so a regression shows.
+    assert!(worst_sky < 0.32, "{worst_sky}");
+    assert!(worst_sea < 0.22, "{worst_sea}");
+}
+
+/// The same inputs give the same bits, whatever rayon's thread count.
+#[test]
+fn validation_is_deterministic_across_thread_counts() {
+    let params = ValidationParams {
+        size: 64,
+        planes: 4,
+        model_planes: 8,
+        rays_per_pixel: 4,
+        max_distance: 1500.0,
+        profile_step: 0.2,
+        ..ValidationParams::default()
+    };
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(|| validate(&params).unwrap());
+    let three = rayon::ThreadPoolBuilder::new()
+        .num_threads(3)
+        .build()
+        .unwrap()
+        .install(|| validate(&params).unwrap());
+    assert_eq!(one, three);
+}
