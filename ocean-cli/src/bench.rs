@@ -13,7 +13,7 @@ use ocean_core::{Depth, Grid, WaveDesc, WaveSet};
 use rayon::prelude::*;
 use serde_json::{Value, json};
 
-use crate::{bench_gpu, bench_wtb};
+use crate::{bench_gpu, bench_lighting, bench_wtb};
 
 #[derive(Args)]
 pub struct BenchArgs {
@@ -31,6 +31,9 @@ pub struct BenchArgs {
     /// Skip the GPU figures.
     #[arg(long)]
     pub no_gpu: bool,
+    /// `lighting` only: draw the validation's per-row curves (Fig. 10) into this PNG file.
+    #[arg(long)]
+    pub plot: Option<std::path::PathBuf>,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -40,6 +43,9 @@ enum Suite {
     /// Wave train boxes (issue 3): scenario 1 from 64² to 2048², scaling, culling, effect
     /// costs, height queries.
     Wtb,
+    /// Ocean lighting (issue 4): CPU sea-colour evaluations and the paper's validation
+    /// (Fig. 10) against a detailed-geometry reference.
+    Lighting,
 }
 
 /// A wave set of `n` deep-water trochoids, wavelengths in geometric progression from 0.5 m to
@@ -117,6 +123,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
     match args.suite {
         Suite::Gerstner => gerstner(args),
         Suite::Wtb => bench_wtb::wtb(args),
+        Suite::Lighting => bench_lighting::lighting(args),
     }
 }
 

@@ -3,7 +3,9 @@
 
 mod bench;
 mod bench_gpu;
+mod bench_lighting;
 mod bench_wtb;
+mod png;
 mod shaders;
 
 use std::process::ExitCode;

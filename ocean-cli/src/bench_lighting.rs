@@ -1,0 +1,243 @@
+//! `ocean bench lighting`: the figures of issue 4 ("Performance", "Validation").
+//!
+//! 1. **CPU sea colour**: Algorithm 5.1 ([`sea_color_unchecked`], with the 512² sky map)
+//!    evaluations per second on one thread and on all threads, over a fixed table of views,
+//!    normals and variances.
+//! 2. **Validation** (§7.2, Fig. 10): per-row mean radiance of the filtered model and of a
+//!    constant-BRDF model against the detailed-geometry, perfect-mirror reference, for a calm
+//!    (5 m/s) and an agitated (15 m/s) sea; `--plot FILE.png` draws the per-row curves like
+//!    Fig. 10's right column.
+
+use std::path::Path;
+use std::time::Instant;
+
+use glam::{DVec2, DVec3};
+use ocean_brdf::sea::sea_color_unchecked;
+use ocean_brdf::validation::{RowMeans, ValidationParams, validate};
+use ocean_brdf::{Lighting, SeaParams, SkyParams, SlopeVariance, SpectrumParams};
+use ocean_core::rng::Pcg32;
+use rayon::prelude::*;
+use serde_json::{Value, json};
+
+use crate::bench::{BenchArgs, cpu_name, interleaved_medians};
+use crate::png::Canvas;
+
+/// Inputs per timed batch.
+const BATCH: usize = 1 << 16;
+/// The seas of the validation: wind speeds, m/s.
+const SEAS: [f64; 2] = [5.0, 15.0];
+
+pub fn lighting(args: &BenchArgs) -> Result<(), String> {
+    let cpu = cpu_figures(args.runs)?;
+    let mut seas = Vec::new();
+    let mut curves = Vec::new();
+    for wind in SEAS {
+        let params = ValidationParams {
+            spectrum: SpectrumParams {
+                wind_speed: wind,
+                ..SpectrumParams::default()
+            },
+            ..ValidationParams::default()
+        };
+        let t = Instant::now();
+        let rows = validate(&params).map_err(|e| e.to_string())?;
+        seas.push(validation_summary(wind, &rows, t.elapsed().as_secs_f64()));
+        curves.push((wind, rows));
+    }
+    if let Some(path) = &args.plot {
+        plot(&curves, path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    }
+    let doc = json!({
+        "suite": "lighting",
+        "cpu": cpu_name(),
+        "threads": rayon::current_num_threads(),
+        "sea_color": cpu,
+        "validation": seas,
+    });
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?
+        );
+    } else {
+        print_table(&doc);
+    }
+    Ok(())
+}
+
+/// Evaluations of Algorithm 5.1 per second, one thread and all threads.
+fn cpu_figures(runs: u32) -> Result<Value, String> {
+    let lighting =
+        Lighting::new(SkyParams::default(), SeaParams::default()).map_err(|e| e.to_string())?;
+    let map = lighting.sky_map(512).map_err(|e| e.to_string())?;
+    let mut rng = Pcg32::new(4, 4);
+    let inputs: Vec<(DVec3, DVec3, SlopeVariance)> = (0..BATCH)
+        .map(|_| {
+            let elevation = (0.5 + 88.5 * rng.next_f64()).to_radians();
+            let azimuth = rng.next_f64() * std::f64::consts::TAU;
+            let v = DVec3::new(
+                elevation.cos() * azimuth.sin(),
+                elevation.sin(),
+                elevation.cos() * azimuth.cos(),
+            );
+            let tilt = (20.0 * rng.next_f64()).to_radians();
+            let a = rng.next_f64() * std::f64::consts::TAU;
+            let n = DVec3::new(tilt.sin() * a.cos(), tilt.cos(), tilt.sin() * a.sin());
+            let s = 0.05 * rng.next_f64();
+            (v, n, SlopeVariance { x: s, y: 0.5 * s })
+        })
+        .collect();
+    let wind = DVec2::new(0.0, -1.0);
+    let eval = |&(v, n, var): &(DVec3, DVec3, SlopeVariance)| {
+        sea_color_unchecked(&lighting, &map, v, n, wind, var).total()
+    };
+    let mut one = || {
+        std::hint::black_box(inputs.iter().map(eval).fold(DVec3::ZERO, |a, b| a + b));
+    };
+    let mut all = || {
+        std::hint::black_box(
+            inputs
+                .par_iter()
+                .map(eval)
+                .reduce(|| DVec3::ZERO, |a, b| a + b),
+        );
+    };
+    let [t1, tn] = interleaved_medians(runs, [&mut one, &mut all]);
+    Ok(json!({
+        "evaluations": BATCH,
+        "single_thread_per_s": BATCH as f64 / (t1 * 1e-3),
+        "all_threads_per_s": BATCH as f64 / (tn * 1e-3),
+    }))
+}
+
+fn sum(c: DVec3) -> f64 {
+    c.x + c.y + c.z
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b
+}
+
+/// Worst and mean relative errors per component and model.
+fn validation_summary(wind: f64, rows: &[RowMeans], seconds: f64) -> Value {
+    let stats = |pick: &dyn Fn(&RowMeans) -> (f64, f64), far_only: bool| {
+        let errors: Vec<f64> = rows
+            .iter()
+            .filter(|r| !far_only || r.distance > 300.0)
+            .map(|r| {
+                let (m, reference) = pick(r);
+                rel(m, reference)
+            })
+            .collect();
+        let worst = errors.iter().copied().fold(0.0, f64::max);
+        let mean = errors.iter().sum::<f64>() / errors.len().max(1) as f64;
+        json!({ "worst": worst, "mean": mean })
+    };
+    json!({
+        "wind_speed": wind,
+        "rows": rows.len(),
+        "nearest_m": rows.first().map(|r| r.distance),
+        "farthest_m": rows.last().map(|r| r.distance),
+        "seconds": seconds,
+        "model": {
+            "sky": stats(&|r| (sum(r.model.sky), sum(r.reference.sky)), false),
+            "sea": stats(&|r| (sum(r.model.sea), sum(r.reference.sea)), false),
+            "sky_beyond_300m": stats(&|r| (sum(r.model.sky), sum(r.reference.sky)), true),
+            "sea_beyond_300m": stats(&|r| (sum(r.model.sea), sum(r.reference.sea)), true),
+        },
+        "constant_brdf": {
+            "sky": stats(&|r| (sum(r.constant.sky), sum(r.reference.sky)), false),
+            "sea": stats(&|r| (sum(r.constant.sea), sum(r.reference.sea)), false),
+            "sky_beyond_300m": stats(&|r| (sum(r.constant.sky), sum(r.reference.sky)), true),
+            "sea_beyond_300m": stats(&|r| (sum(r.constant.sea), sum(r.reference.sea)), true),
+        },
+    })
+}
+
+fn print_table(doc: &Value) {
+    println!(
+        "ocean bench lighting — {} ({} threads)",
+        doc["cpu"], doc["threads"]
+    );
+    let c = &doc["sea_color"];
+    println!(
+        "sea colour (Algorithm 5.1, CPU): {:.2} M/s on 1 thread, {:.2} M/s on all",
+        c["single_thread_per_s"].as_f64().unwrap_or(0.0) / 1e6,
+        c["all_threads_per_s"].as_f64().unwrap_or(0.0) / 1e6
+    );
+    println!("validation (Fig. 10), relative error of the row means, worst / mean:");
+    for s in doc["validation"].as_array().into_iter().flatten() {
+        println!(
+            "  wind {} m/s, {} rows {:.0}–{:.0} m ({:.1} s):",
+            s["wind_speed"],
+            s["rows"],
+            s["nearest_m"].as_f64().unwrap_or(0.0),
+            s["farthest_m"].as_f64().unwrap_or(0.0),
+            s["seconds"].as_f64().unwrap_or(0.0)
+        );
+        for (name, key) in [("model", "model"), ("constant BRDF", "constant_brdf")] {
+            let m = &s[key];
+            let f = |k: &str, w: &str| m[k][w].as_f64().unwrap_or(f64::NAN) * 100.0;
+            println!(
+                "    {name:14} sky {:5.1} / {:4.1} %  sea {:5.1} / {:4.1} %  beyond 300 m: sky {:5.1} / {:4.1} %  sea {:5.1} / {:4.1} %",
+                f("sky", "worst"),
+                f("sky", "mean"),
+                f("sea", "worst"),
+                f("sea", "mean"),
+                f("sky_beyond_300m", "worst"),
+                f("sky_beyond_300m", "mean"),
+                f("sea_beyond_300m", "worst"),
+                f("sea_beyond_300m", "mean"),
+            );
+        }
+    }
+}
+
+/// The three methods' values of one component for a row: reference, model, constant BRDF.
+type Pick = fn(&RowMeans) -> [f64; 3];
+
+/// Fig. 10's right column: for each sea (one band of panels) and component (sky, refracted
+/// light), the row means against the row, far rows at the top: reference black, model red,
+/// constant BRDF blue; each panel scaled to its largest value.
+fn plot(curves: &[(f64, Vec<RowMeans>)], path: &Path) -> std::io::Result<()> {
+    const PANEL_W: usize = 320;
+    const PANEL_H: usize = 280;
+    const MARGIN: f64 = 12.0;
+    let comps: [(&str, Pick); 2] = [
+        ("sky", |r| {
+            [sum(r.reference.sky), sum(r.model.sky), sum(r.constant.sky)]
+        }),
+        ("sea", |r| {
+            [sum(r.reference.sea), sum(r.model.sea), sum(r.constant.sea)]
+        }),
+    ];
+    let colours = [[0, 0, 0], [200, 30, 30], [30, 60, 200]];
+    let mut canvas = Canvas::new(PANEL_W * comps.len(), PANEL_H * curves.len(), [255; 3]);
+    for (band, (_, rows)) in curves.iter().enumerate() {
+        for (col, (_, pick)) in comps.iter().enumerate() {
+            let (x0, y0) = (
+                (col * PANEL_W) as f64 + MARGIN,
+                (band * PANEL_H) as f64 + MARGIN,
+            );
+            let (w, h) = (PANEL_W as f64 - 2.0 * MARGIN, PANEL_H as f64 - 2.0 * MARGIN);
+            canvas.rect(x0, y0, x0 + w, y0 + h, [160; 3]);
+            let max = rows
+                .iter()
+                .flat_map(pick)
+                .fold(f64::MIN_POSITIVE, f64::max);
+            let n = rows.len().max(2) as f64 - 1.0;
+            for (k, colour) in colours.iter().enumerate() {
+                // rows[0] is the nearest: bottom of the panel.
+                let point = |i: usize| {
+                    let v = pick(&rows[i])[k] / max;
+                    (x0 + v * w, y0 + h - i as f64 / n * h)
+                };
+                for i in 1..rows.len() {
+                    let (a, b) = (point(i - 1), point(i));
+                    canvas.line(a.0, a.1, b.0, b.1, *colour);
+                }
+            }
+        }
+    }
+    canvas.write_png(path)
+}
