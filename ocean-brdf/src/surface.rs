@@ -17,7 +17,7 @@ use glam::{DVec2, DVec3};
 use ocean_core::trochoid::PointSums;
 use ocean_core::{Camera, WaveDesc, WaveSet};
 
-use crate::error::BrdfError;
+use crate::error::{BrdfError, check};
 use crate::filter::Filter;
 use crate::spectrum::Spectrum;
 use crate::variance::{SlopeVariance, VarianceTable};
@@ -121,7 +121,50 @@ impl FilteredSurface {
         self.variance.unresolved(&self.filter, pixel)
     }
 
+    /// §6, local waves: adds this surface's Eq. 3 terms (waves weighted by `w_n` for the
+    /// footprint `pixel`, times `scale`, for instance a wave train box's `|μ|` at the point) to
+    /// `sums`. Surfaces add: the normal of the open sea with local waves on it is
+    /// `PointSums::normal` of the sums of both, since Eq. 3 is linear in the waves' derivatives.
+    pub fn add_normal_sums(
+        &self,
+        rest: DVec2,
+        t: f64,
+        pixel: f64,
+        scale: f64,
+        sums: &mut PointSums,
+    ) -> Result<(), BrdfError> {
+        let s = self.weighted_sums(rest, t, pixel, scale)?;
+        sums.dx += s.dx;
+        sums.y += s.y;
+        sums.dz += s.dz;
+        sums.jxx += s.jxx - 1.0;
+        sums.jxz += s.jxz;
+        sums.jzz += s.jzz - 1.0;
+        sums.sx += s.sx;
+        sums.sz += s.sz;
+        Ok(())
+    }
+
+    /// §6, local waves: Eq. 4 for this surface's waves with their amplitudes scaled by
+    /// `scale` ∈ [0, 1]; add it to the open sea's [`FilteredSurface::variance`] (variances of
+    /// independent waves add, §3.2). Build the local surface with the open sea's wind so the
+    /// two are in the same frame.
+    pub fn local_variance(&self, pixel: f64, scale: f64) -> SlopeVariance {
+        self.variance.unresolved_scaled(&self.filter, pixel, scale)
+    }
+
     fn sums(&self, rest: DVec2, t: f64, size: f64) -> Result<PointSums, BrdfError> {
+        self.weighted_sums(rest, t, size, 1.0)
+    }
+
+    fn weighted_sums(
+        &self,
+        rest: DVec2,
+        t: f64,
+        size: f64,
+        scale: f64,
+    ) -> Result<PointSums, BrdfError> {
+        check("scale", scale, 0.0, 1.0)?;
         if !(size.is_finite() && size > 0.0) {
             return Err(BrdfError::OutOfRange {
                 name: "footprint",
@@ -133,7 +176,7 @@ impl FilteredSurface {
         let n = self.resolved_count(size);
         let mut weights = alloc::vec![0.0; self.wavelengths.len()];
         for (w, &l) in weights.iter_mut().zip(&self.wavelengths[..n]) {
-            *w = self.filter.weight(l, size);
+            *w = self.filter.weight(l, size) * scale;
         }
         let mut sums = PointSums::REST;
         self.waves

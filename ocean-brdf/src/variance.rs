@@ -157,6 +157,20 @@ impl VarianceTable {
         }
     }
 
+    /// Eq. 4 for the waves with their amplitudes scaled by `scale` ∈ [0, 1], summed directly:
+    /// for local waves (§6) whose amplitude varies over the sea, such as wave trains modulated
+    /// by a wave train box's `|μ|`. `scale = 1` is [`VarianceTable::unresolved_direct`].
+    pub fn unresolved_scaled(&self, filter: &Filter, pixel: f64, scale: f64) -> SlopeVariance {
+        let scale = if scale.is_nan() {
+            0.0
+        } else {
+            scale.clamp(0.0, 1.0)
+        };
+        self.terms.iter().fold(SlopeVariance::default(), |s, t| {
+            s.plus(t.variance(filter.brdf_weight(t.wavelength, pixel) * scale))
+        })
+    }
+
     /// Eq. 4 summed over every wave, as printed: the reference for [`VarianceTable::unresolved`].
     pub fn unresolved_direct(&self, filter: &Filter, pixel: f64) -> SlopeVariance {
         self.terms.iter().fold(SlopeVariance::default(), |s, t| {

@@ -136,3 +136,63 @@ fn pixel_footprint_grows_towards_the_horizon() {
     let l = pixel_footprint(&cam, w, h, DVec2::new(128.5, 20.5), 5e4).unwrap();
     assert!(l < 2.0 * 5e4 * (40f64.to_radians() / 128.0), "{l}");
 }
+
+/// §6, local waves: an open sea with local trains on it lights the same as one surface made of
+/// both wave sets (normals by adding Eq. 3's sums, variances by adding Eq. 4), and a local
+/// scale of 0 leaves the open sea alone.
+#[test]
+fn local_waves_add_their_normals_and_variances() {
+    let open = surface();
+    let local_descs = [
+        ocean_core::WaveDesc {
+            amplitude: 0.05,
+            wavelength: 2.0,
+            direction: DVec2::new(0.6, 0.8),
+            phase: 0.4,
+            depth: ocean_core::Depth::Deep,
+        },
+        ocean_core::WaveDesc {
+            amplitude: 0.01,
+            wavelength: 0.3,
+            direction: DVec2::new(-0.2, 1.0),
+            phase: 2.0,
+            depth: ocean_core::Depth::Deep,
+        },
+    ];
+    let local = FilteredSurface::from_waves(&local_descs, open.wind(), Filter::PAPER).unwrap();
+    let mut all: Vec<_> = Spectrum::new(SpectrumParams::default())
+        .unwrap()
+        .waves()
+        .to_vec();
+    all.extend_from_slice(&local_descs);
+    let both = FilteredSurface::from_waves(&all, open.wind(), Filter::PAPER).unwrap();
+    let rest = DVec2::new(3.0, 8.0);
+    let t = 2.5;
+    for pixel in [0.01, 0.2, 1.0, 5.0] {
+        let mut sums = ocean_core::PointSums::REST;
+        open.add_normal_sums(rest, t, pixel, 1.0, &mut sums)
+            .unwrap();
+        local
+            .add_normal_sums(rest, t, pixel, 1.0, &mut sums)
+            .unwrap();
+        let n = both.normal(rest, t, pixel).unwrap();
+        assert!((sums.normal() - n).length() < 1e-12, "{pixel}");
+        let v = open.variance(pixel).plus(local.local_variance(pixel, 1.0));
+        let w = both.variance(pixel);
+        assert!(
+            (v.x - w.x).abs() < 1e-12 && (v.y - w.y).abs() < 1e-12,
+            "{pixel}"
+        );
+        // Scale 0: the open sea alone.
+        let mut only = ocean_core::PointSums::REST;
+        open.add_normal_sums(rest, t, pixel, 1.0, &mut only)
+            .unwrap();
+        local
+            .add_normal_sums(rest, t, pixel, 0.0, &mut only)
+            .unwrap();
+        assert_eq!(only.normal(), open.normal(rest, t, pixel).unwrap());
+        assert_eq!(local.local_variance(pixel, 0.0), Default::default());
+    }
+    let mut sums = ocean_core::PointSums::REST;
+    assert!(local.add_normal_sums(rest, t, 1.0, 1.5, &mut sums).is_err());
+}
