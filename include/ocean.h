@@ -28,6 +28,45 @@
 #include <stdbool.h>
 
 /**
+ * Half-width E of the square of the stereographic plane a sky map covers: texel (i, j) of a
+ * level of size S shows u = (2 t - 1) E, t = ((i + 0.5)/S, (j + 0.5)/S). Equal to
+ * `ocean_brdf::sky_map::SKY_MAP_EXTENT`.
+ */
+#define OCEAN_SKY_MAP_EXTENT 1.1
+
+/**
+ * Smallest level-0 size of a sky map (a power of two).
+ */
+#define OCEAN_SKY_MAP_MIN_SIZE 4
+
+/**
+ * Largest level-0 size of a sky map (a power of two).
+ */
+#define OCEAN_SKY_MAP_MAX_SIZE 4096
+
+/**
+ * Reflectance of water at normal incidence, R of Eq. 14 (a refractive index of 1.33).
+ */
+#define OCEAN_WATER_R 0.02
+
+/**
+ * The default exposure of `ocean_tone_map`: maps the default sky's zenith (radiance about
+ * 0.05) to about 0.33 and the default sea's refracted light (about 0.01) to about 0.08.
+ */
+#define OCEAN_DEFAULT_EXPOSURE 8.0
+
+/**
+ * N_min of the paper's filter (section 7.1): a wave starts to appear in the normals (or the
+ * geometry) once its wavelength spans this many pixels (or grid cells).
+ */
+#define OCEAN_FILTER_N_MIN 1.0
+
+/**
+ * N_max of the paper's filter: a wave is fully present from this many pixels per wavelength.
+ */
+#define OCEAN_FILTER_N_MAX 2.5
+
+/**
  * Major version of the library this header belongs to (the `ocean-ffi` crate version).
  */
 #define OCEAN_VERSION_MAJOR 0
@@ -175,6 +214,13 @@ typedef uint32_t OceanDepthConvention;
 #endif // __cplusplus
 
 /**
+ * The Sun, the sky and the sea, validated, with their derived radiances (opaque). Create with
+ * `ocean_lighting_create`, free with `ocean_lighting_destroy`. Immutable: a
+ * `const OceanLighting *` may be used by any number of threads at once.
+ */
+typedef struct OceanLighting OceanLighting;
+
+/**
  * A Wave Train Boxes scene (opaque): water grid, terrain, boxes, effects and budget. Create
  * with `ocean_scene_create`, free with `ocean_scene_destroy`.
  *
@@ -186,11 +232,251 @@ typedef uint32_t OceanDepthConvention;
 typedef struct OceanScene OceanScene;
 
 /**
+ * A mip-mapped sky map of one lighting (opaque): the sky's radiance in the stereographic
+ * parameterisation (paper section 5.2), level 0 of size N, each coarser level the 2x2 mean of
+ * the one above, down to 1x1. Create with `ocean_lighting_sky_map_create`, free with
+ * `ocean_sky_map_destroy`. Immutable and shareable between threads.
+ */
+typedef struct OceanSkyMap OceanSkyMap;
+
+/**
+ * A sampled wave spectrum (opaque): its trochoids and statistics. Create with
+ * `ocean_spectrum_create`, free with `ocean_spectrum_destroy`. Immutable: a
+ * `const OceanSpectrum *` may be used by any number of threads at once.
+ */
+typedef struct OceanSpectrum OceanSpectrum;
+
+/**
  * An immutable set of trochoid waves (opaque). Create with `ocean_waves_create`, free with
  * `ocean_waves_destroy`. A `const OceanWaves *` may be evaluated and queried from any number
  * of threads at once; destroying it must not race with any other use.
  */
 typedef struct OceanWaves OceanWaves;
+
+/**
+ * A 3D vector in double precision. World-space vectors are right-handed with y up; the BRDF
+ * functions take tangent-frame vectors (x along the wind, y across it, z along the normal), as
+ * each function says.
+ */
+typedef struct OceanDVec3 {
+  /**
+   * x.
+   */
+  double x;
+  /**
+   * y (up).
+   */
+  double y;
+  /**
+   * z.
+   */
+  double z;
+} OceanDVec3;
+
+/**
+ * A linear RGB triple in double precision (radiance, irradiance or reflectance, as documented
+ * where it is used).
+ */
+typedef struct OceanRgb {
+  /**
+   * Red.
+   */
+  double r;
+  /**
+   * Green.
+   */
+  double g;
+  /**
+   * Blue.
+   */
+  double b;
+} OceanRgb;
+
+/**
+ * The coefficients of a CIE standard sky type (ISO 15469 / CIE S 011): the gradation
+ * phi(theta) = 1 + a exp(b / cos theta) (theta the zenith angle of the sky element) and the
+ * indicatrix f(gamma) = 1 + c (exp(d gamma) - exp(d pi/2)) + e cos^2 gamma (gamma its angle
+ * from the Sun). Each in [-1000, 1000]; the sky's relative radiance must stay positive at the
+ * zenith and non-negative elsewhere. The default (`ocean_sky_params_default`) is type 12,
+ * "standard clear sky, low turbidity": a = -1, b = -0.32, c = 10, d = -3, e = 0.45.
+ */
+typedef struct OceanCieSky {
+  /**
+   * Gradation a.
+   */
+  double a;
+  /**
+   * Gradation b (negative: the sky brightens towards the horizon).
+   */
+  double b;
+  /**
+   * Indicatrix c (the circumsolar brightening).
+   */
+  double c;
+  /**
+   * Indicatrix d.
+   */
+  double d;
+  /**
+   * Indicatrix e (the forward-scattering term).
+   */
+  double e;
+} OceanCieSky;
+
+/**
+ * The Sun and the sky (paper section 5.1, 5.2). `ocean_sky_params_default` fills in a clear
+ * afternoon.
+ */
+typedef struct OceanSkyParams {
+  /**
+   * Unit vector towards the Sun, world space (y up); its length must be within 1e-6 of 1
+   * and its elevation in [0, 90] degrees (y >= 0): the model has no twilight.
+   */
+  struct OceanDVec3 sun_direction;
+  /**
+   * The Sun's irradiance on a surface facing it, linear RGB, each channel finite and >= 0.
+   */
+  struct OceanRgb sun_irradiance;
+  /**
+   * The sky's radiance at the zenith, linear RGB, each channel finite and >= 0.
+   */
+  struct OceanRgb zenith_radiance;
+  /**
+   * The sky's relative radiance distribution.
+   */
+  struct OceanCieSky cie;
+} OceanSkyParams;
+
+/**
+ * The water body under the surface (paper section 5.3). `ocean_sea_params_default` fills in a
+ * deep blue open ocean.
+ */
+typedef struct OceanSeaParams {
+  /**
+   * Diffuse reflectance of the water body, linear RGB, each channel in [0, 1]: the light
+   * scattered back up is L_sea = albedo (E_sun sin(elevation) + E_sky) / pi.
+   */
+  struct OceanRgb albedo;
+  /**
+   * Fresnel reflectance at normal incidence, R of Eq. 14, in [0, 1] (water: 0.02,
+   * `OCEAN_WATER_R`).
+   */
+  double fresnel_r;
+} OceanSeaParams;
+
+/**
+ * A point on the sea plane in double precision: world x and z in metres.
+ */
+typedef struct OceanDVec2 {
+  /**
+   * x, metres.
+   */
+  double x;
+  /**
+   * z, metres.
+   */
+  double z;
+} OceanDVec2;
+
+/**
+ * The three terms of the sea's radiance towards the viewer (Algorithm 5.1), linear RGB in the
+ * unit of the lighting's radiances; their sum is the pixel's colour before tone mapping.
+ */
+typedef struct OceanSeaLight {
+  /**
+   * I_sun, the Sun's reflection (Eq. 15), with the slope variances raised to the solar
+   * disc's.
+   */
+  struct OceanRgb sun;
+  /**
+   * I_sky = F_bar L_bar, the sky's reflection (Eq. 21, 26, 27).
+   */
+  struct OceanRgb sky;
+  /**
+   * I_sea = L_sea (1 - F_bar), the light refracted out of the water (Eq. 28).
+   */
+  struct OceanRgb sea;
+} OceanSeaLight;
+
+/**
+ * One input of `ocean_sea_color_batch`: the arguments of `ocean_sea_color`.
+ */
+typedef struct OceanSeaColorInput {
+  /**
+   * Unit vector from the surface point towards the viewer, world space (y up).
+   */
+  struct OceanDVec3 v;
+  /**
+   * The filtered unit surface normal (Eq. 3), world space.
+   */
+  struct OceanDVec3 n;
+  /**
+   * The horizontal wind direction (x, z) along which `sigma_x2` is measured; any finite,
+   * non-zero length.
+   */
+  struct OceanDVec2 wind;
+  /**
+   * Slope variance of the unresolved waves along the wind (Eq. 4), finite and >= 0.
+   */
+  double sigma_x2;
+  /**
+   * Slope variance across the wind, finite and >= 0.
+   */
+  double sigma_y2;
+} OceanSeaColorInput;
+
+/**
+ * What to sample (paper section 3.1, 7.1). `ocean_spectrum_params_default` fills in 60 waves
+ * from 2 cm to 30 m under a 10 m/s wind along +x.
+ *
+ * The `wave_count` wavelengths form a geometric progression from `min_wavelength` to
+ * `max_wavelength`. Wave i (shortest first) stands for the band of angular frequencies around
+ * its own omega_i = sqrt(g k_i), k_i = 2 pi / lambda_i, reaching halfway in log(omega) to its
+ * neighbours, d_omega_i = omega_i (q - 1/q) with q = (lambda_max/lambda_min)^(1/(4 (n - 1)))
+ * (0 for a single wave), and takes that band's energy: A_i = sqrt(2 S(omega_i) d_omega_i),
+ * with S the Pierson-Moskowitz spectrum of Eq. 1,
+ * S(omega) = 8.1e-3 g^2 / omega^5 exp(-0.74 (g / (V omega))^4), g = 9.81 m/s^2; then clamped
+ * to k_i A_i <= `max_steepness`. Directions are drawn from Hasselmann's cos^2s(theta/2)
+ * spreading around the wind (s >= 2), phases uniformly, from a PCG32 stream seeded by `seed`:
+ * the same parameters give the same waves on every platform.
+ */
+typedef struct OceanSpectrumParams {
+  /**
+   * Wind speed 20 m above the sea, m/s (V_20 of Eq. 1), in [1e-3, 200].
+   */
+  double wind_speed;
+  /**
+   * x component of the direction the wind blows towards, on the sea plane; with
+   * `wind_direction_z` any finite, non-zero vector (it is normalised).
+   */
+  double wind_direction_x;
+  /**
+   * z component of the wind direction.
+   */
+  double wind_direction_z;
+  /**
+   * Number of trochoids, 1 to 1024 (the paper uses 60).
+   */
+  size_t wave_count;
+  /**
+   * Shortest wavelength, metres, in [1e-4, 1e5].
+   */
+  double min_wavelength;
+  /**
+   * Longest wavelength, metres, in [min_wavelength, 1e5]; strictly longer when
+   * `wave_count` > 1.
+   */
+  double max_wavelength;
+  /**
+   * Largest steepness k*A of any one wave, in [0, 1]: longer amplitudes are clamped to it
+   * (a trochoid with k*A > 1 loops over itself).
+   */
+  double max_steepness;
+  /**
+   * Seed of the directions and phases.
+   */
+  uint64_t seed;
+} OceanSpectrumParams;
 
 /**
  * One trochoid (Gerstner) wave train, as the caller describes it (Yrjola & Larsson Eq. 6, 7).
@@ -229,6 +515,81 @@ typedef struct OceanWaveDesc {
    */
   double depth;
 } OceanWaveDesc;
+
+/**
+ * Slope variances of a Gaussian slope distribution (Eq. 4), dimensionless: along the wind and
+ * across it (the x and y axes of the BRDF's tangent frame).
+ */
+typedef struct OceanSlopeVariance {
+  /**
+   * sigma_x^2, along the wind, >= 0.
+   */
+  double sigma_x2;
+  /**
+   * sigma_y^2, across the wind, >= 0.
+   */
+  double sigma_y2;
+} OceanSlopeVariance;
+
+/**
+ * A camera for `ocean_pixel_footprint`: a view matrix, a projection described by its
+ * parameters, and a depth convention.
+ *
+ * Perspective (`orthographic` = 0): `fov_y` in (0, pi) radians, `aspect` = width / height
+ * and positive, 0 < `z_near` < `z_far`, with `z_far` = `INFINITY` for an infinite far plane;
+ * the orthographic members are ignored. Orthographic (`orthographic` = 1): the view-space box
+ * [left, right] x [bottom, top] x [z_near, z_far] (distances along -z; `z_near` may be <= 0),
+ * all finite, left < right, bottom < top, z_near < z_far; `fov_y` and `aspect` are ignored.
+ */
+typedef struct OceanCameraDesc {
+  /**
+   * World-to-view matrix, column-major (GLM's layout: `glm::value_ptr` of a `glm::dmat4`,
+   * element [4 * column + row]), right-handed, the camera looking down its -z axis. Every
+   * element finite, the matrix invertible.
+   */
+  double view[16];
+  /**
+   * 0: perspective; 1: orthographic. Other values are refused.
+   */
+  uint8_t orthographic;
+  /**
+   * An `OceanDepthConvention` value (other values are refused). The footprint does not
+   * depend on it; it only has to describe the projection consistently.
+   */
+  uint32_t depth_convention;
+  /**
+   * Perspective: vertical field of view, radians.
+   */
+  double fov_y;
+  /**
+   * Perspective: viewport width / height.
+   */
+  double aspect;
+  /**
+   * Orthographic: view-space x of the left edge, metres.
+   */
+  double left;
+  /**
+   * Orthographic: view-space x of the right edge, metres.
+   */
+  double right;
+  /**
+   * Orthographic: view-space y of the bottom edge, metres.
+   */
+  double bottom;
+  /**
+   * Orthographic: view-space y of the top edge, metres.
+   */
+  double top;
+  /**
+   * Near-plane distance, metres.
+   */
+  double z_near;
+  /**
+   * Far-plane distance, metres (perspective: `INFINITY` for none).
+   */
+  double z_far;
+} OceanCameraDesc;
 
 /**
  * A point on the sea plane y = 0: world x and z in metres (single precision).
@@ -566,38 +927,6 @@ typedef struct OceanFrameStats {
 } OceanFrameStats;
 
 /**
- * A point on the sea plane in double precision: world x and z in metres.
- */
-typedef struct OceanDVec2 {
-  /**
-   * x, metres.
-   */
-  double x;
-  /**
-   * z, metres.
-   */
-  double z;
-} OceanDVec2;
-
-/**
- * A 3D vector in double precision (right-handed, y up).
- */
-typedef struct OceanDVec3 {
-  /**
-   * x.
-   */
-  double x;
-  /**
-   * y (up).
-   */
-  double y;
-  /**
-   * z.
-   */
-  double z;
-} OceanDVec3;
-
-/**
  * The answer of a height query at world (x, z).
  */
 typedef struct OceanHeightSample {
@@ -624,6 +953,693 @@ typedef struct OceanHeightSample {
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
+
+/**
+ * Stores the default Sun and sky in `*out`: a clear afternoon with the Sun 25 degrees above
+ * the horizon towards -z, sun_direction = (0, sin 25deg, -cos 25deg), a slightly warm Sun of
+ * irradiance (1, 0.96, 0.90), a blue zenith of radiance (0.025, 0.045, 0.09) and the CIE clear
+ * sky (type 12).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_sky_params_default(struct OceanSkyParams *out);
+
+/**
+ * Stores the default water body in `*out`: albedo (10, 40, 120)/255 * 0.1 (deep blue open
+ * ocean) and R = 0.02.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_sea_params_default(struct OceanSeaParams *out);
+
+/**
+ * Validates the Sun, the sky and the sea and stores a new lighting in `*out`.
+ *
+ * It derives the sky's irradiance E_sky on the horizontal sea (by quadrature of the CIE
+ * radiance over the upper hemisphere), the water's radiance
+ * L_sea = albedo (E_sun sin(elevation) + E_sky) / pi (paper section 5.3) and the radiance
+ * shown below the horizon (the sky's mean radiance E_sky/pi times Schlick's reflectance
+ * averaged over a cosine-weighted hemisphere, R + (1 - R)/21, plus L_sea times the rest).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite member (the message names it),
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for a member out of its documented range (a Sun direction
+ * that is not a unit vector or lies below the horizon, a negative irradiance or radiance, an
+ * albedo or R outside [0, 1], a CIE type outside [-1000, 1000] or giving negative radiance).
+ * On failure `*out` is unchanged. Free the handle with `ocean_lighting_destroy`.
+ *
+ * # Safety
+ *
+ * `sky` and `sea` must point to readable structs and `out` to a writable pointer; none is
+ * retained.
+ */
+OceanStatus ocean_lighting_create(const struct OceanSkyParams *sky,
+                                  const struct OceanSeaParams *sea,
+                                  struct OceanLighting **out);
+
+/**
+ * Frees a lighting. NULL is ignored, and so is a pointer that is not even aligned. Never
+ * fails; leaves the last-error message alone. Sky maps made from it stay valid.
+ *
+ * # Safety
+ *
+ * `lighting` must be NULL or a handle from `ocean_lighting_create` not yet destroyed, and no
+ * other thread may be using it.
+ */
+void ocean_lighting_destroy(struct OceanLighting *lighting);
+
+/**
+ * Stores the sky's irradiance on the horizontal sea, E_sky = integral of L_sky cos(theta)
+ * over the upper hemisphere (the Sun's disc excluded), linear RGB, in `*out`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `lighting` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_lighting_sky_irradiance(const struct OceanLighting *lighting,
+                                          struct OceanRgb *out);
+
+/**
+ * Stores L_sea = albedo (E_sun sin(elevation) + E_sky) / pi, the diffuse radiance leaving the
+ * water body (paper section 5.3), linear RGB, in `*out`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `lighting` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_lighting_sea_radiance(const struct OceanLighting *lighting, struct OceanRgb *out);
+
+/**
+ * Stores the radiance the environment shows at and below the horizon (paper section 6,
+ * multiple reflections; see `ocean_lighting_create`), linear RGB, in `*out`: the value of the
+ * sky map outside the horizon circle.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `lighting` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_lighting_below_horizon_radiance(const struct OceanLighting *lighting,
+                                                  struct OceanRgb *out);
+
+/**
+ * Stores the Sun's radiance L_sun = E_sun / Omega_sun (Eq. 15), uniform over its disc, linear
+ * RGB, in `*out`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `lighting` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_lighting_sun_radiance(const struct OceanLighting *lighting, struct OceanRgb *out);
+
+/**
+ * Stores the Sun's solid angle Omega_sun = 2 pi (1 - cos rho), steradians, with rho = 4.653e-3
+ * rad its mean angular radius, in `*out`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `lighting` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_lighting_sun_solid_angle(const struct OceanLighting *lighting, double *out);
+
+/**
+ * Stores the environment's radiance towards the unit direction `dir` (world space, y up),
+ * linear RGB, in `*out`: the CIE sky above the horizon (the Sun's disc excluded, as Eq. 15
+ * handles it), the below-horizon radiance (`ocean_lighting_below_horizon_radiance`) at and
+ * below it. This is what level 0 of a sky map samples, before its binary16 rounding.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite component of `dir`,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if its length is not within 1e-6 of 1. `*out` is written only
+ * on success.
+ *
+ * # Safety
+ *
+ * `lighting` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_lighting_environment_radiance(const struct OceanLighting *lighting,
+                                                struct OceanDVec3 dir,
+                                                struct OceanRgb *out);
+
+/**
+ * Renders the sky map of `lighting`, `size` x `size` texels at level 0, and stores a new
+ * handle in `*out`.
+ *
+ * Texel (i, j) of level 0 (row-major: element j*size + i) holds the environment's radiance
+ * (`ocean_lighting_environment_radiance`) towards the direction whose stereographic projection
+ * is u = (2 t - 1) E, with t = ((i + 0.5)/size, (j + 0.5)/size) and E = `OCEAN_SKY_MAP_EXTENT`:
+ * the direction r = (2 u_x, 1 - |u|^2, 2 u_y) / (1 + |u|^2) (so u = (r_x, r_z)/(1 + r_y); the
+ * zenith is at the centre, the horizon on the circle |u| = 1), and the below-horizon radiance
+ * outside that circle. Each coarser level is the 2x2 mean of the one above, down to 1x1. Every
+ * channel is rounded to binary16 (the precision of the GPU's `rgba16float` texture), stored as
+ * float; alpha is 1.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `size` is not a power of two in
+ * [`OCEAN_SKY_MAP_MIN_SIZE`, `OCEAN_SKY_MAP_MAX_SIZE`] or a radiance exceeds binary16's range
+ * (65504: scale the radiance unit down). On failure `*out` is unchanged. Free the map with
+ * `ocean_sky_map_destroy`.
+ *
+ * # Safety
+ *
+ * `lighting` must be a live handle and `out` point to a writable pointer.
+ */
+OceanStatus ocean_lighting_sky_map_create(const struct OceanLighting *lighting,
+                                          uint32_t size,
+                                          struct OceanSkyMap **out);
+
+/**
+ * Frees a sky map. NULL is ignored, and so is a pointer that is not even aligned. Never
+ * fails; leaves the last-error message alone.
+ *
+ * # Safety
+ *
+ * `sky_map` must be NULL or a handle from `ocean_lighting_sky_map_create` not yet destroyed,
+ * and no other thread may be using it.
+ */
+void ocean_sky_map_destroy(struct OceanSkyMap *sky_map);
+
+/**
+ * Stores the number of mip levels of the map, log2(size) + 1, in `*out_count`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out_count`
+ * is written only on success.
+ *
+ * # Safety
+ *
+ * `sky_map` must be a live handle and `out_count` writable.
+ */
+OceanStatus ocean_sky_map_level_count(const struct OceanSkyMap *sky_map, uint32_t *out_count);
+
+/**
+ * Stores the side of mip `level` in texels, max(size >> level, 1), in `*out_size`: the level
+ * holds out_size * out_size RGBA texels.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `level` >= the level count. `*out_size` is written only on
+ * success.
+ *
+ * # Safety
+ *
+ * `sky_map` must be a live handle and `out_size` writable.
+ */
+OceanStatus ocean_sky_map_level_info(const struct OceanSkyMap *sky_map,
+                                     uint32_t level,
+                                     uint32_t *out_size);
+
+/**
+ * Copies mip `level` into `rgba`: side * side texels (side from `ocean_sky_map_level_info`),
+ * row-major from texture coordinate (0, 0) (texel (i, j) at element j*side + i), 4 floats
+ * each (R, G, B, A = 1), the layout an `RGBA32F` or (after conversion) `RGBA16F` texture
+ * upload expects. `len` counts floats and must be exactly side * side * 4.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
+ * alignment for `rgba`), `OCEAN_STATUS_INVALID_ARGUMENT` if `level` does not exist or `len` is
+ * not side * side * 4, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)` exceeds
+ * `PTRDIFF_MAX`. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `sky_map` must be a live handle and `rgba` point to `len` writable floats that no other
+ * thread touches during the call.
+ */
+OceanStatus ocean_sky_map_copy_level(const struct OceanSkyMap *sky_map,
+                                     uint32_t level,
+                                     float *rgba,
+                                     size_t len);
+
+/**
+ * The sea's colour for one pixel: Algorithm 5.1 (paper Fig. 9), the three terms of the
+ * radiance towards the viewer, stored in `*out`.
+ *
+ * - `v`: unit vector from the surface point towards the viewer, world space (y up);
+ * - `n`: the filtered unit normal of Eq. 3, world space (a normal facing away from `v` is
+ *   reflected about the plane normal to `v`, paper section 3.2);
+ * - `wind`: the horizontal wind direction (x, z), any finite non-zero length; the tangent
+ *   frame is t_x = the wind projected on the surface, t_y = n x t_x (for n = +y and wind +x,
+ *   t_y = -z);
+ * - `sigma_x2`, `sigma_y2`: the slope variances of the unresolved waves along t_x and t_y
+ *   (Eq. 4, from `ocean_spectrum_slope_variance`), finite and >= 0 (0: a mirror);
+ * - `sky_map`: a map made from this `lighting` (any size).
+ *
+ * The Sun's term uses the variances raised to at least rho^2/16 (the solar disc, rho = 4.653e-3
+ * rad), the sky's term the effective Fresnel fit F_bar of Eq. 26 times the sky map filtered
+ * over the slopes' Gaussian (Eq. 27, a 9-sample trilinear rule), the sea's term
+ * L_sea (1 - F_bar) (Eq. 28). Deterministic: the same bits on every platform.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite input, `OCEAN_STATUS_INVALID_ARGUMENT` if `v`
+ * or `n` is not a unit vector (length within 1e-6 of 1), the wind is zero, a variance is
+ * negative, or `sky_map` was made from a lighting with other parameters. `*out` is written only
+ * on success.
+ *
+ * # Safety
+ *
+ * `lighting` and `sky_map` must be live handles and `out` writable.
+ */
+OceanStatus ocean_sea_color(const struct OceanLighting *lighting,
+                            const struct OceanSkyMap *sky_map,
+                            struct OceanDVec3 v,
+                            struct OceanDVec3 n,
+                            struct OceanDVec2 wind,
+                            double sigma_x2,
+                            double sigma_y2,
+                            struct OceanSeaLight *out);
+
+/**
+ * `ocean_sea_color` for `n` pixels: `out[i]` receives the colour of `inputs[i]`, bit-identical
+ * to `ocean_sea_color` with the same arguments.
+ *
+ * Every input is validated before anything is written: on failure the message names the
+ * first bad one (`inputs[i].member`) and `out` is untouched.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (8-byte
+ * alignment), `OCEAN_STATUS_EMPTY` if `n` is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if
+ * `n * sizeof(OceanSeaColorInput)` exceeds `PTRDIFF_MAX`, `OCEAN_STATUS_INVALID_ARGUMENT` if the
+ * two arrays overlap, and the statuses of `ocean_sea_color` for a bad input.
+ *
+ * # Safety
+ *
+ * `lighting` and `sky_map` must be live handles, `inputs` point to `n` readable
+ * `OceanSeaColorInput`s and `out` to `n` writable `OceanSeaLight`s, none modified by another
+ * thread during the call.
+ */
+OceanStatus ocean_sea_color_batch(const struct OceanLighting *lighting,
+                                  const struct OceanSkyMap *sky_map,
+                                  const struct OceanSeaColorInput *inputs,
+                                  size_t n,
+                                  struct OceanSeaLight *out);
+
+/**
+ * The Ross BRDF (Eq. 13) with Schlick's Fresnel factor (Eq. 14), 1/steradian, stored in
+ * `*out`:
+ *
+ * brdf = p(zeta_h) F(v.h) / (4 h_z^4 cos(theta_v) cos(theta_l) (1 + Lambda(a_v) + Lambda(a_l)))
+ *
+ * with h = normalize(v + l), zeta_h = -(h_x, h_y)/h_z, p the Gaussian slope density of Eq. 7,
+ * Lambda(a) = (exp(-a^2) - a sqrt(pi) erfc(a)) / (2 a sqrt(pi)) (Eq. 8) and Smith's
+ * a = d_z / sqrt(2 (sigma_x2 d_x^2 + sigma_y2 d_y^2)) (Eq. 9 with the tan^2 the normalisation of
+ * Eq. 11 requires; the transcription's tan is a misprint). 0 when `v` or `l` is on or below
+ * the horizon (z <= 0). Symmetric in `v` and `l`.
+ *
+ * - `v`, `l`: unit vectors towards the viewer and the light, **tangent frame** (x along the
+ *   wind, y across it, z along the normal), lengths within 1e-6 of 1;
+ * - `sigma_x2`, `sigma_y2`: slope variances along x and y, in [DBL_MIN, DBL_MAX] (a zero
+ *   variance has no density);
+ * - `r`: reflectance at normal incidence, in [0, 1] (water: `OCEAN_WATER_R`).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite argument, `OCEAN_STATUS_INVALID_ARGUMENT` for
+ * one out of its range. `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_ross_brdf(struct OceanDVec3 v,
+                            struct OceanDVec3 l,
+                            double sigma_x2,
+                            double sigma_y2,
+                            double r,
+                            double *out);
+
+/**
+ * The Sun's reflected radiance I_sun of Eq. 15, stored in `*out`:
+ * `l_sun * omega_sun * brdf(v, l) * l_z` with `brdf` as in `ocean_ross_brdf` (the BRDF taken as
+ * constant over the solar disc), in the unit of `l_sun`.
+ *
+ * To show the Sun as a disc on a flat sea rather than a point, raise the variances to at
+ * least rho^2 / 16 (rho = 4.653e-3 rad, the Sun's angular radius) first, as `ocean_sea_color`
+ * does.
+ *
+ * - `v`, `l`, `sigma_x2`, `sigma_y2`, `r`: as in `ocean_ross_brdf` (tangent frame);
+ * - `l_sun`: the Sun's radiance, finite and >= 0;
+ * - `omega_sun`: its solid angle, steradians, in [0, 2 pi].
+ *
+ * Returns as `ocean_ross_brdf`. `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_sun_radiance(struct OceanDVec3 v,
+                               struct OceanDVec3 l,
+                               double sigma_x2,
+                               double sigma_y2,
+                               double l_sun,
+                               double omega_sun,
+                               double r,
+                               double *out);
+
+/**
+ * Schlick's Fresnel factor, Eq. 14: F = r + (1 - r) (1 - c)^5 with c = `cos_theta` clamped to
+ * [0, 1] (a back-facing cosine gives 1), stored in `*out`. F(1) = r, F(0) = 1.
+ *
+ * `cos_theta`: the cosine between the direction and the facet normal, finite; `r`: the
+ * reflectance at normal incidence, in [0, 1].
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite argument, `OCEAN_STATUS_INVALID_ARGUMENT` for
+ * `r` outside [0, 1]. `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_schlick(double cos_theta, double r, double *out);
+
+/**
+ * The paper's fit of the effective Fresnel reflectance of rough water, Eq. 26, stored in
+ * `*out`:
+ *
+ * F_bar = r + (1 - r) (1 - cos_theta_v)^(5 exp(-2.69 sigma_v)) / (1 + 22.7 sigma_v^1.5)
+ *
+ * equal to `ocean_schlick(cos_theta_v, r)` bit for bit at sigma_v = 0. Fitted for slope
+ * deviations below 0.5.
+ *
+ * - `cos_theta_v`: cosine of the view's angle to the mean normal, in [0, 1];
+ * - `sigma_v`: the slope **standard deviation** in the view's azimuth,
+ *   sqrt(sigma_x2 cos^2 phi_v + sigma_y2 sin^2 phi_v) (Eq. 25, phi_v measured from the wind),
+ *   finite and >= 0;
+ * - `r`: reflectance at normal incidence, in [0, 1].
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite argument, `OCEAN_STATUS_INVALID_ARGUMENT` for
+ * one out of its range. `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_effective_fresnel_fit(double cos_theta_v, double sigma_v, double r, double *out);
+
+/**
+ * The effective Fresnel reflectance of Eq. 24 by numerical integration (the reference Eq. 26
+ * fits), stored in `*out`:
+ *
+ * F_bar(v) = r + (1 - r) integral of q^e_vn(zeta, v) (1 - v.f(zeta))^5 d^2 zeta
+ *
+ * over the visible facets (Eq. 10), by a deterministic Gauss-Legendre rule (accurate to about
+ * 1e-9 for sigma_x, sigma_y <= 1). About 16 000 integrand evaluations per call: for per-pixel
+ * use take `ocean_effective_fresnel_fit`.
+ *
+ * - `v`: unit vector towards the viewer, **tangent frame** (x along the wind, y across it, z
+ *   along the normal), with v_z >= 0;
+ * - `sigma_x2`, `sigma_y2`: slope variances, finite and >= 0 (both 0: Schlick's F(v_z));
+ * - `r`: reflectance at normal incidence, in [0, 1].
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite argument, `OCEAN_STATUS_INVALID_ARGUMENT` for
+ * one out of its range (v not a unit vector, v_z < 0, ...). `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_effective_fresnel_integral(struct OceanDVec3 v,
+                                             double sigma_x2,
+                                             double sigma_y2,
+                                             double r,
+                                             double *out);
+
+/**
+ * Exponential tone mapping, 1 - exp(-exposure * L) per channel (negative radiance maps to 0,
+ * the result is in [0, 1]), stored in `*out` as linear values; encode them for display with
+ * `ocean_linear_to_srgb`. The GPU renderer uses the same curve.
+ *
+ * `radiance`: linear RGB, every channel finite; `exposure`: finite and >= 0 (the default is
+ * `OCEAN_DEFAULT_EXPOSURE`).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite argument, `OCEAN_STATUS_INVALID_ARGUMENT` for
+ * a negative exposure. `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_tone_map(struct OceanRgb radiance, double exposure, struct OceanRgb *out);
+
+/**
+ * The sRGB transfer function (IEC 61966-2-1) from a linear value to an encoded one, both in
+ * [0, 1] (the input is clamped to [0, 1] first), stored in `*out`: 12.92 c up to 0.0031308,
+ * 1.055 c^(1/2.4) - 0.055 above.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `linear`. `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_linear_to_srgb(double linear, double *out);
+
+/**
+ * Stores the default spectrum parameters in `*out`: wind 10 m/s along +x, 60 waves from
+ * 0.02 m to 30 m, steepness at most 0.5, seed 0.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_spectrum_params_default(struct OceanSpectrumParams *out);
+
+/**
+ * Samples a spectrum and stores a new handle in `*out` (see `OceanSpectrumParams` for the
+ * sampling).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_EMPTY` if `wave_count` is 0, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite
+ * member (the message names it), `OCEAN_STATUS_INVALID_ARGUMENT` for a member out of its
+ * documented range (a zero wind direction included). On failure `*out` is unchanged. Free the
+ * handle with `ocean_spectrum_destroy`.
+ *
+ * # Safety
+ *
+ * `params` must point to a readable `OceanSpectrumParams` and `out` to a writable pointer;
+ * neither is retained.
+ */
+OceanStatus ocean_spectrum_create(const struct OceanSpectrumParams *params,
+                                  struct OceanSpectrum **out);
+
+/**
+ * Frees a spectrum. NULL is ignored, and so is a pointer that is not even aligned. Never
+ * fails; leaves the last-error message alone.
+ *
+ * # Safety
+ *
+ * `spectrum` must be NULL or a handle from `ocean_spectrum_create` not yet destroyed, and no
+ * other thread may be using it.
+ */
+void ocean_spectrum_destroy(struct OceanSpectrum *spectrum);
+
+/**
+ * Stores the number of waves (`params->wave_count`) in `*out`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `spectrum` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_spectrum_wave_count(const struct OceanSpectrum *spectrum, size_t *out);
+
+/**
+ * Copies the waves into `out[0..n]`, shortest first, as `OceanWaveDesc`s that
+ * `ocean_waves_create` accepts as they are: unit directions, phases in [0, 2 pi), deep water
+ * (`depth` = `INFINITY`). `n` must equal the wave count exactly.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (8-byte
+ * alignment), `OCEAN_STATUS_INVALID_ARGUMENT` if `n` is not the wave count,
+ * `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanWaveDesc)` exceeds `PTRDIFF_MAX`. Nothing
+ * is written on failure.
+ *
+ * # Safety
+ *
+ * `spectrum` must be a live handle and `out` point to `n` writable `OceanWaveDesc`s that no
+ * other thread touches during the call.
+ */
+OceanStatus ocean_spectrum_waves(const struct OceanSpectrum *spectrum,
+                                 struct OceanWaveDesc *out,
+                                 size_t n);
+
+/**
+ * Stores the unit wind direction (x, z) in `*out`: the x axis of the slope variances.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `spectrum` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_spectrum_wind_direction(const struct OceanSpectrum *spectrum,
+                                          struct OceanDVec2 *out);
+
+/**
+ * Stores the number of waves whose amplitude `params->max_steepness` clamped in `*out`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `spectrum` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_spectrum_clamped_count(const struct OceanSpectrum *spectrum, size_t *out);
+
+/**
+ * Stores the sum of the amplitudes, metres, in `*out`: the largest height (and horizontal
+ * displacement) the sum of the waves can reach, for bounds and culling margins.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `spectrum` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_spectrum_max_amplitude(const struct OceanSpectrum *spectrum, double *out);
+
+/**
+ * Stores the steepness sum, sum of k*A (dimensionless), in `*out`: below 1 the surface cannot
+ * fold over itself, whatever the phases.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `spectrum` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_spectrum_steepness_sum(const struct OceanSpectrum *spectrum, double *out);
+
+/**
+ * Stores the mean height of the surface, metres (<= 0), in `*out`: a trochoid's mean height
+ * over x is -k A^2 / 2 (its crests are sharper than its troughs), so the sea's mean level sits
+ * sum(k A^2 / 2) below y = 0.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `spectrum` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_spectrum_mean_height_shift(const struct OceanSpectrum *spectrum, double *out);
+
+/**
+ * Stores the variance of the height about its mean, m^2, in `*out`:
+ * sum(A^2 / 2 - (k A^2 / 2)^2) over the (independent) waves.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `spectrum` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_spectrum_height_variance(const struct OceanSpectrum *spectrum, double *out);
+
+/**
+ * Stores the slope variance of all the waves (Eq. 4 with w_r = 1) in `*out`: each wave of
+ * steepness kA adds 1 - sqrt(1 - k^2 A^2) (Appendix A), shared between the axes as
+ * cos^2 and sin^2 of its angle to the wind.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `spectrum` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_spectrum_total_slope_variance(const struct OceanSpectrum *spectrum,
+                                                struct OceanSlopeVariance *out);
+
+/**
+ * Stores the slope variance of the waves a pixel does not resolve (Eq. 4) in `*out`.
+ *
+ * Each wave of length lambda is weighted by w_r = 1 - w(n_min, n_max, lambda / l), with
+ * l = `pixel_footprint` (metres, the pixel's size on the sea, from `ocean_pixel_footprint`)
+ * and w(a, b, x) = 3 t^2 - 2 t^3, t = clamp((x - a)/(b - a), 0, 1): waves shorter than n_min
+ * pixels are wholly in the BRDF, waves longer than n_max pixels wholly in the normals. A
+ * footprint of 0 resolves every wave (the result is 0, 0). The paper's thresholds are
+ * `OCEAN_FILTER_N_MIN` and `OCEAN_FILTER_N_MAX`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite argument, `OCEAN_STATUS_INVALID_ARGUMENT`
+ * unless 0 < n_min < n_max <= 1e6 and `pixel_footprint` >= 0. `*out` is written only on
+ * success.
+ *
+ * # Safety
+ *
+ * `spectrum` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_spectrum_slope_variance(const struct OceanSpectrum *spectrum,
+                                          double n_min,
+                                          double n_max,
+                                          double pixel_footprint,
+                                          struct OceanSlopeVariance *out);
+
+/**
+ * Stores the footprint of a pixel on the sea at rest (y = 0), metres, in `*out`: the `l` of
+ * Eq. 3 and 4 (pass it to `ocean_spectrum_slope_variance`).
+ *
+ * The pixel at (`px`, `py`) (pixel units of a `width` x `height` viewport, origin at the
+ * top-left corner, y down, pixel centres at half-integers: the centre of the top-left pixel is
+ * (0.5, 0.5)) projects on the sea as an ellipse elongated towards the viewer; the footprint is
+ * its longer axis: the larger of the distances between the sea hits of the rays through the
+ * pixel's opposite edge midpoints, (px +- 0.5, py) and (px, py +- 0.5). Rays that go up, run
+ * along the horizon or would meet the sea beyond `max_distance` metres (measured along the
+ * ray from the near plane) are stopped there and projected onto the sea, so pixels at and
+ * above the horizon get a large but finite footprint.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_EMPTY` if `width` or `height` is 0, `OCEAN_STATUS_NON_FINITE` for a NaN or
+ * infinite argument or camera member (the message names it), `OCEAN_STATUS_INVALID_ARGUMENT`
+ * for a camera out of its documented ranges (see `OceanCameraDesc`), `max_distance` <= 0, or a
+ * pixel whose rays do not start above the sea (the camera at or below y = 0). `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `camera` must point to a readable `OceanCameraDesc` and `out` be writable.
+ */
+OceanStatus ocean_pixel_footprint(const struct OceanCameraDesc *camera,
+                                  uint32_t width,
+                                  uint32_t height,
+                                  double px,
+                                  double py,
+                                  double max_distance,
+                                  double *out);
 
 /**
  * A static, NUL-terminated English description of a status code.

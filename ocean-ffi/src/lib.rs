@@ -23,11 +23,38 @@
 #![deny(clippy::undocumented_unsafe_blocks)]
 #![warn(missing_docs)]
 
+mod lighting;
+mod lighting_brdf;
+mod lighting_spectrum;
 mod status;
 mod version;
 mod waves;
 mod wtb;
 
+pub use lighting::{
+    OCEAN_SKY_MAP_EXTENT, OCEAN_SKY_MAP_MAX_SIZE, OCEAN_SKY_MAP_MIN_SIZE, OceanCieSky,
+    OceanLighting, OceanRgb, OceanSeaColorInput, OceanSeaLight, OceanSeaParams, OceanSkyMap,
+    OceanSkyParams, ocean_lighting_below_horizon_radiance, ocean_lighting_create,
+    ocean_lighting_destroy, ocean_lighting_environment_radiance, ocean_lighting_sea_radiance,
+    ocean_lighting_sky_irradiance, ocean_lighting_sky_map_create, ocean_lighting_sun_radiance,
+    ocean_lighting_sun_solid_angle, ocean_sea_color, ocean_sea_color_batch,
+    ocean_sea_params_default, ocean_sky_map_copy_level, ocean_sky_map_destroy,
+    ocean_sky_map_level_count, ocean_sky_map_level_info, ocean_sky_params_default,
+};
+pub use lighting_brdf::{
+    OCEAN_DEFAULT_EXPOSURE, OCEAN_WATER_R, ocean_effective_fresnel_fit,
+    ocean_effective_fresnel_integral, ocean_linear_to_srgb, ocean_ross_brdf, ocean_schlick,
+    ocean_sun_radiance, ocean_tone_map,
+};
+pub use lighting_spectrum::{
+    OCEAN_FILTER_N_MAX, OCEAN_FILTER_N_MIN, OceanCameraDesc, OceanSlopeVariance, OceanSpectrum,
+    OceanSpectrumParams, ocean_pixel_footprint, ocean_spectrum_clamped_count,
+    ocean_spectrum_create, ocean_spectrum_destroy, ocean_spectrum_height_variance,
+    ocean_spectrum_max_amplitude, ocean_spectrum_mean_height_shift, ocean_spectrum_params_default,
+    ocean_spectrum_slope_variance, ocean_spectrum_steepness_sum,
+    ocean_spectrum_total_slope_variance, ocean_spectrum_wave_count, ocean_spectrum_waves,
+    ocean_spectrum_wind_direction,
+};
 pub use status::{OceanStatus, ocean_last_error_message, ocean_status_message};
 pub use version::{OCEAN_VERSION_MAJOR, OCEAN_VERSION_MINOR, OCEAN_VERSION_PATCH, ocean_version};
 pub use waves::{

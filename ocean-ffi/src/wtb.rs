@@ -34,7 +34,9 @@ pub struct OceanDVec2 {
     pub z: f64,
 }
 
-/// A 3D vector in double precision (right-handed, y up).
+/// A 3D vector in double precision. World-space vectors are right-handed with y up; the BRDF
+/// functions take tangent-frame vectors (x along the wind, y across it, z along the normal), as
+/// each function says.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct OceanDVec3 {

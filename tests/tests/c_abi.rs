@@ -1,7 +1,8 @@
-//! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c`, `tests/c/test_wtb.c`
-//! and `tests/cpp/test_waves.cpp` against `include/ocean.h` and the static library `libocean.a`
-//! with the system compilers and `-Wall -Wextra -Werror -pedantic`, runs them, and fails unless
-//! each reports `0 failures` after a positive number of checks and exits 0.
+//! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c`, `tests/c/test_wtb.c`,
+//! `tests/c/test_lighting.c` and `tests/cpp/test_waves.cpp` against `include/ocean.h` and the
+//! static library `libocean.a` with the system compilers and `-Wall -Wextra -Werror -pedantic`,
+//! runs them, and fails unless each reports `0 failures` after a positive number of checks and
+//! exits 0.
 //!
 //! Where the library comes from: `ocean-tests` depends on `ocean-ffi`, and cargo builds every
 //! crate type of a dependency, so by the time this test runs `libocean.a` (crate-type
@@ -205,6 +206,19 @@ fn c11_wave_train_boxes_against_the_static_library() {
         "-std=c11",
         "tests/c/test_wtb.c",
         "test_wtb_c",
+    );
+}
+
+/// The lighting API (`ocean_spectrum_*`, `ocean_pixel_footprint`, the BRDF and Fresnel
+/// evaluations, `ocean_lighting_*`, `ocean_sky_map_*`, `ocean_sea_color*`) from C11: values
+/// against the paper's formulas computed in C, and every error path.
+#[test]
+fn c11_lighting_against_the_static_library() {
+    build_and_run(
+        compiler("CC", "cc"),
+        "-std=c11",
+        "tests/c/test_lighting.c",
+        "test_lighting_c",
     );
 }
 

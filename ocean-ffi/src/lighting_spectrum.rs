@@ -1,0 +1,839 @@
+//! Ocean lighting (crate `ocean-brdf`), part 1 of 3: the wave spectrum (Eq. 1, Hasselmann
+//! spreading) sampled into trochoids, its statistics, the slope variance a pixel does not
+//! resolve (Eq. 4) and the pixel footprint it is filtered on.
+
+use glam::{DMat4, DVec2};
+use ocean_brdf::surface::pixel_footprint;
+use ocean_brdf::{Filter, SlopeVariance, Spectrum, SpectrumParams};
+use ocean_core::camera::{Camera, CameraError, DepthConvention, Far, Projection};
+use ocean_core::{Depth, WaveDesc};
+
+use crate::lighting::{borrow, brdf_error, destroy, read_in, write_handle};
+use crate::status::{Error, OceanStatus, guard};
+use crate::waves::{OceanWaveDesc, byte_len, check_finite, check_ptr, write_out};
+use crate::wtb::{OceanDVec2, OceanDepthConvention};
+
+/// N_min of the paper's filter (section 7.1): a wave starts to appear in the normals (or the
+/// geometry) once its wavelength spans this many pixels (or grid cells).
+pub const OCEAN_FILTER_N_MIN: f64 = 1.0;
+/// N_max of the paper's filter: a wave is fully present from this many pixels per wavelength.
+pub const OCEAN_FILTER_N_MAX: f64 = 2.5;
+
+/// What to sample (paper section 3.1, 7.1). `ocean_spectrum_params_default` fills in 60 waves
+/// from 2 cm to 30 m under a 10 m/s wind along +x.
+///
+/// The `wave_count` wavelengths form a geometric progression from `min_wavelength` to
+/// `max_wavelength`. Wave i (shortest first) stands for the band of angular frequencies around
+/// its own omega_i = sqrt(g k_i), k_i = 2 pi / lambda_i, reaching halfway in log(omega) to its
+/// neighbours, d_omega_i = omega_i (q - 1/q) with q = (lambda_max/lambda_min)^(1/(4 (n - 1)))
+/// (0 for a single wave), and takes that band's energy: A_i = sqrt(2 S(omega_i) d_omega_i),
+/// with S the Pierson-Moskowitz spectrum of Eq. 1,
+/// S(omega) = 8.1e-3 g^2 / omega^5 exp(-0.74 (g / (V omega))^4), g = 9.81 m/s^2; then clamped
+/// to k_i A_i <= `max_steepness`. Directions are drawn from Hasselmann's cos^2s(theta/2)
+/// spreading around the wind (s >= 2), phases uniformly, from a PCG32 stream seeded by `seed`:
+/// the same parameters give the same waves on every platform.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanSpectrumParams {
+    /// Wind speed 20 m above the sea, m/s (V_20 of Eq. 1), in [1e-3, 200].
+    pub wind_speed: f64,
+    /// x component of the direction the wind blows towards, on the sea plane; with
+    /// `wind_direction_z` any finite, non-zero vector (it is normalised).
+    pub wind_direction_x: f64,
+    /// z component of the wind direction.
+    pub wind_direction_z: f64,
+    /// Number of trochoids, 1 to 1024 (the paper uses 60).
+    pub wave_count: usize,
+    /// Shortest wavelength, metres, in [1e-4, 1e5].
+    pub min_wavelength: f64,
+    /// Longest wavelength, metres, in [min_wavelength, 1e5]; strictly longer when
+    /// `wave_count` > 1.
+    pub max_wavelength: f64,
+    /// Largest steepness k*A of any one wave, in [0, 1]: longer amplitudes are clamped to it
+    /// (a trochoid with k*A > 1 loops over itself).
+    pub max_steepness: f64,
+    /// Seed of the directions and phases.
+    pub seed: u64,
+}
+
+/// Slope variances of a Gaussian slope distribution (Eq. 4), dimensionless: along the wind and
+/// across it (the x and y axes of the BRDF's tangent frame).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanSlopeVariance {
+    /// sigma_x^2, along the wind, >= 0.
+    pub sigma_x2: f64,
+    /// sigma_y^2, across the wind, >= 0.
+    pub sigma_y2: f64,
+}
+
+impl OceanSlopeVariance {
+    fn from_core(v: SlopeVariance) -> Self {
+        Self {
+            sigma_x2: v.x,
+            sigma_y2: v.y,
+        }
+    }
+}
+
+/// A camera for `ocean_pixel_footprint`: a view matrix, a projection described by its
+/// parameters, and a depth convention.
+///
+/// Perspective (`orthographic` = 0): `fov_y` in (0, pi) radians, `aspect` = width / height
+/// and positive, 0 < `z_near` < `z_far`, with `z_far` = `INFINITY` for an infinite far plane;
+/// the orthographic members are ignored. Orthographic (`orthographic` = 1): the view-space box
+/// [left, right] x [bottom, top] x [z_near, z_far] (distances along -z; `z_near` may be <= 0),
+/// all finite, left < right, bottom < top, z_near < z_far; `fov_y` and `aspect` are ignored.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanCameraDesc {
+    /// World-to-view matrix, column-major (GLM's layout: `glm::value_ptr` of a `glm::dmat4`,
+    /// element [4 * column + row]), right-handed, the camera looking down its -z axis. Every
+    /// element finite, the matrix invertible.
+    pub view: [f64; 16],
+    /// 0: perspective; 1: orthographic. Other values are refused.
+    pub orthographic: u8,
+    /// An `OceanDepthConvention` value (other values are refused). The footprint does not
+    /// depend on it; it only has to describe the projection consistently.
+    pub depth_convention: u32,
+    /// Perspective: vertical field of view, radians.
+    pub fov_y: f64,
+    /// Perspective: viewport width / height.
+    pub aspect: f64,
+    /// Orthographic: view-space x of the left edge, metres.
+    pub left: f64,
+    /// Orthographic: view-space x of the right edge, metres.
+    pub right: f64,
+    /// Orthographic: view-space y of the bottom edge, metres.
+    pub bottom: f64,
+    /// Orthographic: view-space y of the top edge, metres.
+    pub top: f64,
+    /// Near-plane distance, metres.
+    pub z_near: f64,
+    /// Far-plane distance, metres (perspective: `INFINITY` for none).
+    pub z_far: f64,
+}
+
+/// A sampled wave spectrum (opaque): its trochoids and statistics. Create with
+/// `ocean_spectrum_create`, free with `ocean_spectrum_destroy`. Immutable: a
+/// `const OceanSpectrum *` may be used by any number of threads at once.
+pub struct OceanSpectrum {
+    spectrum: Spectrum,
+}
+
+const _: () = {
+    const fn shareable<T: Send + Sync>() {}
+    shareable::<OceanSpectrum>();
+};
+
+/// Stores the default spectrum parameters in `*out`: wind 10 m/s along +x, 60 waves from
+/// 0.02 m to 30 m, steepness at most 0.5, seed 0.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+/// then left unchanged.
+///
+/// # Safety
+///
+/// `out` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_spectrum_params_default(
+    out: *mut OceanSpectrumParams,
+) -> OceanStatus {
+    guard("ocean_spectrum_params_default", || {
+        let d = SpectrumParams::default();
+        let p = OceanSpectrumParams {
+            wind_speed: d.wind_speed,
+            wind_direction_x: d.wind_direction.x,
+            wind_direction_z: d.wind_direction.y,
+            wave_count: d.waves,
+            min_wavelength: d.min_wavelength,
+            max_wavelength: d.max_wavelength,
+            max_steepness: d.max_steepness,
+            seed: d.seed,
+        };
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out, "out", p) }
+    })
+}
+
+/// Samples a spectrum and stores a new handle in `*out` (see `OceanSpectrumParams` for the
+/// sampling).
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_EMPTY` if `wave_count` is 0, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite
+/// member (the message names it), `OCEAN_STATUS_INVALID_ARGUMENT` for a member out of its
+/// documented range (a zero wind direction included). On failure `*out` is unchanged. Free the
+/// handle with `ocean_spectrum_destroy`.
+///
+/// # Safety
+///
+/// `params` must point to a readable `OceanSpectrumParams` and `out` to a writable pointer;
+/// neither is retained.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_spectrum_create(
+    params: *const OceanSpectrumParams,
+    out: *mut *mut OceanSpectrum,
+) -> OceanStatus {
+    guard("ocean_spectrum_create", || {
+        // SAFETY: forwarded from this function's contract.
+        let p = unsafe { read_in(params, "params") }?;
+        check_ptr(out.cast_const(), "out")?;
+        check_finite(
+            "params->",
+            &[
+                ("wind_speed", p.wind_speed),
+                ("wind_direction_x", p.wind_direction_x),
+                ("wind_direction_z", p.wind_direction_z),
+                ("min_wavelength", p.min_wavelength),
+                ("max_wavelength", p.max_wavelength),
+                ("max_steepness", p.max_steepness),
+            ],
+        )?;
+        if p.wind_direction_x == 0.0 && p.wind_direction_z == 0.0 {
+            return Err(Error::new(
+                OceanStatus::InvalidArgument,
+                "params->wind_direction_x and _z are both 0: the wind direction must be non-zero",
+            ));
+        }
+        if p.wave_count == 0 {
+            return Err(Error::new(
+                OceanStatus::Empty,
+                "params->wave_count is 0: a spectrum needs at least one wave",
+            ));
+        }
+        let spectrum = Spectrum::new(SpectrumParams {
+            wind_speed: p.wind_speed,
+            wind_direction: DVec2::new(p.wind_direction_x, p.wind_direction_z),
+            waves: p.wave_count,
+            min_wavelength: p.min_wavelength,
+            max_wavelength: p.max_wavelength,
+            max_steepness: p.max_steepness,
+            seed: p.seed,
+        })
+        .map_err(|e| brdf_error("params: ", e))?;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_handle(out, OceanSpectrum { spectrum }) }
+    })
+}
+
+/// Frees a spectrum. NULL is ignored, and so is a pointer that is not even aligned. Never
+/// fails; leaves the last-error message alone.
+///
+/// # Safety
+///
+/// `spectrum` must be NULL or a handle from `ocean_spectrum_create` not yet destroyed, and no
+/// other thread may be using it.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_spectrum_destroy(spectrum: *mut OceanSpectrum) {
+    // SAFETY: forwarded from this function's contract.
+    unsafe { destroy(spectrum) }
+}
+
+/// Runs `f` on a borrowed spectrum and writes its result to `*out`.
+///
+/// # Safety
+///
+/// `spectrum` must be a live handle (or NULL / misaligned), `out` writable (or NULL /
+/// misaligned).
+unsafe fn spectrum_out<T>(
+    function: &str,
+    spectrum: *const OceanSpectrum,
+    out: *mut T,
+    f: impl FnOnce(&Spectrum) -> T,
+) -> OceanStatus {
+    guard(function, || {
+        // SAFETY: forwarded from the caller's contract.
+        let s = unsafe { borrow(spectrum, "spectrum") }?;
+        check_ptr(out.cast_const(), "out")?;
+        let value = f(&s.spectrum);
+        // SAFETY: forwarded from the caller's contract.
+        unsafe { write_out(out, "out", value) }
+    })
+}
+
+/// Stores the number of waves (`params->wave_count`) in `*out`.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+/// written only on success.
+///
+/// # Safety
+///
+/// `spectrum` must be a live handle and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_spectrum_wave_count(
+    spectrum: *const OceanSpectrum,
+    out: *mut usize,
+) -> OceanStatus {
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        spectrum_out("ocean_spectrum_wave_count", spectrum, out, |s| {
+            s.waves().len()
+        })
+    }
+}
+
+fn wave_desc_to(w: &WaveDesc) -> OceanWaveDesc {
+    OceanWaveDesc {
+        amplitude: w.amplitude,
+        wavelength: w.wavelength,
+        direction_x: w.direction.x,
+        direction_z: w.direction.y,
+        phase: w.phase,
+        depth: match w.depth {
+            Depth::Deep => f64::INFINITY,
+            Depth::Finite(d) => d,
+        },
+    }
+}
+
+/// Copies the waves into `out[0..n]`, shortest first, as `OceanWaveDesc`s that
+/// `ocean_waves_create` accepts as they are: unit directions, phases in [0, 2 pi), deep water
+/// (`depth` = `INFINITY`). `n` must equal the wave count exactly.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (8-byte
+/// alignment), `OCEAN_STATUS_INVALID_ARGUMENT` if `n` is not the wave count,
+/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanWaveDesc)` exceeds `PTRDIFF_MAX`. Nothing
+/// is written on failure.
+///
+/// # Safety
+///
+/// `spectrum` must be a live handle and `out` point to `n` writable `OceanWaveDesc`s that no
+/// other thread touches during the call.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_spectrum_waves(
+    spectrum: *const OceanSpectrum,
+    out: *mut OceanWaveDesc,
+    n: usize,
+) -> OceanStatus {
+    guard("ocean_spectrum_waves", || {
+        // SAFETY: forwarded from this function's contract.
+        let s = unsafe { borrow(spectrum, "spectrum") }?;
+        check_ptr(out.cast_const(), "out")?;
+        let waves = s.spectrum.waves();
+        if n != waves.len() {
+            return Err(Error::new(
+                OceanStatus::InvalidArgument,
+                format!("`n` is {n}, the spectrum has exactly {} waves", waves.len()),
+            ));
+        }
+        byte_len::<OceanWaveDesc>(n, "out")?;
+        // SAFETY: non-NULL and aligned (checked), `n` elements whose byte size fits in isize
+        // (checked), writable and untouched by others (caller's guarantee).
+        let out = unsafe { core::slice::from_raw_parts_mut(out, n) };
+        for (o, w) in out.iter_mut().zip(waves) {
+            *o = wave_desc_to(w);
+        }
+        Ok(())
+    })
+}
+
+/// Stores the unit wind direction (x, z) in `*out`: the x axis of the slope variances.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+/// written only on success.
+///
+/// # Safety
+///
+/// `spectrum` must be a live handle and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_spectrum_wind_direction(
+    spectrum: *const OceanSpectrum,
+    out: *mut OceanDVec2,
+) -> OceanStatus {
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        spectrum_out("ocean_spectrum_wind_direction", spectrum, out, |s| {
+            let w = s.wind();
+            OceanDVec2 { x: w.x, z: w.y }
+        })
+    }
+}
+
+/// Stores the number of waves whose amplitude `params->max_steepness` clamped in `*out`.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+/// written only on success.
+///
+/// # Safety
+///
+/// `spectrum` must be a live handle and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_spectrum_clamped_count(
+    spectrum: *const OceanSpectrum,
+    out: *mut usize,
+) -> OceanStatus {
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        spectrum_out("ocean_spectrum_clamped_count", spectrum, out, |s| {
+            s.clamped()
+        })
+    }
+}
+
+/// Stores the sum of the amplitudes, metres, in `*out`: the largest height (and horizontal
+/// displacement) the sum of the waves can reach, for bounds and culling margins.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+/// written only on success.
+///
+/// # Safety
+///
+/// `spectrum` must be a live handle and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_spectrum_max_amplitude(
+    spectrum: *const OceanSpectrum,
+    out: *mut f64,
+) -> OceanStatus {
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        spectrum_out("ocean_spectrum_max_amplitude", spectrum, out, |s| {
+            s.max_amplitude()
+        })
+    }
+}
+
+/// Stores the steepness sum, sum of k*A (dimensionless), in `*out`: below 1 the surface cannot
+/// fold over itself, whatever the phases.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+/// written only on success.
+///
+/// # Safety
+///
+/// `spectrum` must be a live handle and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_spectrum_steepness_sum(
+    spectrum: *const OceanSpectrum,
+    out: *mut f64,
+) -> OceanStatus {
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        spectrum_out("ocean_spectrum_steepness_sum", spectrum, out, |s| {
+            s.steepness_sum()
+        })
+    }
+}
+
+/// Stores the mean height of the surface, metres (<= 0), in `*out`: a trochoid's mean height
+/// over x is -k A^2 / 2 (its crests are sharper than its troughs), so the sea's mean level sits
+/// sum(k A^2 / 2) below y = 0.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+/// written only on success.
+///
+/// # Safety
+///
+/// `spectrum` must be a live handle and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_spectrum_mean_height_shift(
+    spectrum: *const OceanSpectrum,
+    out: *mut f64,
+) -> OceanStatus {
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        spectrum_out("ocean_spectrum_mean_height_shift", spectrum, out, |s| {
+            s.mean_height_shift()
+        })
+    }
+}
+
+/// Stores the variance of the height about its mean, m^2, in `*out`:
+/// sum(A^2 / 2 - (k A^2 / 2)^2) over the (independent) waves.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+/// written only on success.
+///
+/// # Safety
+///
+/// `spectrum` must be a live handle and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_spectrum_height_variance(
+    spectrum: *const OceanSpectrum,
+    out: *mut f64,
+) -> OceanStatus {
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        spectrum_out("ocean_spectrum_height_variance", spectrum, out, |s| {
+            s.height_variance()
+        })
+    }
+}
+
+/// Stores the slope variance of all the waves (Eq. 4 with w_r = 1) in `*out`: each wave of
+/// steepness kA adds 1 - sqrt(1 - k^2 A^2) (Appendix A), shared between the axes as
+/// cos^2 and sin^2 of its angle to the wind.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+/// written only on success.
+///
+/// # Safety
+///
+/// `spectrum` must be a live handle and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_spectrum_total_slope_variance(
+    spectrum: *const OceanSpectrum,
+    out: *mut OceanSlopeVariance,
+) -> OceanStatus {
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        spectrum_out("ocean_spectrum_total_slope_variance", spectrum, out, |s| {
+            OceanSlopeVariance::from_core(s.slope_variance())
+        })
+    }
+}
+
+/// Stores the slope variance of the waves a pixel does not resolve (Eq. 4) in `*out`.
+///
+/// Each wave of length lambda is weighted by w_r = 1 - w(n_min, n_max, lambda / l), with
+/// l = `pixel_footprint` (metres, the pixel's size on the sea, from `ocean_pixel_footprint`)
+/// and w(a, b, x) = 3 t^2 - 2 t^3, t = clamp((x - a)/(b - a), 0, 1): waves shorter than n_min
+/// pixels are wholly in the BRDF, waves longer than n_max pixels wholly in the normals. A
+/// footprint of 0 resolves every wave (the result is 0, 0). The paper's thresholds are
+/// `OCEAN_FILTER_N_MIN` and `OCEAN_FILTER_N_MAX`.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_NON_FINITE` for a NaN or infinite argument, `OCEAN_STATUS_INVALID_ARGUMENT`
+/// unless 0 < n_min < n_max <= 1e6 and `pixel_footprint` >= 0. `*out` is written only on
+/// success.
+///
+/// # Safety
+///
+/// `spectrum` must be a live handle and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_spectrum_slope_variance(
+    spectrum: *const OceanSpectrum,
+    n_min: f64,
+    n_max: f64,
+    pixel_footprint: f64,
+    out: *mut OceanSlopeVariance,
+) -> OceanStatus {
+    guard("ocean_spectrum_slope_variance", || {
+        // SAFETY: forwarded from this function's contract.
+        let s = unsafe { borrow(spectrum, "spectrum") }?;
+        check_ptr(out.cast_const(), "out")?;
+        check_finite(
+            "",
+            &[
+                ("n_min", n_min),
+                ("n_max", n_max),
+                ("pixel_footprint", pixel_footprint),
+            ],
+        )?;
+        let filter = Filter::new(n_min, n_max).map_err(|e| brdf_error("", e))?;
+        if pixel_footprint < 0.0 {
+            return Err(Error::new(
+                OceanStatus::InvalidArgument,
+                format!("pixel_footprint must be >= 0 metres, got {pixel_footprint}"),
+            ));
+        }
+        let v = s.spectrum.variance().unresolved(&filter, pixel_footprint);
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out, "out", OceanSlopeVariance::from_core(v)) }
+    })
+}
+
+fn depth_from(v: u32) -> Result<DepthConvention, Error> {
+    const Z01: u32 = OceanDepthConvention::ZeroToOne as u32;
+    const Z01R: u32 = OceanDepthConvention::ZeroToOneReversed as u32;
+    const N11: u32 = OceanDepthConvention::NegOneToOne as u32;
+    match v {
+        Z01 => Ok(DepthConvention::ZERO_TO_ONE),
+        Z01R => Ok(DepthConvention::ZERO_TO_ONE_REVERSED),
+        N11 => Ok(DepthConvention::NEG_ONE_TO_ONE),
+        _ => Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("camera->depth_convention = {v} is not an OceanDepthConvention (0, 1 or 2)"),
+        )),
+    }
+}
+
+fn camera_error(e: CameraError) -> Error {
+    let status = match e {
+        CameraError::NotFinite { .. } => OceanStatus::NonFinite,
+        _ => OceanStatus::InvalidArgument,
+    };
+    Error::new(status, format!("camera: {e}"))
+}
+
+fn camera_from(c: &OceanCameraDesc) -> Result<Camera, Error> {
+    if let Some(k) = c.view.iter().position(|v| !v.is_finite()) {
+        return Err(Error::new(
+            OceanStatus::NonFinite,
+            format!("camera->view[{k}] = {} is not finite", c.view[k]),
+        ));
+    }
+    let depth = depth_from(c.depth_convention)?;
+    let projection = match c.orthographic {
+        0 => {
+            check_finite(
+                "camera->",
+                &[
+                    ("fov_y", c.fov_y),
+                    ("aspect", c.aspect),
+                    ("z_near", c.z_near),
+                ],
+            )?;
+            let far = if c.z_far == f64::INFINITY {
+                Far::Infinite
+            } else {
+                check_finite("camera->", &[("z_far (or INFINITY)", c.z_far)])?;
+                Far::Finite(c.z_far)
+            };
+            Projection::Perspective {
+                fov_y: c.fov_y,
+                aspect: c.aspect,
+                near: c.z_near,
+                far,
+            }
+        }
+        1 => {
+            check_finite(
+                "camera->",
+                &[
+                    ("left", c.left),
+                    ("right", c.right),
+                    ("bottom", c.bottom),
+                    ("top", c.top),
+                    ("z_near", c.z_near),
+                    ("z_far", c.z_far),
+                ],
+            )?;
+            Projection::Orthographic {
+                left: c.left,
+                right: c.right,
+                bottom: c.bottom,
+                top: c.top,
+                near: c.z_near,
+                far: c.z_far,
+            }
+        }
+        v => {
+            return Err(Error::new(
+                OceanStatus::InvalidArgument,
+                format!("camera->orthographic must be 0 or 1, got {v}"),
+            ));
+        }
+    };
+    Camera::new(DMat4::from_cols_array(&c.view), projection, depth).map_err(camera_error)
+}
+
+/// Stores the footprint of a pixel on the sea at rest (y = 0), metres, in `*out`: the `l` of
+/// Eq. 3 and 4 (pass it to `ocean_spectrum_slope_variance`).
+///
+/// The pixel at (`px`, `py`) (pixel units of a `width` x `height` viewport, origin at the
+/// top-left corner, y down, pixel centres at half-integers: the centre of the top-left pixel is
+/// (0.5, 0.5)) projects on the sea as an ellipse elongated towards the viewer; the footprint is
+/// its longer axis: the larger of the distances between the sea hits of the rays through the
+/// pixel's opposite edge midpoints, (px +- 0.5, py) and (px, py +- 0.5). Rays that go up, run
+/// along the horizon or would meet the sea beyond `max_distance` metres (measured along the
+/// ray from the near plane) are stopped there and projected onto the sea, so pixels at and
+/// above the horizon get a large but finite footprint.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_EMPTY` if `width` or `height` is 0, `OCEAN_STATUS_NON_FINITE` for a NaN or
+/// infinite argument or camera member (the message names it), `OCEAN_STATUS_INVALID_ARGUMENT`
+/// for a camera out of its documented ranges (see `OceanCameraDesc`), `max_distance` <= 0, or a
+/// pixel whose rays do not start above the sea (the camera at or below y = 0). `*out` is
+/// written only on success.
+///
+/// # Safety
+///
+/// `camera` must point to a readable `OceanCameraDesc` and `out` be writable.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn ocean_pixel_footprint(
+    camera: *const OceanCameraDesc,
+    width: u32,
+    height: u32,
+    px: f64,
+    py: f64,
+    max_distance: f64,
+    out: *mut f64,
+) -> OceanStatus {
+    guard("ocean_pixel_footprint", || {
+        // SAFETY: forwarded from this function's contract.
+        let c = unsafe { read_in(camera, "camera") }?;
+        check_ptr(out.cast_const(), "out")?;
+        if width == 0 || height == 0 {
+            return Err(Error::new(
+                OceanStatus::Empty,
+                format!("the viewport is {width} x {height} pixels: both sizes must be >= 1"),
+            ));
+        }
+        check_finite(
+            "",
+            &[("px", px), ("py", py), ("max_distance", max_distance)],
+        )?;
+        if max_distance <= 0.0 {
+            return Err(Error::new(
+                OceanStatus::InvalidArgument,
+                format!("max_distance must be > 0 metres, got {max_distance}"),
+            ));
+        }
+        let cam = camera_from(&c)?;
+        let l = pixel_footprint(
+            &cam,
+            f64::from(width),
+            f64::from(height),
+            DVec2::new(px, py),
+            max_distance,
+        )
+        .ok_or_else(|| {
+            Error::new(
+                OceanStatus::InvalidArgument,
+                format!(
+                    "the rays of pixel ({px}, {py}) do not start above the sea (y > 0): the \
+                     camera is at or below the sea, or its rays are undefined there"
+                ),
+            )
+        })?;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out, "out", l) }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use core::f64::consts::TAU;
+    use core::ffi::CStr;
+
+    #[test]
+    fn filter_constants_are_the_papers() {
+        assert_eq!(OCEAN_FILTER_N_MIN, Filter::PAPER.n_min());
+        assert_eq!(OCEAN_FILTER_N_MAX, Filter::PAPER.n_max());
+    }
+
+    fn last_error() -> String {
+        // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
+        unsafe { CStr::from_ptr(crate::ocean_last_error_message()) }
+            .to_string_lossy()
+            .into_owned()
+    }
+
+    fn create(p: &OceanSpectrumParams) -> (OceanStatus, *mut OceanSpectrum) {
+        let mut s = core::ptr::null_mut();
+        // SAFETY: valid pointers.
+        let st = unsafe { ocean_spectrum_create(p, &mut s) };
+        (st, s)
+    }
+
+    fn defaults() -> OceanSpectrumParams {
+        let mut p = OceanSpectrumParams::default();
+        // SAFETY: `p` is writable.
+        let st = unsafe { ocean_spectrum_params_default(&mut p) };
+        assert_eq!(st, OceanStatus::Ok);
+        p
+    }
+
+    #[test]
+    fn waves_and_statistics_are_the_crates() {
+        let p = OceanSpectrumParams {
+            seed: 7,
+            ..defaults()
+        };
+        let (st, s) = create(&p);
+        assert_eq!(st, OceanStatus::Ok, "{}", last_error());
+        let core = Spectrum::new(SpectrumParams {
+            seed: 7,
+            ..SpectrumParams::default()
+        })
+        .unwrap();
+        let mut n = 0usize;
+        // SAFETY: live handle, writable outputs of the right sizes.
+        unsafe {
+            assert_eq!(ocean_spectrum_wave_count(s, &mut n), OceanStatus::Ok);
+            assert_eq!(n, 60);
+            let mut waves = vec![OceanWaveDesc::default(); n];
+            let st = ocean_spectrum_waves(s, waves.as_mut_ptr(), n);
+            assert_eq!(st, OceanStatus::Ok, "{}", last_error());
+            for (w, c) in waves.iter().zip(core.waves()) {
+                assert_eq!(*w, wave_desc_to(c));
+                assert!(w.depth == f64::INFINITY);
+                assert!(TAU / w.wavelength * w.amplitude <= 0.5 + 1e-15);
+            }
+            let mut v = OceanSlopeVariance::default();
+            let st = ocean_spectrum_slope_variance(s, 1.0, 2.5, 0.3, &mut v);
+            assert_eq!(st, OceanStatus::Ok, "{}", last_error());
+            let want = core.variance().unresolved(&Filter::PAPER, 0.3);
+            assert_eq!((v.sigma_x2, v.sigma_y2), (want.x, want.y));
+            let mut m = 0.0;
+            assert_eq!(ocean_spectrum_mean_height_shift(s, &mut m), OceanStatus::Ok);
+            assert_eq!(m, core.mean_height_shift());
+            ocean_spectrum_destroy(s);
+        }
+    }
+
+    #[test]
+    fn bad_parameters_are_refused_and_out_is_untouched() {
+        for (p, status, needle) in [
+            (
+                OceanSpectrumParams {
+                    wave_count: 0,
+                    ..defaults()
+                },
+                OceanStatus::Empty,
+                "wave_count",
+            ),
+            (
+                OceanSpectrumParams {
+                    wind_speed: f64::NAN,
+                    ..defaults()
+                },
+                OceanStatus::NonFinite,
+                "wind_speed",
+            ),
+            (
+                OceanSpectrumParams {
+                    wind_direction_x: 0.0,
+                    ..defaults()
+                },
+                OceanStatus::InvalidArgument,
+                "wind direction",
+            ),
+            (
+                OceanSpectrumParams {
+                    max_steepness: 1.5,
+                    ..defaults()
+                },
+                OceanStatus::InvalidArgument,
+                "max steepness",
+            ),
+        ] {
+            let mut s = core::ptr::dangling_mut::<OceanSpectrum>();
+            // SAFETY: valid pointers.
+            let st = unsafe { ocean_spectrum_create(&p, &mut s) };
+            assert_eq!(st, status, "{}", last_error());
+            assert!(last_error().contains(needle), "{}", last_error());
+            assert_eq!(s, core::ptr::dangling_mut::<OceanSpectrum>());
+        }
+    }
+
+    #[test]
+    fn a_camera_looking_straight_down_has_the_footprint_of_its_frustum() {
+        // Perspective, eye at 10 m looking down: at the centre a pixel spans
+        // 2 h tan(fov/2) / height metres.
+        let view = ocean_core::camera::look_at(
+            glam::DVec3::new(3.0, 10.0, 4.0),
+            glam::DVec3::new(3.0, 0.0, 4.0),
+            glam::DVec3::Z,
+        )
+        .unwrap();
+        let cam = OceanCameraDesc {
+            view: view.to_cols_array(),
+            orthographic: 0,
+            depth_convention: OceanDepthConvention::NegOneToOne as u32,
+            fov_y: 1.0,
+            aspect: 2.0,
+            z_near: 0.1,
+            z_far: f64::INFINITY,
+            ..Default::default()
+        };
+        let mut l = 0.0;
+        // SAFETY: valid pointers.
+        let st = unsafe { ocean_pixel_footprint(&cam, 200, 100, 100.0, 50.0, 1e4, &mut l) };
+        assert_eq!(st, OceanStatus::Ok, "{}", last_error());
+        let want = 2.0 * 10.0 * (0.5f64).tan() / 100.0;
+        assert!((l - want).abs() < 1e-9 * want, "{l} vs {want}");
+    }
+}
