@@ -221,10 +221,7 @@ fn plot(curves: &[(f64, Vec<RowMeans>)], path: &Path) -> std::io::Result<()> {
             );
             let (w, h) = (PANEL_W as f64 - 2.0 * MARGIN, PANEL_H as f64 - 2.0 * MARGIN);
             canvas.rect(x0, y0, x0 + w, y0 + h, [160; 3]);
-            let max = rows
-                .iter()
-                .flat_map(pick)
-                .fold(f64::MIN_POSITIVE, f64::max);
+            let max = rows.iter().flat_map(pick).fold(f64::MIN_POSITIVE, f64::max);
             let n = rows.len().max(2) as f64 - 1.0;
             for (k, colour) in colours.iter().enumerate() {
                 // rows[0] is the nearest: bottom of the panel.
