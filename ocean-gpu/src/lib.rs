@@ -13,6 +13,10 @@
 //! - [`LayersPass`]: sums of wave sets modulated by complex amplitude fields over grid
 //!   rectangles, plus an additive height field (the wave-train-box primitive), the GPU twin of
 //!   [`ocean_core::evaluate_layers`]. It writes into the same [`TrochoidTarget`] buffers.
+//! - [`OceanRenderer`]: the ocean surface renderer of Bruneton et al. (2010): a projected grid
+//!   displaced by filtered trochoids, per-pixel filtered normals and slope variances lit by the
+//!   Sun, the sky and the sea (Algorithm 5.1), and a sky background, into the caller's targets
+//!   or a headless image; the GPU twin of `ocean_brdf`'s surface and sea colour.
 //!
 //! ## Conventions
 //!
@@ -33,6 +37,7 @@
 
 pub mod context;
 pub mod layers;
+pub mod ocean;
 mod pipeline;
 pub mod readback;
 pub mod shaders;
@@ -40,6 +45,7 @@ pub mod trochoid;
 
 pub use context::{ContextOptions, GpuContext};
 pub use layers::{LayerDesc, LayersInput, LayersParams, LayersPass, LayersStats};
+pub use ocean::{OceanOptions, OceanRenderer, SeaColorInput, SurfaceProbe};
 pub use readback::{GpuDuration, GpuTimer, TextureData};
 pub use shaders::{Code, Export, ExportFile, Language, ShaderError};
 pub use trochoid::{
@@ -109,6 +115,25 @@ pub enum GpuError {
     /// A shader could not be parsed, validated or translated.
     #[error(transparent)]
     Shader(#[from] ShaderError),
+    /// An argument is outside its documented range (a viewport size, an option, a camera).
+    #[error("invalid {what}: {reason}")]
+    InvalidInput {
+        /// Which argument.
+        what: &'static str,
+        /// Why it is refused.
+        reason: String,
+    },
+    /// A call needs state that has not been given yet.
+    #[error("no {what} yet: call {call} first")]
+    NotConfigured {
+        /// What is missing.
+        what: &'static str,
+        /// The call that provides it.
+        call: &'static str,
+    },
+    /// The lighting or surface model refused its inputs.
+    #[error(transparent)]
+    Brdf(#[from] ocean_brdf::BrdfError),
 }
 
 /// Runs `f` inside validation and out-of-memory error scopes on `device` and returns the first

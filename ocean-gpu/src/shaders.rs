@@ -110,7 +110,26 @@ pub const LAYERS_WGSL: &str = concat!(
     include_str!("shaders/layers.wgsl")
 );
 
-static SHADERS: [ShaderEntry; 2] = [
+/// Source of the ocean renderer (Bruneton et al. 2010, §7.1): the projected grid's vertex stage
+/// (Eq. 2), the per-pixel normals, slope variances and lighting of the fragment stage (Eq. 3, 4,
+/// Algorithm 5.1), and a sky background; after the shared surface, ocean and lighting snippets.
+pub const OCEAN_WGSL: &str = concat!(
+    include_str!("shaders/surface.wgsl"),
+    include_str!("shaders/ocean_common.wgsl"),
+    include_str!("shaders/ocean_light.wgsl"),
+    include_str!("shaders/ocean.wgsl")
+);
+
+/// Source of the ocean renderer's probes: compute entry points running the renderer's own
+/// surface and lighting functions on lists of inputs, for the parity tests.
+pub const OCEAN_PROBE_WGSL: &str = concat!(
+    include_str!("shaders/surface.wgsl"),
+    include_str!("shaders/ocean_common.wgsl"),
+    include_str!("shaders/ocean_light.wgsl"),
+    include_str!("shaders/ocean_probe.wgsl")
+);
+
+static SHADERS: [ShaderEntry; 4] = [
     ShaderEntry {
         name: "trochoid",
         files: &["surface.wgsl", "trochoid.wgsl"],
@@ -133,6 +152,61 @@ static SHADERS: [ShaderEntry; 2] = [
         }],
         description: "sums of wave sets modulated by complex amplitudes over grid rectangles, plus \
                       a height field: displacement and normals (wave-train-boxes Eq. 6-7)",
+    },
+    ShaderEntry {
+        name: "ocean",
+        files: &[
+            "surface.wgsl",
+            "ocean_common.wgsl",
+            "ocean_light.wgsl",
+            "ocean.wgsl",
+        ],
+        source: OCEAN_WGSL,
+        kind: ShaderKind::Draw,
+        entry_points: &[
+            EntryPoint {
+                name: "ocean_vs",
+                stage: Stage::Vertex,
+            },
+            EntryPoint {
+                name: "ocean_fs",
+                stage: Stage::Fragment,
+            },
+            EntryPoint {
+                name: "sky_vs",
+                stage: Stage::Vertex,
+            },
+            EntryPoint {
+                name: "sky_fs",
+                stage: Stage::Fragment,
+            },
+        ],
+        description: "ocean surface: projected grid displaced by filtered trochoids, per-pixel \
+                      filtered normals and slope variance lit by the Sun, the sky and the sea \
+                      (Bruneton et al. 2010 Eq. 2-4, 15, 26-28, Algorithm 5.1), and the sky",
+    },
+    ShaderEntry {
+        name: "ocean_probe",
+        files: &[
+            "surface.wgsl",
+            "ocean_common.wgsl",
+            "ocean_light.wgsl",
+            "ocean_probe.wgsl",
+        ],
+        source: OCEAN_PROBE_WGSL,
+        kind: ShaderKind::Compute,
+        entry_points: &[
+            EntryPoint {
+                name: "probe_surface",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "probe_sea_color",
+                stage: Stage::Compute,
+            },
+        ],
+        description: "probes of the ocean renderer: its grid vertices, per-pixel surface and sea \
+                      colour for lists of inputs (parity tests)",
     },
 ];
 
