@@ -32,6 +32,10 @@ impl Bench {
         self.ctx.describe()
     }
 
+    pub fn context(&self) -> &GpuContext {
+        &self.ctx
+    }
+
     /// Median GPU time of the trochoid pass (timestamps, when the adapter has them) and median
     /// wall time of upload + dispatch + wait, over `runs` runs after two warm-ups.
     pub fn gerstner(&self, set: &WaveSet, grid: &Grid, t: f64, runs: u32) -> Result<Value, String> {
@@ -108,6 +112,121 @@ impl Bench {
         Ok(json!({
             "points": grid.size.0 * grid.size.1,
             "kernel_ms": median(&mut kernel),
+            "wall_ms": median(&mut wall),
+            "timestamps": timer.is_some(),
+        }))
+    }
+}
+
+impl Bench {
+    /// The ocean renderer (issue 4): median GPU time of the render pass (timestamps, when the
+    /// adapter has them) and median wall time of record + submit + wait, for one frame of
+    /// `surface` under `lighting` seen by `camera` at `size`, over `runs` runs after two
+    /// warm-ups. Colour and depth are cleared by a separate pass before each timed one.
+    pub fn ocean(
+        &self,
+        renderer: &ocean_gpu::OceanRenderer,
+        camera: &ocean_core::Camera,
+        size: (u32, u32),
+        runs: u32,
+    ) -> Result<Value, String> {
+        let e = |e: ocean_gpu::GpuError| e.to_string();
+        let device = self.ctx.device();
+        let extent = ocean_gpu::wgpu::Extent3d {
+            width: size.0,
+            height: size.1,
+            depth_or_array_layers: 1,
+        };
+        let texture = |format, label| {
+            device.create_texture(&ocean_gpu::wgpu::TextureDescriptor {
+                label: Some(label),
+                size: extent,
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: ocean_gpu::wgpu::TextureDimension::D2,
+                format,
+                usage: ocean_gpu::wgpu::TextureUsages::RENDER_ATTACHMENT,
+                view_formats: &[],
+            })
+        };
+        let options = renderer.options();
+        let depth_format = options
+            .depth_format
+            .ok_or("the bench needs a depth format")?;
+        let color = texture(options.color_format, "bench colour").create_view(&Default::default());
+        let depth = texture(depth_format, "bench depth").create_view(&Default::default());
+        let clear_depth = camera.depth().clear_depth() as f32;
+        let timer = GpuTimer::new(&self.ctx);
+        let mut pass_ms = Vec::new();
+        let mut wall = Vec::new();
+        for i in 0..runs + 2 {
+            let start = Instant::now();
+            let mut encoder = device.create_command_encoder(&Default::default());
+            encoder.begin_render_pass(&ocean_gpu::wgpu::RenderPassDescriptor {
+                label: Some("bench clear"),
+                color_attachments: &[Some(ocean_gpu::wgpu::RenderPassColorAttachment {
+                    view: &color,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: ocean_gpu::wgpu::Operations {
+                        load: ocean_gpu::wgpu::LoadOp::Clear(ocean_gpu::wgpu::Color::BLACK),
+                        store: ocean_gpu::wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(ocean_gpu::wgpu::RenderPassDepthStencilAttachment {
+                    view: &depth,
+                    depth_ops: Some(ocean_gpu::wgpu::Operations {
+                        load: ocean_gpu::wgpu::LoadOp::Clear(clear_depth),
+                        store: ocean_gpu::wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            let t = 10.0 + i as f64 / 60.0;
+            match &timer {
+                Some(timer) => renderer
+                    .render_timed(
+                        &self.ctx,
+                        &mut encoder,
+                        camera,
+                        t,
+                        &color,
+                        Some(&depth),
+                        size,
+                        timer,
+                    )
+                    .map_err(e)?,
+                None => renderer
+                    .render(
+                        &self.ctx,
+                        &mut encoder,
+                        camera,
+                        t,
+                        &color,
+                        Some(&depth),
+                        size,
+                    )
+                    .map_err(e)?,
+            }
+            self.ctx.queue().submit([encoder.finish()]);
+            self.ctx.wait_idle().map_err(e)?;
+            let elapsed = start.elapsed().as_secs_f64() * 1e3;
+            let gpu = match &timer {
+                Some(timer) => timer.read(&self.ctx).map_err(e)?,
+                None => None,
+            };
+            if i >= 2 {
+                wall.push(elapsed);
+                if let Some(d) = gpu {
+                    pass_ms.push(d.ms());
+                }
+            }
+        }
+        Ok(json!({
+            "pass_ms": median(&mut pass_ms),
             "wall_ms": median(&mut wall),
             "timestamps": timer.is_some(),
         }))

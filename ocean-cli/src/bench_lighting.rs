@@ -7,6 +7,10 @@
 //!    constant-BRDF model against the detailed-geometry, perfect-mirror reference, for a calm
 //!    (5 m/s) and an agitated (15 m/s) sea; `--plot FILE.png` draws the per-row curves like
 //!    Fig. 10's right column.
+//! 3. **GPU renderer**: time per frame at 1280×720 and 1920×1080 for views 4 m, 1000 m and
+//!    8000 m above the sea (the paper: 52, 87 and 130 fps at 1024×768 on a GeForce 8800 GTS),
+//!    and the ratio of the 8000 m view to the 4 m view (target ≤ 0.4: the cost follows the
+//!    resolved waves).
 
 use std::path::Path;
 use std::time::Instant;
@@ -20,6 +24,7 @@ use rayon::prelude::*;
 use serde_json::{Value, json};
 
 use crate::bench::{BenchArgs, cpu_name, interleaved_medians};
+use crate::bench_gpu::Bench;
 use crate::png::Canvas;
 
 /// Inputs per timed batch.
@@ -29,6 +34,14 @@ const SEAS: [f64; 2] = [5.0, 15.0];
 
 pub fn lighting(args: &BenchArgs) -> Result<(), String> {
     let cpu = cpu_figures(args.runs)?;
+    let gpu = if args.no_gpu {
+        Value::Null
+    } else {
+        match Bench::new() {
+            Ok(bench) => gpu_figures(&bench, args.runs)?,
+            Err(why) => json!({ "skipped": why }),
+        }
+    };
     let mut seas = Vec::new();
     let mut curves = Vec::new();
     for wind in SEAS {
@@ -52,6 +65,7 @@ pub fn lighting(args: &BenchArgs) -> Result<(), String> {
         "cpu": cpu_name(),
         "threads": rayon::current_num_threads(),
         "sea_color": cpu,
+        "gpu": gpu,
         "validation": seas,
     });
     if args.json {
@@ -63,6 +77,71 @@ pub fn lighting(args: &BenchArgs) -> Result<(), String> {
         print_table(&doc);
     }
     Ok(())
+}
+
+/// Viewport sizes of the GPU figures.
+const SIZES: [(u32, u32); 2] = [(1280, 720), (1920, 1080)];
+/// Camera heights of the GPU figures, metres (the paper's 4, 1000 and 8000 m views).
+const HEIGHTS: [f64; 3] = [4.0, 1000.0, 8000.0];
+/// The 8000 m view's cost relative to the 4 m view's, at most (issue 4).
+const TARGET_FAR_RATIO: f64 = 0.4;
+
+/// GPU time per frame of the ocean renderer (default spectrum: 60 waves from 2 cm to 30 m;
+/// default lighting) at each size and height, the camera pitched 10° below the horizon with a
+/// 60° vertical field of view, and the 8000 m / 4 m ratios.
+fn gpu_figures(bench: &Bench, runs: u32) -> Result<Value, String> {
+    use ocean_brdf::{Filter, FilteredSurface, Spectrum};
+    use ocean_core::{Camera, DepthConvention, Far, Projection};
+    use ocean_gpu::{OceanOptions, OceanRenderer};
+    let e = |e: ocean_gpu::GpuError| e.to_string();
+    let spectrum = Spectrum::new(SpectrumParams::default()).map_err(|e| e.to_string())?;
+    let surface = FilteredSurface::new(&spectrum, Filter::PAPER).map_err(|e| e.to_string())?;
+    let lighting =
+        Lighting::new(SkyParams::default(), SeaParams::default()).map_err(|e| e.to_string())?;
+    let ctx = bench.context();
+    let mut renderer = OceanRenderer::new(ctx, OceanOptions::default()).map_err(e)?;
+    renderer.set_surface(ctx, &surface).map_err(e)?;
+    renderer.set_lighting(ctx, &lighting).map_err(e)?;
+    let mut rows = Vec::new();
+    for (w, h) in SIZES {
+        let mut per_height = Vec::new();
+        for height in HEIGHTS {
+            let pitch = 10f64.to_radians();
+            let camera = Camera::look_at(
+                DVec3::new(0.0, height, 0.0),
+                DVec3::new(0.0, height - pitch.sin(), -pitch.cos()),
+                DVec3::Y,
+                Projection::Perspective {
+                    fov_y: 60f64.to_radians(),
+                    aspect: w as f64 / h as f64,
+                    near: 0.5,
+                    far: Far::Infinite,
+                },
+                DepthConvention::ZERO_TO_ONE,
+            )
+            .map_err(|e| e.to_string())?;
+            let mut r = bench.ocean(&renderer, &camera, (w, h), runs)?;
+            r["height_m"] = json!(height);
+            per_height.push(r);
+        }
+        let time = |i: usize| {
+            per_height[i]["pass_ms"]
+                .as_f64()
+                .or_else(|| per_height[i]["wall_ms"].as_f64())
+        };
+        let ratio = match (time(2), time(0)) {
+            (Some(far), Some(near)) if near > 0.0 => Some(far / near),
+            _ => None,
+        };
+        rows.push(json!({
+            "width": w,
+            "height": h,
+            "views": per_height,
+            "ratio_8000_over_4": ratio,
+            "target_ratio": TARGET_FAR_RATIO,
+        }));
+    }
+    Ok(json!({ "adapter": bench.describe(), "frames": rows }))
 }
 
 /// Evaluations of Algorithm 5.1 per second, one thread and all threads.
@@ -165,6 +244,36 @@ fn print_table(doc: &Value) {
         c["single_thread_per_s"].as_f64().unwrap_or(0.0) / 1e6,
         c["all_threads_per_s"].as_f64().unwrap_or(0.0) / 1e6
     );
+    let g = &doc["gpu"];
+    if let Some(why) = g["skipped"].as_str() {
+        println!("GPU: skipped ({why})");
+    } else if let Some(frames) = g["frames"].as_array() {
+        println!(
+            "GPU renderer on {}: frame time (render pass), ms",
+            g["adapter"]
+        );
+        for f in frames {
+            let views = f["views"].as_array().cloned().unwrap_or_default();
+            let cell = |v: &Value| {
+                v["pass_ms"]
+                    .as_f64()
+                    .map(|t| format!("{t:.2}"))
+                    .unwrap_or_else(|| {
+                        format!("{:.2} (wall)", v["wall_ms"].as_f64().unwrap_or(f64::NAN))
+                    })
+            };
+            println!(
+                "  {}×{}: 4 m {}  1000 m {}  8000 m {}  ratio 8000/4 m {:.2} (target ≤ {})",
+                f["width"],
+                f["height"],
+                views.first().map(cell).unwrap_or_default(),
+                views.get(1).map(cell).unwrap_or_default(),
+                views.get(2).map(cell).unwrap_or_default(),
+                f["ratio_8000_over_4"].as_f64().unwrap_or(f64::NAN),
+                f["target_ratio"]
+            );
+        }
+    }
     println!("validation (Fig. 10), relative error of the row means, worst / mean:");
     for s in doc["validation"].as_array().into_iter().flatten() {
         println!(

@@ -38,7 +38,7 @@ use ocean_brdf::{FilteredSurface, Lighting, SeaLight, SlopeVariance};
 use ocean_core::phase::reduce_angle;
 use ocean_core::{Camera, DepthDirection, DepthRange, EvalError, Wave};
 
-use crate::readback::{read_buffer_as, read_texture};
+use crate::readback::{GpuTimer, read_buffer_as, read_texture};
 use crate::{GpuContext, GpuError, shaders};
 
 /// Invocations per workgroup of the probe entry points (`@workgroup_size(64)`).
@@ -591,7 +591,41 @@ impl OceanRenderer {
         depth: Option<&wgpu::TextureView>,
         size: (u32, u32),
     ) -> Result<(), GpuError> {
-        self.record(ctx, encoder, camera, time, color, depth, size, None)
+        self.record(ctx, encoder, camera, time, color, depth, size, None, None)
+    }
+
+    /// [`render`](Self::render) with the render pass timed by `timer` (its beginning and end
+    /// timestamps, resolved into the timer after the pass; read them with
+    /// [`GpuTimer::read`] once the encoder is submitted).
+    ///
+    /// # Errors
+    ///
+    /// As [`render`](Self::render).
+    #[allow(clippy::too_many_arguments)]
+    pub fn render_timed(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        camera: &Camera,
+        time: f64,
+        color: &wgpu::TextureView,
+        depth: Option<&wgpu::TextureView>,
+        size: (u32, u32),
+        timer: &GpuTimer,
+    ) -> Result<(), GpuError> {
+        self.record(
+            ctx,
+            encoder,
+            camera,
+            time,
+            color,
+            depth,
+            size,
+            None,
+            Some(timer),
+        )?;
+        timer.resolve(encoder);
+        Ok(())
     }
 
     /// Renders the sea and the sky seen by `camera` at `time` into a new `width × height`
@@ -678,6 +712,7 @@ impl OceanRenderer {
             depth_view.as_ref(),
             (width, height),
             Some(clear_depth),
+            None,
         )?;
         crate::scoped(device, || {
             ctx.queue().submit([encoder.finish()]);
@@ -880,6 +915,7 @@ impl OceanRenderer {
         depth: Option<&wgpu::TextureView>,
         size: (u32, u32),
         clear_depth: Option<f32>,
+        timer: Option<&GpuTimer>,
     ) -> Result<(), GpuError> {
         self.check_viewport(ctx, size.0, size.1)?;
         self.check_targets(color, depth, size)?;
@@ -938,7 +974,7 @@ impl OceanRenderer {
                         stencil_ops: None,
                     }
                 }),
-                timestamp_writes: None,
+                timestamp_writes: timer.map(GpuTimer::render_pass_writes),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });

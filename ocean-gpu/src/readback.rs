@@ -365,6 +365,15 @@ impl GpuTimer {
         }
     }
 
+    /// Timestamps written at the beginning and end of a render pass.
+    pub fn render_pass_writes(&self) -> wgpu::RenderPassTimestampWrites<'_> {
+        wgpu::RenderPassTimestampWrites {
+            query_set: &self.queries,
+            beginning_of_pass_write_index: Some(0),
+            end_of_pass_write_index: Some(1),
+        }
+    }
+
     /// Records the copy of both timestamps into the timer's buffer; call after the pass ends.
     pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
         encoder.resolve_query_set(&self.queries, 0..2, &self.resolve, 0);
