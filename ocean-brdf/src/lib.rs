@@ -18,6 +18,7 @@
 //! - [`ross`]: the Ross BRDF (§4) and the Sun's reflection (Eq. 15).
 //! - [`fresnel`]: Schlick's Fresnel (Eq. 14) and the effective Fresnel of rough water
 //!   (Eq. 24–26).
+//! - [`fresnel_table`]: Eq. 24 tabulated over (θ_v, σ_v), more exact than Eq. 26's fit.
 //! - [`sky`]: the Sun, a default sky (CIE clear sky) and the stereographic parameterisation
 //!   (§5.2).
 //! - [`sky_map`]: the mip-mapped sky map and the filtered lookup of Eq. 27.
@@ -41,6 +42,7 @@ extern crate std;
 pub mod error;
 pub mod filter;
 pub mod fresnel;
+pub mod fresnel_table;
 mod quadrature;
 pub mod ross;
 pub mod sea;

@@ -5,8 +5,9 @@
 //! variances of the unresolved waves (Eq. 4) along and across the wind, the radiance towards
 //! the viewer is the sum of three terms, kept apart so each can be validated (§7.2, Fig. 10):
 //! - the Sun's reflection, Eq. 15, with the variances raised to the Sun's disc (§5.1);
-//! - the sky's reflection `F̄ L̄` (Eq. 21): the effective Fresnel fit (Eq. 26) times the sky
-//!   map filtered over the slopes' footprint (Eq. 27);
+//! - the sky's reflection `F̄ L̄` (Eq. 21): the effective Fresnel (Eq. 24, tabulated rather
+//!   than the fit of Eq. 26, see [`crate::fresnel_table`]) times the sky map filtered over the
+//!   visible slopes' footprint (Eq. 27, see [`visible_sky_footprint`]);
 //! - the light refracted out of the water, `L_sea (1 − F̄)` (Eq. 28), with `L_sea` diffuse and
 //!   proportional to the Sun's and the sky's irradiance (§5.3).
 //!
@@ -15,7 +16,8 @@
 use glam::{DVec2, DVec3};
 
 use crate::error::{BrdfError, check};
-use crate::fresnel::{WATER_R, effective_fresnel_fit_unchecked, sigma_v2};
+use crate::fresnel::{WATER_R, sigma_v2};
+use crate::fresnel_table::effective_fresnel_table;
 use crate::ross::{check_direction, sun_radiance_unchecked};
 use crate::sky::{Sky, SkyParams, check_rgb, stereographic};
 use crate::sky_map::SkyMap;
@@ -218,11 +220,12 @@ pub fn sea_color_unchecked(
             r,
         );
 
-    // Effective Fresnel (Eq. 25–26).
+    // Effective Fresnel (Eq. 24–25), tabulated: closer to the integral than Eq. 26's fit at
+    // the grazing views that dominate a view of the sea (see `fresnel_table`).
     let cos_theta_v = v_t.z.clamp(0.0, 1.0);
     let phi_v = libm::atan2(v_t.y, v_t.x);
     let sigma_v = libm::sqrt(sigma_v2(phi_v, variance.x, variance.y));
-    let f_bar = effective_fresnel_fit_unchecked(cos_theta_v, sigma_v, r);
+    let f_bar = effective_fresnel_table(cos_theta_v, sigma_v, r);
 
     // Sky (Eq. 27), over the visible slopes (see `visible_sky_footprint`).
     let fp = visible_sky_footprint(v, n, tx, ty, variance);

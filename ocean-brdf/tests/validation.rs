@@ -4,19 +4,20 @@
 //!
 //! Measured here (the default sampling: 32 reference planes × 32 rays per pixel row, 256 model
 //! planes; 256² image 4 m above the sea; rows from 46 m to 5.9 km), over both seas:
-//! - sky: the model is 10–16 % above the reference on most rows, 30.5 % on the worst (a near
-//!   row, where both are noisy); the paper's own form of Eq. 22, before this crate's
-//!   visible-slope footprint, was 20–35 % *below* it on every row;
-//! - refracted light: 5–12 % below on most rows, 21 % on the worst;
+//! - sky: mean error 8.4 %, worst row 26.5 % (a near row, where both are noisy); beyond 300 m
+//!   the model is 0–12 % above the reference. The paper's own form of Eq. 22, before this
+//!   crate's visible-slope footprint, was 20–35 % *below* it on every row;
+//! - refracted light: mean error 4.1 %, worst row 18 %; beyond 300 m 8 % below to 1 % above;
 //! - beyond 300 m the constant-BRDF model is off by 25–45 %, at least twice the model's error.
 //!
-//! The target is 5 % per row and component and is **not met yet**. The systematic part
-//! is the effective Fresnel fit at grazing views (Eq. 26: the sky is `F̄ L̄` and the refracted
-//! light `(1 − F̄) L_sea`, and they err in opposite directions); replacing the fit by the
-//! integral of Eq. 24 brought the far rows of both within 2–5 % (measured once, not kept: too
-//! slow per pixel). The rest is the Monte Carlo noise of the reference in the near rows. The
-//! Sun's term is not compared: a perfect mirror reflects the Sun's disc (7e-5 sr) into a
-//! handful of the reference's rays per row, too few for a row mean.
+//! The target is 5 % per row and component and is **not met yet**. The far rows keep a
+//! bias of the effective Fresnel reduction to (θ_v, σ_v) (Eq. 25): the tabulated Eq. 24
+//! (`fresnel_table`) halved the fit's error but, like the fit, ignores the variance across the
+//! view; the full anisotropic integral in its place brought those rows within 2–5 % (measured
+//! once; too slow per pixel). The reference resolves masking only for waves longer than
+//! 10 cm, as the paper's did, and the near rows carry its sampling noise. The Sun's term is
+//! not compared: a perfect mirror reflects the Sun's disc (7e-5 sr) into a handful of the
+//! reference's rays per row, too few for a row mean.
 
 use glam::DVec3;
 use ocean_brdf::SpectrumParams;
@@ -83,8 +84,8 @@ fn filtered_model_follows_the_reference_and_the_constant_brdf_diverges() {
         worst_sea * 100.0
     );
     // The measured envelope (see the module documentation), so a regression shows.
-    assert!(worst_sky < 0.32, "{worst_sky}");
-    assert!(worst_sea < 0.22, "{worst_sea}");
+    assert!(worst_sky < 0.28, "{worst_sky}");
+    assert!(worst_sea < 0.19, "{worst_sea}");
 }
 
 /// The same inputs give the same bits, whatever rayon's thread count.

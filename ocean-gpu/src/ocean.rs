@@ -220,6 +220,8 @@ pub struct OceanRenderer {
     sky_view: wgpu::TextureView,
     wave_texture: wgpu::Texture,
     wave_view: wgpu::TextureView,
+    /// The effective Fresnel table (binding 6; the view keeps its texture alive).
+    fresnel_view: wgpu::TextureView,
     bind_group: wgpu::BindGroup,
     surface: Option<SurfaceState>,
     lighting: Option<Lighting>,
@@ -405,8 +407,17 @@ impl OceanRenderer {
             // A placeholder until `set_surface`: one wave of zeros.
             let wave_texture = wave_texture(device, 1);
             let wave_view = wave_texture.create_view(&wgpu::TextureViewDescriptor::default());
-            let bind_group =
-                draw_bind_group(device, &layout, &uniform, &wave_view, &sky_view, &sampler);
+            let fresnel_view =
+                fresnel_table_texture(ctx).create_view(&wgpu::TextureViewDescriptor::default());
+            let bind_group = draw_bind_group(
+                device,
+                &layout,
+                &uniform,
+                &wave_view,
+                &sky_view,
+                &sampler,
+                &fresnel_view,
+            );
             Ok(Self {
                 options,
                 layout,
@@ -421,6 +432,7 @@ impl OceanRenderer {
                 sky_view,
                 wave_texture,
                 wave_view,
+                fresnel_view,
                 bind_group,
                 surface: None,
                 lighting: None,
@@ -489,6 +501,7 @@ impl OceanRenderer {
                 &view,
                 &self.sky_view,
                 &self.sampler,
+                &self.fresnel_view,
             );
             Ok((texture, view, bind_group))
         })?;
@@ -1261,6 +1274,10 @@ impl OceanRenderer {
                     entry(3, wgpu::BindingResource::Sampler(&self.sampler)),
                     entry(4, input.as_entire_binding()),
                     entry(5, output.as_entire_binding()),
+                    entry(
+                        FRESNEL_BINDING,
+                        wgpu::BindingResource::TextureView(&self.fresnel_view),
+                    ),
                 ],
             });
             let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -1294,8 +1311,8 @@ fn probe_items(n: usize) -> Result<u32, GpuError> {
     Ok(n as u32)
 }
 
-/// Bindings 0–3 of `ocean_common.wgsl`, visible to `stages`.
-fn common_layout_entries(stages: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEntry; 4] {
+/// Bindings 0–3 and 6 of `ocean_common.wgsl`, visible to `stages`.
+fn common_layout_entries(stages: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEntry; 5] {
     let texture = |binding, filterable| wgpu::BindGroupLayoutEntry {
         binding,
         visibility: stages,
@@ -1325,7 +1342,53 @@ fn common_layout_entries(stages: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEn
             ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
             count: None,
         },
+        texture(FRESNEL_BINDING, false),
     ]
+}
+
+/// Binding of the effective Fresnel table (after the probes' 4 and 5).
+const FRESNEL_BINDING: u32 = 6;
+
+/// The effective Fresnel table (`ocean_brdf::fresnel_table`) as a 33 × 33 `r32float` texture:
+/// texel (j, i) holds the correction `D(cos θ_v = (i/32)², σ_v = (j/32)²)` to Schlick's value.
+fn fresnel_table_texture(ctx: &GpuContext) -> wgpu::Texture {
+    use ocean_brdf::fresnel_table::{FRESNEL_TABLE, FRESNEL_TABLE_SIZE};
+    let n = FRESNEL_TABLE_SIZE as u32;
+    let texture = ctx.device().create_texture(&wgpu::TextureDescriptor {
+        label: Some("ocean effective Fresnel table"),
+        size: wgpu::Extent3d {
+            width: n,
+            height: n,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::R32Float,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    let texels: Vec<f32> = FRESNEL_TABLE.iter().map(|&m| m as f32).collect();
+    ctx.queue().write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture: &texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        bytemuck::cast_slice(&texels),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * n),
+            rows_per_image: Some(n),
+        },
+        wgpu::Extent3d {
+            width: n,
+            height: n,
+            depth_or_array_layers: 1,
+        },
+    );
+    texture
 }
 
 fn draw_bind_group(
@@ -1335,6 +1398,7 @@ fn draw_bind_group(
     waves: &wgpu::TextureView,
     sky: &wgpu::TextureView,
     sampler: &wgpu::Sampler,
+    fresnel: &wgpu::TextureView,
 ) -> wgpu::BindGroup {
     let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
     device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -1345,6 +1409,7 @@ fn draw_bind_group(
             entry(1, wgpu::BindingResource::TextureView(waves)),
             entry(2, wgpu::BindingResource::TextureView(sky)),
             entry(3, wgpu::BindingResource::Sampler(sampler)),
+            entry(FRESNEL_BINDING, wgpu::BindingResource::TextureView(fresnel)),
         ],
     })
 }
@@ -1442,7 +1507,7 @@ fn probe_pipelines(device: &wgpu::Device) -> Result<ProbePipelines, GpuError> {
         source: wgpu::ShaderSource::Wgsl(entry.source.into()),
     });
     let stages = wgpu::ShaderStages::COMPUTE;
-    let [e0, e1, e2, e3] = common_layout_entries(stages);
+    let [e0, e1, e2, e3, e6] = common_layout_entries(stages);
     let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
         binding,
         visibility: stages,
@@ -1455,7 +1520,7 @@ fn probe_pipelines(device: &wgpu::Device) -> Result<ProbePipelines, GpuError> {
     };
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("ocean probe bind group layout"),
-        entries: &[e0, e1, e2, e3, storage(4, true), storage(5, false)],
+        entries: &[e0, e1, e2, e3, e6, storage(4, true), storage(5, false)],
     });
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("ocean probe pipeline layout"),

@@ -68,6 +68,10 @@ struct Frame {
 @group(0) @binding(2) var sky_map: texture_2d<f32>;
 // Linear min/mag/mip filtering, clamp to edge.
 @group(0) @binding(3) var sky_sampler: sampler;
+// The effective Fresnel table (`ocean_brdf::fresnel_table`): D = M − (1 − cos θ_v)⁵, M of
+// Eq. 24, at 33 × 33 nodes, texel (j, i) for cos θ_v = (i/32)² and σ_v = (j/32)² (r32float, textureLoad
+// only; bindings 4 and 5 are the probes').
+@group(0) @binding(6) var fresnel_table: texture_2d<f32>;
 
 // w(N_min, N_max, λ/size) of §3.2 (`Filter::weight`): 0 up to N_min footprints per wavelength,
 // 1 from N_max, the smoothstep 3x̄² − 2x̄³ between.

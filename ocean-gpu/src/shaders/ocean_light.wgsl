@@ -100,14 +100,30 @@ fn sun_reflection(v: vec3<f32>, l: vec3<f32>, var2: vec2<f32>, omega: f32, r: f3
     return light * brdf;
 }
 
-// The effective Fresnel fit, Eq. 26: R + (1 − R)(1 − cos θ_v)^(5 exp(−2.69 σ_v))/(1 + 22.7 σ_v^1.5)
-// (`fresnel::effective_fresnel_fit_unchecked`); pow(0, y) is taken as 0 (WGSL leaves it open).
+// The effective Fresnel reflectance of Eq. 24 from its table, R + (1 − R) M(cos θ_v, σ_v) with
+// M = (1 − cos θ_v)⁵ + D and D, the stored roughness correction, bilinear in (√cos θ_v, √σ_v),
+// as `fresnel_table::effective_fresnel_table` (closer to Eq. 24 than the fit of Eq. 26 at
+// grazing views, and exactly Schlick's F for a smooth sea).
+const FRESNEL_TABLE_LAST: f32 = 32.0;
+const FRESNEL_TABLE_SIGMA_MAX: f32 = 1.0;
 fn effective_fresnel(cos_theta_v: f32, sigma_v: f32, r: f32) -> f32 {
-    let base = 1.0 - cos_theta_v;
-    let exponent = 5.0 * exp(-2.69 * sigma_v);
-    let damping = 1.0 + 22.7 * sigma_v * sqrt(sigma_v);
-    let power = select(pow(base, exponent), 0.0, base <= 0.0);
-    return r + (1.0 - r) * power / damping;
+    let u = sqrt(clamp(cos_theta_v, 0.0, 1.0)) * FRESNEL_TABLE_LAST;
+    let w = sqrt(clamp(sigma_v, 0.0, FRESNEL_TABLE_SIGMA_MAX) / FRESNEL_TABLE_SIGMA_MAX)
+        * FRESNEL_TABLE_LAST;
+    let i0 = min(floor(u), FRESNEL_TABLE_LAST - 1.0);
+    let j0 = min(floor(w), FRESNEL_TABLE_LAST - 1.0);
+    let fu = u - i0;
+    let fw = w - j0;
+    let i = i32(i0);
+    let j = i32(j0);
+    let d00 = textureLoad(fresnel_table, vec2<i32>(j, i), 0).x;
+    let d01 = textureLoad(fresnel_table, vec2<i32>(j + 1, i), 0).x;
+    let d10 = textureLoad(fresnel_table, vec2<i32>(j, i + 1), 0).x;
+    let d11 = textureLoad(fresnel_table, vec2<i32>(j + 1, i + 1), 0).x;
+    let d = (d00 * (1.0 - fw) + d01 * fw) * (1.0 - fu) + (d10 * (1.0 - fw) + d11 * fw) * fu;
+    let x = 1.0 - u * u / (FRESNEL_TABLE_LAST * FRESNEL_TABLE_LAST);
+    let schlick_part = (x * x) * (x * x) * x;
+    return r + (1.0 - r) * (schlick_part + d);
 }
 
 // The stereographic projection of a direction (y up) from the nadir, u = (r_x, r_z)/(1 + r_y)
