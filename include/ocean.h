@@ -6,8 +6,9 @@
  * - Axes: right-handed, y up; the sea at rest is the plane y = 0, so rest positions and wave
  *   directions are (x, z) pairs on it.
  * - Errors: every fallible function returns an OceanStatus. OCEAN_STATUS_OK (0) is success; on
- *   any other value no output parameter has been written, and ocean_last_error_message() gives
- *   a detailed, thread-local message. ocean_status_message() gives a fixed text per code.
+ *   any other value no output parameter has been written (but for the size that
+ *   OCEAN_STATUS_BUFFER_TOO_SMALL reports), and ocean_last_error_message() gives a detailed,
+ *   thread-local message. ocean_status_message() gives a fixed text per code.
  * - Every pointer is checked for NULL and alignment, every count for 0 and for overflow, every
  *   float for NaN and infinity; no call can crash the process on such input. What cannot be
  *   checked (that a non-NULL pointer really points to enough memory, that a handle is live) is
@@ -67,6 +68,13 @@
 #define OCEAN_FILTER_N_MAX 2.5
 
 /**
+ * `OceanShaderBinding::glsl_binding` when the binding has no GLSL binding number: a sampler
+ * (combined with its texture in GLSL), a GLSL 3.30 export (assign the number by name), or a
+ * non-GLSL export.
+ */
+#define OCEAN_NO_GLSL_BINDING UINT32_MAX
+
+/**
  * Major version of the library this header belongs to (the `ocean-ffi` crate version).
  */
 #define OCEAN_VERSION_MAJOR 0
@@ -85,7 +93,8 @@
  * Result of every fallible `ocean_*` function.
  *
  * `OCEAN_STATUS_OK` (0) is success; any other value is a failure, after which no output
- * parameter has been written and `ocean_last_error_message()` describes what went wrong.
+ * parameter has been written (but for the size that `OCEAN_STATUS_BUFFER_TOO_SMALL` reports)
+ * and `ocean_last_error_message()` describes what went wrong.
  * The numeric values are stable: new codes are only ever appended.
  */
 enum OceanStatus
@@ -143,6 +152,25 @@ enum OceanStatus
    * outside the grid's rectangle, so it could never move a single point.
    */
   OCEAN_STATUS_OUTSIDE_GRID = 10,
+  /**
+   * No usable GPU adapter: none was found for the backends `WGPU_BACKEND` selects (all when
+   * unset), or the one found lacks compute shaders or WebGPU's downlevel limits, or refused
+   * to create a device. The message says what to install (Mesa's lavapipe, or llvmpipe
+   * through `WGPU_BACKEND=gl`).
+   */
+  OCEAN_STATUS_NO_ADAPTER = 11,
+  /**
+   * The GPU backend failed: the device reported a validation, out-of-memory or device-lost
+   * error, reading an image back failed, or naga could not translate a shader. The message
+   * carries the backend's text.
+   */
+  OCEAN_STATUS_GPU_FAILURE = 12,
+  /**
+   * A caller's buffer is too small for a variable-length result (or NULL, to ask for its
+   * size). The one status after which an output is written: the function's `needed`
+   * out-parameter holds the size required; the buffer itself is untouched.
+   */
+  OCEAN_STATUS_BUFFER_TOO_SMALL = 13,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -214,11 +242,156 @@ typedef uint32_t OceanDepthConvention;
 #endif // __cplusplus
 
 /**
+ * Target language of `ocean_shader_export`.
+ */
+enum OceanShaderLanguage
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Desktop GLSL, one file per entry point: `#version 330 core` for draw passes (vertex and
+   * fragment), `#version 430 core` for compute passes. Clip space is OpenGL's (y flipped and
+   * depth remapped to [-1, 1] in the vertex stage, as wgpu's GL backend does).
+   */
+  OCEAN_SHADER_LANGUAGE_GLSL = 0,
+  /**
+   * GLSL ES 3.10 (`#version 310 es`), one file per entry point.
+   */
+  OCEAN_SHADER_LANGUAGE_GLSL_ES = 1,
+  /**
+   * HLSL, Shader Model 5.1, one file with every entry point.
+   */
+  OCEAN_SHADER_LANGUAGE_HLSL = 2,
+  /**
+   * Metal Shading Language 2.0, one file with every entry point.
+   */
+  OCEAN_SHADER_LANGUAGE_MSL = 3,
+  /**
+   * SPIR-V 1.0, one binary module with every entry point (little-endian 32-bit words).
+   */
+  OCEAN_SHADER_LANGUAGE_SPIRV = 4,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanShaderLanguage OceanShaderLanguage;
+#else
+typedef uint32_t OceanShaderLanguage;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * The stage of an exported file.
+ */
+enum OceanShaderStage
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The file holds every entry point of the pass (HLSL, MSL, SPIR-V).
+   */
+  OCEAN_SHADER_STAGE_MODULE = 0,
+  /**
+   * A vertex shader (GLSL, GLSL ES).
+   */
+  OCEAN_SHADER_STAGE_VERTEX = 1,
+  /**
+   * A fragment shader (GLSL, GLSL ES).
+   */
+  OCEAN_SHADER_STAGE_FRAGMENT = 2,
+  /**
+   * A compute shader (GLSL, GLSL ES).
+   */
+  OCEAN_SHADER_STAGE_COMPUTE = 3,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanShaderStage OceanShaderStage;
+#else
+typedef uint32_t OceanShaderStage;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * What kind of resource a binding is.
+ */
+enum OceanBindingKind
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * A uniform buffer (a GLSL uniform block).
+   */
+  OCEAN_BINDING_KIND_UNIFORM = 0,
+  /**
+   * A read-only storage buffer (a GLSL shader storage block).
+   */
+  OCEAN_BINDING_KIND_STORAGE_READ = 1,
+  /**
+   * A read-write storage buffer.
+   */
+  OCEAN_BINDING_KIND_STORAGE_READ_WRITE = 2,
+  /**
+   * A sampled texture (in GLSL a sampler combined with the binding's sampler).
+   */
+  OCEAN_BINDING_KIND_TEXTURE = 3,
+  /**
+   * A read-only storage texture (a GLSL image).
+   */
+  OCEAN_BINDING_KIND_STORAGE_TEXTURE_READ = 4,
+  /**
+   * A write-only storage texture.
+   */
+  OCEAN_BINDING_KIND_STORAGE_TEXTURE_WRITE = 5,
+  /**
+   * A read-write storage texture.
+   */
+  OCEAN_BINDING_KIND_STORAGE_TEXTURE_READ_WRITE = 6,
+  /**
+   * A filtering or non-filtering sampler (folded into the textures it samples in GLSL).
+   */
+  OCEAN_BINDING_KIND_SAMPLER = 7,
+  /**
+   * A comparison sampler.
+   */
+  OCEAN_BINDING_KIND_SAMPLER_COMPARISON = 8,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanBindingKind OceanBindingKind;
+#else
+typedef uint32_t OceanBindingKind;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * A headless GPU device and queue that the library created (opaque). Create with
+ * `ocean_gpu_context_create`, free with `ocean_gpu_context_destroy`. A
+ * `const OceanGpuContext *` may be used by any number of threads at once.
+ */
+typedef struct OceanGpuContext OceanGpuContext;
+
+/**
  * The Sun, the sky and the sea, validated, with their derived radiances (opaque). Create with
  * `ocean_lighting_create`, free with `ocean_lighting_destroy`. Immutable: a
  * `const OceanLighting *` may be used by any number of threads at once.
  */
 typedef struct OceanLighting OceanLighting;
+
+/**
+ * The GPU ocean renderer (opaque): a projected screen-space grid displaced by the filtered
+ * trochoids of a spectrum (Eq. 2), per-pixel filtered normals and slope variances (Eq. 3, 4)
+ * lit by the Sun, the sky and the sea (Algorithm 5.1), tone-mapped, over a sky background.
+ *
+ * Create with `ocean_renderer_create` on a context, give it a spectrum
+ * (`ocean_renderer_set_spectrum`) and a lighting (`ocean_renderer_set_lighting`), then render
+ * frames with `ocean_renderer_render_rgba8`. Free with `ocean_renderer_destroy`. It works
+ * only with the context it was created on. Every call locks the renderer, so any thread may
+ * use it, but calls on one renderer run one at a time.
+ */
+typedef struct OceanRenderer OceanRenderer;
 
 /**
  * A Wave Train Boxes scene (opaque): water grid, terrain, boxes, effects and budget. Create
@@ -230,6 +403,13 @@ typedef struct OceanLighting OceanLighting;
  * threads). Destroying must not race with any other use.
  */
 typedef struct OceanScene OceanScene;
+
+/**
+ * A shader translated to one language (opaque): its files and binding layout. Create with
+ * `ocean_shader_export`, free with `ocean_shader_export_destroy`. Immutable: a
+ * `const OceanShaderExport *` may be used by any number of threads at once.
+ */
+typedef struct OceanShaderExport OceanShaderExport;
 
 /**
  * A mip-mapped sky map of one lighting (opaque): the sky's radiance in the stereographic
@@ -252,6 +432,105 @@ typedef struct OceanSpectrum OceanSpectrum;
  * of threads at once; destroying it must not race with any other use.
  */
 typedef struct OceanWaves OceanWaves;
+
+/**
+ * How an `OceanRenderer` draws. `ocean_renderer_options_default` fills in the library's
+ * defaults. Colour is fixed to 8-bit RGBA (sRGB-encoded, tone-mapped) and the renderer draws
+ * with a 32-bit float depth buffer of its own.
+ */
+typedef struct OceanRendererOptions {
+  /**
+   * Screen-space size of a projected-grid cell, pixels, in [1, 256] (the paper: 8). Smaller
+   * cells resolve shorter waves in the geometry and cost more vertices.
+   */
+  double cell_px;
+  /**
+   * How far the grid extends beyond the viewport on every side, as a fraction of the
+   * viewport's width (left and right) and height (top and bottom), in [0, 2]: large waves
+   * pull the grid's edges inwards, and the margin keeps them off screen.
+   */
+  double margin;
+  /**
+   * Distance cap of the rays' sea-plane hits, metres, in (0, 1e7]: rays above the horizon,
+   * or meeting the sea farther, stop there.
+   */
+  double max_distance;
+  /**
+   * Exposure of the tone mapping 1 - exp(-exposure * L), in (0, 1e6]
+   * (`OCEAN_DEFAULT_EXPOSURE` by default).
+   */
+  double exposure;
+  /**
+   * Level-0 size of the sky map texture, a power of two in [`OCEAN_SKY_MAP_MIN_SIZE`,
+   * `OCEAN_SKY_MAP_MAX_SIZE`] (and at most the device's largest texture).
+   */
+  uint32_t sky_map_size;
+  /**
+   * 1: draw the sky background (the sky map's radiance towards each pixel and the Sun's
+   * disc) behind the sea; 0: leave those pixels black (alpha 255). Other values are refused.
+   */
+  uint8_t draw_sky;
+} OceanRendererOptions;
+
+/**
+ * A camera for `ocean_pixel_footprint`: a view matrix, a projection described by its
+ * parameters, and a depth convention.
+ *
+ * Perspective (`orthographic` = 0): `fov_y` in (0, pi) radians, `aspect` = width / height
+ * and positive, 0 < `z_near` < `z_far`, with `z_far` = `INFINITY` for an infinite far plane;
+ * the orthographic members are ignored. Orthographic (`orthographic` = 1): the view-space box
+ * [left, right] x [bottom, top] x [z_near, z_far] (distances along -z; `z_near` may be <= 0),
+ * all finite, left < right, bottom < top, z_near < z_far; `fov_y` and `aspect` are ignored.
+ */
+typedef struct OceanCameraDesc {
+  /**
+   * World-to-view matrix, column-major (GLM's layout: `glm::value_ptr` of a `glm::dmat4`,
+   * element [4 * column + row]), right-handed, the camera looking down its -z axis. Every
+   * element finite, the matrix invertible.
+   */
+  double view[16];
+  /**
+   * 0: perspective; 1: orthographic. Other values are refused.
+   */
+  uint8_t orthographic;
+  /**
+   * An `OceanDepthConvention` value (other values are refused). The footprint does not
+   * depend on it; it only has to describe the projection consistently.
+   */
+  uint32_t depth_convention;
+  /**
+   * Perspective: vertical field of view, radians.
+   */
+  double fov_y;
+  /**
+   * Perspective: viewport width / height.
+   */
+  double aspect;
+  /**
+   * Orthographic: view-space x of the left edge, metres.
+   */
+  double left;
+  /**
+   * Orthographic: view-space x of the right edge, metres.
+   */
+  double right;
+  /**
+   * Orthographic: view-space y of the bottom edge, metres.
+   */
+  double bottom;
+  /**
+   * Orthographic: view-space y of the top edge, metres.
+   */
+  double top;
+  /**
+   * Near-plane distance, metres.
+   */
+  double z_near;
+  /**
+   * Far-plane distance, metres (perspective: `INFINITY` for none).
+   */
+  double z_far;
+} OceanCameraDesc;
 
 /**
  * A 3D vector in double precision. World-space vectors are right-handed with y up; the BRDF
@@ -532,64 +811,47 @@ typedef struct OceanSlopeVariance {
 } OceanSlopeVariance;
 
 /**
- * A camera for `ocean_pixel_footprint`: a view matrix, a projection described by its
- * parameters, and a depth convention.
- *
- * Perspective (`orthographic` = 0): `fov_y` in (0, pi) radians, `aspect` = width / height
- * and positive, 0 < `z_near` < `z_far`, with `z_far` = `INFINITY` for an infinite far plane;
- * the orthographic members are ignored. Orthographic (`orthographic` = 1): the view-space box
- * [left, right] x [bottom, top] x [z_near, z_far] (distances along -z; `z_near` may be <= 0),
- * all finite, left < right, bottom < top, z_near < z_far; `fov_y` and `aspect` are ignored.
+ * One resource binding of an exported shader. The strings are NUL-terminated UTF-8, owned by
+ * the export, and valid until it is destroyed.
  */
-typedef struct OceanCameraDesc {
+typedef struct OceanShaderBinding {
   /**
-   * World-to-view matrix, column-major (GLM's layout: `glm::value_ptr` of a `glm::dmat4`,
-   * element [4 * column + row]), right-handed, the camera looking down its -z axis. Every
-   * element finite, the matrix invertible.
+   * WGSL `@group` (the descriptor set in SPIR-V, the register space in HLSL).
    */
-  double view[16];
+  uint32_t group;
   /**
-   * 0: perspective; 1: orthographic. Other values are refused.
+   * WGSL `@binding`.
    */
-  uint8_t orthographic;
+  uint32_t binding;
   /**
-   * An `OceanDepthConvention` value (other values are refused). The footprint does not
-   * depend on it; it only has to describe the projection consistently.
+   * An `OceanBindingKind` value.
    */
-  uint32_t depth_convention;
+  uint32_t kind;
   /**
-   * Perspective: vertical field of view, radians.
+   * Byte size of the bound type, or of one element of a runtime-sized array; 0 for textures
+   * and samplers.
    */
-  double fov_y;
+  uint32_t size;
   /**
-   * Perspective: viewport width / height.
+   * GLSL exports: the flattened binding number (`layout(binding = n)` in GLSL 4.30 and ES
+   * 3.10); `OCEAN_NO_GLSL_BINDING` otherwise (see there).
    */
-  double aspect;
+  uint32_t glsl_binding;
   /**
-   * Orthographic: view-space x of the left edge, metres.
+   * The variable's name in the WGSL source.
    */
-  double left;
+  const char *name;
   /**
-   * Orthographic: view-space x of the right edge, metres.
+   * Its WGSL type, e.g. `Frame` or `texture_2d<f32>`.
    */
-  double right;
+  const char *wgsl_type;
   /**
-   * Orthographic: view-space y of the bottom edge, metres.
+   * GLSL exports: the name of the uniform block, storage block or sampler naga wrote for it
+   * (set its binding number by this name under GLSL 3.30); "" when no exported entry point
+   * uses it, or for non-GLSL exports. Never NULL.
    */
-  double bottom;
-  /**
-   * Orthographic: view-space y of the top edge, metres.
-   */
-  double top;
-  /**
-   * Near-plane distance, metres.
-   */
-  double z_near;
-  /**
-   * Far-plane distance, metres (perspective: `INFINITY` for none).
-   */
-  double z_far;
-} OceanCameraDesc;
+  const char *glsl_name;
+} OceanShaderBinding;
 
 /**
  * A point on the sea plane y = 0: world x and z in metres (single precision).
@@ -953,6 +1215,194 @@ typedef struct OceanHeightSample {
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
+
+/**
+ * Creates a headless GPU device and stores a new context in `*out`.
+ *
+ * The adapter is chosen from the environment: `WGPU_BACKEND` selects the backends (`vulkan`,
+ * `gl`, `metal`, `dx12`, or a comma-separated list; all compiled in when unset),
+ * `WGPU_POWER_PREF` (`low`, `high`) and `WGPU_ADAPTER_NAME` (a substring of the adapter's name)
+ * narrow the choice. Software adapters are accepted: Mesa's lavapipe (Vulkan) and llvmpipe
+ * (OpenGL through EGL, `WGPU_BACKEND=gl`). The device asks only for WebGPU's downlevel limits.
+ * Creating a device takes from milliseconds to a second or so: create one context and keep it.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`,
+ * `OCEAN_STATUS_NO_ADAPTER` when no usable adapter exists (the message says what to install),
+ * `OCEAN_STATUS_GPU_FAILURE` for another device error. On failure `*out` is unchanged. Free
+ * the context with `ocean_gpu_context_destroy`.
+ *
+ * # Safety
+ *
+ * `out` must point to a writable pointer.
+ */
+OceanStatus ocean_gpu_context_create(struct OceanGpuContext **out);
+
+/**
+ * Frees a context. NULL is ignored, and so is a pointer that is not even aligned. Never
+ * fails; leaves the last-error message alone. Renderers created on it keep the device alive
+ * until they are destroyed, but can no longer be used (every renderer call needs the context).
+ *
+ * # Safety
+ *
+ * `ctx` must be NULL or a handle from `ocean_gpu_context_create` not yet destroyed, and no
+ * other thread may be using it.
+ */
+void ocean_gpu_context_destroy(struct OceanGpuContext *ctx);
+
+/**
+ * Copies a one-line, NUL-terminated UTF-8 description of the context's adapter (name,
+ * backend, device type, driver) into `buf`, for logs and bug reports.
+ *
+ * Size query: `*needed` receives the size the text needs in bytes, its terminating NUL
+ * included.
+ * - `buf` NULL and `len` 0: a pure query; returns `OCEAN_STATUS_OK` and writes only
+ *   `*needed`.
+ * - `len` >= the size: copies the text and its NUL to `buf[0..*needed]`, writes `*needed`,
+ *   returns `OCEAN_STATUS_OK`.
+ * - `len` smaller (`buf` not NULL): returns `OCEAN_STATUS_BUFFER_TOO_SMALL`, writes `*needed`
+ *   (the one output written on a failure) and leaves `buf` untouched.
+ *
+ * The text is fixed for the life of the context, so querying, allocating and copying cannot
+ * race.
+ *
+ * Other failures, with nothing written: `OCEAN_STATUS_NULL_POINTER` /
+ * `_MISALIGNED_POINTER` for a bad `ctx` or `needed`, or `buf` NULL with `len` != 0;
+ * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`.
+ *
+ * # Safety
+ *
+ * `ctx` must be a live handle, `buf` NULL or `len` writable bytes that no other thread
+ * touches during the call, and `needed` writable.
+ */
+OceanStatus ocean_gpu_context_describe(const struct OceanGpuContext *ctx,
+                                       char *buf,
+                                       size_t len,
+                                       size_t *needed);
+
+/**
+ * Stores the default renderer options in `*out`: 8-pixel cells, a 10 % margin, a 50 km
+ * distance cap, exposure `OCEAN_DEFAULT_EXPOSURE`, a 512 x 512 sky map, sky drawn.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_renderer_options_default(struct OceanRendererOptions *out);
+
+/**
+ * Compiles the renderer's shaders and creates its buffers and textures on `ctx`'s device, and
+ * stores a new renderer in `*out`. It draws nothing until it has a spectrum and a lighting.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite option, `OCEAN_STATUS_INVALID_ARGUMENT` for
+ * an option outside its documented range (the message names it), `OCEAN_STATUS_GPU_FAILURE` if
+ * the device refuses an object. On failure `*out` is unchanged. Free the renderer with
+ * `ocean_renderer_destroy`.
+ *
+ * # Safety
+ *
+ * `ctx` must be a live handle, `options` point to a readable `OceanRendererOptions` and `out`
+ * to a writable pointer; `options` is not retained.
+ */
+OceanStatus ocean_renderer_create(const struct OceanGpuContext *ctx,
+                                  const struct OceanRendererOptions *options,
+                                  struct OceanRenderer **out);
+
+/**
+ * Frees a renderer and its GPU resources. NULL is ignored, and so is a pointer that is not
+ * even aligned. Never fails; leaves the last-error message alone. It may outlive its context.
+ *
+ * # Safety
+ *
+ * `renderer` must be NULL or a handle from `ocean_renderer_create` not yet destroyed, and no
+ * other thread may be using it.
+ */
+void ocean_renderer_destroy(struct OceanRenderer *renderer);
+
+/**
+ * Gives the renderer the waves of `spectrum`, filtered with the thresholds `n_min` and
+ * `n_max` (paper section 7.1: a wave enters the geometry once its wavelength spans n_min grid
+ * cells and is fully present from n_max, and likewise in the normals per pixel; the rest goes
+ * into the BRDF's slope variance). `OCEAN_FILTER_N_MIN` and `OCEAN_FILTER_N_MAX` are the
+ * paper's. The waves are copied: the spectrum may be destroyed afterwards.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite threshold, `OCEAN_STATUS_INVALID_ARGUMENT`
+ * unless 0 < n_min < n_max <= 1e6, for more waves than the device's largest texture is wide,
+ * or for a context other than the renderer's; `OCEAN_STATUS_GPU_FAILURE` for a device error.
+ * On failure the renderer keeps its previous spectrum.
+ *
+ * # Safety
+ *
+ * `renderer`, `ctx` and `spectrum` must be live handles.
+ */
+OceanStatus ocean_renderer_set_spectrum(struct OceanRenderer *renderer,
+                                        const struct OceanGpuContext *ctx,
+                                        const struct OceanSpectrum *spectrum,
+                                        double n_min,
+                                        double n_max);
+
+/**
+ * Gives the renderer the Sun, the sky and the sea of `lighting`: renders its sky map at
+ * `options->sky_map_size` with every mip level (as `ocean_lighting_sky_map_create`) and
+ * uploads it, and keeps the Sun's and the sea's radiances. The lighting is copied: it may be
+ * destroyed afterwards.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for a context other than the renderer's or a radiance beyond
+ * binary16's range (65504: scale the radiance unit down), `OCEAN_STATUS_GPU_FAILURE` for a
+ * device error. On failure the renderer keeps its previous lighting.
+ *
+ * # Safety
+ *
+ * `renderer`, `ctx` and `lighting` must be live handles.
+ */
+OceanStatus ocean_renderer_set_lighting(struct OceanRenderer *renderer,
+                                        const struct OceanGpuContext *ctx,
+                                        const struct OceanLighting *lighting);
+
+/**
+ * Renders the sea and the sky seen by `camera` at `time` (seconds) into a `width` x `height`
+ * image on the GPU, waits for it and copies it into `out`.
+ *
+ * Format: `len` = width * height * 4 bytes exactly; rows from the top of the image, each
+ * `width` pixels of R, G, B, A bytes from left to right, tightly packed (no row padding).
+ * Colours are tone-mapped (1 - exp(-exposure * L)) and sRGB-encoded: display-ready bytes for
+ * an `SRGB8_ALPHA8` texture or a plain image file. Alpha is 255. The camera is the one of
+ * `ocean_pixel_footprint`: world space right-handed with y up, the sea at rest on y = 0, the
+ * view matrix column-major; any depth convention (the image does not depend on it, but for
+ * the depth range the renderer folds it into). `camera->aspect` should be width / height for
+ * undistorted pixels.
+ *
+ * The sky is drawn where the sea is not (`options->draw_sky`); the grid covers the viewport
+ * plus the margin. Each call allocates its targets and waits for the GPU: a one-off, not a
+ * frame loop at full speed.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_EMPTY` if `width` or `height` is 0, `OCEAN_STATUS_INVALID_ARGUMENT` if `len`
+ * is not width * height * 4, a side exceeds the device's largest texture, the camera is out of
+ * its documented ranges or not above the sea (eye y <= 0), the context is not the renderer's,
+ * or the renderer has no spectrum or no lighting yet; `OCEAN_STATUS_LENGTH_OVERFLOW` if
+ * width * height * 4 overflows; `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or
+ * camera member; `OCEAN_STATUS_GPU_FAILURE` for a device error. Nothing is written to `out`
+ * on failure.
+ *
+ * # Safety
+ *
+ * `renderer` and `ctx` must be live handles, `camera` readable, and `out` point to `len`
+ * writable bytes that no other thread touches during the call.
+ */
+OceanStatus ocean_renderer_render_rgba8(const struct OceanRenderer *renderer,
+                                        const struct OceanGpuContext *ctx,
+                                        const struct OceanCameraDesc *camera,
+                                        double time,
+                                        uint32_t width,
+                                        uint32_t height,
+                                        uint8_t *out,
+                                        size_t len);
 
 /**
  * Stores the default Sun and sky in `*out`: a clear afternoon with the Sun 25 degrees above
@@ -1640,6 +2090,166 @@ OceanStatus ocean_pixel_footprint(const struct OceanCameraDesc *camera,
                                   double py,
                                   double max_distance,
                                   double *out);
+
+/**
+ * Returns the number of registered shaders (passes), at least 1. Never fails; leaves the
+ * last-error message alone.
+ */
+size_t ocean_shader_count(void);
+
+/**
+ * Stores the name of registered shader `index` (0 to `ocean_shader_count()` - 1) in `*out`:
+ * a static NUL-terminated string such as "ocean" (the renderer's draw pass) or "trochoid",
+ * valid for the life of the program. Pass it to `ocean_shader_export`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `index` >= the count. `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_shader_name(size_t index, const char **out);
+
+/**
+ * Translates the registered shader `name` to `language` (an `OceanShaderLanguage` value) with
+ * naga and stores a new export in `*out`: its files (`ocean_shader_export_file`) and its
+ * resource bindings (`ocean_shader_export_binding`, `ocean_shader_export_bindings`).
+ *
+ * GLSL and GLSL ES give one file per entry point, named `<pass>.<entry>.<vert|frag|comp>.glsl`
+ * (`.es.glsl` for ES), in the order the WGSL declares them; the draw pass "ocean" has the vertex
+ * and fragment stages of the sea (`ocean_vs`, `ocean_fs`) and of the sky (`sky_vs`, `sky_fs`).
+ * HLSL (`<pass>.hlsl`), MSL (`<pass>.metal`) and SPIR-V (`<pass>.spv`) give one file with every
+ * entry point. The translation is deterministic: the same library gives the same bytes.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for a `language` that is not an `OceanShaderLanguage` or a
+ * `name` that is not UTF-8, `OCEAN_STATUS_NOT_FOUND` for an unknown name (the message lists
+ * the registered ones), `OCEAN_STATUS_GPU_FAILURE` if naga cannot translate the pass. On
+ * failure `*out` is unchanged. Free the export with `ocean_shader_export_destroy`.
+ *
+ * # Safety
+ *
+ * `name` must be NULL or a NUL-terminated string, and `out` point to a writable pointer;
+ * `name` is not retained.
+ */
+OceanStatus ocean_shader_export(const char *name,
+                                uint32_t language,
+                                struct OceanShaderExport **out);
+
+/**
+ * Frees an export; every pointer it handed out becomes invalid. NULL is ignored, and so is a
+ * pointer that is not even aligned. Never fails; leaves the last-error message alone.
+ *
+ * # Safety
+ *
+ * `shader_export` must be NULL or a handle from `ocean_shader_export` not yet destroyed, and no other
+ * thread may be using it.
+ */
+void ocean_shader_export_destroy(struct OceanShaderExport *shader_export);
+
+/**
+ * Stores the number of files of the export (>= 1) in `*out`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `shader_export` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_shader_export_file_count(const struct OceanShaderExport *shader_export,
+                                           size_t *out);
+
+/**
+ * Stores file `index` (0 to the file count - 1) of the export: its suggested file name in
+ * `*file_name` (NUL-terminated, e.g. "ocean.ocean_vs.vert.glsl"), its bytes in `*data` and
+ * their number in `*len`.
+ *
+ * The data is the shader's text (UTF-8) or, for SPIR-V, its binary module (little-endian
+ * 32-bit words); `len` counts its bytes without any terminator. It is 4-byte aligned (cast it
+ * to `const uint32_t *` for `vkCreateShaderModule`) and followed by at least one NUL byte,
+ * so text can be passed as a C string (`glShaderSource` with a NULL length). The pointers stay
+ * valid until the export is destroyed.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `index` >= the file count. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `shader_export` must be a live handle and the three out-pointers writable.
+ */
+OceanStatus ocean_shader_export_file(const struct OceanShaderExport *shader_export,
+                                     size_t index,
+                                     const char **file_name,
+                                     const uint8_t **data,
+                                     size_t *len);
+
+/**
+ * Stores the stage of file `index` in `*stage` (an `OceanShaderStage` value:
+ * `OCEAN_SHADER_STAGE_MODULE` for a file with every entry point) and the name of its entry
+ * point in `*entry_point` (NUL-terminated, e.g. "ocean_fs"; "" for a module), valid until the
+ * export is destroyed.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `index` >= the file count. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `shader_export` must be a live handle and both out-pointers writable.
+ */
+OceanStatus ocean_shader_export_file_stage(const struct OceanShaderExport *shader_export,
+                                           size_t index,
+                                           uint32_t *stage,
+                                           const char **entry_point);
+
+/**
+ * Stores the export's binding layout as text in `*table`: NUL-terminated UTF-8 owned by the
+ * export, valid until it is destroyed. A header line starting with `#`, then one line per
+ * binding in (group, binding) order, `group binding name kind type (size N)` plus
+ * ` glsl_name=NAME` and ` glsl_binding=N` where they apply, each followed by the members of a
+ * buffer's struct, one per line: `    +OFFSET name: type`. The same text as the
+ * `<pass>.bindings.txt` of `ocean shaders`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*table` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `shader_export` must be a live handle and `table` writable.
+ */
+OceanStatus ocean_shader_export_bindings(const struct OceanShaderExport *shader_export,
+                                         const char **table);
+
+/**
+ * Stores the number of resource bindings of the exported pass in `*out` (the same for every
+ * language; 0 for a pass without resources).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `shader_export` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_shader_export_binding_count(const struct OceanShaderExport *shader_export,
+                                              size_t *out);
+
+/**
+ * Stores binding `index` (0 to the binding count - 1, in (group, binding) order) in `*out`;
+ * its strings are owned by the export and valid until it is destroyed.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `index` >= the binding count. `*out` is written only on
+ * success.
+ *
+ * # Safety
+ *
+ * `shader_export` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_shader_export_binding(const struct OceanShaderExport *shader_export,
+                                        size_t index,
+                                        struct OceanShaderBinding *out);
 
 /**
  * A static, NUL-terminated English description of a status code.

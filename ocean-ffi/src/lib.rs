@@ -23,14 +23,22 @@
 #![deny(clippy::undocumented_unsafe_blocks)]
 #![warn(missing_docs)]
 
+mod gpu;
 mod lighting;
 mod lighting_brdf;
 mod lighting_spectrum;
+mod shader_export;
 mod status;
 mod version;
 mod waves;
 mod wtb;
 
+pub use gpu::{
+    OceanGpuContext, OceanRenderer, OceanRendererOptions, ocean_gpu_context_create,
+    ocean_gpu_context_describe, ocean_gpu_context_destroy, ocean_renderer_create,
+    ocean_renderer_destroy, ocean_renderer_options_default, ocean_renderer_render_rgba8,
+    ocean_renderer_set_lighting, ocean_renderer_set_spectrum,
+};
 pub use lighting::{
     OCEAN_SKY_MAP_EXTENT, OCEAN_SKY_MAP_MAX_SIZE, OCEAN_SKY_MAP_MIN_SIZE, OceanCieSky,
     OceanLighting, OceanRgb, OceanSeaColorInput, OceanSeaLight, OceanSeaParams, OceanSkyMap,
@@ -54,6 +62,13 @@ pub use lighting_spectrum::{
     ocean_spectrum_slope_variance, ocean_spectrum_steepness_sum,
     ocean_spectrum_total_slope_variance, ocean_spectrum_wave_count, ocean_spectrum_waves,
     ocean_spectrum_wind_direction,
+};
+pub use shader_export::{
+    OCEAN_NO_GLSL_BINDING, OceanBindingKind, OceanShaderBinding, OceanShaderExport,
+    OceanShaderLanguage, OceanShaderStage, ocean_shader_count, ocean_shader_export,
+    ocean_shader_export_binding, ocean_shader_export_binding_count, ocean_shader_export_bindings,
+    ocean_shader_export_destroy, ocean_shader_export_file, ocean_shader_export_file_count,
+    ocean_shader_export_file_stage, ocean_shader_name,
 };
 pub use status::{OceanStatus, ocean_last_error_message, ocean_status_message};
 pub use version::{OCEAN_VERSION_MAJOR, OCEAN_VERSION_MINOR, OCEAN_VERSION_PATCH, ocean_version};

@@ -157,7 +157,7 @@ pub struct OceanSeaColorInput {
 /// `ocean_lighting_create`, free with `ocean_lighting_destroy`. Immutable: a
 /// `const OceanLighting *` may be used by any number of threads at once.
 pub struct OceanLighting {
-    lighting: Lighting,
+    pub(crate) lighting: Lighting,
 }
 
 /// A mip-mapped sky map of one lighting (opaque): the sky's radiance in the stereographic

@@ -118,7 +118,7 @@ pub struct OceanCameraDesc {
 /// `ocean_spectrum_create`, free with `ocean_spectrum_destroy`. Immutable: a
 /// `const OceanSpectrum *` may be used by any number of threads at once.
 pub struct OceanSpectrum {
-    spectrum: Spectrum,
+    pub(crate) spectrum: Spectrum,
 }
 
 const _: () = {
@@ -555,7 +555,7 @@ fn camera_error(e: CameraError) -> Error {
     Error::new(status, format!("camera: {e}"))
 }
 
-fn camera_from(c: &OceanCameraDesc) -> Result<Camera, Error> {
+pub(crate) fn camera_from(c: &OceanCameraDesc) -> Result<Camera, Error> {
     if let Some(k) = c.view.iter().position(|v| !v.is_finite()) {
         return Err(Error::new(
             OceanStatus::NonFinite,

@@ -9,7 +9,8 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 /// Result of every fallible `ocean_*` function.
 ///
 /// `OCEAN_STATUS_OK` (0) is success; any other value is a failure, after which no output
-/// parameter has been written and `ocean_last_error_message()` describes what went wrong.
+/// parameter has been written (but for the size that `OCEAN_STATUS_BUFFER_TOO_SMALL` reports)
+/// and `ocean_last_error_message()` describes what went wrong.
 /// The numeric values are stable: new codes are only ever appended.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -42,10 +43,23 @@ pub enum OceanStatus {
     /// A wave train box cannot touch the water grid: its rectangle at full fetch lies wholly
     /// outside the grid's rectangle, so it could never move a single point.
     OutsideGrid = 10,
+    /// No usable GPU adapter: none was found for the backends `WGPU_BACKEND` selects (all when
+    /// unset), or the one found lacks compute shaders or WebGPU's downlevel limits, or refused
+    /// to create a device. The message says what to install (Mesa's lavapipe, or llvmpipe
+    /// through `WGPU_BACKEND=gl`).
+    NoAdapter = 11,
+    /// The GPU backend failed: the device reported a validation, out-of-memory or device-lost
+    /// error, reading an image back failed, or naga could not translate a shader. The message
+    /// carries the backend's text.
+    GpuFailure = 12,
+    /// A caller's buffer is too small for a variable-length result (or NULL, to ask for its
+    /// size). The one status after which an output is written: the function's `needed`
+    /// out-parameter holds the size required; the buffer itself is untouched.
+    BufferTooSmall = 13,
 }
 
 /// Every status, in numeric order.
-const ALL_STATUSES: [OceanStatus; 11] = [
+const ALL_STATUSES: [OceanStatus; 14] = [
     OceanStatus::Ok,
     OceanStatus::NullPointer,
     OceanStatus::MisalignedPointer,
@@ -57,6 +71,9 @@ const ALL_STATUSES: [OceanStatus; 11] = [
     OceanStatus::Panic,
     OceanStatus::NotFound,
     OceanStatus::OutsideGrid,
+    OceanStatus::NoAdapter,
+    OceanStatus::GpuFailure,
+    OceanStatus::BufferTooSmall,
 ];
 
 impl OceanStatus {
@@ -73,6 +90,9 @@ impl OceanStatus {
             OceanStatus::Panic => c"internal error: the library panicked",
             OceanStatus::NotFound => c"no such object (an unknown or removed id)",
             OceanStatus::OutsideGrid => c"a wave train box lies wholly outside the water grid",
+            OceanStatus::NoAdapter => c"no usable GPU adapter",
+            OceanStatus::GpuFailure => c"the GPU backend failed",
+            OceanStatus::BufferTooSmall => c"the buffer is too small for the result",
         }
     }
 }
@@ -193,7 +213,7 @@ mod tests {
             assert!(!m.is_empty());
             assert!(seen.insert(m.to_owned()), "duplicate message {m:?}");
         }
-        for bad in [11, 1000, u32::MAX] {
+        for bad in [ALL_STATUSES.len() as u32, 1000, u32::MAX] {
             // SAFETY: as above.
             let m = unsafe { CStr::from_ptr(ocean_status_message(bad)) };
             assert_eq!(m, c"unknown status");

@@ -155,7 +155,7 @@ static void test_version_and_messages(void)
           "ocean_version() = %s, header macros say %s", ocean_version(), expected);
 
     /* Every code has its own non-empty text; unknown codes are safe and say so. */
-    for (s = OCEAN_STATUS_OK; s <= OCEAN_STATUS_OUTSIDE_GRID; s++) {
+    for (s = OCEAN_STATUS_OK; s <= OCEAN_STATUS_BUFFER_TOO_SMALL; s++) {
         uint32_t t;
         const char *m = ocean_status_message(s);
         CHECK(m != NULL && m[0] != '\0', "status %u has no message", (unsigned)s);
@@ -164,10 +164,10 @@ static void test_version_and_messages(void)
             CHECK(strcmp(m, ocean_status_message(t)) != 0, "statuses %u and %u share \"%s\"",
                   (unsigned)s, (unsigned)t, m);
     }
-    /* OCEAN_STATUS_OUTSIDE_GRID is the last code: the next value is unknown. */
-    CHECK(strcmp(ocean_status_message(OCEAN_STATUS_OUTSIDE_GRID + 1), "unknown status") == 0,
-          "status %u: %s", (unsigned)OCEAN_STATUS_OUTSIDE_GRID + 1,
-          ocean_status_message(OCEAN_STATUS_OUTSIDE_GRID + 1));
+    /* OCEAN_STATUS_BUFFER_TOO_SMALL is the last code: the next value is unknown. */
+    CHECK(strcmp(ocean_status_message(OCEAN_STATUS_BUFFER_TOO_SMALL + 1), "unknown status") == 0,
+          "status %u: %s", (unsigned)OCEAN_STATUS_BUFFER_TOO_SMALL + 1,
+          ocean_status_message(OCEAN_STATUS_BUFFER_TOO_SMALL + 1));
     CHECK(strcmp(ocean_status_message(UINT32_MAX), "unknown status") == 0, "status max: %s",
           ocean_status_message(UINT32_MAX));
     CHECK(OCEAN_STATUS_OK == 0, "OCEAN_STATUS_OK must be 0");

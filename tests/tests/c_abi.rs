@@ -1,8 +1,8 @@
 //! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c`, `tests/c/test_wtb.c`,
-//! `tests/c/test_lighting.c` and `tests/cpp/test_waves.cpp` against `include/ocean.h` and the
-//! static library `libocean.a` with the system compilers and `-Wall -Wextra -Werror -pedantic`,
-//! runs them, and fails unless each reports `0 failures` after a positive number of checks and
-//! exits 0.
+//! `tests/c/test_lighting.c`, `tests/c/test_gpu.c` and `tests/cpp/test_waves.cpp` against
+//! `include/ocean.h` and the static library `libocean.a` with the system compilers and
+//! `-Wall -Wextra -Werror -pedantic`, runs them, and fails unless each reports `0 failures` after
+//! a positive number of checks and exits 0.
 //!
 //! Where the library comes from: `ocean-tests` depends on `ocean-ffi`, and cargo builds every
 //! crate type of a dependency, so by the time this test runs `libocean.a` (crate-type
@@ -146,6 +146,17 @@ fn run(mut cmd: Command, what: &str) -> String {
 /// Compiles `source` with `compiler` and `std`, links it with libocean.a, runs it and checks its
 /// summary line.
 fn build_and_run(compiler: OsString, std_flag: &str, source: &str, exe_name: &str) {
+    build_and_run_with_env(compiler, std_flag, source, exe_name, &[]);
+}
+
+/// [`build_and_run`] with extra environment variables for the program; returns its stdout.
+fn build_and_run_with_env(
+    compiler: OsString,
+    std_flag: &str,
+    source: &str,
+    exe_name: &str,
+    env: &[(&str, &Path)],
+) -> String {
     let root = workspace_root();
     let lib = libocean();
     let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_abi");
@@ -165,7 +176,9 @@ fn build_and_run(compiler: OsString, std_flag: &str, source: &str, exe_name: &st
         .arg(&exe);
     run(cc, &format!("compile {source}"));
 
-    let stdout = run(Command::new(&exe), &format!("run {exe_name}"));
+    let mut program = Command::new(&exe);
+    program.envs(env.iter().copied());
+    let stdout = run(program, &format!("run {exe_name}"));
     // The programs print "<file>: library <version>, <N> checks, <F> failures; ...". Require
     // the line, N > 0 and F = 0, so an empty or truncated run cannot pass.
     let summary = stdout
@@ -185,6 +198,7 @@ fn build_and_run(compiler: OsString, std_flag: &str, source: &str, exe_name: &st
         summary.contains(&format!("library {}", env!("CARGO_PKG_VERSION"))),
         "the program linked a library of another version: {summary}"
     );
+    stdout
 }
 
 #[test]
@@ -219,6 +233,84 @@ fn c11_lighting_against_the_static_library() {
         "-std=c11",
         "tests/c/test_lighting.c",
         "test_lighting_c",
+    );
+}
+
+/// The GPU part of the C ABI from C11 (`tests/c/test_gpu.c`): the shader export of every pass
+/// and language (no GPU needed), then the ocean renderer on the library's headless device with
+/// every error path. The program writes its 64 x 48 frame to `OCEAN_GPU_IMAGE`; this test
+/// renders the same frame through `ocean_gpu` (same adapter, chosen by the same `WGPU_BACKEND`)
+/// and requires the same bytes. Without an adapter both sides skip the renderer, unless
+/// `OCEAN_REQUIRE_GPU=1`, under which the C program itself fails.
+#[test]
+fn c11_gpu_renderer_and_shader_export_against_the_static_library() {
+    use glam::DMat4;
+    use ocean_brdf::{
+        Filter, FilteredSurface, Lighting, SeaParams, SkyParams, Spectrum, SpectrumParams,
+    };
+    use ocean_core::{Camera, DepthConvention, Far, Projection};
+    use ocean_gpu::{OceanOptions, OceanRenderer};
+
+    let image_path = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("c_abi")
+        .join("test_gpu_c.rgba");
+    std::fs::create_dir_all(image_path.parent().expect("a parent")).expect("create the directory");
+    let _ = std::fs::remove_file(&image_path);
+    let stdout = build_and_run_with_env(
+        compiler("CC", "cc"),
+        "-std=c11",
+        "tests/c/test_gpu.c",
+        "test_gpu_c",
+        &[("OCEAN_GPU_IMAGE", &image_path)],
+    );
+    let Ok(from_c) = std::fs::read(&image_path) else {
+        assert!(
+            stdout.contains("SKIPPED") && !ocean_tests::gpu_required(),
+            "test_gpu.c neither rendered nor skipped:\n{stdout}"
+        );
+        return;
+    };
+    let Some(ctx) = ocean_tests::gpu_context_or_skip() else {
+        panic!("the C program found an adapter but ocean_gpu does not");
+    };
+    // The C program's frame: 64 x 48, eye 4 m up looking along -z (view = a translation by
+    // (0, -4, 0)), 60 degrees, near 0.1 m, far 100 km, [0, 1] depth, t = 2.5 s; the default
+    // spectrum with the paper's filter, the default lighting, the default renderer options.
+    let (w, h) = (64u32, 48u32);
+    let camera = Camera::new(
+        DMat4::from_translation(glam::DVec3::new(0.0, -4.0, 0.0)),
+        Projection::Perspective {
+            fov_y: 60.0 * std::f64::consts::PI / 180.0,
+            aspect: f64::from(w) / f64::from(h),
+            near: 0.1,
+            far: Far::Finite(100_000.0),
+        },
+        DepthConvention::ZERO_TO_ONE,
+    )
+    .expect("camera");
+    let spectrum = Spectrum::new(SpectrumParams::default()).expect("spectrum");
+    let surface = FilteredSurface::new(&spectrum, Filter::PAPER).expect("surface");
+    let lighting = Lighting::new(SkyParams::default(), SeaParams::default()).expect("lighting");
+    let mut renderer = OceanRenderer::new(&ctx, OceanOptions::default()).expect("renderer");
+    renderer.set_surface(&ctx, &surface).expect("set_surface");
+    renderer
+        .set_lighting(&ctx, &lighting)
+        .expect("set_lighting");
+    let from_rust = renderer
+        .render_image(&ctx, &camera, 2.5, w, h)
+        .expect("render_image");
+    assert_eq!(from_c.len(), from_rust.len());
+    let differing = from_c
+        .iter()
+        .zip(&from_rust)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(
+        differing,
+        0,
+        "{differing} of {} bytes differ between the C ABI's frame and ocean_gpu's on {}",
+        from_c.len(),
+        ctx.describe()
     );
 }
 
