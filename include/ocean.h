@@ -1808,6 +1808,26 @@ OceanStatus ocean_schlick(double cos_theta, double r, double *out);
 OceanStatus ocean_effective_fresnel_fit(double cos_theta_v, double sigma_v, double r, double *out);
 
 /**
+ * The effective Fresnel reflectance of Eq. 24 from its table, what the sea colour
+ * (`ocean_sea_color`) and the GPU renderer use, stored in `*out`:
+ *
+ * F_bar = r + (1 - r) ((1 - cos_theta_v)^5 + D(cos_theta_v, sigma_v))
+ *
+ * with D the tabulated roughness correction (33 x 33 nodes over sqrt(cos_theta_v) and
+ * sqrt(sigma_v), bilinear; sigma_v above 1 clamps to 1). Within about 0.02 of
+ * `ocean_effective_fresnel_integral` for slope deviations below 0.5 (the fit: about 0.045), and
+ * Schlick's value for sigma_v = 0. Arguments and statuses as `ocean_effective_fresnel_fit`.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_effective_fresnel_table(double cos_theta_v,
+                                          double sigma_v,
+                                          double r,
+                                          double *out);
+
+/**
  * The effective Fresnel reflectance of Eq. 24 by numerical integration (the reference Eq. 26
  * fits), stored in `*out`:
  *

@@ -51,8 +51,8 @@ pub use lighting::{
 };
 pub use lighting_brdf::{
     OCEAN_DEFAULT_EXPOSURE, OCEAN_WATER_R, ocean_effective_fresnel_fit,
-    ocean_effective_fresnel_integral, ocean_linear_to_srgb, ocean_ross_brdf, ocean_schlick,
-    ocean_sun_radiance, ocean_tone_map,
+    ocean_effective_fresnel_integral, ocean_effective_fresnel_table, ocean_linear_to_srgb,
+    ocean_ross_brdf, ocean_schlick, ocean_sun_radiance, ocean_tone_map,
 };
 pub use lighting_spectrum::{
     OCEAN_FILTER_N_MAX, OCEAN_FILTER_N_MIN, OceanCameraDesc, OceanSlopeVariance, OceanSpectrum,

@@ -8,6 +8,7 @@
 
 use glam::DVec3;
 use ocean_brdf::fresnel::{WATER_R, effective_fresnel_fit, effective_fresnel_integral, schlick};
+use ocean_brdf::fresnel_table::effective_fresnel_table;
 use ocean_brdf::ross::{brdf, sun_radiance};
 use ocean_brdf::tonemap::{DEFAULT_EXPOSURE, linear_to_srgb, tone_map};
 
@@ -202,6 +203,37 @@ pub unsafe extern "C" fn ocean_effective_fresnel_fit(
         evaluate("ocean_effective_fresnel_fit", out, || {
             finite(&[("cos_theta_v", cos_theta_v), ("sigma_v", sigma_v), ("r", r)])?;
             effective_fresnel_fit(cos_theta_v, sigma_v, r).map_err(|e| brdf_error("", e))
+        })
+    }
+}
+
+/// The effective Fresnel reflectance of Eq. 24 from its table, what the sea colour
+/// (`ocean_sea_color`) and the GPU renderer use, stored in `*out`:
+///
+/// F_bar = r + (1 - r) ((1 - cos_theta_v)^5 + D(cos_theta_v, sigma_v))
+///
+/// with D the tabulated roughness correction (33 x 33 nodes over sqrt(cos_theta_v) and
+/// sqrt(sigma_v), bilinear; sigma_v above 1 clamps to 1). Within about 0.02 of
+/// `ocean_effective_fresnel_integral` for slope deviations below 0.5 (the fit: about 0.045), and
+/// Schlick's value for sigma_v = 0. Arguments and statuses as `ocean_effective_fresnel_fit`.
+///
+/// # Safety
+///
+/// `out` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_effective_fresnel_table(
+    cos_theta_v: f64,
+    sigma_v: f64,
+    r: f64,
+    out: *mut f64,
+) -> OceanStatus {
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        evaluate("ocean_effective_fresnel_table", out, || {
+            finite(&[("cos_theta_v", cos_theta_v), ("sigma_v", sigma_v), ("r", r)])?;
+            // The same ranges as the fit's (its validation is the checked path).
+            effective_fresnel_fit(cos_theta_v, sigma_v, r).map_err(|e| brdf_error("", e))?;
+            Ok(effective_fresnel_table(cos_theta_v, sigma_v, r))
         })
     }
 }

@@ -593,6 +593,22 @@ static void test_evaluations(void)
         }
     }
 
+    /* The table of Eq. 24 (what the sea colour uses): Schlick when smooth, within 0.03 of the
+       integral for an isotropic rough surface, and the fit's argument checks. */
+    for (i = 0; i < 6; i++) {
+        double th = i * 0.3;
+        OceanDVec3 v = dvec3(sin(th), 0.0, cos(th));
+        OK(ocean_effective_fresnel_table(v.z, 0.0, R, &out));
+        NEAR(out, schlick_ref(v.z, R), 1e-12, 0.0, "table smooth at theta %g", th);
+        OK(ocean_effective_fresnel_integral(v, 0.04, 0.04, R, &a));
+        OK(ocean_effective_fresnel_table(v.z, 0.2, R, &b));
+        NEAR(b, a, 0.0, 0.03, "table vs Eq. 24 at theta %g", th);
+    }
+    out = 7.0;
+    EXPECT(ocean_effective_fresnel_table(1.5, 0.1, R, &out), OCEAN_STATUS_INVALID_ARGUMENT);
+    EXPECT(ocean_effective_fresnel_table(NAN, 0.1, R, &out), OCEAN_STATUS_NON_FINITE);
+    CHECK(out == 7.0, "table wrote on error: %g", out);
+
     /* The Ross BRDF (Eq. 13) against the formula, symmetric, zero below the horizon. */
     {
         const OceanDVec3 vs[] = {{0.3, 0.1, 0.9}, {-0.5, 0.4, 0.3}, {0.0, 0.0, 1.0},
