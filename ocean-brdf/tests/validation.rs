@@ -14,8 +14,14 @@
 //! bias of the effective Fresnel reduction to (θ_v, σ_v) (Eq. 25): the tabulated Eq. 24
 //! (`fresnel_table`) halved the fit's error but, like the fit, ignores the variance across the
 //! view; the full anisotropic integral in its place brought those rows within 2–5 % (measured
-//! once; too slow per pixel). The reference resolves masking only for waves longer than
-//! 10 cm, as the paper's did, and the near rows carry its sampling noise. The Sun's term is
+//! once; too slow per pixel). The near rows (46–200 m) are biased too, sky about +9 % and
+//! refracted light about −2 to −4 % on average, and this is the paper's own approximation
+//! rather than noise: 4× more reference planes left the worst rows unchanged, and shrinking
+//! the pixel footprint by 10 (more waves in the normals, fewer in the BRDF) *raised* the bias
+//! to +16 % / −12 %. Waves resolved in the normals but not in the filtered geometry lose their
+//! masking (§3.2: "the apparent normals become wrong"), so facets the detailed surface hides
+//! are seen, at grazing Fresnel. The reference resolves masking only for waves longer than
+//! 10 cm, as the paper's did. The Sun's term is
 //! not compared: a perfect mirror reflects the Sun's disc (7e-5 sr) into a handful of the
 //! reference's rays per row, too few for a row mean.
 
