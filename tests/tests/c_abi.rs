@@ -1,5 +1,6 @@
 //! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c`, `tests/c/test_wtb.c`,
-//! `tests/c/test_lighting.c`, `tests/c/test_gpu.c` and `tests/cpp/test_waves.cpp` against
+//! `tests/c/test_lighting.c`, `tests/c/test_gpu.c`, `tests/cpp/test_waves.cpp` and
+//! `tests/cpp/test_lighting.cpp` against
 //! `include/ocean.h` and the static library `libocean.a` with the system compilers and
 //! `-Wall -Wextra -Werror -pedantic`, runs them, and fails unless each reports `0 failures` after
 //! a positive number of checks and exits 0.
@@ -325,6 +326,20 @@ fn cpp17_glm_program_against_the_static_library() {
         "-std=c++17",
         "tests/cpp/test_waves.cpp",
         "test_waves_cpp",
+    );
+}
+
+#[test]
+fn cpp17_glm_lighting_against_the_static_library() {
+    let cxx = compiler("CXX", "c++");
+    if !ocean_tests::cpp_header_or_skip(&cxx, "glm/glm.hpp", "libglm-dev") {
+        return;
+    }
+    build_and_run(
+        cxx,
+        "-std=c++17",
+        "tests/cpp/test_lighting.cpp",
+        "test_lighting_cpp",
     );
 }
 
