@@ -4,26 +4,27 @@
 //!
 //! Measured here (the default sampling: 32 reference planes × 32 rays per pixel row, 256 model
 //! planes; 256² image 4 m above the sea; rows from 46 m to 5.9 km), over both seas:
-//! - sky: mean error 8.4 %, worst row 26.5 % (a near row, where both are noisy); beyond 300 m
+//! - sky: mean error 8.4 %, worst row 26.5 % (a near row); beyond 300 m
 //!   the model is 0–12 % above the reference. The paper's own form of Eq. 22, before this
 //!   crate's visible-slope footprint, was 20–35 % *below* it on every row;
 //! - refracted light: mean error 4.1 %, worst row 18 %; beyond 300 m 8 % below to 1 % above;
 //! - beyond 300 m the constant-BRDF model is off by 25–45 %, at least twice the model's error.
 //!
-//! The target is 5 % per row and component and is **not met yet**. The far rows keep a
-//! bias of the effective Fresnel reduction to (θ_v, σ_v) (Eq. 25): the tabulated Eq. 24
-//! (`fresnel_table`) halved the fit's error but, like the fit, ignores the variance across the
-//! view; the full anisotropic integral in its place brought those rows within 2–5 % (measured
-//! once; too slow per pixel). The near rows (46–200 m) are biased too, sky about +9 % and
+//! The target is 5 % per row and component and is **not met yet**. Beyond 300 m the
+//! calm sea's rows are within 7 % (sky) and 5 % (refracted), the agitated sea's within 12 % and
+//! 8 %, 4.5 % on average. The effective Fresnel is not the cause there any more: the table of
+//! Eq. 24 (`fresnel_table`) is within 0.008 of the anisotropic integral at these grazing views
+//! (measured for σ from 0.1 to 0.25 and anisotropy up to 2:1); what remains is the model's
+//! other approximations (Smith's masking for trochoids, the product of averages of Eq. 21) and
+//! the reference's sampling. The near rows (46–200 m) are biased too, sky about +9 % and
 //! refracted light about −2 to −4 % on average, and this is the paper's own approximation
 //! rather than noise: 4× more reference planes left the worst rows unchanged, and shrinking
 //! the pixel footprint by 10 (more waves in the normals, fewer in the BRDF) *raised* the bias
 //! to +16 % / −12 %. Waves resolved in the normals but not in the filtered geometry lose their
 //! masking (§3.2: "the apparent normals become wrong"), so facets the detailed surface hides
 //! are seen, at grazing Fresnel. The reference resolves masking only for waves longer than
-//! 10 cm, as the paper's did. The Sun's term is
-//! not compared: a perfect mirror reflects the Sun's disc (7e-5 sr) into a handful of the
-//! reference's rays per row, too few for a row mean.
+//! 10 cm, as the paper's did. The Sun's term is not compared: a perfect mirror reflects the
+//! Sun's disc (7e-5 sr) into a handful of the reference's rays per row, too few for a row mean.
 
 use glam::DVec3;
 use ocean_brdf::SpectrumParams;
