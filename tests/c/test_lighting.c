@@ -32,54 +32,7 @@ static const double G = 9.81; /* m/s^2, the library's documented gravity */
 /* The Sun's mean angular radius (radians) and the solar-disc slope variance rho^2 / 16. */
 static const double SUN_RHO = 4.653e-3;
 
-static int checks = 0;
-static int failures = 0;
-
-#define CHECK(cond, ...)                                                                   \
-    do {                                                                                   \
-        checks++;                                                                          \
-        if (!(cond)) {                                                                     \
-            failures++;                                                                    \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);                           \
-            fprintf(stderr, __VA_ARGS__);                                                  \
-            fputc('\n', stderr);                                                           \
-        }                                                                                  \
-    } while (0)
-
-static const char *last_error(void)
-{
-    const char *m = ocean_last_error_message();
-    return m ? m : "(NULL)";
-}
-
-/* A failure with the expected status and a non-empty message. */
-#define EXPECT(call, want) expect((call), (want), #call)
-static void expect(OceanStatus got, OceanStatus want, const char *what)
-{
-    const char *m = last_error();
-    CHECK(got == want, "%s: status %u (%s), expected %u (%s); message: %s", what,
-          (unsigned)got, ocean_status_message(got), (unsigned)want, ocean_status_message(want),
-          m);
-    CHECK(m[0] != '\0', "%s: empty last-error message", what);
-}
-
-/* As EXPECT, and the message mentions `needle`. */
-#define EXPECT_MSG(call, want, needle) expect_msg((call), (want), (needle), #call)
-static void expect_msg(OceanStatus got, OceanStatus want, const char *needle, const char *what)
-{
-    expect(got, want, what);
-    CHECK(strstr(last_error(), needle) != NULL, "%s: message \"%s\" lacks \"%s\"", what,
-          last_error(), needle);
-}
-
-#define OK(call) expect_ok((call), #call)
-static int expect_ok(OceanStatus s, const char *what)
-{
-    CHECK(s == OCEAN_STATUS_OK, "%s: status %u (%s): %s", what, (unsigned)s,
-          ocean_status_message(s), last_error());
-    CHECK(last_error()[0] == '\0', "%s: success left a message: %s", what, last_error());
-    return s == OCEAN_STATUS_OK;
-}
+#include "check.h"
 
 /* |got - want| <= rel |want| + abs_tol (NaN fails); the rest is the failure's printf format. */
 #define NEAR(got, want, rel, abs_tol, ...)                                                 \

@@ -41,19 +41,7 @@ static const double POS_TOL = 1e-4; /* metres */
  */
 static const double NRM_TOL = 1e-5;
 
-static int checks = 0;
-static int failures = 0;
-
-#define CHECK(cond, ...)                                                                   \
-    do {                                                                                   \
-        checks++;                                                                          \
-        if (!(cond)) {                                                                     \
-            failures++;                                                                    \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);                           \
-            fprintf(stderr, __VA_ARGS__);                                                  \
-            fputc('\n', stderr);                                                           \
-        }                                                                                  \
-    } while (0)
+#include "check.h"
 
 /* ------------------------------------------------------------------------------------------ */
 /* Reference: the closed form, in double.                                                     */
@@ -139,11 +127,6 @@ static void compare(const OceanVec3 *p, const OceanVec3 *nrm, const double ep[3]
     CHECK(fabs(len - 1.0) <= 1e-6, "%s[%zu]: |normal| = %.9f", what, index, len);
 }
 
-static const char *last_error(void)
-{
-    const char *m = ocean_last_error_message();
-    return m ? m : "(NULL)";
-}
 
 static void test_version_and_messages(void)
 {
@@ -291,14 +274,6 @@ static void test_grid(const OceanWaves *w)
 /* ------------------------------------------------------------------------------------------ */
 /* Error paths: status, message, and untouched outputs.                                       */
 
-static void expect(OceanStatus got, OceanStatus want, const char *what)
-{
-    const char *m = last_error();
-    CHECK(got == want, "%s: status %u (%s), expected %u (%s); message: %s", what,
-          (unsigned)got, ocean_status_message(got), (unsigned)want, ocean_status_message(want),
-          m);
-    CHECK(m[0] != '\0', "%s: empty last-error message", what);
-}
 
 #define SENTINEL (-7777.0f)
 

@@ -34,42 +34,7 @@ static const double OX = 1000.0, OZ = -500.0;
  * its layout (island, boxes) scaled with the grid. */
 static double SP = 1.0;
 
-static int checks = 0;
-static int failures = 0;
-
-#define CHECK(cond, ...)                                                                   \
-    do {                                                                                   \
-        checks++;                                                                          \
-        if (!(cond)) {                                                                     \
-            failures++;                                                                    \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);                           \
-            fprintf(stderr, __VA_ARGS__);                                                  \
-            fputc('\n', stderr);                                                           \
-        }                                                                                  \
-    } while (0)
-
-static const char *last_error(void)
-{
-    const char *m = ocean_last_error_message();
-    return m ? m : "(NULL)";
-}
-
-static void expect(OceanStatus got, OceanStatus want, const char *what)
-{
-    const char *m = last_error();
-    CHECK(got == want, "%s: status %u (%s), expected %u (%s); message: %s", what,
-          (unsigned)got, ocean_status_message(got), (unsigned)want, ocean_status_message(want),
-          m);
-    CHECK(m[0] != '\0', "%s: empty last-error message", what);
-}
-
-#define OK(call) expect_ok((call), #call)
-static int expect_ok(OceanStatus s, const char *what)
-{
-    CHECK(s == OCEAN_STATUS_OK, "%s: status %u (%s): %s", what, (unsigned)s,
-          ocean_status_message(s), last_error());
-    return s == OCEAN_STATUS_OK;
-}
+#include "check.h"
 
 /* Eq. 1: fully developed crest-to-trough height H = 0.21 h^2 / g. */
 static double wind_height(double speed) { return 0.21 * speed * speed / G; }
