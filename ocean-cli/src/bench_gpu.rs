@@ -42,31 +42,15 @@ impl Bench {
         let e = |e: ocean_gpu::GpuError| e.to_string();
         let target = TrochoidTarget::new(&self.ctx, grid).map_err(e)?;
         let timer = GpuTimer::new(&self.ctx);
-        let mut kernel = Vec::new();
-        let mut wall = Vec::new();
-        for i in 0..runs + 2 {
-            let start = Instant::now();
-            let input = TrochoidInput {
-                waves: set,
-                grid,
-                time: t,
-            };
+        let input = TrochoidInput {
+            waves: set,
+            grid,
+            time: t,
+        };
+        let (mut kernel, mut wall) = self.timed(runs, timer.as_ref(), |_| {
             self.trochoid
                 .run(&self.ctx, &input, &target, timer.as_ref())
-                .map_err(e)?;
-            self.ctx.wait_idle().map_err(e)?;
-            let elapsed = start.elapsed().as_secs_f64() * 1e3;
-            let gpu = match &timer {
-                Some(timer) => timer.read(&self.ctx).map_err(e)?,
-                None => None,
-            };
-            if i >= 2 {
-                wall.push(elapsed);
-                if let Some(d) = gpu {
-                    kernel.push(d.ms());
-                }
-            }
-        }
+        })?;
         Ok(json!({
             "kernel_ms": median(&mut kernel),
             "wall_ms": median(&mut wall),
@@ -89,26 +73,9 @@ impl Bench {
             layers: &layers,
             height: frame.height_field(),
         };
-        let mut kernel = Vec::new();
-        let mut wall = Vec::new();
-        for i in 0..runs + 2 {
-            let start = Instant::now();
-            self.layers
-                .run(&self.ctx, &input, &target, timer.as_ref())
-                .map_err(e)?;
-            self.ctx.wait_idle().map_err(e)?;
-            let elapsed = start.elapsed().as_secs_f64() * 1e3;
-            let gpu = match &timer {
-                Some(timer) => timer.read(&self.ctx).map_err(e)?,
-                None => None,
-            };
-            if i >= 2 {
-                wall.push(elapsed);
-                if let Some(d) = gpu {
-                    kernel.push(d.ms());
-                }
-            }
-        }
+        let (mut kernel, mut wall) = self.timed(runs, timer.as_ref(), |_| {
+            self.layers.run(&self.ctx, &input, &target, timer.as_ref())
+        })?;
         Ok(json!({
             "points": grid.size.0 * grid.size.1,
             "kernel_ms": median(&mut kernel),
@@ -130,7 +97,6 @@ impl Bench {
         size: (u32, u32),
         runs: u32,
     ) -> Result<Value, String> {
-        let e = |e: ocean_gpu::GpuError| e.to_string();
         let device = self.ctx.device();
         let extent = ocean_gpu::wgpu::Extent3d {
             width: size.0,
@@ -157,10 +123,7 @@ impl Bench {
         let depth = texture(depth_format, "bench depth").create_view(&Default::default());
         let clear_depth = camera.depth().clear_depth() as f32;
         let timer = GpuTimer::new(&self.ctx);
-        let mut pass_ms = Vec::new();
-        let mut wall = Vec::new();
-        for i in 0..runs + 2 {
-            let start = Instant::now();
+        let (mut pass_ms, mut wall) = self.timed(runs, timer.as_ref(), |i| {
             let mut encoder = device.create_command_encoder(&Default::default());
             encoder.begin_render_pass(&ocean_gpu::wgpu::RenderPassDescriptor {
                 label: Some("bench clear"),
@@ -187,49 +150,67 @@ impl Bench {
             });
             let t = 10.0 + i as f64 / 60.0;
             match &timer {
-                Some(timer) => renderer
-                    .render_timed(
-                        &self.ctx,
-                        &mut encoder,
-                        camera,
-                        t,
-                        &color,
-                        Some(&depth),
-                        size,
-                        timer,
-                    )
-                    .map_err(e)?,
-                None => renderer
-                    .render(
-                        &self.ctx,
-                        &mut encoder,
-                        camera,
-                        t,
-                        &color,
-                        Some(&depth),
-                        size,
-                    )
-                    .map_err(e)?,
+                Some(timer) => renderer.render_timed(
+                    &self.ctx,
+                    &mut encoder,
+                    camera,
+                    t,
+                    &color,
+                    Some(&depth),
+                    size,
+                    timer,
+                )?,
+                None => renderer.render(
+                    &self.ctx,
+                    &mut encoder,
+                    camera,
+                    t,
+                    &color,
+                    Some(&depth),
+                    size,
+                )?,
             }
             self.ctx.queue().submit([encoder.finish()]);
+            Ok(())
+        })?;
+        Ok(json!({
+            "pass_ms": median(&mut pass_ms),
+            "wall_ms": median(&mut wall),
+            "timestamps": timer.is_some(),
+        }))
+    }
+}
+
+impl Bench {
+    /// Runs `record` (which records and submits one run; its argument is the run's index)
+    /// `runs + 2` times, waiting for the GPU after each, and returns the GPU times that `timer`
+    /// read (empty without timestamps) and the wall times, in ms, of all but the first two.
+    fn timed(
+        &self,
+        runs: u32,
+        timer: Option<&GpuTimer>,
+        mut record: impl FnMut(u32) -> Result<(), ocean_gpu::GpuError>,
+    ) -> Result<(Vec<f64>, Vec<f64>), String> {
+        let e = |e: ocean_gpu::GpuError| e.to_string();
+        let mut gpu_ms = Vec::new();
+        let mut wall = Vec::new();
+        for i in 0..runs + 2 {
+            let start = Instant::now();
+            record(i).map_err(e)?;
             self.ctx.wait_idle().map_err(e)?;
             let elapsed = start.elapsed().as_secs_f64() * 1e3;
-            let gpu = match &timer {
+            let gpu = match timer {
                 Some(timer) => timer.read(&self.ctx).map_err(e)?,
                 None => None,
             };
             if i >= 2 {
                 wall.push(elapsed);
                 if let Some(d) = gpu {
-                    pass_ms.push(d.ms());
+                    gpu_ms.push(d.ms());
                 }
             }
         }
-        Ok(json!({
-            "pass_ms": median(&mut pass_ms),
-            "wall_ms": median(&mut wall),
-            "timestamps": timer.is_some(),
-        }))
+        Ok((gpu_ms, wall))
     }
 }
 
