@@ -9,7 +9,7 @@
 use alloc::vec::Vec;
 
 use glam::DVec2;
-use ocean_core::WaveDesc;
+use ocean_core::{Wave, WaveDesc};
 
 use crate::error::BrdfError;
 use crate::filter::Filter;
@@ -61,6 +61,16 @@ pub const SUN_ANGULAR_RADIUS: f64 = 4.653e-3;
 /// R²/4 along each axis; matched to a Gaussian, σ² = (ρ/2)²/4 = ρ²/16 ≈ 1.35·10⁻⁶.
 pub const SUN_MIN_VARIANCE: f64 = SUN_ANGULAR_RADIUS * SUN_ANGULAR_RADIUS / 16.0;
 
+/// One wave's share of Eq. 4 in the frame of the unit `wind` direction: its steepness k·A
+/// (clamped to 1, the trochoid's limit) and `(k̂·wind)²`, the part of its slope variance
+/// [`trochoid_slope_variance`]`(w k·A)` that lies along the wind (the rest lies across it).
+pub fn wave_variance_term(wave: &Wave, wind: DVec2) -> (f64, f64) {
+    let k = wave.wave_vector();
+    let m = wave.wavenumber();
+    let along = k.dot(wind) / m;
+    ((m * wave.amplitude()).min(1.0), (along * along).min(1.0))
+}
+
 /// One wave's share of the variance, precomputed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Term {
@@ -106,13 +116,11 @@ impl VarianceTable {
         let mut terms = Vec::with_capacity(waves.len());
         for d in waves {
             let wave = d.build().map_err(|_| BrdfError::NotFinite("wave"))?;
-            let k = wave.wave_vector();
-            let m = k.length();
-            let along = k.dot(wind) / m;
+            let (ka, cos2) = wave_variance_term(&wave, wind);
             terms.push(Term {
-                wavelength: core::f64::consts::TAU / m,
-                ka: (m * wave.amplitude()).min(1.0),
-                cos2: (along * along).min(1.0),
+                wavelength: core::f64::consts::TAU / wave.wavenumber(),
+                ka,
+                cos2,
             });
         }
         terms.sort_by(|a, b| a.wavelength.total_cmp(&b.wavelength));

@@ -33,7 +33,9 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use ocean_brdf::sky_map::{SKY_MAP_EXTENT, SKY_MAP_MAX_SIZE, SKY_MAP_MIN_SIZE};
-use ocean_brdf::variance::{SUN_ANGULAR_RADIUS, SUN_MIN_VARIANCE, trochoid_slope_variance};
+use ocean_brdf::variance::{
+    SUN_ANGULAR_RADIUS, SUN_MIN_VARIANCE, trochoid_slope_variance, wave_variance_term,
+};
 use ocean_brdf::{FilteredSurface, Lighting, SeaLight, SlopeVariance};
 use ocean_core::phase::reduce_angle;
 use ocean_core::{Camera, DepthDirection, DepthRange, EvalError, Wave};
@@ -480,10 +482,7 @@ impl OceanRenderer {
             let k = w.wave_vector();
             let m = w.wavenumber();
             let a = w.amplitude();
-            // As ocean_brdf::variance::VarianceTable: k·A (at most 1) and (k̂·wind)².
-            let ka = (m * a).min(1.0);
-            let along = k.dot(wind) / m;
-            let cos2 = (along * along).min(1.0);
+            let (ka, cos2) = wave_variance_term(w, wind);
             let var = trochoid_slope_variance(ka);
             suffix += DVec2::new(var * cos2, var * (1.0 - cos2));
             texels[i] = [surface.wavelengths()[i] as f32, k.x as f32, k.y as f32, 0.0];
