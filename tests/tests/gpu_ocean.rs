@@ -1096,3 +1096,113 @@ fn bad_inputs_are_errors() {
         Err(GpuError::InvalidResource { .. })
     ));
 }
+
+/// Issue 4's bad-input rule for views: grazing, vertical, tiny and huge altitudes, far from
+/// the origin, late times, reversed and OpenGL depth, extreme wind: no pixel of any such frame
+/// is left unlit (NaN radiance tone-maps to black), every pixel is opaque.
+#[test]
+fn extreme_views_never_give_unlit_pixels() {
+    let Some(ctx) = gpu_context_or_skip() else {
+        return;
+    };
+    let (w, h) = (48, 32);
+    let mut r = renderer(&ctx, OceanOptions::default());
+    let views: [(&str, DVec3, DVec3, DepthConvention, f64); 9] = [
+        (
+            "1 cm above the sea, at the horizon",
+            DVec3::new(0.0, 0.01, 0.0),
+            dir(0.0, -90.0),
+            DepthConvention::ZERO_TO_ONE,
+            10.0,
+        ),
+        (
+            "straight down from 2 m",
+            DVec3::new(0.0, 2.0, 0.0),
+            DVec3::new(1e-6, -1.0, 0.0),
+            DepthConvention::ZERO_TO_ONE,
+            10.0,
+        ),
+        (
+            "straight up from 4 m",
+            DVec3::new(0.0, 4.0, 0.0),
+            DVec3::new(1e-6, 1.0, 0.0),
+            DepthConvention::ZERO_TO_ONE,
+            10.0,
+        ),
+        (
+            "100 km up, looking down 30°",
+            DVec3::new(0.0, 1e5, 0.0),
+            dir(-30.0, 45.0),
+            DepthConvention::ZERO_TO_ONE,
+            10.0,
+        ),
+        (
+            "grazing, 0.01° below the horizon",
+            DVec3::new(0.0, 10.0, 0.0),
+            dir(-0.01, -90.0),
+            DepthConvention::ZERO_TO_ONE,
+            10.0,
+        ),
+        (
+            "100 km from the origin at t = 1e6 s",
+            DVec3::new(1e5, 6.0, -1e5),
+            dir(-5.0, 200.0),
+            DepthConvention::ZERO_TO_ONE,
+            1e6,
+        ),
+        (
+            "reversed depth, at the Sun's glint",
+            DVec3::new(0.0, 30.0, 0.0),
+            dir(-25.0, -90.0),
+            DepthConvention::ZERO_TO_ONE_REVERSED,
+            10.0,
+        ),
+        (
+            "OpenGL depth, away from the Sun",
+            DVec3::new(0.0, 4.0, 0.0),
+            dir(-3.0, 90.0),
+            DepthConvention::NEG_ONE_TO_ONE,
+            10.0,
+        ),
+        (
+            "1000 m, looking at the horizon",
+            DVec3::new(0.0, 1000.0, 0.0),
+            dir(-2.0, -90.0),
+            DepthConvention::ZERO_TO_ONE,
+            10.0,
+        ),
+    ];
+    let mut check = |r: &OceanRenderer, label: &str| {
+        for &(name, eye, d, depth, t) in &views {
+            let img = r
+                .render_image(&ctx, &camera(eye, d, w, h, depth), t, w, h)
+                .unwrap_or_else(|e| panic!("{label}, {name}: {e}"));
+            assert!(
+                img.chunks_exact(4).all(|p| p[3] == 255),
+                "{label}, {name}: opaque"
+            );
+            let darkest = img
+                .chunks_exact(4)
+                .map(|p| p[0].max(p[1]).max(p[2]))
+                .min()
+                .unwrap_or(0);
+            // The darkest lit water of these scenes tone-maps well above 30 (sRGB levels).
+            assert!(
+                darkest >= 30,
+                "{label}, {name}: a pixel is unlit ({darkest})"
+            );
+        }
+    };
+    check(&r, "default sea");
+    // An extreme sea: a 40 m/s wind (every wave at the steepness clamp) and a calm one.
+    for wind_speed in [40.0, 0.5] {
+        let spectrum = Spectrum::new(SpectrumParams {
+            wind_speed,
+            ..SpectrumParams::default()
+        })
+        .expect("spectrum");
+        let s = FilteredSurface::new(&spectrum, Filter::PAPER).expect("surface");
+        r.set_surface(&ctx, &s).expect("set_surface");
+        check(&r, &format!("wind {wind_speed} m/s"));
+    }
+}
