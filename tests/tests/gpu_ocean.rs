@@ -1172,7 +1172,7 @@ fn extreme_views_never_give_unlit_pixels() {
             10.0,
         ),
     ];
-    let mut check = |r: &OceanRenderer, label: &str| {
+    let check = |r: &OceanRenderer, label: &str| {
         for &(name, eye, d, depth, t) in &views {
             let img = r
                 .render_image(&ctx, &camera(eye, d, w, h, depth), t, w, h)
