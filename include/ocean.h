@@ -624,6 +624,12 @@ typedef struct OceanSkyParams {
    * The sky's relative radiance distribution.
    */
   struct OceanCieSky cie;
+  /**
+   * The Sun's angular radius, radians, in [1e-5, 0.25] (default: the real Sun's, 4.653e-3).
+   * It sets the Sun's solid angle (Eq. 15) and the least slope variance of its reflection
+   * (rho^2 / 16, section 5.1).
+   */
+  double sun_angular_radius;
 } OceanSkyParams;
 
 /**

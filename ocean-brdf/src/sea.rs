@@ -21,7 +21,7 @@ use crate::fresnel_table::effective_fresnel_table;
 use crate::ross::{check_direction, sun_radiance_unchecked};
 use crate::sky::{Sky, SkyParams, check_rgb, stereographic};
 use crate::sky_map::SkyMap;
-use crate::variance::{SUN_MIN_VARIANCE, SlopeVariance};
+use crate::variance::SlopeVariance;
 
 /// The finite-difference step of Algorithm 5.1's slope derivatives of `U` (Fig. 9: "precise
 /// enough with ε = 10⁻³").
@@ -208,7 +208,7 @@ pub fn sea_color_unchecked(
     // Sun (Eq. 15), with the variances raised to the solar disc's (§5.1). The reflected ray
     // must leave upwards in world space too: a Sun under the local horizon of a tilted facet
     // is already zero through l_t.z, and one below the world's horizon cannot be (y ≥ 0).
-    let sun_var = variance.at_least(SUN_MIN_VARIANCE);
+    let sun_var = variance.at_least(sky.sun_min_variance());
     let sun = sky.sun_radiance()
         * sun_radiance_unchecked(
             v_t,

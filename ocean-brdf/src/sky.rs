@@ -108,6 +108,11 @@ pub struct SkyParams {
     pub zenith_radiance: DVec3,
     /// The relative radiance distribution (CIE sky type).
     pub cie: CieSky,
+    /// The Sun's angular radius, radians, in `[1e-5, 0.25]`: the real Sun's
+    /// ([`SUN_ANGULAR_RADIUS`]) by default. It sets the Sun's solid angle (Eq. 15) and the
+    /// least slope variance of its reflection (§5.1, `ρ²/16`); the paper's validation used a
+    /// Sun of 1/8000 of the hemisphere (ρ ≈ 0.91°).
+    pub sun_angular_radius: f64,
 }
 
 impl Default for SkyParams {
@@ -123,6 +128,7 @@ impl Default for SkyParams {
             sun_irradiance: DVec3::new(1.0, 0.96, 0.90),
             zenith_radiance: DVec3::new(0.025, 0.045, 0.09),
             cie: CieSky::CLEAR,
+            sun_angular_radius: SUN_ANGULAR_RADIUS,
         }
     }
 }
@@ -169,7 +175,8 @@ impl Sky {
                 max: f64::MAX,
             });
         }
-        let cos_rho = libm::cos(SUN_ANGULAR_RADIUS);
+        let rho = check("sun_angular_radius", params.sun_angular_radius, 1e-5, 0.25)?;
+        let cos_rho = libm::cos(rho);
         let mut sky = Self {
             params,
             zenith_norm,
@@ -200,7 +207,19 @@ impl Sky {
         self.params.sun_direction
     }
 
-    /// The Sun's solid angle Ω_sun = 2π (1 − cos ρ), ρ = [`SUN_ANGULAR_RADIUS`] (Eq. 15).
+    /// The Sun's angular radius ρ, radians.
+    pub fn sun_angular_radius(&self) -> f64 {
+        self.params.sun_angular_radius
+    }
+
+    /// The least slope variance of the Sun's reflection, `ρ²/16` (§5.1; see
+    /// [`crate::variance::SUN_MIN_VARIANCE`], the real Sun's).
+    pub fn sun_min_variance(&self) -> f64 {
+        let rho = self.params.sun_angular_radius;
+        rho * rho / 16.0
+    }
+
+    /// The Sun's solid angle Ω_sun = 2π (1 − cos ρ) (Eq. 15).
     pub fn sun_solid_angle(&self) -> f64 {
         self.sun_solid_angle
     }

@@ -431,7 +431,7 @@ impl Ctx<'_> {
         let f = schlick(cos, self.lighting.sea().fresnel_r);
         let r = n * (2.0 * cos) - v;
         let sky = self.lighting.sky();
-        let sun_cos = libm::cos(crate::variance::SUN_ANGULAR_RADIUS);
+        let sun_cos = libm::cos(sky.sun_angular_radius());
         let sun = if r.dot(sky.sun_direction()) >= sun_cos {
             sky.sun_radiance() * f
         } else {

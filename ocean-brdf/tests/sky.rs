@@ -306,3 +306,40 @@ fn nine_sample_lookup_approximates_the_gaussian() {
     println!("nine-sample lookup vs Gaussian: worst relative difference {worst:.4}");
     assert!(worst < 0.025, "{worst}");
 }
+
+/// A Sun of another size (the paper's validation used 1/8000 of the hemisphere): its solid
+/// angle is 2π(1 − cos ρ), its radiance E/Ω, its reflection's least variance ρ²/16; radii
+/// outside [1e-5, 0.25] are refused.
+#[test]
+fn sun_size_is_a_parameter() {
+    let rho = (1.0f64 - 1.0 / 8000.0).acos();
+    let sky = Sky::new(SkyParams {
+        sun_angular_radius: rho,
+        ..SkyParams::default()
+    })
+    .unwrap();
+    let omega = std::f64::consts::TAU / 8000.0;
+    assert!(
+        (sky.sun_solid_angle() - omega).abs() < 1e-15,
+        "{}",
+        sky.sun_solid_angle()
+    );
+    assert!((sky.sun_min_variance() - rho * rho / 16.0).abs() < 1e-18);
+    let e = sky.sun_radiance() * sky.sun_solid_angle();
+    assert!(
+        (e - SkyParams::default().sun_irradiance)
+            .abs()
+            .max_element()
+            < 1e-14
+    );
+    for bad in [0.0, 1e-6, 0.3, f64::NAN] {
+        assert!(
+            Sky::new(SkyParams {
+                sun_angular_radius: bad,
+                ..SkyParams::default()
+            })
+            .is_err(),
+            "{bad}"
+        );
+    }
+}

@@ -97,6 +97,10 @@ pub struct OceanSkyParams {
     pub zenith_radiance: OceanRgb,
     /// The sky's relative radiance distribution.
     pub cie: OceanCieSky,
+    /// The Sun's angular radius, radians, in [1e-5, 0.25] (default: the real Sun's, 4.653e-3).
+    /// It sets the Sun's solid angle (Eq. 15) and the least slope variance of its reflection
+    /// (rho^2 / 16, section 5.1).
+    pub sun_angular_radius: f64,
 }
 
 /// The water body under the surface (paper section 5.3). `ocean_sea_params_default` fills in a
@@ -259,6 +263,7 @@ fn sky_params_from(p: &OceanSkyParams) -> Result<SkyParams, Error> {
         "sky->cie.",
         &[("a", c.a), ("b", c.b), ("c", c.c), ("d", c.d), ("e", c.e)],
     )?;
+    check_finite("sky->", &[("sun_angular_radius", p.sun_angular_radius)])?;
     Ok(SkyParams {
         sun_direction,
         sun_irradiance,
@@ -270,6 +275,7 @@ fn sky_params_from(p: &OceanSkyParams) -> Result<SkyParams, Error> {
             d: c.d,
             e: c.e,
         },
+        sun_angular_radius: p.sun_angular_radius,
     })
 }
 
@@ -290,6 +296,7 @@ fn sky_params_to(p: &SkyParams) -> OceanSkyParams {
             d: p.cie.d,
             e: p.cie.e,
         },
+        sun_angular_radius: p.sun_angular_radius,
     }
 }
 

@@ -33,9 +33,7 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use ocean_brdf::sky_map::{SKY_MAP_EXTENT, SKY_MAP_MAX_SIZE, SKY_MAP_MIN_SIZE};
-use ocean_brdf::variance::{
-    SUN_ANGULAR_RADIUS, SUN_MIN_VARIANCE, trochoid_slope_variance, wave_variance_term,
-};
+use ocean_brdf::variance::{trochoid_slope_variance, wave_variance_term};
 use ocean_brdf::{FilteredSurface, Lighting, SeaLight, SlopeVariance};
 use ocean_core::phase::reduce_angle;
 use ocean_core::{Camera, DepthDirection, DepthRange, EvalError, Wave};
@@ -845,7 +843,8 @@ impl OceanRenderer {
             sky: [
                 self.options.sky_map_size as f32,
                 SKY_MAP_EXTENT as f32,
-                SUN_MIN_VARIANCE as f32,
+                // Set with the lighting below; until then no Sun is drawn.
+                0.0,
                 0.0,
             ],
             ..Default::default()
@@ -856,7 +855,8 @@ impl OceanRenderer {
             let sky = l.sky();
             u.sea[2] = l.sea().fresnel_r as f32;
             u.sea[3] = sky.sun_solid_angle() as f32;
-            u.sun_dir = rgb(sky.sun_direction(), SUN_ANGULAR_RADIUS.cos() as f32);
+            u.sun_dir = rgb(sky.sun_direction(), sky.sun_angular_radius().cos() as f32);
+            u.sky[2] = sky.sun_min_variance() as f32;
             u.sun_radiance = rgb(sky.sun_radiance(), 0.0);
             u.sea_radiance = rgb(l.sea_radiance(), 0.0);
         }
