@@ -173,14 +173,14 @@ impl FilteredSurface {
                 max: f64::MAX,
             });
         }
+        // The resolved waves are the first ones: weigh those, and the sum stops there.
         let n = self.resolved_count(size);
-        let mut weights = alloc::vec![0.0; self.wavelengths.len()];
-        for (w, &l) in weights.iter_mut().zip(&self.wavelengths[..n]) {
-            *w = self.filter.weight(l, size) * scale;
-        }
+        let weights = self.wavelengths[..n]
+            .iter()
+            .map(|&l| self.filter.weight(l, size) * scale);
         let mut sums = PointSums::REST;
         self.waves
-            .add_weighted_sums_f64(rest, t, &weights, &mut sums)
+            .add_weighted_sums_f64(rest, t, weights, &mut sums)
             .map_err(|_| BrdfError::NotFinite("rest position or time"))?;
         Ok(sums)
     }

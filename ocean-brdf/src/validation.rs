@@ -23,7 +23,6 @@
 //! ([`sea_color_unchecked`]) with the sky map. The constant-BRDF model differs only in its
 //! variance: the foreground's (bottom row's), everywhere.
 
-use alloc::vec;
 use alloc::vec::Vec;
 
 use glam::{DVec2, DVec3};
@@ -343,29 +342,35 @@ impl Ctx<'_> {
             elevation: Vec::new(),
             rest: Vec::new(),
         };
-        let mut weights = vec![0.0; self.surface.wavelengths().len()];
+        let mut weights = Vec::with_capacity(self.surface.wavelengths().len());
         let mut x = h * near;
         let mut s = near;
         while s <= p.max_distance {
             let target = h * s;
+            // The position weights w_p depend on the distance only: once per profile point.
             let size = cell(s);
-            let mut sums_at = |x: DVec2| -> PointSums {
+            if let Some(size) = size {
+                let filter = self.surface.filter();
+                weights.clear();
+                weights.extend(
+                    self.surface
+                        .wavelengths()
+                        .iter()
+                        .map(|&l| filter.position_weight(l, size))
+                        .take_while(|&w| w > 0.0),
+                );
+            }
+            let sums_at = |x: DVec2| -> PointSums {
                 let mut sums = PointSums::REST;
-                match size {
-                    None => {
-                        let _ = self.geometry.add_sums_f64(x, p.time, [1.0, 0.0], &mut sums);
-                    }
-                    Some(size) => {
-                        let filter = self.surface.filter();
-                        for (w, &l) in weights.iter_mut().zip(self.surface.wavelengths()) {
-                            *w = filter.position_weight(l, size);
-                        }
-                        let _ = self
-                            .surface
-                            .wave_set()
-                            .add_weighted_sums_f64(x, p.time, &weights, &mut sums);
-                    }
-                }
+                let _ = match size {
+                    None => self.geometry.add_sums_f64(x, p.time, [1.0, 0.0], &mut sums),
+                    Some(_) => self.surface.wave_set().add_weighted_sums_f64(
+                        x,
+                        p.time,
+                        weights.iter().copied(),
+                        &mut sums,
+                    ),
+                };
                 sums
             };
             // Newton on x + D(x) = target: the rest point whose displaced position lies in the

@@ -305,44 +305,52 @@ impl WaveSet {
     }
 
     /// Adds `Σᵢ wᵢ · waveᵢ` at world rest position `rest` and time `t` to `sums`, in `f64`: each
-    /// wave scaled by its own real weight (`weights[i]` for wave `i`, one per wave), as the
-    /// lighting paper's filters do (Bruneton et al. Eq. 2 and 3, weights w_p and w_n). Waves of
-    /// weight zero are skipped, so the cost follows the number of resolved waves.
+    /// wave scaled by its own real weight, as the lighting paper's filters do (Bruneton et al.
+    /// Eq. 2 and 3, weights w_p and w_n). `weights` gives the weights of the first waves, in
+    /// order; the waves after its end have weight zero and are not visited, nor are waves of
+    /// weight zero, so the cost follows the number of resolved waves (a prefix, when the set is
+    /// sorted by wavelength from the longest). Allocates nothing.
     ///
     /// # Errors
     ///
-    /// [`EvalError::Position`] for a non-finite position or weight, or a weight slice whose
-    /// length is not the number of waves; [`EvalError::Time`] for a non-finite time.
+    /// [`EvalError::Position`] for a non-finite position or weight, or more weights than waves;
+    /// [`EvalError::Time`] for a non-finite time. `sums` is unchanged on error.
     pub fn add_weighted_sums_f64(
         &self,
         rest: DVec2,
         t: f64,
-        weights: &[f64],
+        weights: impl IntoIterator<Item = f64>,
         sums: &mut PointSums,
     ) -> Result<(), EvalError> {
         check_time(t)?;
-        if !rest.is_finite()
-            || weights.len() != self.waves.len()
-            || !weights.iter().all(|w| w.is_finite())
-        {
+        if !rest.is_finite() {
             return Err(EvalError::Position { index: 0 });
         }
-        for ((w, c64), &m) in self.waves.iter().zip(&self.coeffs64).zip(weights) {
+        let mut acc = *sums;
+        let mut waves = self.waves.iter().zip(&self.coeffs64);
+        for m in weights {
+            let Some((w, c64)) = waves.next() else {
+                return Err(EvalError::Position { index: 0 });
+            };
+            if !m.is_finite() {
+                return Err(EvalError::Position { index: 0 });
+            }
             if m == 0.0 {
                 continue;
             }
             let theta = w.phase_at(rest, t);
             let (s, c) = (m * math::sin(theta), m * math::cos(theta));
             let [a, ahx, ahz, cxx, cxz, czz, gx, gz] = *c64;
-            sums.dx -= ahx * s;
-            sums.dz -= ahz * s;
-            sums.y += a * c;
-            sums.jxx -= cxx * c;
-            sums.jxz -= cxz * c;
-            sums.jzz -= czz * c;
-            sums.sx -= gx * s;
-            sums.sz -= gz * s;
+            acc.dx -= ahx * s;
+            acc.dz -= ahz * s;
+            acc.y += a * c;
+            acc.jxx -= cxx * c;
+            acc.jxz -= cxz * c;
+            acc.jzz -= czz * c;
+            acc.sx -= gx * s;
+            acc.sz -= gz * s;
         }
+        *sums = acc;
         Ok(())
     }
 

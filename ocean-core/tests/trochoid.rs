@@ -400,7 +400,8 @@ fn grid_sin_cos_tables_give_each_phase() {
 }
 
 /// Per-wave weights: all ones is the plain sum bit for bit; a weight w gives the wave scaled
-/// by w (Bruneton et al. Eq. 2–3); zero weights skip their waves; bad weights are refused.
+/// by w (Bruneton et al. Eq. 2–3); zero weights, and waves past the end of the weights, are
+/// skipped; bad weights (or more weights than waves) are refused and leave the sums alone.
 #[test]
 fn weighted_sums_scale_each_wave() {
     use ocean_core::trochoid::PointSums;
@@ -426,13 +427,18 @@ fn weighted_sums_scale_each_wave() {
     let mut plain = PointSums::REST;
     set.add_sums_f64(rest, t, [1.0, 0.0], &mut plain).unwrap();
     let mut ones = PointSums::REST;
-    set.add_weighted_sums_f64(rest, t, &[1.0, 1.0], &mut ones)
+    set.add_weighted_sums_f64(rest, t, [1.0, 1.0], &mut ones)
         .unwrap();
     assert_eq!(plain, ones);
 
     let mut weighted = PointSums::REST;
-    set.add_weighted_sums_f64(rest, t, &[0.25, 0.0], &mut weighted)
+    set.add_weighted_sums_f64(rest, t, [0.25, 0.0], &mut weighted)
         .unwrap();
+    // A prefix of the weights: the second wave is left out as if its weight were zero.
+    let mut prefix = PointSums::REST;
+    set.add_weighted_sums_f64(rest, t, [0.25], &mut prefix)
+        .unwrap();
+    assert_eq!(prefix, weighted);
     let scaled = WaveSet::from_descs(&[WaveDesc {
         amplitude: 0.125,
         ..descs[0]
@@ -448,15 +454,15 @@ fn weighted_sums_scale_each_wave() {
 
     let mut sums = PointSums::REST;
     assert!(
-        set.add_weighted_sums_f64(rest, t, &[1.0], &mut sums)
+        set.add_weighted_sums_f64(rest, t, [1.0, 1.0, 1.0], &mut sums)
             .is_err()
     );
     assert!(
-        set.add_weighted_sums_f64(rest, t, &[1.0, f64::NAN], &mut sums)
+        set.add_weighted_sums_f64(rest, t, [1.0, f64::NAN], &mut sums)
             .is_err()
     );
     assert!(
-        set.add_weighted_sums_f64(rest, f64::INFINITY, &[1.0, 1.0], &mut sums)
+        set.add_weighted_sums_f64(rest, f64::INFINITY, [1.0, 1.0], &mut sums)
             .is_err()
     );
     assert_eq!(sums, PointSums::REST);
