@@ -17,7 +17,7 @@ use glam::{DVec2, DVec3};
 
 use crate::error::{BrdfError, check};
 use crate::fresnel::{WATER_R, sigma_v2};
-use crate::fresnel_table::effective_fresnel_table;
+use crate::fresnel_table::effective_fresnel_table_unchecked;
 use crate::ross::{check_direction, sun_radiance_unchecked};
 use crate::sky::{Sky, SkyParams, check_rgb, stereographic};
 use crate::sky_map::SkyMap;
@@ -225,7 +225,7 @@ pub fn sea_color_unchecked(
     let cos_theta_v = v_t.z.clamp(0.0, 1.0);
     let phi_v = libm::atan2(v_t.y, v_t.x);
     let sigma_v = libm::sqrt(sigma_v2(phi_v, variance.x, variance.y));
-    let f_bar = effective_fresnel_table(cos_theta_v, sigma_v, r);
+    let f_bar = effective_fresnel_table_unchecked(cos_theta_v, sigma_v, r);
 
     // Sky (Eq. 27), over the visible slopes (see `visible_sky_footprint`).
     let fp = visible_sky_footprint(v, n, tx, ty, variance);

@@ -60,13 +60,22 @@ fn lookups_hit_the_nodes_and_the_smooth_limit() {
     for (i, j) in [(3, 5), (16, 0), (32, 32), (0, 20)] {
         let mu = node_cos(i);
         let m = FRESNEL_TABLE[i * FRESNEL_TABLE_SIZE + j] + (1.0 - mu).powi(5);
-        let f = effective_fresnel_table(mu, node_sigma(j), 0.0);
+        let f = effective_fresnel_table(mu, node_sigma(j), 0.0).unwrap();
         assert!((f - m).abs() < 1e-12, "{i} {j}");
     }
     for k in 0..=1000 {
         let mu = k as f64 / 1000.0;
-        let f = effective_fresnel_table(mu, 0.0, 0.02);
+        let f = effective_fresnel_table(mu, 0.0, 0.02).unwrap();
         assert!((f - schlick(mu, 0.02)).abs() < 1e-12, "{mu}");
+    }
+    // The checked lookup refuses what the fit refuses.
+    for (c, s, r) in [
+        (1.5, 0.1, 0.02),
+        (0.5, -0.1, 0.02),
+        (f64::NAN, 0.1, 0.02),
+        (0.5, 0.1, 2.0),
+    ] {
+        assert!(effective_fresnel_table(c, s, r).is_err(), "{c} {s} {r}");
     }
 }
 
@@ -88,7 +97,7 @@ fn table_is_closer_to_the_integral_than_the_fit() {
         let (sx2, sy2) = (sx * sx, sy * sy);
         let exact = effective_fresnel_integral(v, sx2, sy2, 0.02).unwrap();
         let sigma_v = (sx2 * phi.cos().powi(2) + sy2 * phi.sin().powi(2)).sqrt();
-        let table = effective_fresnel_table(v.z, sigma_v, 0.02);
+        let table = effective_fresnel_table(v.z, sigma_v, 0.02).unwrap();
         let fit = effective_fresnel_fit(v.z, sigma_v, 0.02).unwrap();
         worst_table = worst_table.max((table - exact).abs());
         worst_fit = worst_fit.max((fit - exact).abs());

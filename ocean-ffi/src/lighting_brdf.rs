@@ -231,9 +231,7 @@ pub unsafe extern "C" fn ocean_effective_fresnel_table(
     unsafe {
         evaluate("ocean_effective_fresnel_table", out, || {
             finite(&[("cos_theta_v", cos_theta_v), ("sigma_v", sigma_v), ("r", r)])?;
-            // The same ranges as the fit's (its validation is the checked path).
-            effective_fresnel_fit(cos_theta_v, sigma_v, r).map_err(|e| brdf_error("", e))?;
-            Ok(effective_fresnel_table(cos_theta_v, sigma_v, r))
+            effective_fresnel_table(cos_theta_v, sigma_v, r).map_err(|e| brdf_error("", e))
         })
     }
 }
