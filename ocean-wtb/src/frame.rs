@@ -30,19 +30,22 @@
 //! - **Ownership rule.** An inside point belongs to the cell `(k, r) = (⌈a/s⌉, ⌈b/s⌉)`. Every
 //!   inside point thus belongs to exactly one (ray, step): no holes, no doubles.
 //!
-//! Both rules are evaluated **exactly** (see [`Traversal::classify`]): in units of the spacing,
-//! `a/s = cₐ + i·uₓ + j·u_z` for grid point (i, j), with the `f64` constants `cₐ = ((g − o)·u)/s`
-//! (grid origin g, box origin o) and `u`, and likewise for b. Ceilings and comparisons of these sums
-//! use a floating-point filter and, when the filter cannot decide (a point within 10⁻⁶ cells of
-//! a cell edge), error-free transformations (Dekker's product, Knuth's two-sum, Shewchuk's
-//! expansion sign). The partition is therefore an exact tiling of the plane by squares, whatever
-//! the orientation, including exact multiples of 90° where grid points lie on cell edges.
+//! Both rules are evaluated **exactly** (see [`Traversal::classify`]) in integer arithmetic on
+//! constants quantised to 1/[`FIXED_ONE`] = 2⁻³⁶ cells: in units of the spacing,
+//! `a/s = cₐ + i·uₓ + j·u_z` for grid point (i, j), where `cₐ = ((g − o)·u)/s` (grid origin g,
+//! box origin o), `u`, and likewise `c_b`, the length and the width are rounded once, when the
+//! traversal is built, to multiples of 2⁻³⁶ (a rotation below 3·10⁻¹¹ rad, a shift below 10⁻¹¹
+//! cells). Every sum is then an exact `i64` ([`FixedTraversal`]), its ceiling an exact integer
+//! division, and the partition an exact tiling of the plane by squares whatever the orientation,
+//! including exact multiples of 90° where grid points lie on cell edges. The same integers drive
+//! the GPU's ray march (`ocean_gpu::WtbMarchPass`), which therefore finds exactly the CPU's
+//! cells.
 //!
 //! # At most two points per cell
 //!
 //! The paper states that a scan finds zero, one or two points (§2). Proof for our half-open
-//! cells: in grid units a cell is a square of side `1/|u| ≤ 1` (the frame makes `|u| ≥ 1` exactly,
-//! scaling a rounded unit vector up by at most a few ulps). Three collinear lattice points span at
+//! cells: in grid units a cell is a square of side `1/|u| ≤ 1` (the quantised u has `|u| ≥ 1`
+//! exactly: its larger component is raised by a unit of 2⁻³⁶ until it does). Three collinear lattice points span at
 //! least 2 > √2, more than the square's diagonal. Three non-collinear lattice points form a
 //! triangle of area ≥ ½ (Pick's theorem), but a triangle inside a square of side ≤ 1 has area
 //! ≤ ½, with equality only when the side is 1 and two of the triangle's vertices are adjacent
@@ -61,7 +64,6 @@
 //! every other cell of the box is visited, empty or not, so the number of visited cells is about
 //! the area of the box's overlap with the grid divided by `s²`. Nothing is allocated.
 
-use core::cmp::Ordering;
 use core::ops::Range;
 
 use glam::{DVec2, DVec3};
@@ -75,9 +77,8 @@ use crate::grid::{WaterGrid, ceil_i64, check_position, floor_i64};
 /// at most 5793).
 pub const MAX_CELLS: f64 = (1u64 << 24) as f64;
 
-/// Half-width, in cells, of the band around a cell edge where the fast floating-point test
-/// defers to the exact one (the fast test's error is below 10⁻⁸ cells).
-const FILTER: f64 = 1.0 / (1u64 << 20) as f64;
+/// The traversal's fixed-point unit: its constants are integers counting 2⁻³⁶ cells.
+pub const FIXED_ONE: i64 = 1 << 36;
 
 /// A box whose constants exceed this (in cells) cannot reach a grid of ≤ 4096 points per side
 /// (whose points are within 4096·√2 < 2¹³ cells of its origin), since its extents are at most
@@ -248,14 +249,26 @@ impl BoxFrame {
                 grid: s,
             });
         }
-        let lu = lattice_direction(self.u);
+        let (qx, qz) = lattice_direction(self.u);
+        let one = FIXED_ONE as f64;
+        let lu = DVec2::new(qx as f64 / one, qz as f64 / one);
         let d = (grid.origin() - self.origin) / s;
         let ca = d.x * lu.x + d.y * lu.y;
         let cb = -d.x * lu.y + d.y * lu.x;
-        let len_cells = self.length / s;
-        let width_cells = self.width / s;
-        let steps_max = ceil_i64(len_cells) as u32;
-        let rays_max = ceil_i64(width_cells) as u32;
+        // Constants past FAR give an empty traversal below; clamping first keeps the
+        // conversions to i64 in range.
+        let fixed = |v: f64| round_i64(v.clamp(-2.0 * FAR, 2.0 * FAR) * one);
+        let q = FixedTraversal {
+            ca: fixed(ca),
+            cb: fixed(cb),
+            ux: qx,
+            uz: qz,
+            length: fixed(self.length / s),
+            width: fixed(self.width / s),
+        };
+        let (ca, cb) = (q.ca as f64 / one, q.cb as f64 / one);
+        let steps_max = ceil_div(q.length) as u32;
+        let rays_max = ceil_div(q.width) as u32;
         let mut t = Traversal {
             frame: *self,
             nx: grid.nx() as u32,
@@ -265,8 +278,7 @@ impl BoxFrame {
             norm2: lu.x * lu.x + lu.y * lu.y,
             ca,
             cb,
-            len_cells,
-            width_cells,
+            fixed: q,
             steps_max,
             rays: 0..0,
         };
@@ -318,27 +330,81 @@ pub(crate) fn unit_direction(name: &'static str, d: DVec2) -> Result<DVec2, WtbE
     Ok(d / len)
 }
 
-/// The frame's u as the traversal uses it: components below 2⁻⁶⁰ in magnitude set to 0 (so the
-/// exact products never leave the normal range; the rotation is below 10⁻¹⁸ rad), then scaled up
-/// by whole ulps until `|u|² ≥ 1` holds exactly, which makes a cell at most one grid spacing wide
-/// (see "At most two points per cell").
-fn lattice_direction(u: DVec2) -> DVec2 {
-    const TINY: f64 = 1.0 / (1u64 << 60) as f64;
-    let mut u = u;
-    if u.x.abs() < TINY {
-        u = DVec2::new(0.0, if u.y < 0.0 { -1.0 } else { 1.0 });
-    } else if u.y.abs() < TINY {
-        u = DVec2::new(if u.x < 0.0 { -1.0 } else { 1.0 }, 0.0);
-    }
-    for _ in 0..16 {
-        let (p, e) = two_product(u.x, u.x);
-        let (q, f) = two_product(u.y, u.y);
-        if expansion_sign(&[e, f, -1.0, p, q]) != Ordering::Less {
-            break;
+/// The frame's u as the traversal uses it, in units of 2⁻³⁶: each component rounded to the
+/// nearest unit, then the larger one raised by a unit until `|u|² ≥ 1` holds exactly, which
+/// makes a cell at most one grid spacing wide (see "At most two points per cell"). The
+/// rounding rotates u by less than 2⁻³⁶ rad; at most two raises are ever needed (the rounded
+/// norm² is within 2·2⁻³⁶ of 1 and each raise adds more than 2⁻³⁶·√2).
+fn lattice_direction(u: DVec2) -> (i64, i64) {
+    let one = FIXED_ONE as f64;
+    let (mut x, mut z) = (round_i64(u.x * one), round_i64(u.y * one));
+    let target = i128::from(FIXED_ONE) * i128::from(FIXED_ONE);
+    while i128::from(x) * i128::from(x) + i128::from(z) * i128::from(z) < target {
+        if x.abs() >= z.abs() {
+            x += x.signum();
+        } else {
+            z += z.signum();
         }
-        u *= 1.0 + f64::EPSILON;
     }
-    u
+    (x, z)
+}
+
+/// `round(v)` as an integer, for `|v| < 2⁶²`.
+#[inline]
+fn round_i64(v: f64) -> i64 {
+    let r = floor_i64(v);
+    if v - r as f64 >= 0.5 { r + 1 } else { r }
+}
+
+/// `⌈x / 2³⁶⌉` for a fixed-point value `x`.
+#[inline]
+fn ceil_div(x: i64) -> i64 {
+    // Arithmetic shift floors; adding one unit less than 2³⁶ makes it a ceiling.
+    (x + (FIXED_ONE - 1)) >> 36
+}
+
+/// The exact constants of a [`Traversal`], integers in units of 2⁻³⁶ cells ([`FIXED_ONE`]):
+/// grid point (i, j) has the internal coordinates, in cells,
+///
+/// ```text
+/// A = ca + i·ux + j·uz,   B = cb + j·ux − i·uz      (divided by FIXED_ONE)
+/// ```
+///
+/// It is inside the box when `0 ≤ A ≤ length` and `0 ≤ B ≤ width`, and then belongs to step
+/// `⌈A / FIXED_ONE⌉` of ray `⌈B / FIXED_ONE⌉`. Every product and sum fits an `i64` with room
+/// to spare (|i·ux| < 2¹²·2³⁷, |ca| ≤ 2⁶²), which is what a GPU twin emulates.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FixedTraversal {
+    /// `a/s` of grid point (0, 0).
+    pub ca: i64,
+    /// `b/s` of grid point (0, 0).
+    pub cb: i64,
+    /// u's x component (|u| ≥ 1 exactly).
+    pub ux: i64,
+    /// u's z component.
+    pub uz: i64,
+    /// The box's length in cells.
+    pub length: i64,
+    /// The box's width in cells.
+    pub width: i64,
+}
+
+impl FixedTraversal {
+    /// A and B of grid point (i, j).
+    #[inline]
+    pub fn internal(&self, i: u32, j: u32) -> (i64, i64) {
+        let (i, j) = (i64::from(i), i64::from(j));
+        (
+            self.ca + i * self.ux + j * self.uz,
+            self.cb + j * self.ux - i * self.uz,
+        )
+    }
+
+    /// The step (of A) or ray (of B) owning a coordinate `x` when `0 ≤ x ≤ max`.
+    #[inline]
+    pub fn cell(x: i64, max: i64) -> Option<u32> {
+        (0..=max).contains(&x).then(|| ceil_div(x) as u32)
+    }
 }
 
 /// A water grid point found in a cell by the quadrant scan.
@@ -381,11 +447,10 @@ pub struct Traversal {
     ux: f64,
     uz: f64,
     norm2: f64,
-    /// a/s and b/s of grid point (0, 0).
+    /// a/s and b/s of grid point (0, 0) (the fixed-point values, rounded).
     ca: f64,
     cb: f64,
-    len_cells: f64,
-    width_cells: f64,
+    fixed: FixedTraversal,
     steps_max: u32,
     rays: Range<u32>,
 }
@@ -468,52 +533,42 @@ impl Traversal {
         if i >= self.nx || j >= self.nz || self.is_empty() {
             return None;
         }
-        let (fi, fj) = (i as f64, j as f64);
-        let a = self.ca + (fi * self.ux + fj * self.uz);
-        let b = self.cb + (fj * self.ux - fi * self.uz);
-        let k = self.cell_and_inside(a, self.ca, fi, self.ux, fj, self.uz, self.len_cells)?;
-        let r = self.cell_and_inside(b, self.cb, fj, self.ux, -fi, self.uz, self.width_cells)?;
+        let f = &self.fixed;
+        let (a, b) = f.internal(i, j);
+        let k = FixedTraversal::cell(a, f.length)?;
+        let r = FixedTraversal::cell(b, f.width)?;
         Some((r, k))
     }
 
-    /// For `x = c + p·q + m·n` (exact), approximated by `approx`: `⌈x⌉` when `0 ≤ x ≤ max`.
-    #[allow(clippy::too_many_arguments)]
+    /// The exact constants (see [`FixedTraversal`]).
     #[inline]
-    fn cell_and_inside(
-        &self,
-        approx: f64,
-        c: f64,
-        p: f64,
-        q: f64,
-        m: f64,
-        n: f64,
-        max: f64,
-    ) -> Option<u32> {
-        if approx < -FILTER || approx > max + FILTER {
-            return None;
-        }
-        let n_hi = ceil_i64(approx);
-        let clear = approx > FILTER
-            && approx < max - FILTER
-            && (n_hi as f64 - approx) > FILTER
-            && (approx - (n_hi as f64 - 1.0)) > FILTER;
-        if clear {
-            return Some(n_hi as u32);
-        }
-        // Within 2⁻²⁰ cells of an edge: decide exactly.
-        let x = ExactSum::new(c, p, q, m, n);
-        if x.cmp(0.0) == Ordering::Less || x.cmp(max) == Ordering::Greater {
-            return None;
-        }
-        let k = if x.cmp(n_hi as f64) == Ordering::Greater {
-            n_hi + 1
-        } else if x.cmp(n_hi as f64 - 1.0) != Ordering::Greater {
-            n_hi - 1
-        } else {
-            n_hi
-        };
-        // 0 ≤ x exactly, so k ≥ 0.
-        Some(k as u32)
+    pub fn fixed(&self) -> &FixedTraversal {
+        &self.fixed
+    }
+
+    /// The centre of the cell of step `k` of ray `r`, in grid units (fractional column, row).
+    /// It moves by [`Traversal::centre_step`] per step.
+    pub fn cell_centre(&self, r: u32, k: u32) -> DVec2 {
+        let beta = r as f64 - 0.5 - self.cb;
+        let alpha = k as f64 - 0.5 - self.ca;
+        DVec2::new(
+            (self.ux * alpha - self.uz * beta) / self.norm2,
+            (self.uz * alpha + self.ux * beta) / self.norm2,
+        )
+    }
+
+    /// How far a cell's centre moves per step, grid units: `u/|u|²`.
+    #[inline]
+    pub fn centre_step(&self) -> DVec2 {
+        DVec2::new(self.ux, self.uz) / self.norm2
+    }
+
+    /// Half the side of a cell's axis-aligned bounding box, grid units: every grid point of a
+    /// cell lies within this of its centre on each axis. At most √2/2, so a window of this
+    /// half-width plus a margin under 0.29 holds at most two integers per axis.
+    #[inline]
+    pub fn cell_half_extent(&self) -> f64 {
+        0.5 * (self.ux.abs() + self.uz.abs()) / self.norm2
     }
 
     /// Scans the cells of ray `r` in increasing step `k` (increasing a), calling
@@ -524,68 +579,56 @@ impl Traversal {
             return;
         }
         let s = self.frame.spacing;
-        let beta = r as f64 - 0.5 - self.cb;
-        // Half-width of a cell's bounding box in grid units, plus a margin far above the
-        // rounding of its centre: < 1, so at most 2 candidates per axis.
-        let half = 0.5 * (self.ux.abs() + self.uz.abs()) / self.norm2 + 1e-4;
+        let q = &self.fixed;
+        let one = FIXED_ONE as f64;
+        // Candidates: the cell's bounding box around its (rounded) centre, plus a margin far
+        // above the centre's rounding: < 1 in all, so at most 2 candidates per axis.
+        let half = self.cell_half_extent() + 1e-4;
         let (nx, nz) = (self.nx as i64, self.nz as i64);
-        let mut buf = [GridPoint::default(); 4];
+        let mut buf = [(0i64, GridPoint::default()); 4];
+        let mut pts = [GridPoint::default(); 4];
         for k in self.step_range(r) {
-            let alpha = k as f64 - 0.5 - self.ca;
-            let ci = (self.ux * alpha - self.uz * beta) / self.norm2;
-            let cj = (self.uz * alpha + self.ux * beta) / self.norm2;
-            let i_lo = ceil_i64(ci - half).max(0);
-            let i_hi = floor_i64(ci + half).min(nx - 1);
-            let j_lo = ceil_i64(cj - half).max(0);
-            let j_hi = floor_i64(cj + half).min(nz - 1);
+            let c = self.cell_centre(r, k);
+            let i_lo = ceil_i64(c.x - half).max(0);
+            let i_hi = floor_i64(c.x + half).min(nx - 1);
+            let j_lo = ceil_i64(c.y - half).max(0);
+            let j_hi = floor_i64(c.y + half).min(nz - 1);
             let mut n = 0;
             for j in j_lo..=j_hi {
                 for i in i_lo..=i_hi {
-                    let (fi, fj) = (i as f64, j as f64);
-                    let a = self.ca + (fi * self.ux + fj * self.uz);
-                    let Some(kk) =
-                        self.cell_and_inside(a, self.ca, fi, self.ux, fj, self.uz, self.len_cells)
-                    else {
-                        continue;
-                    };
-                    if kk != k {
+                    let (a, b) = q.internal(i as u32, j as u32);
+                    if FixedTraversal::cell(a, q.length) != Some(k)
+                        || FixedTraversal::cell(b, q.width) != Some(r)
+                        || n == buf.len()
+                    {
                         continue;
                     }
-                    let b = self.cb + (fj * self.ux - fi * self.uz);
-                    let Some(rr) = self.cell_and_inside(
-                        b,
-                        self.cb,
-                        fj,
-                        self.ux,
-                        -fi,
-                        self.uz,
-                        self.width_cells,
-                    ) else {
-                        continue;
-                    };
-                    if rr != r || n == buf.len() {
-                        continue;
-                    }
-                    buf[n] = GridPoint {
-                        i: i as u32,
-                        j: j as u32,
-                        index: (j * nx + i) as usize,
-                        a: a * s,
-                        b: b * s,
-                    };
+                    buf[n] = (
+                        a,
+                        GridPoint {
+                            i: i as u32,
+                            j: j as u32,
+                            index: (j * nx + i) as usize,
+                            a: a as f64 / one * s,
+                            b: b as f64 / one * s,
+                        },
+                    );
                     n += 1;
                 }
             }
-            let pts = &mut buf[..n];
-            // Increasing a (insertion sort of at most 4).
-            for x in 1..pts.len() {
+            let cell = &mut buf[..n];
+            // Increasing exact a (insertion sort of at most 4).
+            for x in 1..cell.len() {
                 let mut y = x;
-                while y > 0 && pts[y - 1].a > pts[y].a {
-                    pts.swap(y - 1, y);
+                while y > 0 && cell[y - 1].0 > cell[y].0 {
+                    cell.swap(y - 1, y);
                     y -= 1;
                 }
             }
-            f(k, pts);
+            for (p, (_, g)) in pts.iter_mut().zip(cell.iter()) {
+                *p = *g;
+            }
+            f(k, &pts[..n]);
         }
     }
 
@@ -599,113 +642,9 @@ impl Traversal {
     }
 }
 
-/// The exact value of `c + p·q + m·n` for comparisons.
-enum ExactSum {
-    /// The sum is exactly this double (every product and sum was exact: the common case of
-    /// axis-aligned boxes, whose grid points lie on cell edges).
-    Double(f64),
-    /// The terms `[e₁, e₂, c, p₁, p₂]` of an exact expansion.
-    Terms([f64; 5]),
-}
-
-impl ExactSum {
-    #[inline]
-    fn new(c: f64, p: f64, q: f64, m: f64, n: f64) -> Self {
-        let (p1, e1) = two_product(p, q);
-        let (p2, e2) = two_product(m, n);
-        let (s1, f1) = two_sum(c, p1);
-        let (s2, f2) = two_sum(s1, p2);
-        if e1 == 0.0 && e2 == 0.0 && f1 == 0.0 && f2 == 0.0 {
-            ExactSum::Double(s2)
-        } else {
-            ExactSum::Terms([e1, e2, c, p1, p2])
-        }
-    }
-
-    /// The exact ordering of the sum against `t`.
-    #[inline]
-    fn cmp(&self, t: f64) -> Ordering {
-        match self {
-            ExactSum::Double(s) => s.partial_cmp(&t).unwrap_or(Ordering::Equal),
-            ExactSum::Terms([e1, e2, c, p1, p2]) => expansion_sign(&[*e1, *e2, *c, -t, *p1, *p2]),
-        }
-    }
-}
-
-/// `a·b = p + e` exactly (Dekker 1971; Shewchuk 1997, Two-Product), barring overflow and
-/// underflow, with Veltkamp's split. Plain `*`/`+`: Rust never contracts them into FMA.
-#[inline]
-fn two_product(a: f64, b: f64) -> (f64, f64) {
-    #[inline]
-    fn split(a: f64) -> (f64, f64) {
-        let c = 134_217_729.0 * a; // 2^27 + 1
-        let hi = c - (c - a);
-        (hi, a - hi)
-    }
-    let p = a * b;
-    let (ah, al) = split(a);
-    let (bh, bl) = split(b);
-    let e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-    (p, e)
-}
-
-/// `a + b = s + e` exactly (Knuth's Two-Sum).
-#[inline]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    let e = (a - (s - bb)) + (b - bb);
-    (s, e)
-}
-
-/// The exact sign of a sum of at most 8 doubles, by Shewchuk's Grow-Expansion (J. R. Shewchuk,
-/// *Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric Predicates*, 1997):
-/// the result is a non-overlapping expansion in increasing magnitude, whose sign is that of its
-/// largest non-zero component.
-fn expansion_sign(terms: &[f64]) -> Ordering {
-    let mut e = [0.0f64; 8];
-    let mut n = 0;
-    for &t in terms.iter().take(7) {
-        let mut q = t;
-        for c in e.iter_mut().take(n) {
-            let (s, err) = two_sum(q, *c);
-            *c = err;
-            q = s;
-        }
-        e[n] = q;
-        n += 1;
-    }
-    for &c in e[..n].iter().rev() {
-        if c > 0.0 {
-            return Ordering::Greater;
-        }
-        if c < 0.0 {
-            return Ordering::Less;
-        }
-    }
-    Ordering::Equal
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn expansion_sign_is_exact_where_rounding_is_not() {
-        // 1 + 2⁻⁶⁰ − 1 rounds to 0 in f64 but is positive.
-        let tiny = 1.0 / (1u64 << 60) as f64;
-        assert_eq!(1.0 + tiny - 1.0, 0.0);
-        assert_eq!(expansion_sign(&[1.0, tiny, -1.0]), Ordering::Greater);
-        assert_eq!(expansion_sign(&[1.0, -tiny, -1.0]), Ordering::Less);
-        assert_eq!(expansion_sign(&[1.0, -1.0, 0.0]), Ordering::Equal);
-        // 0.1·3 − 0.3: 0.1 and 0.3 are doubles; their exact product/difference is not 0.
-        let (p, e) = two_product(0.1, 3.0);
-        let exact = expansion_sign(&[p, e, -0.30000000000000004]);
-        assert_eq!(p, 0.30000000000000004);
-        // 0.1 (double) = 0.1000000000000000055511151231257827, ×3 = 0.3000000000000000166533…
-        // < 0.3000000000000000444089 (the double above), so the sign is negative.
-        assert_eq!(exact, Ordering::Less);
-    }
 
     #[test]
     fn lattice_direction_has_norm_at_least_one() {
@@ -716,11 +655,14 @@ mod tests {
                 DVec2::new(ocean_core::math::cos(t), ocean_core::math::sin(t)),
             )
             .unwrap();
-            let l = lattice_direction(u);
-            let (p, e) = two_product(l.x, l.x);
-            let (q, f) = two_product(l.y, l.y);
-            assert_ne!(expansion_sign(&[e, f, -1.0, p, q]), Ordering::Less, "{deg}");
-            assert!((l - u).length() < 1e-14, "{deg}");
+            let (x, z) = lattice_direction(u);
+            let norm2 = i128::from(x) * i128::from(x) + i128::from(z) * i128::from(z);
+            let one = i128::from(FIXED_ONE);
+            assert!(norm2 >= one * one, "{deg}");
+            // At most two raises of a unit above the rounded vector.
+            assert!(norm2 < one * one + 8 * one, "{deg}");
+            let l = DVec2::new(x as f64, z as f64) / FIXED_ONE as f64;
+            assert!((l - u).length() < 3.0 / FIXED_ONE as f64, "{deg}");
         }
     }
 }

@@ -73,7 +73,7 @@ pub mod terrain;
 pub mod wind;
 
 pub use error::WtbError;
-pub use frame::{BoxFrame, GridPoint, RayInfo, Traversal};
+pub use frame::{BoxFrame, FixedTraversal, GridPoint, RayInfo, Traversal};
 pub use grid::WaterGrid;
 pub use terrain::Terrain;
 pub use wind::{LifePhase, TrainSource, Wind, WindState};
