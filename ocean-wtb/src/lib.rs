@@ -66,6 +66,7 @@ pub mod effects;
 pub mod error;
 pub mod frame;
 pub mod grid;
+pub mod march;
 pub mod scenarios;
 pub mod scene;
 pub mod shore;

@@ -29,8 +29,6 @@ use alloc::vec::Vec;
 use glam::{DVec2, DVec3, Vec3};
 use ocean_core::frustum::{Containment, Frustum};
 use ocean_core::layers::{GridRect, Layer, evaluate_layers};
-use ocean_core::math;
-use ocean_core::sincos::sincos;
 use ocean_core::{Modulation, PointSums, Wave, WaveDesc, WaveSet};
 
 use crate::budget::{BoxLoad, Budget, CostModel, Selection, select, train_order};
@@ -38,6 +36,7 @@ use crate::effects::{self, Effects, Refraction};
 use crate::error::WtbError;
 use crate::frame::BoxFrame;
 use crate::grid::{WaterGrid, ceil_i64, floor_i64};
+use crate::march::{self, MarchBox, Plan, PlannedBox};
 use crate::shore;
 use crate::terrain::Terrain;
 use crate::wind::{TrainSource, Wind};
@@ -95,11 +94,11 @@ pub struct ActionPoint {
 
 /// The part of the effects that the static cache depends on.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct StaticKey {
-    refraction: bool,
-    shoaling: bool,
-    round_waves: bool,
-    beach: Option<effects::Beach>,
+pub(crate) struct StaticKey {
+    pub(crate) refraction: bool,
+    pub(crate) shoaling: bool,
+    pub(crate) round_waves: bool,
+    pub(crate) beach: Option<effects::Beach>,
 }
 
 impl StaticKey {
@@ -194,6 +193,11 @@ impl Scene {
     /// The water grid.
     pub fn grid(&self) -> &WaterGrid {
         &self.grid
+    }
+
+    /// The terrain.
+    pub fn terrain(&self) -> &Terrain {
+        &self.terrain
     }
 
     /// Replaces the terrain; every box's static modulation is recomputed at the next frame.
@@ -369,6 +373,67 @@ impl Scene {
     ///
     /// [`WtbError::NotFinite`] for a non-finite time.
     pub fn frame(&mut self, t: f64, view: Option<&Frustum>) -> Result<Frame<'_>, WtbError> {
+        let (mut stats, selection, visible) = self.visible(t, view)?;
+        let key = StaticKey::of(&selection.effects);
+        // Refresh the caches that are stale.
+        for (k, frame, _) in &visible {
+            let fresh = self.boxes[*k].cache.as_ref().is_some_and(|c| {
+                c.frame == *frame && c.terrain_version == self.terrain_version && c.key == key
+            });
+            if !fresh {
+                let rect = box_rect(&self.grid, frame);
+                let march = MarchBox::new(&self.grid, &self.boxes[*k], frame, key, rect);
+                let cache = build_cache(&self.grid, &self.terrain, &march, self.terrain_version)?;
+                self.boxes[*k].cache = Some(cache);
+                stats.rebuilt += 1;
+            }
+        }
+        // Per-frame layers.
+        let mut layers = Vec::new();
+        for (k, frame, env) in &visible {
+            let slot = &self.boxes[*k];
+            let cache = slot.cache.as_ref().expect("refreshed above");
+            let Some(static_mu) = &cache.mu else {
+                continue;
+            };
+            let Some(waves) = frame_waves(slot, *env, selection.max_trains)? else {
+                continue;
+            };
+            stats.trains += waves.coeffs().len();
+            let mu = march::time_modulation(
+                &self.grid,
+                &self.terrain,
+                frame,
+                slot.peak_k,
+                static_mu,
+                &selection.effects,
+                t,
+            )?;
+            layers.push(FrameLayer {
+                waves,
+                mu,
+                cache: static_mu,
+            });
+        }
+        let height = height_field(&self.grid, &self.terrain, &selection.effects, t);
+        Ok(Frame {
+            grid: &self.grid,
+            inv_spacing: 1.0 / self.grid.spacing(),
+            t,
+            layers,
+            height,
+            stats,
+        })
+    }
+
+    /// Steps 1 and 2 of a frame (§2.3): the boxes alive at `t`, culled against `view`, and the
+    /// budget's selection for them, as `(slot index, frame, envelope)`.
+    #[allow(clippy::type_complexity)]
+    fn visible(
+        &self,
+        t: f64,
+        view: Option<&Frustum>,
+    ) -> Result<(FrameStats, Selection, Vec<(usize, BoxFrame, f64)>), WtbError> {
         if !t.is_finite() {
             return Err(WtbError::NotFinite("time"));
         }
@@ -428,71 +493,41 @@ impl Scene {
         );
         stats.selection = Some(selection);
         stats.estimated_ns = self.cost.estimate(self.grid.len(), &loads, &selection);
+        Ok((stats, selection, visible))
+    }
+
+    /// A frame's plan without its CPU ray march: the visible boxes with their waves and what
+    /// their march reads, for a GPU twin (`ocean_gpu::WtbMarchPass`) that marches the rays
+    /// itself. The boxes are those, in the order, of [`Frame::layers`] at the same `t` and
+    /// `view`, and [`MarchBox::march`]'s result is what the CPU frame evaluates.
+    ///
+    /// # Errors
+    ///
+    /// As [`Scene::frame`].
+    pub fn plan(&self, t: f64, view: Option<&Frustum>) -> Result<Plan, WtbError> {
+        let (mut stats, selection, visible) = self.visible(t, view)?;
         let key = StaticKey::of(&selection.effects);
-        // Refresh the caches that are stale.
-        for (k, frame, _) in &visible {
-            let fresh = self.boxes[*k].cache.as_ref().is_some_and(|c| {
-                c.frame == *frame && c.terrain_version == self.terrain_version && c.key == key
-            });
-            if !fresh {
-                let cache = build_cache(
-                    &self.grid,
-                    &self.terrain,
-                    &self.boxes[*k],
-                    frame,
-                    key,
-                    self.terrain_version,
-                )?;
-                self.boxes[*k].cache = Some(cache);
-                stats.rebuilt += 1;
-            }
-        }
-        // Per-frame layers.
-        let mut layers = Vec::new();
+        let mut boxes = Vec::new();
         for (k, frame, env) in &visible {
             let slot = &self.boxes[*k];
-            let cache = slot.cache.as_ref().expect("refreshed above");
-            let Some(static_mu) = &cache.mu else {
-                continue;
-            };
-            let order = train_order(&slot.trains.iter().map(|d| d.amplitude).collect::<Vec<_>>());
-            let take = order.len().min(selection.max_trains);
-            let waves: Vec<Wave> = order[..take]
-                .iter()
-                .map(|&i| {
-                    let d = slot.trains[i];
-                    d.build().and_then(|w| w.scaled(*env))
-                })
-                .collect::<Result<_, _>>()
-                .map_err(|source| WtbError::Wave { index: 0, source })?;
-            if waves.is_empty() {
+            let rect = box_rect(&self.grid, frame);
+            if rect.is_empty() {
                 continue;
             }
-            stats.trains += waves.len();
-            let waves =
-                WaveSet::new(&waves).map_err(|source| WtbError::Wave { index: 0, source })?;
-            let mu = time_modulation(
-                &self.grid,
-                &self.terrain,
-                slot,
-                frame,
-                static_mu,
-                &selection.effects,
-                t,
-            )?;
-            layers.push(FrameLayer {
+            let Some(waves) = frame_waves(slot, *env, selection.max_trains)? else {
+                continue;
+            };
+            stats.trains += waves.coeffs().len();
+            boxes.push(PlannedBox {
+                id: slot.id,
                 waves,
-                mu,
-                cache: static_mu,
+                march: MarchBox::new(&self.grid, slot, frame, key, rect),
             });
         }
-        let height = height_field(&self.grid, &self.terrain, &selection.effects, t);
-        Ok(Frame {
-            grid: &self.grid,
-            inv_spacing: 1.0 / self.grid.spacing(),
+        Ok(Plan {
             t,
-            layers,
-            height,
+            effects: selection.effects,
+            boxes,
             stats,
         })
     }
@@ -618,225 +653,70 @@ fn box_rect(grid: &WaterGrid, frame: &BoxFrame) -> GridRect {
     }
 }
 
-/// One ray's result: (rectangle index, modulation without the land factor, land factor) per
-/// covered point, and its action points.
-type MarchedRay = (Vec<(usize, [f64; 2], f32)>, Vec<ActionPoint>);
+/// A box's trains at envelope `env`, its largest `max_trains` (§2.3); `None` when none is left.
+fn frame_waves(slot: &Slot, env: f64, max_trains: usize) -> Result<Option<WaveSet>, WtbError> {
+    let order = train_order(&slot.trains.iter().map(|d| d.amplitude).collect::<Vec<_>>());
+    let take = order.len().min(max_trains);
+    let waves: Vec<Wave> = order[..take]
+        .iter()
+        .map(|&i| slot.trains[i].build().and_then(|w| w.scaled(env)))
+        .collect::<Result<_, _>>()
+        .map_err(|source| WtbError::Wave { index: 0, source })?;
+    if waves.is_empty() {
+        return Ok(None);
+    }
+    WaveSet::new(&waves)
+        .map(Some)
+        .map_err(|source| WtbError::Wave { index: 0, source })
+}
 
-/// Marches every wave ray of the box (§2, Fig. 2, Fig. 5) and records the static modulation
-/// m·e^{iφ} of each covered grid point and the action points.
+impl MarchBox {
+    /// What `slot`'s march reads with `frame` over `rect`, under the static effects `key`.
+    fn new(
+        grid: &WaterGrid,
+        slot: &Slot,
+        frame: &BoxFrame,
+        key: StaticKey,
+        rect: GridRect,
+    ) -> Self {
+        Self {
+            frame: *frame,
+            rect,
+            smoothing: slot.spec.smoothing,
+            recovery: slot.spec.recovery.unwrap_or(2.0 * slot.peak_wavelength),
+            amplitude: slot.amplitude,
+            peak_k: slot.peak_k,
+            shallow_depth: effects::shoaling_reference(slot.peak_wavelength),
+            refraction: key.refraction,
+            shoaling: key.shoaling,
+            round_waves: key.round_waves,
+            beach: key.beach,
+            shore_radius: shore::radius(slot.amplitude, grid.spacing()),
+        }
+    }
+}
+
+/// Marches the box's rays (see [`MarchBox::march`]) into a cache.
 fn build_cache(
     grid: &WaterGrid,
     terrain: &Terrain,
-    slot: &Slot,
-    frame: &BoxFrame,
-    key: StaticKey,
+    march: &MarchBox,
     terrain_version: u64,
 ) -> Result<Cache, WtbError> {
-    let rect = box_rect(grid, frame);
-    let mut mu = vec![[0.0f32; 2]; rect.len()];
-    let mut actions = Vec::new();
-    let traversal = frame.traversal(grid)?;
-    let (length, width) = (frame.length(), frame.width());
-    let smoothing = slot.spec.smoothing;
-    let recovery = slot.spec.recovery.unwrap_or(2.0 * slot.peak_wavelength);
-    let k_p = slot.peak_k;
-    let shallow_depth = effects::shoaling_reference(slot.peak_wavelength);
-    let shortening = effects::ShorteningTable::new(k_p);
-    let march = |r: u32| {
-        let mut values: Vec<(usize, [f64; 2], f32)> = Vec::new();
-        let mut actions: Vec<ActionPoint> = Vec::new();
-        let mut on_land = false;
-        let mut land_end: Option<f64> = None;
-        let mut shallow = false;
-        let mut lag = 0.0f64;
-        let mut last_a: Option<f64> = None;
-        traversal.for_each_cell_in_ray(r, |_, points| {
-            for p in points {
-                let (i, j) = (p.i as usize, p.j as usize);
-                let depth = terrain.depth(i, j);
-                let land = terrain.is_land(i, j);
-                // Refraction: the phase lag of the shorter shallow-water wave, integrated along
-                // the ray at fixed frequency (midpoint of the step's two depths' integrands).
-                if key.refraction {
-                    if let Some(prev) = last_a {
-                        let integrand = if land { 0.0 } else { shortening.get(depth) };
-                        lag += k_p * integrand * (p.a - prev);
-                    }
-                }
-                last_a = Some(p.a);
-                if land != on_land {
-                    actions.push(ActionPoint {
-                        ray: r,
-                        a: p.a,
-                        index: p.index,
-                        kind: if land {
-                            ActionKind::LandStart
-                        } else {
-                            ActionKind::LandEnd
-                        },
-                    });
-                    if !land {
-                        land_end = Some(p.a);
-                    }
-                    on_land = land;
-                }
-                let is_shallow = !land && depth < shallow_depth;
-                if is_shallow != shallow && !land {
-                    actions.push(ActionPoint {
-                        ray: r,
-                        a: p.a,
-                        index: p.index,
-                        kind: if is_shallow {
-                            ActionKind::Shallow
-                        } else {
-                            ActionKind::Deep
-                        },
-                    });
-                    shallow = is_shallow;
-                }
-                // The land factor: zero on land, recovering behind it (Fig. 5); smoothed across
-                // the grid below (see `shore`).
-                let land_factor = if land {
-                    0.0
-                } else {
-                    land_end.map_or(1.0, |e| {
-                        if recovery > 0.0 {
-                            ((p.a - e) / recovery).clamp(0.0, 1.0)
-                        } else {
-                            1.0
-                        }
-                    })
-                };
-                let mut m = 1.0;
-                if key.shoaling && !land {
-                    m *= effects::shoaling(depth, shallow_depth);
-                }
-                if !land {
-                    let cap = effects::beach_amplitude_cap(key.beach.as_ref(), depth);
-                    if cap.is_finite() && slot.amplitude > 0.0 {
-                        m = m.min(cap / slot.amplitude);
-                    }
-                }
-                let edge_v = p.b.min(width - p.b);
-                let edge_u = p.a.min(length - p.a);
-                m *= effects::side_fade(edge_v, smoothing) * effects::side_fade(edge_u, smoothing);
-                let mut phase = lag;
-                if key.round_waves && width > 0.0 {
-                    phase += effects::round_wave_phase(k_p, p.b, width);
-                }
-                let phase = ocean_core::phase::reduce_angle(phase);
-                if let Some(q) = rect.index(i, j) {
-                    values.push((
-                        q,
-                        [m * math::cos(phase), m * math::sin(phase)],
-                        land_factor as f32,
-                    ));
-                }
-            }
-        });
-        (values, actions)
-    };
-    // Rays are independent (their state, land recovery and refraction lag, lives along the
-    // ray), so they march in parallel; results are applied in ray order, as sequentially.
-    let rays: Vec<u32> = traversal.rays().collect();
-    #[cfg(feature = "std")]
-    let marched: Vec<MarchedRay> = {
-        use rayon::prelude::*;
-        rays.par_iter().map(|&r| march(r)).collect()
-    };
-    #[cfg(not(feature = "std"))]
-    let marched: Vec<MarchedRay> = rays.iter().map(|&r| march(r)).collect();
-    // The land factor of every rectangle point: land is 0 whether a ray covers it or not (a
-    // shore just outside the box still ramps the water inside it), open water 1.
-    let mut factor = vec![1.0f32; rect.len()];
-    let mut land = vec![false; rect.len()];
-    if terrain.has_land() {
-        for (q, (f, l)) in factor.iter_mut().zip(&mut land).enumerate() {
-            let (i, j) = (rect.i0 + q % rect.nx, rect.j0 + q / rect.nx);
-            if terrain.is_land(i, j) {
-                (*f, *l) = (0.0, true);
-            }
-        }
-    }
-    let mut base = vec![[0.0f64; 2]; rect.len()];
-    for (points, ray_actions) in marched {
-        for (q, v, f) in points {
-            base[q] = v;
-            factor[q] = f;
-        }
-        actions.extend(ray_actions);
-    }
-    if factor.iter().any(|&f| f < 1.0) {
-        let r = shore::radius(slot.amplitude, grid.spacing());
-        shore::smooth(&mut factor, &land, rect.nx, rect.nz, r);
-    }
-    for ((m, b), f) in mu.iter_mut().zip(&base).zip(&factor) {
-        let f = f64::from(*f);
-        *m = [(b[0] * f) as f32, (b[1] * f) as f32];
-    }
-    // Every value is a product of finite factors; the check also records each row's span.
-    let mu = if rect.is_empty() {
-        None
-    } else {
-        Some(Modulation::new(rect, mu).map_err(WtbError::Eval)?)
-    };
+    let (mu, actions) = march.march(grid, terrain)?;
     Ok(Cache {
-        frame: *frame,
+        frame: march.frame,
         terrain_version,
-        key,
+        key: march.key(),
         mu,
         actions,
     })
 }
 
-/// The time-dependent part of a box's modulation (irregular height, Eq. 8; dispersion
-/// refraction, Eq. 4), applied to the cached static one; `None` when neither runs, and the
-/// cache is used as it is.
-fn time_modulation(
-    grid: &WaterGrid,
-    terrain: &Terrain,
-    slot: &Slot,
-    frame: &BoxFrame,
-    cache: &Modulation,
-    e: &Effects,
-    t: f64,
-) -> Result<Option<Modulation>, WtbError> {
-    let dispersion = e.refraction == Refraction::Dispersion;
-    if e.irregular.is_none() && !dispersion {
-        return Ok(None);
-    }
-    let r = cache.rect();
-    let mut out = cache.values().to_vec();
-    let row = |dj: usize, row: &mut [[f32; 2]]| {
-        for (di, v) in row.iter_mut().enumerate() {
-            let [re, im] = *v;
-            if re == 0.0 && im == 0.0 {
-                continue;
-            }
-            let (i, j) = (r.i0 + di, r.j0 + dj);
-            let mut m = 1.0;
-            let mut phase = 0.0;
-            if let Some(p) = &e.irregular {
-                let ab = frame.internal(grid.point(i, j));
-                m *= effects::irregular_factor(p, ab.x, ab.y, t);
-            }
-            if dispersion {
-                phase += effects::dispersion_phase(slot.peak_k, terrain.depth(i, j), t);
-            }
-            let (s, c) = sincos(phase as f32);
-            let (c, s) = (m * f64::from(c), m * f64::from(s));
-            let (re, im) = (f64::from(re), f64::from(im));
-            *v = [(re * c - im * s) as f32, (re * s + im * c) as f32];
-        }
-    };
-    for_rows(&mut out, r.nx, row);
-    Ok(Some(Modulation::new(r, out).map_err(WtbError::Eval)?))
-}
-
 /// Runs `f(row index, row)` over the rows of `data` (rows of `width` values), on the rayon pool
 /// with `std`. Each row is computed independently, so the result is the same on any thread
 /// count.
-fn for_rows<T: Send>(data: &mut [T], width: usize, f: impl Fn(usize, &mut [T]) + Sync) {
+pub(crate) fn for_rows<T: Send>(data: &mut [T], width: usize, f: impl Fn(usize, &mut [T]) + Sync) {
     #[cfg(feature = "std")]
     {
         use rayon::prelude::*;
