@@ -40,7 +40,7 @@
 
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
-use ocean_core::{EvalError, Grid, Layer};
+use ocean_core::{EvalError, Grid, GridRect, Layer, WaveSet};
 
 use crate::readback::GpuTimer;
 use crate::trochoid::{
@@ -115,6 +115,66 @@ pub struct LayersInput<'a> {
     pub height: Option<&'a [f32]>,
 }
 
+/// A layer whose modulation is already on the GPU (written there by another pass, such as
+/// [`crate::WtbMarchPass`]'s ray march): `rect.len()` values `[m cos φ, m sin φ]` (8 bytes
+/// each, row-major over `rect`) at byte `offset` of `modulation`, which needs
+/// `wgpu::BufferUsages::COPY_SRC`. Unlike a host [`Layer`]'s, these values were not checked for
+/// finiteness: the pass that wrote them answers for them.
+#[derive(Clone, Copy, Debug)]
+pub struct DeviceLayer<'a> {
+    /// The waves.
+    pub waves: &'a WaveSet,
+    /// Where the layer acts.
+    pub rect: GridRect,
+    /// The buffer holding the modulation.
+    pub modulation: &'a wgpu::Buffer,
+    /// Byte offset of the first value (a multiple of 4).
+    pub offset: u64,
+}
+
+/// [`LayersInput`] over host or device layers.
+struct Input<'a, L> {
+    grid: &'a Grid,
+    time: f64,
+    layers: &'a [L],
+    height: Option<&'a [f32]>,
+}
+
+impl<'a> From<&LayersInput<'a>> for Input<'a, Layer<'a>> {
+    fn from(i: &LayersInput<'a>) -> Self {
+        Self {
+            grid: i.grid,
+            time: i.time,
+            layers: i.layers,
+            height: i.height,
+        }
+    }
+}
+
+/// What the pass reads of a layer besides its modulation's values.
+trait LayerView {
+    fn waves(&self) -> &WaveSet;
+    fn rect(&self) -> GridRect;
+}
+
+impl LayerView for Layer<'_> {
+    fn waves(&self) -> &WaveSet {
+        self.waves
+    }
+    fn rect(&self) -> GridRect {
+        Layer::rect(self)
+    }
+}
+
+impl LayerView for DeviceLayer<'_> {
+    fn waves(&self) -> &WaveSet {
+        self.waves
+    }
+    fn rect(&self) -> GridRect {
+        self.rect
+    }
+}
+
 /// Counters and capacities of a [`LayersPass`]'s own GPU objects, to check that a frame loop
 /// has reached a steady state (no counter moves from one frame to the next).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -153,6 +213,15 @@ pub fn validate_layers(
     grid: &Grid,
     t: f64,
     layers: &[Layer<'_>],
+    height: Option<&[f32]>,
+) -> Result<usize, EvalError> {
+    validate(grid, t, layers, height)
+}
+
+fn validate<L: LayerView>(
+    grid: &Grid,
+    t: f64,
+    layers: &[L],
     height: Option<&[f32]>,
 ) -> Result<usize, EvalError> {
     if !t.is_finite() {
@@ -284,7 +353,7 @@ impl Inputs {
 
     /// Fills `desc_scratch` and `scratch` (coefficients and rectangle tables) for `input`,
     /// with the offsets `p` was sized for. Time and grid were validated.
-    fn stage(&mut self, input: &LayersInput<'_>, p: &Prepared) -> Result<(), GpuError> {
+    fn stage<L: LayerView>(&mut self, input: &Input<'_, L>, p: &Prepared) -> Result<(), GpuError> {
         let grid = input.grid;
         let (gnx, gnz) = grid.size;
         self.desc_scratch.clear();
@@ -294,7 +363,7 @@ impl Inputs {
         let mut modulation = p.scratch_words;
         for layer in input.layers {
             let r = layer.rect();
-            let coeffs = layer.waves.coeffs();
+            let coeffs = layer.waves().coeffs();
             let w = coeffs.len();
             // Offsets fit u32: the total was checked in `prepare`.
             let coeff_offset = self.scratch.len() as u32;
@@ -303,7 +372,7 @@ impl Inputs {
             self.full_tables.clear();
             self.full_tables.resize(w * (gnz + gnx), [0.0; 2]);
             let (rows, cols) = self.full_tables.split_at_mut(w * gnz);
-            layer.waves.grid_sin_cos(grid, input.time, rows, cols)?;
+            layer.waves().grid_sin_cos(grid, input.time, rows, cols)?;
             let rows_offset = self.scratch.len() as u32;
             for wi in 0..w {
                 let start = wi * gnz + r.j0;
@@ -414,9 +483,13 @@ impl LayersPass {
 
     /// Validates the input as the CPU does, then checks sizes against the shader's u32 indices
     /// and the device limits.
-    fn prepare(&self, ctx: &GpuContext, input: &LayersInput<'_>) -> Result<Prepared, GpuError> {
+    fn prepare<L: LayerView>(
+        &self,
+        ctx: &GpuContext,
+        input: &Input<'_, L>,
+    ) -> Result<Prepared, GpuError> {
         let grid = input.grid;
-        let points = validate_layers(grid, input.time, input.layers, input.height)? as u64;
+        let points = validate(grid, input.time, input.layers, input.height)? as u64;
         let (nx, nz) = grid.size;
         let too_large = |what, needed: u64, limit: u64| GpuError::TooLarge {
             what,
@@ -431,7 +504,7 @@ impl LayersPass {
         let (mut scratch_words, mut modulation_words) = (0u64, 0u64);
         for layer in input.layers {
             let r = layer.rect();
-            let w = layer.waves.coeffs().len() as u64;
+            let w = layer.waves().coeffs().len() as u64;
             // Rectangles lie inside the grid (validated), so these products stay far below
             // u64::MAX.
             scratch_words += w * COEFF_WORDS + 2 * w * (r.nz as u64 + r.nx as u64);
@@ -514,6 +587,87 @@ impl LayersPass {
         target: &TrochoidTarget,
         timer: Option<&GpuTimer>,
     ) -> Result<(), GpuError> {
+        let input = Input::from(input);
+        self.encode_with(
+            ctx,
+            encoder,
+            &input,
+            target,
+            timer,
+            |queue, _, data, layer, at| {
+                // Modulation straight from the caller's slices (no host copy).
+                queue.write_buffer(data, at, bytemuck::cast_slice(layer.modulation.values()));
+            },
+        )
+    }
+
+    /// [`encode`](Self::encode) for layers whose modulations are already on the GPU: each is
+    /// copied into the pass's data buffer by a buffer copy recorded in `encoder` before the
+    /// dispatch, so a pass that wrote it earlier in the same `encoder` (or an earlier submit)
+    /// feeds this one without a round trip through the host.
+    ///
+    /// # Errors
+    ///
+    /// As [`encode`](Self::encode); also [`GpuError::TooLarge`] when a layer's modulation
+    /// extends past the end of its buffer or its offset is not a multiple of 4.
+    #[allow(clippy::too_many_arguments)]
+    pub fn encode_device(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        grid: &Grid,
+        time: f64,
+        layers: &[DeviceLayer<'_>],
+        height: Option<&[f32]>,
+        target: &TrochoidTarget,
+        timer: Option<&GpuTimer>,
+    ) -> Result<(), GpuError> {
+        for layer in layers {
+            let bytes = 8 * layer.rect.len() as u64;
+            let end = layer.offset.checked_add(bytes);
+            if layer.offset % 4 != 0 || end.is_none_or(|e| e > layer.modulation.size()) {
+                return Err(GpuError::TooLarge {
+                    what: "device layer modulation (bytes past the buffer's start)",
+                    needed: end.unwrap_or(u64::MAX),
+                    limit: layer.modulation.size(),
+                });
+            }
+        }
+        let input = Input {
+            grid,
+            time,
+            layers,
+            height,
+        };
+        self.encode_with(
+            ctx,
+            encoder,
+            &input,
+            target,
+            timer,
+            |_, enc, data, layer, at| {
+                enc.copy_buffer_to_buffer(
+                    layer.modulation,
+                    layer.offset,
+                    data,
+                    at,
+                    8 * layer.rect.len() as u64,
+                );
+            },
+        )
+    }
+
+    /// The body of both `encode`s: `upload(queue, encoder, data, layer, byte offset)` puts a
+    /// layer's modulation into the data buffer.
+    fn encode_with<L: LayerView>(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        input: &Input<'_, L>,
+        target: &TrochoidTarget,
+        timer: Option<&GpuTimer>,
+        upload: impl Fn(&wgpu::Queue, &mut wgpu::CommandEncoder, &wgpu::Buffer, &L, u64),
+    ) -> Result<(), GpuError> {
         let p = self.prepare(ctx, input)?;
         target.check(p.points)?;
         let device = ctx.device();
@@ -530,12 +684,16 @@ impl LayersPass {
             if !inputs.scratch.is_empty() {
                 queue.write_buffer(&inputs.data, 0, bytemuck::cast_slice(&inputs.scratch));
             }
-            // Modulation and height straight from the caller's slices (no host copy).
             for (layer, desc) in input.layers.iter().zip(&inputs.desc_scratch) {
-                queue.write_buffer(
+                if layer.rect().is_empty() {
+                    continue;
+                }
+                upload(
+                    queue,
+                    encoder,
                     &inputs.data,
+                    layer,
                     u64::from(desc.modulation) * WORD,
-                    bytemuck::cast_slice(layer.modulation.values()),
                 );
             }
             if let Some(h) = input.height {
@@ -599,7 +757,7 @@ impl LayersPass {
             height,
         };
         // Validate before allocating the target, so bad input costs no GPU allocation.
-        self.prepare(ctx, &input)?;
+        self.prepare(ctx, &Input::from(&input))?;
         let target = TrochoidTarget::new(ctx, grid)?;
         let timer = GpuTimer::new(ctx);
         self.run(ctx, &input, &target, timer.as_ref())?;

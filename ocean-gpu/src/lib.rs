@@ -42,15 +42,17 @@ mod pipeline;
 pub mod readback;
 pub mod shaders;
 pub mod trochoid;
+pub mod wtb;
 
 pub use context::{ContextOptions, GpuContext};
-pub use layers::{LayerDesc, LayersInput, LayersParams, LayersPass, LayersStats};
+pub use layers::{DeviceLayer, LayerDesc, LayersInput, LayersParams, LayersPass, LayersStats};
 pub use ocean::{OceanOptions, OceanRenderer, SeaColorInput, SurfaceProbe};
 pub use readback::{GpuDuration, GpuTimer, TextureData};
 pub use shaders::{Code, Export, ExportFile, Language, ShaderError};
 pub use trochoid::{
     GridOutput, TrochoidInput, TrochoidParams, TrochoidPass, TrochoidStats, TrochoidTarget,
 };
+pub use wtb::{MarchParams, WtbMarchPass};
 
 pub use naga;
 pub use wgpu;

@@ -11,6 +11,18 @@ pub(crate) fn displace_pipeline(
     shader: &str,
     uniform_size: usize,
 ) -> Result<(wgpu::ComputePipeline, wgpu::BindGroupLayout), GpuError> {
+    let (mut pipelines, layout) = compute_pipelines(device, shader, uniform_size, &["displace"])?;
+    Ok((pipelines.remove(0), layout))
+}
+
+/// One pipeline per entry point of a registered compute shader, all on the bind group layout of
+/// [`displace_pipeline`] (a uniform block, two read-only and two read-write storage buffers).
+pub(crate) fn compute_pipelines(
+    device: &wgpu::Device,
+    shader: &str,
+    uniform_size: usize,
+    entry_points: &[&str],
+) -> Result<(Vec<wgpu::ComputePipeline>, wgpu::BindGroupLayout), GpuError> {
     let entry = shaders::get(shader).ok_or_else(|| {
         GpuError::Shader(shaders::ShaderError::UnknownShader {
             name: shader.to_owned(),
@@ -53,15 +65,20 @@ pub(crate) fn displace_pipeline(
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(&label("pipeline")),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("displace"),
-            compilation_options: wgpu::PipelineCompilationOptions::default(),
-            cache: None,
-        });
-        Ok((pipeline, layout))
+        let pipelines = entry_points
+            .iter()
+            .map(|entry| {
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(&label(entry)),
+                    layout: Some(&pipeline_layout),
+                    module: &module,
+                    entry_point: Some(entry),
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                    cache: None,
+                })
+            })
+            .collect();
+        Ok((pipelines, layout))
     })
 }
 

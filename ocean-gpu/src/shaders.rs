@@ -110,6 +110,10 @@ pub const LAYERS_WGSL: &str = concat!(
     include_str!("shaders/layers.wgsl")
 );
 
+/// Source of the wave-train-box ray march: the modulation of one box from its rays, land and
+/// depth, for the layers pass.
+pub const WTB_MARCH_WGSL: &str = include_str!("shaders/wtb_march.wgsl");
+
 /// Source of the ocean renderer (Bruneton et al. 2010, §7.1): the projected grid's vertex stage
 /// (Eq. 2), the per-pixel normals, slope variances and lighting of the fragment stage (Eq. 3, 4,
 /// Algorithm 5.1), and a sky background; after the shared surface, ocean and lighting snippets.
@@ -129,7 +133,7 @@ pub const OCEAN_PROBE_WGSL: &str = concat!(
     include_str!("shaders/ocean_probe.wgsl")
 );
 
-static SHADERS: [ShaderEntry; 4] = [
+static SHADERS: [ShaderEntry; 5] = [
     ShaderEntry {
         name: "trochoid",
         files: &["surface.wgsl", "trochoid.wgsl"],
@@ -152,6 +156,45 @@ static SHADERS: [ShaderEntry; 4] = [
         }],
         description: "sums of wave sets modulated by complex amplitudes over grid rectangles, plus \
                       a height field: displacement and normals (wave-train-boxes Eq. 6-7)",
+    },
+    ShaderEntry {
+        name: "wtb_march",
+        files: &["wtb_march.wgsl"],
+        source: WTB_MARCH_WGSL,
+        kind: ShaderKind::Compute,
+        entry_points: &[
+            EntryPoint {
+                name: "clear",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "march",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "erode_x",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "erode_z",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "mean_x",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "mean_z",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "combine",
+                stage: Stage::Compute,
+            },
+        ],
+        description: "the ray march of a wave train box: per-ray land, shadow, shoaling and \
+                      refraction, the land factor's smoothing and the time-dependent effects \
+                      (wave-train-boxes §2, Fig. 2, 4-7, Eq. 8-10)",
     },
     ShaderEntry {
         name: "ocean",

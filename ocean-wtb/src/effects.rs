@@ -154,7 +154,18 @@ pub struct ShorteningTable {
 }
 
 impl ShorteningTable {
-    const SAMPLES: usize = 1024;
+    /// Intervals of the table (it holds one more value).
+    pub const SAMPLES: usize = 1024;
+
+    /// The spacing of the samples in √depth, √m.
+    pub fn step(&self) -> f64 {
+        self.step
+    }
+
+    /// The samples h(n·step) = (1 + shortening)·n·step, n = 0 ..= [`Self::SAMPLES`].
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
 
     /// The table for deep-water wavenumber `k_deep` (> 0).
     pub fn new(k_deep: f64) -> Self {

@@ -9,7 +9,7 @@ use ocean_wtb::scene::Scene;
 
 fn check(scene: &mut Scene, t: f64, label: &str) {
     let plan = scene.plan(t, None).unwrap();
-    let grid = scene.grid().clone();
+    let grid = *scene.grid();
     let terrain = scene.terrain().clone();
     let frame = scene.frame(t, None).unwrap();
     let layers = frame.layers();

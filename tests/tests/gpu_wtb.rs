@@ -4,7 +4,7 @@
 //! refraction, shoaling and every time-dependent effect.
 
 use glam::Vec3;
-use ocean_gpu::LayersPass;
+use ocean_gpu::{LayersPass, WtbMarchPass};
 use ocean_tests::{assert_parity, compare, gpu_context_or_skip};
 use ocean_wtb::effects::{Effects, Irregular, Noise, Refraction};
 use ocean_wtb::scenarios;
@@ -98,6 +98,140 @@ fn every_effect_matches_the_cpu() {
             &mut scene,
             t,
             &format!("island 128², every effect, t = {t}"),
+        );
+    }
+}
+
+/// The rays marched on the GPU (`WtbMarchPass`, one invocation per wave ray) against the CPU's
+/// march: every box's modulation value by value, then the evaluated grid (1 mm RMS, 0.1°).
+///
+/// The ownership of grid points by rays is exact on both sides (the same integers), so the
+/// values differ by f32 rounding only: of the ray's refraction lag (kept reduced to [−π, π], a
+/// few 10⁻⁷ rad a step), of the shoaling and side-fade factors (10⁻⁷), and of the land factor's
+/// box mean (f32 sums of at most 2r + 1 terms against the CPU's f64 prefix sums); measured at
+/// most 9·10⁻⁶ on lavapipe, so MODULATION_TOL = 2·10⁻⁵. With dispersion refraction the phase
+/// (ω∞ − ω(D))·t takes ω(D) from f32 arithmetic (a few ulps of ω∞ ≈ 1 rad/s), so the tolerance
+/// grows by DISPERSION_DRIFT = 4·10⁻⁷ rad/s times t.
+fn check_march(
+    pass: &WtbMarchPass,
+    ctx: &ocean_gpu::GpuContext,
+    scene: &mut Scene,
+    t: f64,
+    label: &str,
+) {
+    const MODULATION_TOL: f32 = 2e-5;
+    const DISPERSION_DRIFT: f64 = 4e-7;
+    let plan = scene.plan(t, None).unwrap();
+    let tol = if plan.effects.refraction == Refraction::Dispersion {
+        MODULATION_TOL + (DISPERSION_DRIFT * t) as f32
+    } else {
+        MODULATION_TOL
+    };
+    let grid = *scene.grid();
+    let terrain = scene.terrain().clone();
+    let frame = scene.frame(t, None).unwrap();
+    let (gpu, mus) = pass
+        .evaluate(ctx, &grid, &terrain, &plan, frame.height_field())
+        .unwrap();
+    let layers = frame.layers();
+    assert_eq!(mus.len(), layers.len(), "{label}: boxes");
+    let mut worst = 0.0f32;
+    for (n, (gpu_mu, layer)) in mus.iter().zip(&layers).enumerate() {
+        let cpu_mu = layer.modulation.values();
+        assert_eq!(gpu_mu.len(), cpu_mu.len(), "{label}: box {n} size");
+        for (q, (g, c)) in gpu_mu.iter().zip(cpu_mu).enumerate() {
+            let d = (g[0] - c[0]).abs().max((g[1] - c[1]).abs());
+            assert!(
+                d <= tol,
+                "{label}: box {n} point {q}: GPU {g:?} CPU {c:?} (tolerance {tol:e})"
+            );
+            worst = worst.max(d);
+        }
+    }
+    let n = grid.len();
+    let (mut pos, mut nrm) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    frame.evaluate(&mut pos, &mut nrm).unwrap();
+    let top = pos.iter().map(|p| p.y.abs()).fold(0.0f32, f32::max);
+    assert!(top > 0.1, "{label}: no waves ({top} m)");
+    let d = compare(&gpu.positions, &gpu.normals, &pos, &nrm);
+    assert_parity(
+        &format!("{label}, GPU march, modulation within {worst:.1e}"),
+        &d,
+    );
+}
+
+#[test]
+fn rays_marched_on_the_gpu_match_the_cpu() {
+    let Some(ctx) = gpu_context_or_skip() else {
+        return;
+    };
+    let pass = WtbMarchPass::new(&ctx).unwrap();
+    for n in [64, 256] {
+        check_march(
+            &pass,
+            &ctx,
+            &mut scenarios::scenario_1(n).unwrap(),
+            12.0,
+            &format!("scenario 1, {n}²"),
+        );
+        check_march(
+            &pass,
+            &ctx,
+            &mut scenarios::scenario_2(n).unwrap(),
+            3.5,
+            &format!("scenario 2, {n}²"),
+        );
+        check_march(
+            &pass,
+            &ctx,
+            &mut scenarios::island(n).unwrap(),
+            1.0e5,
+            &format!("island, {n}²"),
+        );
+    }
+    // Every effect. The dispersion option's phase comes from an f32 ω(D) on the GPU and drifts
+    // from the CPU's by about 10⁻⁷·Δω·t (see `ocean_gpu::wtb`): it is compared up to t = 1000 s,
+    // and the long-run times with every other effect.
+    let mut scene = scenarios::island(128).unwrap();
+    let mut effects = Effects {
+        refraction: Refraction::Dispersion,
+        shoaling: true,
+        irregular: Some(Irregular {
+            scale: 0.4,
+            frequency: 0.2,
+            envelope_wavenumber: 0.05,
+            envelope_speed: 3.0,
+        }),
+        noise: Some(Noise {
+            amplitude: 0.02,
+            seed: 99,
+        }),
+        round_waves: true,
+        beach: Some(ocean_wtb::effects::Beach {
+            max_depth_share: 0.6,
+            run_up: 0.15,
+            run_up_depth: 1.5,
+        }),
+    };
+    scene.set_effects(effects).unwrap();
+    for t in [0.0, 42.0, 1000.0] {
+        check_march(
+            &pass,
+            &ctx,
+            &mut scene,
+            t,
+            &format!("island 128², every effect, t = {t}"),
+        );
+    }
+    effects.refraction = Refraction::PhaseShift;
+    scene.set_effects(effects).unwrap();
+    for t in [42.0, 1.0e6] {
+        check_march(
+            &pass,
+            &ctx,
+            &mut scene,
+            t,
+            &format!("island 128², phase-shift refraction and every other effect, t = {t}"),
         );
     }
 }
