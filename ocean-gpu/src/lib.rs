@@ -13,6 +13,9 @@
 //! - [`LayersPass`]: sums of wave sets modulated by complex amplitude fields over grid
 //!   rectangles, plus an additive height field (the wave-train-box primitive), the GPU twin of
 //!   [`ocean_core::evaluate_layers`]. It writes into the same [`TrochoidTarget`] buffers.
+//! - [`WtbMarchPass`]: wave train boxes from an `ocean_wtb` plan, their wave rays marched on the
+//!   GPU (one invocation per ray: land, shadows, shoaling, refraction) and evaluated by the
+//!   layers pass; the GPU twin of `ocean_wtb::march::MarchBox::march` and `Frame::evaluate`.
 //! - [`OceanRenderer`]: the ocean surface renderer of Bruneton et al. (2010): a projected grid
 //!   displaced by filtered trochoids, per-pixel filtered normals and slope variances lit by the
 //!   Sun, the sky and the sea (Algorithm 5.1), and a sky background, into the caller's targets

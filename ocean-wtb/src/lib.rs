@@ -13,11 +13,14 @@
 //! - [`wind::Wind`]: a box's placement, size, lifecycle (Eq. 1) and seeded wave trains.
 //! - [`frame`]: the box's internal frame and the quadrant scan of its wave rays (Fig. 2).
 //! - [`effects`]: refraction, shoaling, irregular height, noise, round waves, beaches (§2.1).
+//! - [`march`]: a box's ray march as data, and the frame plan a GPU twin marches from.
 //! - [`budget`]: the layered control of §2.3.
 //! - [`scenarios`]: the paper's benchmark scenes.
 //!
 //! The evaluation sums every visible box as an `ocean_core::layers::Layer`; `ocean_gpu`'s
-//! `LayersPass` draws the same frame on the GPU from [`scene::Frame::layers`].
+//! `LayersPass` draws the same frame on the GPU from [`scene::Frame::layers`], and
+//! `ocean_gpu`'s `WtbMarchPass` marches the rays themselves on the GPU from
+//! [`scene::Scene::plan`] ([`march`]).
 //!
 //! ```
 //! use glam::{DVec2, Vec3};

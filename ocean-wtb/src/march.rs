@@ -11,7 +11,7 @@
 //! - m is Green's law shoaling ([`effects::shoaling`]), capped by the beach
 //!   ([`effects::beach_amplitude_cap`] / ΣA), times the side fades along v and u (Fig. 4);
 //! - φ is the refraction lag, accumulated from one point of the ray to the next as
-//!   k_p·[`effects::ShorteningTable::get`](depth)·Δa (0 over land), plus the round-wave phase of
+//!   k_p·s(depth)·Δa with s from [`effects::ShorteningTable::get`] (0 over land), plus the round-wave phase of
 //!   Eq. 10, reduced to [−π, π].
 //!
 //! The static modulation is then m·e^{iφ}·(smoothed factor) per point; the time-dependent
@@ -245,8 +245,8 @@ impl MarchBox {
         Ok((mu, actions))
     }
 
-    /// This frame's modulation from the static one `cache` (see [`time_modulation`]'s terms):
-    /// `None` when no time-dependent effect runs.
+    /// This frame's modulation from the static one `cache`: irregular height (Eq. 8) and
+    /// dispersion refraction (Eq. 4) when they run, `None` when neither does.
     ///
     /// # Errors
     ///
