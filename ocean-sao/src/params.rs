@@ -1,0 +1,235 @@
+//! Parameters of the passes, their defaults and their accepted ranges.
+
+use core::f64::consts::FRAC_PI_2;
+
+use crate::SaoError;
+use crate::error::check_range;
+use crate::hierarchy::MipFilter;
+use crate::reconstruct::NormalRejection;
+
+/// Largest sample count `s` accepted.
+pub const MAX_SAMPLES: u32 = 64;
+/// Largest MIP level accepted (`log₂ MAX_SIDE − 1`).
+pub const MAX_MIP: u32 = 13;
+/// Largest `log₂ q'` accepted (q' = 256 px).
+pub const MAX_MIP_SWITCH_LOG2: u32 = 8;
+/// Largest blur tap count accepted.
+pub const MAX_BLUR_TAPS: u32 = 63;
+
+/// The obscurance estimator of the sample pass. Both sum over the `n` samples `Q_i` that fall
+/// inside the input image, with `v = Q_i − C`, the face normal `n̂` and the world-space radius
+/// `r`; samples outside the ball (`v·v ≥ r²`) contribute nothing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Estimator {
+    /// AlchemyAO's estimator, Eq. 1:
+    /// `A = max(0, 1 − (2σ/n)·Σ max(0, v·n̂ + z_C·β)/(v·v + ε))^k`.
+    ///
+    /// Eq. 1 itself sums over "points distributed on a ball about C"; the ball test makes that
+    /// explicit for depth-buffer samples that land farther away.
+    Alchemy {
+        /// Intensity σ (metres: the sum has units of 1/m).
+        sigma: f32,
+        /// Depth-proportional bias β (`z_C·β` is in metres; `z_C < 0`, so it subtracts).
+        beta: f32,
+        /// Contrast exponent k.
+        k: f32,
+    },
+    /// The updated falloff of the paper's appendix (June 2012):
+    /// `A = max(0, 1 − (5·intensity/(r⁶·n))·Σ max(r² − v·v, 0)³·max((v·n̂ − β)/(v·v + ε), 0))`,
+    /// evaluated with `(r² − v·v)³/r⁶ = (max(r² − v·v, 0)·(1/r²))³`. The appendix's formula
+    /// has no intensity: 1 reproduces it, other values scale the obscurance.
+    Falloff {
+        /// Bias β in metres (the appendix: ≈ 1 cm in human-scale scenes).
+        beta: f32,
+        /// Intensity multiplier.
+        intensity: f32,
+    },
+}
+
+impl Estimator {
+    /// The appendix's falloff with β = 1 cm and intensity 1.
+    pub const FALLOFF: Self = Self::Falloff {
+        beta: 0.01,
+        intensity: 1.0,
+    };
+
+    /// Eq. 1 with σ = 0.25 m, β = 10⁻³ (1 cm at 10 m) and k = 1: an aesthetic choice (the paper
+    /// gives no values).
+    pub const ALCHEMY: Self = Self::Alchemy {
+        sigma: 0.25,
+        beta: 1.0e-3,
+        k: 1.0,
+    };
+}
+
+/// The separable bilateral reconstruction (§2.4): `taps` taps `stride` pixels apart, Gaussian
+/// weights `exp(−t²/(2σ²))` for tap `t` (in taps, −R..=R with `R = (taps − 1)/2`) times
+/// `max(0, 1 − depth_scale·|key_t − key_c|)` where `key = z/z_min` is the packed depth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BlurParams {
+    /// Tap count (odd): 7 in the paper (the released shader used 9).
+    pub taps: u32,
+    /// Pixels between taps: 3 in the paper (the released shader used 2).
+    pub stride: u32,
+    /// Depth-difference scale: 2¹¹ in the paper (the released shader used 2000).
+    pub depth_scale: f32,
+    /// Gaussian standard deviation in taps. The paper does not print it; 1.5 (= R/2 for 7 taps)
+    /// gives the outermost taps e⁻² of the centre's weight.
+    pub sigma: f32,
+}
+
+impl Default for BlurParams {
+    fn default() -> Self {
+        Self {
+            taps: 7,
+            stride: 3,
+            depth_scale: 2048.0,
+            sigma: 1.5,
+        }
+    }
+}
+
+impl BlurParams {
+    /// Checks the ranges: `taps` odd in `1 ..= 63`, `stride` in `1 ..= 64`, `depth_scale` in
+    /// `[0, 10⁹]`, `sigma` in `[10⁻³, 10³]`.
+    ///
+    /// # Errors
+    ///
+    /// [`SaoError::EvenTaps`], [`SaoError::OutOfRange`], [`SaoError::NotFinite`].
+    pub fn validate(&self) -> Result<(), SaoError> {
+        check_range(
+            "blur.taps",
+            f64::from(self.taps),
+            1.0,
+            f64::from(MAX_BLUR_TAPS),
+        )?;
+        if self.taps.is_multiple_of(2) {
+            return Err(SaoError::EvenTaps(self.taps));
+        }
+        check_range("blur.stride", f64::from(self.stride), 1.0, 64.0)?;
+        check_range("blur.depth_scale", f64::from(self.depth_scale), 0.0, 1.0e9)?;
+        check_range("blur.sigma", f64::from(self.sigma), 1.0e-3, 1.0e3)?;
+        Ok(())
+    }
+
+    /// `R = (taps − 1)/2`.
+    pub fn radius(&self) -> u32 {
+        self.taps / 2
+    }
+
+    /// The Gaussian weights for taps `0..=R` (unnormalised: the blur divides by the sum of the
+    /// weights it used), computed in `f64` and rounded to `f32`.
+    pub fn gaussian(&self) -> alloc::vec::Vec<f32> {
+        let s = f64::from(self.sigma);
+        (0..=self.radius())
+            .map(|t| {
+                let t = f64::from(t);
+                libm::exp(-t * t / (2.0 * s * s)) as f32
+            })
+            .collect()
+    }
+}
+
+/// All parameters of the CPU reference (and of its GPU twin).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SaoParams {
+    /// World-space radius r of the ball, metres, in `[10⁻⁴, 10⁴]`.
+    pub radius: f32,
+    /// Samples per pixel `s`, in `1 ..= 64` (the paper: 9).
+    pub samples: u32,
+    /// Spiral turns τ, in `[10⁻³, 10³]` (the paper: 7 for 9 samples; see
+    /// [`crate::spiral::default_spiral_turns`] for this crate's convention for other `s`).
+    pub spiral_turns: f32,
+    /// `log₂ q'` of Eq. 9, in `0 ..= 8` (the paper: all of 2³ ≤ q' ≤ 2⁵ are equivalent; the
+    /// released shader: 3). `q'` is a power of two so that Eq. 9 is an integer bit operation.
+    pub mip_switch_log2: u32,
+    /// Highest MIP level read, in `0 ..= 13` (the released shader: 5). 0 reads every sample from
+    /// level 0 (no hierarchy).
+    pub max_mip: u32,
+    /// The MIP filter (Table 1).
+    pub mip_filter: MipFilter,
+    /// The estimator (Eq. 1 or the appendix).
+    pub estimator: Estimator,
+    /// ε of Eq. 1 and the appendix, in m², in `[10⁻¹², 10⁴]` (> 0 so that a sample at C itself
+    /// never divides 0 by 0).
+    pub epsilon: f32,
+    /// The 2×2 quad bilateral of §2.3: pairs of pixels are averaged when their z differ by less
+    /// than this many metres (default 0.02 m); `None` disables the filter.
+    pub quad_depth_threshold: Option<f32>,
+    /// Reject unreliable normals at depth edges (`None`: the paper's behaviour).
+    pub normal_rejection: Option<NormalRejection>,
+    /// `z_min` of the packing (§2.3), metres, negative, in `[−10⁸, −10⁻⁴]`: the farthest plane
+    /// at which sharp AO features are desired (the paper: −200 m).
+    pub z_min: f32,
+    /// The bilateral reconstruction passes (§2.4).
+    pub blur: BlurParams,
+}
+
+impl Default for SaoParams {
+    fn default() -> Self {
+        Self {
+            radius: 1.0,
+            samples: 9,
+            spiral_turns: 7.0,
+            mip_switch_log2: 3,
+            max_mip: 5,
+            mip_filter: MipFilter::RotatedGrid,
+            estimator: Estimator::FALLOFF,
+            epsilon: 0.01,
+            quad_depth_threshold: Some(0.02),
+            normal_rejection: None,
+            z_min: -200.0,
+            blur: BlurParams::default(),
+        }
+    }
+}
+
+impl SaoParams {
+    /// Checks every range documented on the fields.
+    ///
+    /// # Errors
+    ///
+    /// [`SaoError::NotFinite`], [`SaoError::OutOfRange`], [`SaoError::EvenTaps`].
+    pub fn validate(&self) -> Result<(), SaoError> {
+        check_range("radius", f64::from(self.radius), 1.0e-4, 1.0e4)?;
+        check_range(
+            "samples",
+            f64::from(self.samples),
+            1.0,
+            f64::from(MAX_SAMPLES),
+        )?;
+        check_range("spiral_turns", f64::from(self.spiral_turns), 1.0e-3, 1.0e3)?;
+        check_range(
+            "mip_switch_log2",
+            f64::from(self.mip_switch_log2),
+            0.0,
+            f64::from(MAX_MIP_SWITCH_LOG2),
+        )?;
+        check_range("max_mip", f64::from(self.max_mip), 0.0, f64::from(MAX_MIP))?;
+        check_range("epsilon", f64::from(self.epsilon), 1.0e-12, 1.0e4)?;
+        match self.estimator {
+            Estimator::Alchemy { sigma, beta, k } => {
+                check_range("sigma", f64::from(sigma), 0.0, 1.0e4)?;
+                check_range("beta", f64::from(beta), 0.0, 1.0)?;
+                check_range("k", f64::from(k), 1.0e-2, 16.0)?;
+            }
+            Estimator::Falloff { beta, intensity } => {
+                check_range("beta", f64::from(beta), 0.0, 1.0e3)?;
+                check_range("intensity", f64::from(intensity), 0.0, 1.0e3)?;
+            }
+        }
+        if let Some(t) = self.quad_depth_threshold {
+            check_range("quad_depth_threshold", f64::from(t), 0.0, 1.0e6)?;
+        }
+        if let Some(r) = self.normal_rejection {
+            check_range(
+                "normal_rejection.max_incidence",
+                f64::from(r.max_incidence),
+                1.0e-3,
+                FRAC_PI_2 - 1.0e-3,
+            )?;
+        }
+        check_range("z_min", f64::from(self.z_min), -1.0e8, -1.0e-4)?;
+        self.blur.validate()
+    }
+}

@@ -1,0 +1,118 @@
+//! The bilateral reconstruction passes (§2.4).
+
+use ocean_sao::blur::{Axis, BlurConstants};
+use ocean_sao::pack::{SKY_KEY, Texel, dequantise_ao, encode_key, pack};
+use ocean_sao::{BlurParams, SKY_Z, Viewport};
+
+const INV_Z_MIN: f32 = 1.0 / -200.0;
+
+fn image(w: usize, h: usize, f: impl Fn(usize, usize) -> (f32, f32)) -> Vec<Texel> {
+    let mut out = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            let (a, z) = f(x, y);
+            out.push(pack(a, encode_key(z, INV_Z_MIN)));
+        }
+    }
+    out
+}
+
+/// The paper's weights: Gaussian `exp(−t²/(2σ²))` with σ = 1.5 taps for taps 0..=3 of 7.
+#[test]
+fn gaussian_weights() {
+    let g = BlurParams::default().gaussian();
+    let want = [
+        1.0,
+        (-1.0f64 / 4.5).exp(),
+        (-4.0f64 / 4.5).exp(),
+        (-9.0f64 / 4.5).exp(),
+    ];
+    assert_eq!(g.len(), 4);
+    for (a, b) in g.iter().zip(want) {
+        assert!((f64::from(*a) - b).abs() < 1e-7);
+    }
+}
+
+/// A single dark pixel (A = 0) in a field of A = 1 at one depth: after the horizontal pass, the
+/// pixel `3k` away (stride 3) reads `1 − g_k/Σg` (every tap in range, all depth weights 1), and
+/// pixels not on the stride lattice stay 1.
+#[test]
+fn impulse_response() {
+    let (w, h) = (41, 3);
+    let img = image(w, h, |x, _| (if x == 20 { 0.0 } else { 1.0 }, -4.0));
+    let blur = BlurConstants::new(&BlurParams::default());
+    let g = &blur.gauss;
+    let sum: f32 = g[0] + 2.0 * (g[1] + g[2] + g[3]);
+    for x in 10..31usize {
+        let got = blur.blur_pixel(&img, w, h, x, 1, Axis::Horizontal);
+        let d = x as i64 - 20;
+        let want = if d % 3 == 0 && d.abs() <= 9 {
+            1.0 - g[(d.abs() / 3) as usize] / sum
+        } else {
+            1.0
+        };
+        assert!((got - want).abs() < 1e-6, "x {x}: {got} vs {want}");
+    }
+}
+
+/// The depth weight `max(0, 1 − 2¹¹·|Δkey|)` stops the blur at a 0.5 m depth step (Δkey =
+/// 0.0025, weight 0): two flat halves keep their own A exactly, through both passes.
+#[test]
+fn depth_edges_are_kept() {
+    let (w, h) = (24, 20);
+    let img = image(w, h, |x, _| if x < 12 { (0.2, -3.0) } else { (0.8, -3.5) });
+    let vp = Viewport::new(w, h, 0).unwrap();
+    let blur = BlurConstants::new(&BlurParams::default());
+    let out = blur.vertical(&vp, &blur.horizontal(&vp, &img));
+    for (i, a) in out.iter().enumerate() {
+        let want = dequantise_ao(pack(if i % w < 12 { 0.2 } else { 0.8 }, 0)[0]);
+        assert!((a - want).abs() < 1e-6, "pixel {i}: {a}");
+    }
+}
+
+/// Sky pixels pass through unchanged and do not contribute: a sky column of A = 1 beside
+/// geometry with A = 0.3 at the same nominal key leaves both as they are.
+#[test]
+fn sky_passes_through() {
+    let (w, h) = (16, 8);
+    let img: Vec<Texel> = (0..w * h)
+        .map(|i| {
+            if i % w < 8 {
+                pack(0.3, encode_key(-5.0, INV_Z_MIN))
+            } else {
+                pack(1.0, SKY_KEY)
+            }
+        })
+        .collect();
+    let vp = Viewport::new(w, h, 0).unwrap();
+    let blur = BlurConstants::new(&BlurParams::default());
+    let out = blur.vertical(&vp, &blur.horizontal(&vp, &img));
+    for (i, a) in out.iter().enumerate() {
+        let want = if i % w < 8 {
+            dequantise_ao(pack(0.3, 0)[0])
+        } else {
+            1.0
+        };
+        assert!((a - want).abs() < 1e-6, "pixel {i}: {a}");
+    }
+    assert_eq!(encode_key(SKY_Z, INV_Z_MIN), SKY_KEY);
+}
+
+/// One tap is the identity; taps at the image border are skipped and the weights renormalised,
+/// so a constant image stays constant up to the border.
+#[test]
+fn one_tap_and_borders() {
+    let (w, h) = (10, 10);
+    let img = image(w, h, |x, y| ((x * 7 + y * 3) as f32 / 100.0, -2.0));
+    let vp = Viewport::new(w, h, 0).unwrap();
+    let one = BlurConstants::new(&BlurParams {
+        taps: 1,
+        ..BlurParams::default()
+    });
+    assert_eq!(one.horizontal(&vp, &img), img);
+    let flat = image(w, h, |_, _| (0.6, -2.0));
+    let blur = BlurConstants::new(&BlurParams::default());
+    let out = blur.vertical(&vp, &blur.horizontal(&vp, &flat));
+    let want = dequantise_ao(flat[0][0]);
+    assert!(out.iter().all(|a| (a - want).abs() < 1e-6));
+}
