@@ -5,8 +5,8 @@ use std::time::Instant;
 use ocean_core::{Grid, WaveSet};
 use ocean_gpu::layers::LayersInput;
 use ocean_gpu::trochoid::TrochoidInput;
-use ocean_gpu::{GpuContext, GpuTimer, LayersPass, TrochoidPass, TrochoidTarget};
-use ocean_wtb::scene::Frame;
+use ocean_gpu::{GpuContext, GpuTimer, LayersPass, TrochoidPass, TrochoidTarget, WtbMarchPass};
+use ocean_wtb::scene::{Frame, Scene};
 use serde_json::{Value, json};
 
 pub struct Bench {
@@ -79,6 +79,56 @@ impl Bench {
         Ok(json!({
             "points": grid.size.0 * grid.size.1,
             "kernel_ms": median(&mut kernel),
+            "wall_ms": median(&mut wall),
+            "timestamps": timer.is_some(),
+        }))
+    }
+
+    /// The same frame with its rays marched on the GPU (`WtbMarchPass` from the scene's plan):
+    /// median wall time of plan + march + evaluation (record, submit, wait), and the median
+    /// GPU time of its layers pass (timestamps, when the adapter has them), over `runs` runs
+    /// after two warm-ups. The CPU's share is the plan (culling, budget, one descriptor per
+    /// ray) and the height field.
+    pub fn march(
+        &self,
+        scene: &Scene,
+        t: f64,
+        height: Option<&[f32]>,
+        runs: u32,
+    ) -> Result<Value, String> {
+        let e = |e: ocean_gpu::GpuError| e.to_string();
+        let pass = WtbMarchPass::new(&self.ctx).map_err(e)?;
+        let grid = *scene.grid();
+        let target = TrochoidTarget::new(&self.ctx, grid.grid()).map_err(e)?;
+        let timer = GpuTimer::new(&self.ctx);
+        let (mut kernel, mut wall) = self.timed(runs, timer.as_ref(), |_| {
+            let plan = scene
+                .plan(t, None)
+                .map_err(|err| ocean_gpu::GpuError::Wgpu(err.to_string()))?;
+            let mut encoder = self.ctx.device().create_command_encoder(
+                &ocean_gpu::wgpu::CommandEncoderDescriptor {
+                    label: Some("bench wtb march"),
+                },
+            );
+            pass.encode(
+                &self.ctx,
+                &mut encoder,
+                &grid,
+                scene.terrain(),
+                &plan,
+                height,
+                &target,
+                timer.as_ref(),
+            )?;
+            if let Some(timer) = &timer {
+                timer.resolve(&mut encoder);
+            }
+            self.ctx.queue().submit([encoder.finish()]);
+            Ok(())
+        })?;
+        Ok(json!({
+            "points": grid.len(),
+            "layers_kernel_ms": median(&mut kernel),
             "wall_ms": median(&mut wall),
             "timestamps": timer.is_some(),
         }))

@@ -514,7 +514,8 @@ pub fn wtb(args: &BenchArgs) -> Result<(), String> {
         })
     };
 
-    // 6. The same frames on the GPU (LayersPass), scenario 1 at 512² and 1024².
+    // 6. The same frames on the GPU (LayersPass from the CPU's march, and WtbMarchPass marching
+    // the rays itself), scenario 1 at 512² and 1024².
     let gpu = if args.no_gpu {
         json!({ "unavailable": "skipped (--no-gpu)" })
     } else {
@@ -526,6 +527,8 @@ pub fn wtb(args: &BenchArgs) -> Result<(), String> {
                     let frame = scene.frame(T0, None).map_err(|e| e.to_string())?;
                     let mut v = bench.layers(&frame, runs)?;
                     v["side"] = json!(side);
+                    let height = frame.height_field().map(<[f32]>::to_vec);
+                    v["march"] = bench.march(&scene, T0, height.as_deref(), runs)?;
                     sizes.push(v);
                 }
                 json!({ "device": bench.describe(), "scenario_1": sizes })
@@ -898,6 +901,16 @@ fn print_wtb(r: &Value) {
                         .as_f64()
                         .map_or("-".to_string(), |v| format!("{v:.3}")),
                     num(&c["wall_ms"]),
+                );
+                let m = &c["march"];
+                println!(
+                    "   {}², rays marched on the GPU (WtbMarchPass): plan + march + evaluation {:.3} ms \
+                     (its layers pass {} ms)",
+                    c["side"],
+                    num(&m["wall_ms"]),
+                    m["layers_kernel_ms"]
+                        .as_f64()
+                        .map_or("-".to_string(), |v| format!("{v:.3}")),
                 );
             }
         }
