@@ -102,9 +102,7 @@ impl Bench {
         let target = TrochoidTarget::new(&self.ctx, grid.grid()).map_err(e)?;
         let timer = GpuTimer::new(&self.ctx);
         let (mut kernel, mut wall) = self.timed(runs, timer.as_ref(), |_| {
-            let plan = scene
-                .plan(t, None)
-                .map_err(|err| ocean_gpu::GpuError::Wgpu(err.to_string()))?;
+            let plan = scene.plan(t, None)?;
             let mut encoder = self.ctx.device().create_command_encoder(
                 &ocean_gpu::wgpu::CommandEncoderDescriptor {
                     label: Some("bench wtb march"),

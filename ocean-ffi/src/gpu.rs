@@ -102,6 +102,7 @@ pub(crate) fn gpu_error(context: &str, e: GpuError) -> Error {
         | GpuError::UnsuitableAdapter { .. }
         | GpuError::RequestDevice(_) => OceanStatus::NoAdapter,
         GpuError::Brdf(b) => return brdf_error(context, *b),
+        GpuError::Wtb(w) => return crate::wtb::wtb_error(context, *w),
         GpuError::Eval(ocean_core::EvalError::Time(_)) => OceanStatus::NonFinite,
         GpuError::Eval(_)
         | GpuError::InvalidInput { .. }

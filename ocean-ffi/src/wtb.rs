@@ -290,7 +290,7 @@ const _: () = {
 };
 
 /// The status of an `ocean-wtb` error, and its message prefixed with `context`.
-fn wtb_error(context: &str, e: WtbError) -> Error {
+pub(crate) fn wtb_error(context: &str, e: WtbError) -> Error {
     let status = match e {
         WtbError::NotFinite(_) | WtbError::TerrainNotFinite { .. } => OceanStatus::NonFinite,
         WtbError::TooSteep { .. } => OceanStatus::TooSteep,

@@ -139,6 +139,10 @@ pub enum GpuError {
     /// The lighting or surface model refused its inputs.
     #[error(transparent)]
     Brdf(#[from] ocean_brdf::BrdfError),
+    /// The wave-train-box model refused its inputs (a terrain of another grid, a box frame of
+    /// another spacing).
+    #[error(transparent)]
+    Wtb(#[from] ocean_wtb::WtbError),
 }
 
 /// Runs `f` inside validation and out-of-memory error scopes on `device` and returns the first

@@ -200,10 +200,7 @@ impl WtbMarchPass {
         plan: &Plan,
         b: &MarchBox,
     ) -> Result<BoxRun, GpuError> {
-        let traversal = b
-            .frame
-            .traversal(grid)
-            .map_err(|e| GpuError::Wgpu(e.to_string()))?;
+        let traversal = b.frame.traversal(grid)?;
         let fixed: FixedTraversal = *traversal.fixed();
         let mut statics = Vec::new();
         let mut rays = 0u32;
@@ -329,8 +326,8 @@ impl WtbMarchPass {
     ///
     /// # Errors
     ///
-    /// [`GpuError::Eval`] or [`GpuError::Wgpu`] for a terrain of another size than the grid, a
-    /// time outside `[0, 2³⁶)` s, or the layers pass's own errors; nothing is recorded then.
+    /// [`GpuError::Wtb`] for a terrain of another grid, [`GpuError::Eval`] for a time outside
+    /// `[0, 2³⁶)` s, or the layers pass's own errors; nothing is recorded then.
     #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,
@@ -344,9 +341,10 @@ impl WtbMarchPass {
         timer: Option<&GpuTimer>,
     ) -> Result<Vec<wgpu::Buffer>, GpuError> {
         if terrain.grid() != grid {
-            return Err(GpuError::Wgpu(
-                "the terrain belongs to another water grid".to_owned(),
-            ));
+            return Err(GpuError::Wtb(ocean_wtb::WtbError::TerrainSize {
+                expected: grid.len(),
+                got: terrain.grid().len(),
+            }));
         }
         if !(0.0..MAX_TIME).contains(&plan.t) {
             return Err(GpuError::Eval(ocean_core::EvalError::Time(plan.t)));

@@ -235,3 +235,34 @@ fn rays_marched_on_the_gpu_match_the_cpu() {
         );
     }
 }
+
+#[test]
+fn the_gpu_march_refuses_bad_input_before_recording() {
+    let Some(ctx) = gpu_context_or_skip() else {
+        return;
+    };
+    let pass = WtbMarchPass::new(&ctx).unwrap();
+    let scene = scenarios::scenario_1(64).unwrap();
+    let grid = *scene.grid();
+    let plan = scene.plan(12.0, None).unwrap();
+    // A terrain made for another grid: the model's own error, with both sizes.
+    let other = scenarios::scenario_1(32).unwrap().terrain().clone();
+    match pass.evaluate(&ctx, &grid, &other, &plan, None) {
+        Err(ocean_gpu::GpuError::Wtb(ocean_wtb::WtbError::TerrainSize { expected, got })) => {
+            assert_eq!((expected, got), (64 * 64, 32 * 32));
+        }
+        other => panic!("terrain of another grid: {:?}", other.map(|_| ())),
+    }
+    // Times outside [0, 2³⁶) s, where the dispersion phase's exact split does not reach.
+    for t in [-1.0, ocean_gpu::wtb::MAX_TIME] {
+        let mut plan = scene.plan(12.0, None).unwrap();
+        plan.t = t;
+        assert!(
+            matches!(
+                pass.evaluate(&ctx, &grid, scene.terrain(), &plan, None),
+                Err(ocean_gpu::GpuError::Eval(ocean_core::EvalError::Time(_)))
+            ),
+            "t = {t}"
+        );
+    }
+}

@@ -223,8 +223,8 @@ fn has(flag: u32) -> bool {
     return (params.flags & flag) != 0u;
 }
 
-// Ground height at grid point (i, j); −1 (water, deep enough for nothing to change) is never
-// used: callers test the terrain flag first.
+// Ground height at grid point (i, j). Only read when flag 1 says there is a terrain (without
+// one the buffer is a placeholder).
 fn ground(i: u32, j: u32) -> f32 {
     return terrain[j * params.grid_nx + i];
 }
