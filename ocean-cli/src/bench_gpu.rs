@@ -89,6 +89,12 @@ impl Bench {
     /// GPU time of its layers pass (timestamps, when the adapter has them), over `runs` runs
     /// after two warm-ups. The CPU's share is the plan (culling, budget, one descriptor per
     /// ray) and the height field.
+    ///
+    /// Two figures: `cached`, the steady state of still boxes (the pass reuses their marches;
+    /// the marches over warm-ups and timed runs are counted: one per box, in the first
+    /// warm-up), and `remarched`,
+    /// every box marched again each frame (the cache cleared first), the cost of boxes that
+    /// move every frame.
     pub fn march(
         &self,
         scene: &Scene,
@@ -101,33 +107,49 @@ impl Bench {
         let grid = *scene.grid();
         let target = TrochoidTarget::new(&self.ctx, grid.grid()).map_err(e)?;
         let timer = GpuTimer::new(&self.ctx);
-        let (mut kernel, mut wall) = self.timed(runs, timer.as_ref(), |_| {
-            let plan = scene.plan(t, None)?;
-            let mut encoder = self.ctx.device().create_command_encoder(
-                &ocean_gpu::wgpu::CommandEncoderDescriptor {
-                    label: Some("bench wtb march"),
-                },
-            );
-            pass.encode(
-                &self.ctx,
-                &mut encoder,
-                &grid,
-                scene.terrain(),
-                &plan,
-                height,
-                &target,
-                timer.as_ref(),
-            )?;
-            if let Some(timer) = &timer {
-                timer.resolve(&mut encoder);
-            }
-            self.ctx.queue().submit([encoder.finish()]);
-            Ok(())
-        })?;
+        let figure = |remarch: bool| -> Result<Value, String> {
+            let before = pass.stats();
+            let (mut kernel, mut wall) = self.timed(runs, timer.as_ref(), |_| {
+                if remarch {
+                    pass.clear_cache();
+                }
+                let plan = scene.plan(t, None)?;
+                let mut encoder = self.ctx.device().create_command_encoder(
+                    &ocean_gpu::wgpu::CommandEncoderDescriptor {
+                        label: Some("bench wtb march"),
+                    },
+                );
+                pass.encode(
+                    &self.ctx,
+                    &mut encoder,
+                    &grid,
+                    scene.terrain(),
+                    &plan,
+                    height,
+                    &target,
+                    timer.as_ref(),
+                )?;
+                if let Some(timer) = &timer {
+                    timer.resolve(&mut encoder);
+                }
+                self.ctx.queue().submit([encoder.finish()]);
+                Ok(())
+            })?;
+            let after = pass.stats();
+            Ok(json!({
+                "layers_kernel_ms": median(&mut kernel),
+                "wall_ms": median(&mut wall),
+                // Over the warm-ups and the timed runs.
+                "marches": after.marches - before.marches,
+                "reuses": after.reuses - before.reuses,
+            }))
+        };
+        let cached = figure(false)?;
+        let remarched = figure(true)?;
         Ok(json!({
             "points": grid.len(),
-            "layers_kernel_ms": median(&mut kernel),
-            "wall_ms": median(&mut wall),
+            "cached": cached,
+            "remarched": remarched,
             "timestamps": timer.is_some(),
         }))
     }

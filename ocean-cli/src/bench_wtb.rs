@@ -903,15 +903,23 @@ fn print_wtb(r: &Value) {
                     num(&c["wall_ms"]),
                 );
                 let m = &c["march"];
-                println!(
-                    "   {}², rays marched on the GPU (WtbMarchPass): plan + march + evaluation {:.3} ms \
-                     (its layers pass {} ms)",
-                    c["side"],
-                    num(&m["wall_ms"]),
-                    m["layers_kernel_ms"]
-                        .as_f64()
-                        .map_or("-".to_string(), |v| format!("{v:.3}")),
-                );
+                for (key, what) in [
+                    ("cached", "still boxes, marches cached"),
+                    ("remarched", "every box re-marched"),
+                ] {
+                    let f = &m[key];
+                    println!(
+                        "   {}², rays marched on the GPU (WtbMarchPass), {what}: plan + march + \
+                         evaluation {:.3} ms (its layers pass {} ms; {} marches, {} reuses)",
+                        c["side"],
+                        num(&f["wall_ms"]),
+                        f["layers_kernel_ms"]
+                            .as_f64()
+                            .map_or("-".to_string(), |v| format!("{v:.3}")),
+                        f["marches"],
+                        f["reuses"],
+                    );
+                }
             }
         }
         None => println!(

@@ -175,6 +175,22 @@ impl LayerView for DeviceLayer<'_> {
     }
 }
 
+/// A layer's waves and rectangle without its modulation: what [`LayersPass::check_shapes`]
+/// validates before a caller records the passes that will write the modulation.
+pub(crate) struct LayerShape<'a> {
+    pub(crate) waves: &'a WaveSet,
+    pub(crate) rect: GridRect,
+}
+
+impl LayerView for LayerShape<'_> {
+    fn waves(&self) -> &WaveSet {
+        self.waves
+    }
+    fn rect(&self) -> GridRect {
+        self.rect
+    }
+}
+
 /// Counters and capacities of a [`LayersPass`]'s own GPU objects, to check that a frame loop
 /// has reached a steady state (no counter moves from one frame to the next).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -473,6 +489,28 @@ impl LayersPass {
     /// The counters and capacities of the pass's own buffers and bind groups.
     pub fn stats(&self) -> LayersStats {
         self.lock_inputs().stats
+    }
+
+    /// Checks layers of these shapes as [`encode_device`](Self::encode_device) will (the
+    /// input, the device's limits, `target`), recording nothing: for a caller that records
+    /// other passes first and must not leave them behind when the layers are refused.
+    pub(crate) fn check_shapes(
+        &self,
+        ctx: &GpuContext,
+        grid: &Grid,
+        time: f64,
+        layers: &[LayerShape<'_>],
+        height: Option<&[f32]>,
+        target: &TrochoidTarget,
+    ) -> Result<(), GpuError> {
+        let input = Input {
+            grid,
+            time,
+            layers,
+            height,
+        };
+        let p = self.prepare(ctx, &input)?;
+        target.check(p.points)
     }
 
     /// The inputs, also after a panic in another thread: every field is replaced whole, so a

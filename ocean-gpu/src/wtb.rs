@@ -22,147 +22,46 @@
 //! it drifts from the CPU's by about 10⁻⁷·Δω·t rad (smoothly: no jitter, see the shader's
 //! `turns`); at t = 1000 s that is below 10⁻⁴ rad.
 //!
-//! Each call uploads the terrain and creates the boxes' work buffers; the static march is
-//! recomputed every call (on the GPU it costs a few dispatches per box).
+//! ## What is kept between calls
+//!
+//! The pass caches the terrain and each box's static march (everything but `combine`), as the
+//! CPU scene caches a still box's modulation: a box is marched again only when its
+//! [`MarchBox`](ocean_wtb::march::MarchBox) or the terrain changes (a moving box, a growing
+//! one, a new terrain), and an entry unused for [`KEEP_CALLS`] calls is dropped. A march runs
+//! in a command buffer of its own, submitted during the call, so the cache never holds a march
+//! recorded into an encoder the caller might drop; `combine` and the layers pass go into the
+//! caller's encoder. [`WtbMarchPass::stats`] counts marches, reuses and allocations.
+//!
+//! The pass's buffers are reused from call to call and filled by `Queue::write_buffer`: submit
+//! the encoder of one call before making the next.
 
-use bytemuck::{Pod, Zeroable};
+mod cache;
+mod params;
+
+use std::sync::{Mutex, MutexGuard, PoisonError};
+
 use ocean_core::Grid;
-use ocean_wtb::effects::{Refraction, ShorteningTable};
-use ocean_wtb::march::{MarchBox, Plan};
-use ocean_wtb::{FixedTraversal, Terrain, WaterGrid};
+use ocean_wtb::march::Plan;
+use ocean_wtb::{Terrain, WaterGrid};
 
-use crate::layers::DeviceLayer;
+use crate::layers::{DeviceLayer, LayerShape};
 use crate::readback::{GpuTimer, read_buffer_as};
-use crate::trochoid::{WORKGROUP_SIZE, dispatch_shape};
 use crate::{GpuContext, GpuError, GridOutput, LayersPass, TrochoidTarget};
+use cache::{CachedBox, CachedTerrain, MarchCache, Need, PARAMS_SIZE, fits};
+pub use cache::{KEEP_CALLS, WtbMarchStats};
+use params::{BoxSetup, with_effects};
+pub use params::{MAX_TIME, MarchParams};
 
-/// The march's uniform block, byte for byte the WGSL `Params` of `wtb_march.wgsl` (208 bytes).
-/// 64-bit integers are `[low, high]` words.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-pub struct MarchParams {
-    /// Water grid columns.
-    pub grid_nx: u32,
-    /// Water grid rows.
-    pub grid_nz: u32,
-    /// The box rectangle's first column.
-    pub i0: u32,
-    /// Its first row.
-    pub j0: u32,
-    /// Its columns.
-    pub nx: u32,
-    /// Its rows.
-    pub nz: u32,
-    /// Ray descriptors.
-    pub rays: u32,
-    /// 1 terrain, 2 refraction, 4 shoaling, 8 round waves, 16 beach, 32 irregular, 64 dispersion.
-    pub flags: u32,
-    /// [`FixedTraversal::ca`].
-    pub ca: [u32; 2],
-    /// [`FixedTraversal::cb`].
-    pub cb: [u32; 2],
-    /// [`FixedTraversal::ux`].
-    pub ux: [u32; 2],
-    /// [`FixedTraversal::uz`].
-    pub uz: [u32; 2],
-    /// [`FixedTraversal::length`].
-    pub length: [u32; 2],
-    /// [`FixedTraversal::width`].
-    pub width: [u32; 2],
-    /// A cell centre's move per step, grid units.
-    pub centre_step: [f32; 2],
-    /// Candidate window half-width, grid units.
-    pub half: f32,
-    /// Metres per fixed-point unit.
-    pub cell: f32,
-    /// Side fade width, metres.
-    pub smoothing: f32,
-    /// Recovery distance behind land, metres.
-    pub recovery: f32,
-    /// ΣA of the box's trains, metres.
-    pub amplitude: f32,
-    /// Peak wavenumber, rad/m.
-    pub peak_k: f32,
-    /// Shoaling reference depth, metres.
-    pub shallow_depth: f32,
-    /// The beach's amplitude per metre of depth.
-    pub beach_share: f32,
-    /// Shortening table step in √depth.
-    pub table_step: f32,
-    /// Its intervals.
-    pub table_len: u32,
-    /// Word offset of its values in the statics buffer.
-    pub table: u32,
-    /// Smoothing radius, cells.
-    pub radius: u32,
-    /// Workgroups along x of the points' dispatches.
-    pub groups_x: u32,
-    /// Eq. 8: a.
-    pub irregular_scale: f32,
-    /// Eq. 8: f, rad/m.
-    pub irregular_freq: f32,
-    /// Eq. 8: k_e, rad/m.
-    pub irregular_k: f32,
-    /// k_e·c_e·t reduced to [−π, π].
-    pub irregular_phase: f32,
-    /// Internal a of the rectangle's first point, metres.
-    pub origin_a: f32,
-    /// Internal b of it, metres.
-    pub origin_b: f32,
-    /// a's change per column, metres.
-    pub a_di: f32,
-    /// a's change per row.
-    pub a_dj: f32,
-    /// b's change per column.
-    pub b_di: f32,
-    /// b's change per row.
-    pub b_dj: f32,
-    /// √(g k_p), rad/s.
-    pub omega_deep: f32,
-    /// Workgroups along x of the rays' dispatch.
-    pub ray_groups_x: u32,
-    /// Padding.
-    pub _pad: u32,
-    /// t = x·2²⁴ + y·2¹² + z + w, with x, y, z whole numbers below 2¹² and w in [0, 1).
-    pub time: [f32; 4],
-}
-
-/// The entry points of `wtb_march.wgsl`, in dispatch order.
+/// The entry points of `wtb_march.wgsl`, in dispatch order; the last, `combine`, runs every
+/// call, the others only when a box is marched.
 const ENTRIES: [&str; 7] = [
     "clear", "march", "erode_x", "erode_z", "mean_x", "mean_z", "combine",
 ];
-
-/// Largest time the dispersion phase's split takes, seconds (2³⁶).
-pub const MAX_TIME: f64 = (1u64 << 36) as f64;
-
-fn words(v: i64) -> [u32; 2] {
-    [v as u32, (v >> 32) as u32]
-}
-
-/// `t` split as the shader's `time` (see [`MarchParams::time`]).
-fn split_time(t: f64) -> [f32; 4] {
-    let whole = t.floor();
-    let w = (t - whole) as f32;
-    let n = whole as u64;
-    [
-        (n >> 24) as f32,
-        ((n >> 12) & 0xfff) as f32,
-        (n & 0xfff) as f32,
-        w,
-    ]
-}
+/// Index of `combine` in [`ENTRIES`].
+const COMBINE: usize = 6;
 
 /// The evaluated grid and, per box of the plan, its modulation over its rectangle.
 pub type MarchOutput = (GridOutput, Vec<Vec<[f32; 2]>>);
-
-/// One box's prepared dispatch.
-struct BoxRun {
-    params: MarchParams,
-    statics: Vec<u32>,
-    points: u64,
-    groups: (u32, u32),
-    ray_groups: (u32, u32),
-}
 
 /// The ray march of wave train boxes and the evaluation of their grid on the GPU (see the
 /// [module documentation](self)).
@@ -172,6 +71,7 @@ pub struct WtbMarchPass {
     layout: wgpu::BindGroupLayout,
     layers: LayersPass,
     max_groups_per_dim: u32,
+    cache: Mutex<MarchCache>,
 }
 
 impl WtbMarchPass {
@@ -189,145 +89,40 @@ impl WtbMarchPass {
             layout,
             layers: LayersPass::new(ctx)?,
             max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
+            cache: Mutex::new(MarchCache::default()),
         })
     }
 
-    /// The uniform block and the statics (ray descriptors, shortening table) of one box.
-    fn prepare_box(
-        &self,
-        grid: &WaterGrid,
-        terrain: &Terrain,
-        plan: &Plan,
-        b: &MarchBox,
-    ) -> Result<BoxRun, GpuError> {
-        let traversal = b.frame.traversal(grid)?;
-        let fixed: FixedTraversal = *traversal.fixed();
-        let mut statics = Vec::new();
-        let mut rays = 0u32;
-        for r in traversal.rays() {
-            let steps = traversal.ray(r).steps;
-            if steps.is_empty() {
-                continue;
-            }
-            let c = traversal.cell_centre(r, steps.start);
-            statics.extend_from_slice(&[
-                r,
-                steps.start,
-                steps.end - steps.start,
-                0,
-                (c.x as f32).to_bits(),
-                (c.y as f32).to_bits(),
-                0,
-                0,
-            ]);
-            rays += 1;
-        }
-        let table = ShorteningTable::new(b.peak_k);
-        let table_offset = statics.len() as u32;
-        statics.extend(table.values().iter().map(|&v| (v as f32).to_bits()));
-        let e = &plan.effects;
-        let has_terrain = terrain.heights().is_some();
-        let mut flags = 0u32;
-        for (on, bit) in [
-            (has_terrain, 1),
-            (b.refraction, 2),
-            (b.shoaling, 4),
-            (b.round_waves, 8),
-            (b.beach.is_some(), 16),
-            (e.irregular.is_some(), 32),
-            (e.refraction == Refraction::Dispersion, 64),
-        ] {
-            if on {
-                flags |= bit;
-            }
-        }
-        let r = b.rect;
-        let points = r.len() as u64;
-        let groups = dispatch_shape(
-            u32::try_from(points.div_ceil(u64::from(WORKGROUP_SIZE))).map_err(|_| {
-                GpuError::TooLarge {
-                    what: "box rectangle points",
-                    needed: points,
-                    limit: u64::from(u32::MAX),
-                }
-            })?,
-            self.max_groups_per_dim,
-        )?;
-        let ray_groups = dispatch_shape(rays.div_ceil(WORKGROUP_SIZE), self.max_groups_per_dim)?;
-        let s = grid.spacing();
-        let p0 = grid.point(r.i0, r.j0);
-        let ab0 = b.frame.internal(p0);
-        let (u, v) = (b.frame.u(), b.frame.v());
-        let step = traversal.centre_step();
-        let params = MarchParams {
-            grid_nx: grid.nx() as u32,
-            grid_nz: grid.nz() as u32,
-            i0: r.i0 as u32,
-            j0: r.j0 as u32,
-            nx: r.nx as u32,
-            nz: r.nz as u32,
-            rays,
-            flags,
-            ca: words(fixed.ca),
-            cb: words(fixed.cb),
-            ux: words(fixed.ux),
-            uz: words(fixed.uz),
-            length: words(fixed.length),
-            width: words(fixed.width),
-            centre_step: [step.x as f32, step.y as f32],
-            // The CPU's bounding half-width plus a margin far above the f32 rounding of the
-            // centres (below 10⁻³ cells on a 4096² grid): still under 1 in all, so at most two
-            // candidates per axis.
-            half: (traversal.cell_half_extent() + 0.05) as f32,
-            cell: (s / ocean_wtb::frame::FIXED_ONE as f64) as f32,
-            smoothing: b.smoothing as f32,
-            recovery: b.recovery as f32,
-            amplitude: b.amplitude as f32,
-            peak_k: b.peak_k as f32,
-            shallow_depth: b.shallow_depth as f32,
-            beach_share: b.beach.map_or(0.0, |x| x.max_depth_share as f32),
-            table_step: table.step() as f32,
-            table_len: ShorteningTable::SAMPLES as u32,
-            table: table_offset,
-            radius: b.shore_radius as u32,
-            groups_x: groups.0,
-            irregular_scale: e.irregular.map_or(0.0, |x| x.scale as f32),
-            irregular_freq: e.irregular.map_or(0.0, |x| x.frequency as f32),
-            irregular_k: e.irregular.map_or(0.0, |x| x.envelope_wavenumber as f32),
-            irregular_phase: e.irregular.map_or(0.0, |x| {
-                ocean_core::phase::reduce_angle(x.envelope_wavenumber * x.envelope_speed * plan.t)
-                    as f32
-            }),
-            origin_a: ab0.x as f32,
-            origin_b: ab0.y as f32,
-            a_di: (u.x * s) as f32,
-            a_dj: (u.y * s) as f32,
-            b_di: (v.x * s) as f32,
-            b_dj: (v.y * s) as f32,
-            omega_deep: (ocean_core::GRAVITY * b.peak_k).sqrt() as f32,
-            ray_groups_x: ray_groups.0,
-            _pad: 0,
-            time: split_time(plan.t),
-        };
-        Ok(BoxRun {
-            params,
-            statics,
-            points,
-            groups,
-            ray_groups,
-        })
+    /// The cache's counters.
+    pub fn stats(&self) -> WtbMarchStats {
+        self.lock_cache().stats
     }
 
-    /// Records every box's march and the grid's evaluation into `encoder`, writing the water
-    /// grid's positions and normals into `target`; `height` is the additive height field
-    /// (noise, run-up: `ocean_wtb::scene::Frame::height_field` at the plan's time), if any.
-    /// Returns the boxes' modulation buffers (kept alive by wgpu until the work completes; the
-    /// parity tests read them).
+    /// Releases every cached march and the terrain's buffer; the next call marches every box
+    /// again.
+    pub fn clear_cache(&self) {
+        self.lock_cache().clear();
+    }
+
+    /// The cache, also after a panic in another thread: a call that fails clears it, and every
+    /// entry is replaced whole.
+    fn lock_cache(&self) -> MutexGuard<'_, MarchCache> {
+        self.cache.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// Records the boxes' time-dependent modulation and the grid's evaluation into `encoder`,
+    /// writing the water grid's positions and normals into `target`, after marching (in a
+    /// submit of its own) every box whose march is not cached; `height` is the additive height
+    /// field (noise, run-up: `ocean_wtb::scene::Frame::height_field` at the plan's time), if
+    /// any. Returns the boxes' modulation buffers, in the plan's order (the cache's own: valid
+    /// until the next call; the parity tests read them).
     ///
     /// # Errors
     ///
-    /// [`GpuError::Wtb`] for a terrain of another grid, [`GpuError::Eval`] for a time outside
-    /// `[0, 2³⁶)` s, or the layers pass's own errors; nothing is recorded then.
+    /// [`GpuError::Wtb`] for a terrain of another grid or a box the grid cannot hold,
+    /// [`GpuError::Eval`] for a time outside `[0, 2³⁶)` s, the layers pass's errors (a height
+    /// field of the wrong length, a `target` too small); nothing is recorded, submitted or
+    /// cached then.
     #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,
@@ -349,14 +144,74 @@ impl WtbMarchPass {
         if !(0.0..MAX_TIME).contains(&plan.t) {
             return Err(GpuError::Eval(ocean_core::EvalError::Time(plan.t)));
         }
-        let runs: Vec<BoxRun> = plan
+        let shapes: Vec<LayerShape<'_>> = plan
             .boxes
             .iter()
-            .map(|b| self.prepare_box(grid, terrain, plan, &b.march))
-            .collect::<Result<_, _>>()?;
+            .map(|b| LayerShape {
+                waves: &b.waves,
+                rect: b.march.rect,
+            })
+            .collect();
+        self.layers
+            .check_shapes(ctx, grid.grid(), plan.t, &shapes, height, target)?;
+        let mut cache = self.lock_cache();
+        // Decide every box's work before changing anything, so that a refused box leaves the
+        // cache as it was.
+        let terrain_same = cache.has_terrain(terrain);
+        let mut claimed = vec![false; cache.boxes.len()];
+        let mut needs = Vec::with_capacity(plan.boxes.len());
+        for b in &plan.boxes {
+            let (reuse, lend) = cache.lookup(b.id, &b.march, terrain_same, &claimed);
+            let need = match reuse {
+                Some(n) => Need::Reuse(n),
+                None => Need::March(
+                    lend,
+                    Box::new(BoxSetup::new(
+                        grid,
+                        terrain,
+                        &b.march,
+                        self.max_groups_per_dim,
+                    )?),
+                ),
+            };
+            if let Some(n) = reuse.or(lend) {
+                claimed[n] = true;
+            }
+            needs.push(need);
+        }
+        let result = crate::scoped(ctx.device(), || {
+            self.record(
+                ctx, encoder, &mut cache, grid, terrain, plan, needs, height, target, timer,
+            )
+        });
+        if result.is_err() {
+            cache.clear();
+        }
+        result
+    }
+
+    /// The mutating half of [`encode`](Self::encode), inside its error scopes.
+    #[allow(clippy::too_many_arguments)]
+    fn record(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        cache: &mut MarchCache,
+        grid: &WaterGrid,
+        terrain: &Terrain,
+        plan: &Plan,
+        needs: Vec<Need>,
+        height: Option<&[f32]>,
+        target: &TrochoidTarget,
+        timer: Option<&GpuTimer>,
+    ) -> Result<Vec<wgpu::Buffer>, GpuError> {
         let device = ctx.device();
-        let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
-        let buffer = |label: &str, size: u64, usage| {
+        let queue = ctx.queue();
+        cache.calls += 1;
+        let now = cache.calls;
+        let mut created = 0u64;
+        let mut buffer = |label: &str, size: u64, usage| {
+            created += 1;
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size: size.max(16),
@@ -364,87 +219,159 @@ impl WtbMarchPass {
                 mapped_at_creation: false,
             })
         };
-        let terrain_buffer = buffer(
-            "ocean wtb terrain",
-            4 * terrain.heights().map_or(1, |h| h.len()) as u64,
-            storage,
-        );
-        if let Some(h) = terrain.heights() {
-            ctx.queue()
-                .write_buffer(&terrain_buffer, 0, bytemuck::cast_slice(h));
-        }
-        let mut modulations = Vec::with_capacity(runs.len());
-        crate::scoped(device, || {
-            for run in &runs {
-                let uniform = buffer(
-                    "ocean wtb march params",
-                    std::mem::size_of::<MarchParams>() as u64,
-                    wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                );
-                ctx.queue()
-                    .write_buffer(&uniform, 0, bytemuck::bytes_of(&run.params));
-                let statics = buffer(
-                    "ocean wtb march statics",
-                    4 * run.statics.len() as u64,
-                    storage,
-                );
-                ctx.queue()
-                    .write_buffer(&statics, 0, bytemuck::cast_slice(&run.statics));
-                let work = buffer(
-                    "ocean wtb march work",
-                    16 * run.points,
-                    wgpu::BufferUsages::STORAGE,
-                );
-                let modulation = buffer(
-                    "ocean wtb modulation",
-                    8 * run.points,
-                    wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                );
-                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("ocean wtb march bind group"),
-                    layout: &self.layout,
-                    entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: uniform.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: statics.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2,
-                            resource: terrain_buffer.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 3,
-                            resource: work.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 4,
-                            resource: modulation.as_entire_binding(),
-                        },
-                    ],
-                });
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("ocean wtb march"),
-                    timestamp_writes: None,
-                });
-                pass.set_bind_group(0, &bind_group, &[]);
-                for (n, pipeline) in self.pipelines.iter().enumerate() {
-                    let filter = (2..6).contains(&n);
-                    if filter && run.params.radius == 0 {
-                        continue;
-                    }
-                    let (gx, gy) = if n == 1 { run.ray_groups } else { run.groups };
-                    pass.set_pipeline(pipeline);
-                    pass.dispatch_workgroups(gx, gy, 1);
-                }
-                drop(pass);
-                modulations.push(modulation);
+        let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+        if !cache.has_terrain(terrain) {
+            let bytes = 4 * terrain.heights().map_or(1, |h| h.len()) as u64;
+            let reuse = cache
+                .terrain
+                .take()
+                .map(|t| t.buffer)
+                .filter(|b| b.size() == bytes.max(16));
+            let terrain_buffer =
+                reuse.unwrap_or_else(|| buffer("ocean wtb terrain", bytes, storage));
+            if let Some(h) = terrain.heights() {
+                queue.write_buffer(&terrain_buffer, 0, bytemuck::cast_slice(h));
             }
-            Ok(())
-        })?;
+            cache.terrain = Some(CachedTerrain {
+                terrain: terrain.clone(),
+                buffer: terrain_buffer,
+            });
+            cache.stats.terrain_uploads += 1;
+            // Every march read the old terrain.
+            for e in &mut cache.boxes {
+                e.march = None;
+            }
+        }
+        let terrain_buffer = cache
+            .terrain
+            .as_ref()
+            .map(|t| t.buffer.clone())
+            .expect("the terrain was just cached");
+        let mut marches = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("ocean wtb march"),
+        });
+        let mut order = Vec::with_capacity(needs.len());
+        for (need, b) in needs.into_iter().zip(&plan.boxes) {
+            let n = match need {
+                Need::Reuse(n) => {
+                    cache.stats.reuses += 1;
+                    n
+                }
+                Need::March(lend, setup) => {
+                    let setup = *setup;
+                    let old = lend.map(|n| &cache.boxes[n]);
+                    let keep = old.filter(|e| fits(e, &setup));
+                    let (uniform, statics, work, modulation) = match keep {
+                        Some(e) => (
+                            e.uniform.clone(),
+                            e.statics.clone(),
+                            e.work.clone(),
+                            e.modulation.clone(),
+                        ),
+                        None => (
+                            buffer(
+                                "ocean wtb march params",
+                                PARAMS_SIZE,
+                                wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                            ),
+                            buffer(
+                                "ocean wtb march statics",
+                                4 * setup.statics.len() as u64,
+                                storage,
+                            ),
+                            buffer(
+                                "ocean wtb march work",
+                                16 * setup.points,
+                                wgpu::BufferUsages::STORAGE,
+                            ),
+                            buffer(
+                                "ocean wtb modulation",
+                                8 * setup.points,
+                                wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                            ),
+                        ),
+                    };
+                    queue.write_buffer(&statics, 0, bytemuck::cast_slice(&setup.statics));
+                    queue.write_buffer(
+                        &uniform,
+                        0,
+                        bytemuck::bytes_of(&with_effects(&setup.params, plan)),
+                    );
+                    let bind_group = self.bind_group(
+                        device,
+                        [&uniform, &statics, &terrain_buffer, &work, &modulation],
+                    );
+                    {
+                        let mut pass = marches.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                            label: Some("ocean wtb march"),
+                            timestamp_writes: None,
+                        });
+                        pass.set_bind_group(0, &bind_group, &[]);
+                        for (k, pipeline) in self.pipelines[..COMBINE].iter().enumerate() {
+                            let filter = (2..6).contains(&k);
+                            if filter && setup.params.radius == 0 {
+                                continue;
+                            }
+                            let (gx, gy) = if k == 1 {
+                                setup.ray_groups
+                            } else {
+                                setup.groups
+                            };
+                            pass.set_pipeline(pipeline);
+                            pass.dispatch_workgroups(gx, gy, 1);
+                        }
+                    }
+                    let entry = CachedBox {
+                        id: b.id,
+                        march: Some(b.march.clone()),
+                        setup,
+                        uniform,
+                        statics,
+                        work,
+                        modulation,
+                        bind_group,
+                        last_used: now,
+                    };
+                    cache.stats.marches += 1;
+                    match lend {
+                        Some(n) => {
+                            cache.boxes[n] = entry;
+                            n
+                        }
+                        None => {
+                            cache.boxes.push(entry);
+                            cache.boxes.len() - 1
+                        }
+                    }
+                }
+            };
+            order.push(n);
+        }
+        cache.stats.buffers_created += created;
+        // The marches reach the queue before anything the caller submits with `encoder`.
+        queue.submit([marches.finish()]);
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("ocean wtb combine"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&self.pipelines[COMBINE]);
+            for &n in &order {
+                let e = &mut cache.boxes[n];
+                e.last_used = now;
+                queue.write_buffer(
+                    &e.uniform,
+                    0,
+                    bytemuck::bytes_of(&with_effects(&e.setup.params, plan)),
+                );
+                pass.set_bind_group(0, &e.bind_group, &[]);
+                pass.dispatch_workgroups(e.setup.groups.0, e.setup.groups.1, 1);
+            }
+        }
+        let modulations: Vec<wgpu::Buffer> = order
+            .iter()
+            .map(|&n| cache.boxes[n].modulation.clone())
+            .collect();
         let layers: Vec<DeviceLayer<'_>> = plan
             .boxes
             .iter()
@@ -466,12 +393,31 @@ impl WtbMarchPass {
             target,
             timer,
         )?;
+        cache.evict();
         Ok(modulations)
     }
 
+    /// The march's bind group over (uniform, statics, terrain, work, modulation).
+    fn bind_group(&self, device: &wgpu::Device, buffers: [&wgpu::Buffer; 5]) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry<'_>> = buffers
+            .iter()
+            .enumerate()
+            .map(|(binding, b)| wgpu::BindGroupEntry {
+                binding: binding as u32,
+                resource: b.as_entire_binding(),
+            })
+            .collect();
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ocean wtb march bind group"),
+            layout: &self.layout,
+            entries: &entries,
+        })
+    }
+
     /// Marches and evaluates `plan` and reads the grid back (positions relative to the grid's
-    /// origin, as `Frame::evaluate`), with every box's modulation over its rectangle: a
-    /// one-off query that allocates and waits, for tests and tools.
+    /// origin, as `Frame::evaluate`), with every box's modulation over its rectangle: a query
+    /// that allocates its output and waits, for tests and tools (the marches are cached as in
+    /// [`encode`](Self::encode)).
     ///
     /// # Errors
     ///
@@ -509,42 +455,5 @@ impl WtbMarchPass {
             mus.push(v);
         }
         Ok((out, mus))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn params_match_the_wgsl_layout() {
-        let b = crate::shaders::get("wtb_march")
-            .unwrap()
-            .bindings()
-            .unwrap();
-        assert_eq!(std::mem::size_of::<MarchParams>(), 208);
-        assert_eq!(b[0].size as usize, std::mem::size_of::<MarchParams>());
-        let offset = |name: &str| {
-            b[0].members
-                .iter()
-                .find(|m| m.name == name)
-                .unwrap_or_else(|| panic!("{name}"))
-                .offset
-        };
-        assert_eq!(offset("ca"), 32);
-        assert_eq!(offset("centre_step"), 80);
-        assert_eq!(offset("omega_deep"), 180);
-        assert_eq!(offset("ray_groups_x"), 184);
-        assert_eq!(offset("time"), 192);
-    }
-
-    #[test]
-    fn time_splits_into_exact_twelve_bit_parts() {
-        // 10⁶ s + 0.25: 1_000_000 = 0·2²⁴ + 244·2¹² + 576.
-        assert_eq!(split_time(1.0e6 + 0.25), [0.0, 244.0, 576.0, 0.25]);
-        let t = 3.0 * 16_777_216.0 + 5.0 * 4096.0 + 7.0 + 0.5;
-        assert_eq!(split_time(t), [3.0, 5.0, 7.0, 0.5]);
-        assert_eq!(words(-1), [u32::MAX, u32::MAX]);
-        assert_eq!(words(1 << 36), [0, 16]);
     }
 }

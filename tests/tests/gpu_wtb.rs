@@ -266,3 +266,106 @@ fn the_gpu_march_refuses_bad_input_before_recording() {
         );
     }
 }
+
+/// A still box is marched once and its march reused (the paper's action points, cached while
+/// the box is still); moving a box re-marches that box alone, a new terrain re-marches every
+/// box, and each of those frames still matches the CPU (`check_march`'s tolerances).
+#[test]
+fn the_gpu_march_is_cached_while_boxes_are_still() {
+    let Some(ctx) = gpu_context_or_skip() else {
+        return;
+    };
+    let pass = WtbMarchPass::new(&ctx).unwrap();
+    let mut scene = scenarios::scenario_1(64).unwrap();
+    let ids: Vec<_> = scene.box_ids().collect();
+    assert_eq!(ids.len(), 2);
+
+    check_march(&pass, &ctx, &mut scene, 12.0, "scenario 1, first call");
+    let first = pass.stats();
+    assert_eq!(
+        (first.marches, first.reuses, first.terrain_uploads),
+        (2, 0, 1)
+    );
+    assert_eq!(first.cached_boxes, 2);
+    // Terrain 1 + 4 per box.
+    assert_eq!(first.buffers_created, 9);
+
+    // Still boxes: the same marches at other times, nothing allocated.
+    for t in [12.5, 100.0] {
+        check_march(
+            &pass,
+            &ctx,
+            &mut scene,
+            t,
+            &format!("scenario 1, t = {t}, cached"),
+        );
+    }
+    let still = pass.stats();
+    assert_eq!((still.marches, still.reuses), (2, 4));
+    assert_eq!(still.buffers_created, first.buffers_created);
+    assert_eq!(still.terrain_uploads, 1);
+
+    // The same plan twice gives the same bits.
+    let plan = scene.plan(100.0, None).unwrap();
+    let a = pass
+        .evaluate(&ctx, scene.grid(), scene.terrain(), &plan, None)
+        .unwrap();
+    let b = pass
+        .evaluate(&ctx, scene.grid(), scene.terrain(), &plan, None)
+        .unwrap();
+    assert_eq!(a.0.positions, b.0.positions);
+    assert_eq!(a.1, b.1);
+    let before_move = pass.stats();
+
+    // The second box moves 3 m along x (a boat's wake): it alone is marched again, into its
+    // own buffers (the same size of rectangle).
+    // Scenario 1's second box (at 64², scale 1) with its origin 3 m further along x.
+    let moved = scenarios::spec(scenarios::steady_wind(
+        5.0,
+        glam::DVec2::new(0.7, 1.0),
+        glam::DVec2::new(33.0, -30.0),
+        60.0,
+        90.0,
+        2,
+        12,
+    ));
+    scene.update_box(ids[1], moved).unwrap();
+    check_march(
+        &pass,
+        &ctx,
+        &mut scene,
+        100.0,
+        "scenario 1, second box moved",
+    );
+    let after_move = pass.stats();
+    assert_eq!(after_move.marches, before_move.marches + 1);
+    assert_eq!(after_move.reuses, before_move.reuses + 1);
+    assert_eq!(after_move.cached_boxes, 2);
+
+    // Another terrain on the same grid (the floor 2 m shallower): every box is marched again
+    // over it, and the terrain's buffer (the same size) is rewritten, not replaced.
+    let grid = *scene.grid();
+    let shallower: Vec<f32> = scene
+        .terrain()
+        .heights()
+        .unwrap()
+        .iter()
+        .map(|h| h + 2.0)
+        .collect();
+    scene
+        .set_terrain(ocean_wtb::Terrain::from_heights(&grid, shallower).unwrap())
+        .unwrap();
+    check_march(&pass, &ctx, &mut scene, 100.0, "scenario 1, new terrain");
+    let new_terrain = pass.stats();
+    assert_eq!(new_terrain.marches, after_move.marches + 2);
+    assert_eq!(new_terrain.terrain_uploads, 2);
+    assert_eq!(new_terrain.buffers_created, after_move.buffers_created);
+
+    // A refused call (a height field of the wrong length) changes nothing.
+    let plan = scene.plan(100.0, None).unwrap();
+    assert!(matches!(
+        pass.evaluate(&ctx, &grid, scene.terrain(), &plan, Some(&[0.0; 7])),
+        Err(ocean_gpu::GpuError::Eval(_))
+    ));
+    assert_eq!(pass.stats(), new_terrain);
+}
