@@ -88,20 +88,14 @@ impl Bench {
     /// median wall time of plan + march + evaluation (record, submit, wait), and the median
     /// GPU time of its layers pass (timestamps, when the adapter has them), over `runs` runs
     /// after two warm-ups. The CPU's share is the plan (culling, budget, one descriptor per
-    /// ray) and the height field.
+    /// ray); the GPU computes the height field (noise, run-up) itself.
     ///
     /// Two figures: `cached`, the steady state of still boxes (the pass reuses their marches;
     /// the marches over warm-ups and timed runs are counted: one per box, in the first
     /// warm-up), and `remarched`,
     /// every box marched again each frame (the cache cleared first), the cost of boxes that
     /// move every frame.
-    pub fn march(
-        &self,
-        scene: &Scene,
-        t: f64,
-        height: Option<&[f32]>,
-        runs: u32,
-    ) -> Result<Value, String> {
+    pub fn march(&self, scene: &Scene, t: f64, runs: u32) -> Result<Value, String> {
         let e = |e: ocean_gpu::GpuError| e.to_string();
         let pass = WtbMarchPass::new(&self.ctx).map_err(e)?;
         let grid = *scene.grid();
@@ -125,7 +119,6 @@ impl Bench {
                     &grid,
                     scene.terrain(),
                     &plan,
-                    height,
                     &target,
                     timer.as_ref(),
                 )?;

@@ -527,8 +527,7 @@ pub fn wtb(args: &BenchArgs) -> Result<(), String> {
                     let frame = scene.frame(T0, None).map_err(|e| e.to_string())?;
                     let mut v = bench.layers(&frame, runs)?;
                     v["side"] = json!(side);
-                    let height = frame.height_field().map(<[f32]>::to_vec);
-                    v["march"] = bench.march(&scene, T0, height.as_deref(), runs)?;
+                    v["march"] = bench.march(&scene, T0, runs)?;
                     sizes.push(v);
                 }
                 json!({ "device": bench.describe(), "scenario_1": sizes })

@@ -132,12 +132,32 @@ pub struct DeviceLayer<'a> {
     pub offset: u64,
 }
 
+/// Where [`LayersPass::encode_device`] finds the additive height field.
+#[derive(Clone, Copy, Debug)]
+pub enum HeightSource<'a> {
+    /// On the host: one finite value per grid point, uploaded by `Queue::write_buffer`.
+    Host(&'a [f32]),
+    /// On the GPU: one `f32` per grid point from the buffer's start (it needs `COPY_SRC`),
+    /// copied in `encoder` before the dispatch. Its values are not checked.
+    Device(&'a wgpu::Buffer),
+}
+
 /// [`LayersInput`] over host or device layers.
 struct Input<'a, L> {
     grid: &'a Grid,
     time: f64,
     layers: &'a [L],
     height: Option<&'a [f32]>,
+    /// A height field already on the GPU (instead of `height`).
+    device_height: Option<DeviceHeight<'a>>,
+}
+
+/// A height field on the GPU: its buffer's size, and the buffer (`None` to validate before the
+/// buffer exists).
+#[derive(Clone, Copy)]
+struct DeviceHeight<'a> {
+    size: u64,
+    buffer: Option<&'a wgpu::Buffer>,
 }
 
 impl<'a> From<&LayersInput<'a>> for Input<'a, Layer<'a>> {
@@ -147,6 +167,35 @@ impl<'a> From<&LayersInput<'a>> for Input<'a, Layer<'a>> {
             time: i.time,
             layers: i.layers,
             height: i.height,
+            device_height: None,
+        }
+    }
+}
+
+impl<'a, L> Input<'a, L> {
+    fn with_source(
+        grid: &'a Grid,
+        time: f64,
+        layers: &'a [L],
+        height: Option<HeightSource<'a>>,
+    ) -> Self {
+        let (height, device_height) = match height {
+            None => (None, None),
+            Some(HeightSource::Host(h)) => (Some(h), None),
+            Some(HeightSource::Device(b)) => (
+                None,
+                Some(DeviceHeight {
+                    size: b.size(),
+                    buffer: Some(b),
+                }),
+            ),
+        };
+        Self {
+            grid,
+            time,
+            layers,
+            height,
+            device_height,
         }
     }
 }
@@ -491,23 +540,29 @@ impl LayersPass {
         self.lock_inputs().stats
     }
 
-    /// Checks layers of these shapes as [`encode_device`](Self::encode_device) will (the
-    /// input, the device's limits, `target`), recording nothing: for a caller that records
-    /// other passes first and must not leave them behind when the layers are refused.
+    /// Checks layers of these shapes, with a device height field of one value per grid point
+    /// or none, as [`encode_device`](Self::encode_device) will (the input, the device's
+    /// limits, `target`), recording nothing: for a caller that records other passes first and
+    /// must not leave them behind when the layers are refused.
     pub(crate) fn check_shapes(
         &self,
         ctx: &GpuContext,
         grid: &Grid,
         time: f64,
         layers: &[LayerShape<'_>],
-        height: Option<&[f32]>,
+        device_height: bool,
         target: &TrochoidTarget,
     ) -> Result<(), GpuError> {
+        let points = grid.point_count()? as u64;
         let input = Input {
             grid,
             time,
             layers,
-            height,
+            height: None,
+            device_height: device_height.then_some(DeviceHeight {
+                size: 4 * points,
+                buffer: None,
+            }),
         };
         let p = self.prepare(ctx, &input)?;
         target.check(p.points)
@@ -548,7 +603,17 @@ impl LayersPass {
             scratch_words += w * COEFF_WORDS + 2 * w * (r.nz as u64 + r.nx as u64);
             modulation_words += 2 * r.len() as u64;
         }
-        let height_words = if input.height.is_some() { points } else { 0 };
+        let has_height = input.height.is_some() || input.device_height.is_some();
+        if let Some(d) = input.device_height {
+            if d.size < 4 * points {
+                return Err(too_large(
+                    "device height field (bytes: one f32 per grid point)",
+                    4 * points,
+                    d.size,
+                ));
+            }
+        }
+        let height_words = if has_height { points } else { 0 };
         let data_words = scratch_words + modulation_words + height_words;
         // The shader indexes `data` with u32 word offsets.
         if data_words > u32max {
@@ -588,8 +653,8 @@ impl LayersPass {
                 nz: nz as u32,
                 layers: layer_count as u32,
                 groups_x: groups.0,
-                has_height: u32::from(input.height.is_some()),
-                height: if input.height.is_some() {
+                has_height: u32::from(has_height),
+                height: if has_height {
                     (scratch_words + modulation_words) as u32
                 } else {
                     0
@@ -656,7 +721,7 @@ impl LayersPass {
         grid: &Grid,
         time: f64,
         layers: &[DeviceLayer<'_>],
-        height: Option<&[f32]>,
+        height: Option<HeightSource<'_>>,
         target: &TrochoidTarget,
         timer: Option<&GpuTimer>,
     ) -> Result<(), GpuError> {
@@ -671,12 +736,7 @@ impl LayersPass {
                 });
             }
         }
-        let input = Input {
-            grid,
-            time,
-            layers,
-            height,
-        };
+        let input = Input::with_source(grid, time, layers, height);
         self.encode_with(
             ctx,
             encoder,
@@ -739,6 +799,15 @@ impl LayersPass {
                     &inputs.data,
                     u64::from(p.params.height) * WORD,
                     bytemuck::cast_slice(h),
+                );
+            }
+            if let Some(b) = input.device_height.and_then(|d| d.buffer) {
+                encoder.copy_buffer_to_buffer(
+                    b,
+                    0,
+                    &inputs.data,
+                    u64::from(p.params.height) * WORD,
+                    p.points * WORD,
                 );
             }
             let bind_group =

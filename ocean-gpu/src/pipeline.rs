@@ -23,6 +23,24 @@ pub(crate) fn compute_pipelines(
     uniform_size: usize,
     entry_points: &[&str],
 ) -> Result<(Vec<wgpu::ComputePipeline>, wgpu::BindGroupLayout), GpuError> {
+    compute_pipelines_with(
+        device,
+        shader,
+        uniform_size,
+        &[true, true, false, false],
+        entry_points,
+    )
+}
+
+/// [`compute_pipelines`] on a layout of a uniform block at binding 0 and one storage buffer per
+/// entry of `read_only` from binding 1 (`true`: read-only).
+pub(crate) fn compute_pipelines_with(
+    device: &wgpu::Device,
+    shader: &str,
+    uniform_size: usize,
+    read_only: &[bool],
+    entry_points: &[&str],
+) -> Result<(Vec<wgpu::ComputePipeline>, wgpu::BindGroupLayout), GpuError> {
     let entry = shaders::get(shader).ok_or_else(|| {
         GpuError::Shader(shaders::ShaderError::UnknownShader {
             name: shader.to_owned(),
@@ -46,19 +64,17 @@ pub(crate) fn compute_pipelines(
             count: None,
         };
         let storage = |read_only| wgpu::BufferBindingType::Storage { read_only };
+        let mut entries = vec![buffer(
+            0,
+            wgpu::BufferBindingType::Uniform,
+            wgpu::BufferSize::new(uniform_size as u64),
+        )];
+        for (n, &ro) in read_only.iter().enumerate() {
+            entries.push(buffer(n as u32 + 1, storage(ro), None));
+        }
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&label("bind group layout")),
-            entries: &[
-                buffer(
-                    0,
-                    wgpu::BufferBindingType::Uniform,
-                    wgpu::BufferSize::new(uniform_size as u64),
-                ),
-                buffer(1, storage(true), None),
-                buffer(2, storage(true), None),
-                buffer(3, storage(false), None),
-                buffer(4, storage(false), None),
-            ],
+            entries: &entries,
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some(&label("pipeline layout")),

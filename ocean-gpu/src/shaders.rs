@@ -111,8 +111,18 @@ pub const LAYERS_WGSL: &str = concat!(
 );
 
 /// Source of the wave-train-box ray march: the modulation of one box from its rays, land and
-/// depth, for the layers pass.
-pub const WTB_MARCH_WGSL: &str = include_str!("shaders/wtb_march.wgsl");
+/// depth, for the layers pass; after the shared time snippet.
+pub const WTB_MARCH_WGSL: &str = concat!(
+    include_str!("shaders/wtb_time.wgsl"),
+    include_str!("shaders/wtb_march.wgsl")
+);
+
+/// Source of the wave-train-box height field: capillary noise (Eq. 9) and the beach run-up on
+/// every grid point, for the layers pass; after the shared time snippet.
+pub const WTB_HEIGHT_WGSL: &str = concat!(
+    include_str!("shaders/wtb_time.wgsl"),
+    include_str!("shaders/wtb_height.wgsl")
+);
 
 /// Source of the ocean renderer (Bruneton et al. 2010, §7.1): the projected grid's vertex stage
 /// (Eq. 2), the per-pixel normals, slope variances and lighting of the fragment stage (Eq. 3, 4,
@@ -133,7 +143,7 @@ pub const OCEAN_PROBE_WGSL: &str = concat!(
     include_str!("shaders/ocean_probe.wgsl")
 );
 
-static SHADERS: [ShaderEntry; 5] = [
+static SHADERS: [ShaderEntry; 6] = [
     ShaderEntry {
         name: "trochoid",
         files: &["surface.wgsl", "trochoid.wgsl"],
@@ -159,7 +169,7 @@ static SHADERS: [ShaderEntry; 5] = [
     },
     ShaderEntry {
         name: "wtb_march",
-        files: &["wtb_march.wgsl"],
+        files: &["wtb_time.wgsl", "wtb_march.wgsl"],
         source: WTB_MARCH_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[
@@ -195,6 +205,18 @@ static SHADERS: [ShaderEntry; 5] = [
         description: "the ray march of a wave train box: per-ray land, shadow, shoaling and \
                       refraction, the land factor's smoothing and the time-dependent effects \
                       (wave-train-boxes §2, Fig. 2, 4-7, Eq. 8-10)",
+    },
+    ShaderEntry {
+        name: "wtb_height",
+        files: &["wtb_time.wgsl", "wtb_height.wgsl"],
+        source: WTB_HEIGHT_WGSL,
+        kind: ShaderKind::Compute,
+        entry_points: &[EntryPoint {
+            name: "height_field",
+            stage: Stage::Compute,
+        }],
+        description: "the height-only terms of wave train boxes on every grid point: capillary \
+                      noise (wave-train-boxes Eq. 9) and the beach run-up",
     },
     ShaderEntry {
         name: "ocean",

@@ -5,8 +5,8 @@
 //! lifecycles, frustum culling, the budget, one descriptor per wave ray); this pass does the
 //! rest on the GPU, one invocation per wave ray for the march (paper §2: the rays are
 //! independent), then per grid point for the land factor's smoothing, the time-dependent
-//! effects and the evaluation of every box's trains (`shaders/wtb_march.wgsl`, then the layers
-//! pass):
+//! effects, the height-only terms and the evaluation of every box's trains
+//! (`shaders/wtb_march.wgsl`, `shaders/wtb_height.wgsl`, then the layers pass):
 //!
 //! | dispatch | over | does |
 //! |---|---|---|
@@ -14,13 +14,16 @@
 //! | `march` | wave rays | the quadrant scan (exact, the CPU's integers), land, recovery behind land (Fig. 5), shoaling, beach cap, side fades (Fig. 4), refraction lag (Fig. 6), round waves (Eq. 10) |
 //! | `erode_x`, `erode_z`, `mean_x`, `mean_z` | box rectangle | the land factor's smoothing (`ocean_wtb::shore`) |
 //! | `combine` | box rectangle | modulation · land factor, irregular height (Eq. 8), dispersion refraction (Eq. 4) |
+//! | `height_field` | water grid | capillary noise (Eq. 9: the CPU's SplitMix64 rates, phases in exact turns) and the beach run-up |
 //! | layers | water grid | every box's trains with its modulation, plus the height field |
 //!
 //! The traversal is the CPU's exactly (the same 64-bit integers, `ocean_wtb::FixedTraversal`),
 //! so every grid point belongs to the same ray on both sides; the values differ by `f32`
 //! rounding only. The dispersion option's phase (ω∞ − ω(D))·t is formed from an `f32` ω(D), so
 //! it drifts from the CPU's by about 10⁻⁷·Δω·t rad (smoothly: no jitter, see the shader's
-//! `turns`); at t = 1000 s that is below 10⁻⁴ rad.
+//! `turns`); at t = 1000 s that is below 10⁻⁴ rad. The noise rates are the CPU's `f32` values
+//! in turns per second (`ocean_wtb::effects::noise_rate`), so the noise phase does not drift:
+//! at t = 10⁶ s the heights stay within 10⁻⁶ m of the CPU's.
 //!
 //! ## What is kept between calls
 //!
@@ -36,6 +39,7 @@
 //! the encoder of one call before making the next.
 
 mod cache;
+mod height;
 mod params;
 
 use std::sync::{Mutex, MutexGuard, PoisonError};
@@ -44,11 +48,14 @@ use ocean_core::Grid;
 use ocean_wtb::march::Plan;
 use ocean_wtb::{Terrain, WaterGrid};
 
-use crate::layers::{DeviceLayer, LayerShape};
+use crate::layers::{DeviceLayer, HeightSource, LayerShape};
 use crate::readback::{GpuTimer, read_buffer_as};
+use crate::trochoid::{WORKGROUP_SIZE, dispatch_shape};
 use crate::{GpuContext, GpuError, GridOutput, LayersPass, TrochoidTarget};
 use cache::{CachedBox, CachedTerrain, MarchCache, Need, PARAMS_SIZE, fits};
 pub use cache::{KEEP_CALLS, WtbMarchStats};
+use height::HeightBuffers;
+pub use height::HeightParams;
 use params::{BoxSetup, with_effects};
 pub use params::{MAX_TIME, MarchParams};
 
@@ -69,6 +76,8 @@ pub type MarchOutput = (GridOutput, Vec<Vec<[f32; 2]>>);
 pub struct WtbMarchPass {
     pipelines: Vec<wgpu::ComputePipeline>,
     layout: wgpu::BindGroupLayout,
+    height_pipeline: wgpu::ComputePipeline,
+    height_layout: wgpu::BindGroupLayout,
     layers: LayersPass,
     max_groups_per_dim: u32,
     cache: Mutex<MarchCache>,
@@ -84,9 +93,19 @@ impl WtbMarchPass {
             std::mem::size_of::<MarchParams>(),
             &ENTRIES,
         )?;
+        // Uniform block, terrain (read), height field (written).
+        let (mut height, height_layout) = crate::pipeline::compute_pipelines_with(
+            device,
+            "wtb_height",
+            std::mem::size_of::<HeightParams>(),
+            &[true, false],
+            &["height_field"],
+        )?;
         Ok(Self {
             pipelines,
             layout,
+            height_pipeline: height.remove(0),
+            height_layout,
             layers: LayersPass::new(ctx)?,
             max_groups_per_dim: device.limits().max_compute_workgroups_per_dimension,
             cache: Mutex::new(MarchCache::default()),
@@ -110,19 +129,19 @@ impl WtbMarchPass {
         self.cache.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
-    /// Records the boxes' time-dependent modulation and the grid's evaluation into `encoder`,
-    /// writing the water grid's positions and normals into `target`, after marching (in a
-    /// submit of its own) every box whose march is not cached; `height` is the additive height
-    /// field (noise, run-up: `ocean_wtb::scene::Frame::height_field` at the plan's time), if
-    /// any. Returns the boxes' modulation buffers, in the plan's order (the cache's own: valid
-    /// until the next call; the parity tests read them).
+    /// Records the boxes' time-dependent modulation, the height field (capillary noise, Eq. 9,
+    /// and the beach run-up: the twin of `ocean_wtb::scene::Frame::height_field`) and the
+    /// grid's evaluation into `encoder`, writing the water grid's positions and normals into
+    /// `target`, after marching (in a submit of its own) every box whose march is not cached.
+    /// Returns the boxes' modulation buffers, in the plan's order (the cache's own: valid until
+    /// the next call; the parity tests read them).
     ///
     /// # Errors
     ///
     /// [`GpuError::Wtb`] for a terrain of another grid or a box the grid cannot hold,
-    /// [`GpuError::Eval`] for a time outside `[0, 2³⁶)` s, the layers pass's errors (a height
-    /// field of the wrong length, a `target` too small); nothing is recorded, submitted or
-    /// cached then.
+    /// [`GpuError::Eval`] for a time outside `[0, 2³⁶)` s, the layers pass's errors (a
+    /// `target` too small, a grid beyond the device's limits); nothing is recorded, submitted
+    /// or cached then.
     #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,
@@ -131,7 +150,6 @@ impl WtbMarchPass {
         grid: &WaterGrid,
         terrain: &Terrain,
         plan: &Plan,
-        height: Option<&[f32]>,
         target: &TrochoidTarget,
         timer: Option<&GpuTimer>,
     ) -> Result<Vec<wgpu::Buffer>, GpuError> {
@@ -152,8 +170,20 @@ impl WtbMarchPass {
                 rect: b.march.rect,
             })
             .collect();
+        let points = grid.len() as u64;
+        let height_groups = dispatch_shape(
+            u32::try_from(points.div_ceil(u64::from(WORKGROUP_SIZE))).map_err(|_| {
+                GpuError::TooLarge {
+                    what: "water grid points",
+                    needed: points,
+                    limit: u64::from(u32::MAX),
+                }
+            })?,
+            self.max_groups_per_dim,
+        )?;
+        let height = HeightParams::new(plan, terrain, height_groups.0);
         self.layers
-            .check_shapes(ctx, grid.grid(), plan.t, &shapes, height, target)?;
+            .check_shapes(ctx, grid.grid(), plan.t, &shapes, height.is_some(), target)?;
         let mut cache = self.lock_cache();
         // Decide every box's work before changing anything, so that a refused box leaves the
         // cache as it was.
@@ -181,7 +211,16 @@ impl WtbMarchPass {
         }
         let result = crate::scoped(ctx.device(), || {
             self.record(
-                ctx, encoder, &mut cache, grid, terrain, plan, needs, height, target, timer,
+                ctx,
+                encoder,
+                &mut cache,
+                grid,
+                terrain,
+                plan,
+                needs,
+                height.map(|p| (p, height_groups)),
+                target,
+                timer,
             )
         });
         if result.is_err() {
@@ -201,7 +240,7 @@ impl WtbMarchPass {
         terrain: &Terrain,
         plan: &Plan,
         needs: Vec<Need>,
-        height: Option<&[f32]>,
+        height: Option<(HeightParams, (u32, u32))>,
         target: &TrochoidTarget,
         timer: Option<&GpuTimer>,
     ) -> Result<Vec<wgpu::Buffer>, GpuError> {
@@ -237,10 +276,12 @@ impl WtbMarchPass {
                 buffer: terrain_buffer,
             });
             cache.stats.terrain_uploads += 1;
-            // Every march read the old terrain.
+            // Every march read the old terrain, and the height pass's bind group holds its
+            // buffer.
             for e in &mut cache.boxes {
                 e.march = None;
             }
+            cache.height = None;
         }
         let terrain_buffer = cache
             .terrain
@@ -297,9 +338,10 @@ impl WtbMarchPass {
                         0,
                         bytemuck::bytes_of(&with_effects(&setup.params, plan)),
                     );
-                    let bind_group = self.bind_group(
+                    let bind_group = bind_group(
                         device,
-                        [&uniform, &statics, &terrain_buffer, &work, &modulation],
+                        &self.layout,
+                        &[&uniform, &statics, &terrain_buffer, &work, &modulation],
                     );
                     {
                         let mut pass = marches.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -347,7 +389,6 @@ impl WtbMarchPass {
             };
             order.push(n);
         }
-        cache.stats.buffers_created += created;
         // The marches reach the queue before anything the caller submits with `encoder`.
         queue.submit([marches.finish()]);
         {
@@ -368,6 +409,52 @@ impl WtbMarchPass {
                 pass.dispatch_workgroups(e.setup.groups.0, e.setup.groups.1, 1);
             }
         }
+        let height_field = match height {
+            Some((params, groups)) => {
+                let points = grid.len() as u64;
+                let reuse = cache.height.take().filter(|h| h.points == points);
+                let h = match reuse {
+                    Some(h) => h,
+                    None => {
+                        let uniform = buffer(
+                            "ocean wtb height params",
+                            std::mem::size_of::<HeightParams>() as u64,
+                            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                        );
+                        let output = buffer(
+                            "ocean wtb height field",
+                            4 * points,
+                            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                        );
+                        let bind_group = bind_group(
+                            device,
+                            &self.height_layout,
+                            &[&uniform, &terrain_buffer, &output],
+                        );
+                        HeightBuffers {
+                            uniform,
+                            output,
+                            bind_group,
+                            points,
+                        }
+                    }
+                };
+                queue.write_buffer(&h.uniform, 0, bytemuck::bytes_of(&params));
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("ocean wtb height field"),
+                    timestamp_writes: None,
+                });
+                pass.set_pipeline(&self.height_pipeline);
+                pass.set_bind_group(0, &h.bind_group, &[]);
+                pass.dispatch_workgroups(groups.0, groups.1, 1);
+                drop(pass);
+                let output = h.output.clone();
+                cache.height = Some(h);
+                Some(output)
+            }
+            None => None,
+        };
+        cache.stats.buffers_created += created;
         let modulations: Vec<wgpu::Buffer> = order
             .iter()
             .map(|&n| cache.boxes[n].modulation.clone())
@@ -389,29 +476,12 @@ impl WtbMarchPass {
             grid.grid(),
             plan.t,
             &layers,
-            height,
+            height_field.as_ref().map(HeightSource::Device),
             target,
             timer,
         )?;
         cache.evict();
         Ok(modulations)
-    }
-
-    /// The march's bind group over (uniform, statics, terrain, work, modulation).
-    fn bind_group(&self, device: &wgpu::Device, buffers: [&wgpu::Buffer; 5]) -> wgpu::BindGroup {
-        let entries: Vec<wgpu::BindGroupEntry<'_>> = buffers
-            .iter()
-            .enumerate()
-            .map(|(binding, b)| wgpu::BindGroupEntry {
-                binding: binding as u32,
-                resource: b.as_entire_binding(),
-            })
-            .collect();
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ocean wtb march bind group"),
-            layout: &self.layout,
-            entries: &entries,
-        })
     }
 
     /// Marches and evaluates `plan` and reads the grid back (positions relative to the grid's
@@ -428,23 +498,14 @@ impl WtbMarchPass {
         grid: &WaterGrid,
         terrain: &Terrain,
         plan: &Plan,
-        height: Option<&[f32]>,
     ) -> Result<MarchOutput, GpuError> {
         let g: &Grid = grid.grid();
         let target = TrochoidTarget::new(ctx, g)?;
         let timer = GpuTimer::new(ctx);
         let mut modulations = Vec::new();
         crate::trochoid::submit(ctx, "ocean wtb", timer.as_ref(), |encoder| {
-            modulations = self.encode(
-                ctx,
-                encoder,
-                grid,
-                terrain,
-                plan,
-                height,
-                &target,
-                timer.as_ref(),
-            )?;
+            modulations =
+                self.encode(ctx, encoder, grid, terrain, plan, &target, timer.as_ref())?;
             Ok(())
         })?;
         let out = target.read(ctx, g.point_count()?, timer.as_ref())?;
@@ -456,4 +517,25 @@ impl WtbMarchPass {
         }
         Ok((out, mus))
     }
+}
+
+/// A bind group of `buffers` at bindings 0, 1, 2, ….
+fn bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    buffers: &[&wgpu::Buffer],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = buffers
+        .iter()
+        .enumerate()
+        .map(|(binding, b)| wgpu::BindGroupEntry {
+            binding: binding as u32,
+            resource: b.as_entire_binding(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("ocean wtb bind group"),
+        layout,
+        entries: &entries,
+    })
 }

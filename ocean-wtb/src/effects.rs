@@ -238,21 +238,32 @@ pub fn irregular_factor(p: &Irregular, u: f64, v: f64, t: f64) -> f64 {
     1.0 - p.scale * math::sin(envelope) * math::sin(across)
 }
 
-/// The random rate r ∈ [0, 1) of grid point `index` for the noise seed (SplitMix64 of the pair,
-/// Steele, Lea & Flood 2014): the same for a point whatever the thread or order of evaluation.
-pub fn noise_rate(seed: u64, index: u64) -> f64 {
+/// One step of the noise rates, in turns per second: 2⁻²⁴/(2π), rounded to `f32`.
+pub const NOISE_TURNS_STEP: f32 = (1.0 / (16_777_216.0 * TAU)) as f32;
+
+/// The random rate of grid point `index` for the noise seed, in turns per second: ν = n·
+/// [`NOISE_TURNS_STEP`] with n the top 24 bits of SplitMix64 of the pair (Steele, Lea & Flood
+/// 2014), so Eq. 9's r = 2πν is uniform on [0, 1) rad/s in steps of 2⁻²⁴. The same for a point
+/// whatever the thread or order of evaluation.
+///
+/// The rate is an `f32` of at most 24 significant bits, counted in turns, so that a GPU forms
+/// the phase ν·t modulo one turn as exactly as the CPU does in `f64` (`ocean_gpu`'s
+/// `wtb_height.wgsl` splits ν and t into 12-bit parts whose products are exact).
+pub fn noise_rate(seed: u64, index: u64) -> f32 {
     let mut z = seed ^ index.wrapping_mul(0x9e37_79b9_7f4a_7c15);
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^= z >> 31;
-    (z >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    (z >> 40) as f32 * NOISE_TURNS_STEP
 }
 
-/// Capillary noise height at grid point `index`, Eq. 9: b sin(r t), with the phase r t
-/// reduced modulo 2π in `f64` and its sine from the kernels' deterministic `sincos`.
+/// Capillary noise height at grid point `index`, Eq. 9: b sin(r t) with r = 2πν
+/// ([`noise_rate`]); the phase is ν·t modulo one turn, formed in `f64` (exact to 2⁻⁵³ of ν·t),
+/// and its sine comes from the kernels' deterministic `sincos`.
 pub fn noise_height(noise: &Noise, index: u64, t: f64) -> f64 {
-    let r = noise_rate(noise.seed, index);
-    let (s, _) = ocean_core::sincos::sincos(ocean_core::phase::reduce_angle_f32(r * t));
+    let nu = f64::from(noise_rate(noise.seed, index));
+    let turns = (nu * t) % 1.0;
+    let (s, _) = ocean_core::sincos::sincos(ocean_core::phase::reduce_angle_f32(TAU * turns));
     noise.amplitude * f64::from(s)
 }
 
@@ -372,19 +383,29 @@ mod tests {
 
     #[test]
     fn noise_is_deterministic_and_uniform() {
-        let a: Vec<f64> = (0..10_000).map(|i| noise_rate(7, i)).collect();
-        let b: Vec<f64> = (0..10_000).map(|i| noise_rate(7, i)).collect();
+        let a: Vec<f32> = (0..10_000).map(|i| noise_rate(7, i)).collect();
+        let b: Vec<f32> = (0..10_000).map(|i| noise_rate(7, i)).collect();
         assert_eq!(a, b);
         assert_ne!(noise_rate(7, 3), noise_rate(8, 3));
-        assert!(a.iter().all(|r| (0.0..1.0).contains(r)));
+        // r = 2πν on [0, 1) rad/s.
+        let r: Vec<f64> = a.iter().map(|&nu| TAU * f64::from(nu)).collect();
+        assert!(r.iter().all(|r| (0.0..1.0).contains(r)));
         // Uniform on [0, 1): mean 1/2 within 5 standard errors (σ = 1/√12/√n ≈ 0.0029).
-        let mean = a.iter().sum::<f64>() / a.len() as f64;
+        let mean = r.iter().sum::<f64>() / r.len() as f64;
         assert!((mean - 0.5).abs() < 5.0 * 0.0029, "mean {mean}");
         let n = Noise {
             amplitude: 0.02,
             seed: 7,
         };
         assert!(noise_height(&n, 5, 1.0e6).abs() <= 0.02);
+        // The phase is ν·t: one whole period 1/ν later the height repeats (to the f64 rounding
+        // of ν·t, about 10⁻¹⁶ turns here).
+        let nu = f64::from(noise_rate(7, 5));
+        let (h0, h1) = (
+            noise_height(&n, 5, 3.0),
+            noise_height(&n, 5, 3.0 + 1.0 / nu),
+        );
+        assert!((h0 - h1).abs() < 1e-9, "{h0} {h1}");
     }
 
     #[test]

@@ -130,9 +130,7 @@ fn check_march(
     let grid = *scene.grid();
     let terrain = scene.terrain().clone();
     let frame = scene.frame(t, None).unwrap();
-    let (gpu, mus) = pass
-        .evaluate(ctx, &grid, &terrain, &plan, frame.height_field())
-        .unwrap();
+    let (gpu, mus) = pass.evaluate(ctx, &grid, &terrain, &plan).unwrap();
     let layers = frame.layers();
     assert_eq!(mus.len(), layers.len(), "{label}: boxes");
     let mut worst = 0.0f32;
@@ -247,7 +245,7 @@ fn the_gpu_march_refuses_bad_input_before_recording() {
     let plan = scene.plan(12.0, None).unwrap();
     // A terrain made for another grid: the model's own error, with both sizes.
     let other = scenarios::scenario_1(32).unwrap().terrain().clone();
-    match pass.evaluate(&ctx, &grid, &other, &plan, None) {
+    match pass.evaluate(&ctx, &grid, &other, &plan) {
         Err(ocean_gpu::GpuError::Wtb(ocean_wtb::WtbError::TerrainSize { expected, got })) => {
             assert_eq!((expected, got), (64 * 64, 32 * 32));
         }
@@ -259,7 +257,7 @@ fn the_gpu_march_refuses_bad_input_before_recording() {
         plan.t = t;
         assert!(
             matches!(
-                pass.evaluate(&ctx, &grid, scene.terrain(), &plan, None),
+                pass.evaluate(&ctx, &grid, scene.terrain(), &plan),
                 Err(ocean_gpu::GpuError::Eval(ocean_core::EvalError::Time(_)))
             ),
             "t = {t}"
@@ -308,10 +306,10 @@ fn the_gpu_march_is_cached_while_boxes_are_still() {
     // The same plan twice gives the same bits.
     let plan = scene.plan(100.0, None).unwrap();
     let a = pass
-        .evaluate(&ctx, scene.grid(), scene.terrain(), &plan, None)
+        .evaluate(&ctx, scene.grid(), scene.terrain(), &plan)
         .unwrap();
     let b = pass
-        .evaluate(&ctx, scene.grid(), scene.terrain(), &plan, None)
+        .evaluate(&ctx, scene.grid(), scene.terrain(), &plan)
         .unwrap();
     assert_eq!(a.0.positions, b.0.positions);
     assert_eq!(a.1, b.1);
@@ -361,11 +359,37 @@ fn the_gpu_march_is_cached_while_boxes_are_still() {
     assert_eq!(new_terrain.terrain_uploads, 2);
     assert_eq!(new_terrain.buffers_created, after_move.buffers_created);
 
-    // A refused call (a height field of the wrong length) changes nothing.
+    // A refused call (a target made for a smaller grid) records, submits and caches nothing,
+    // even with a box moved back, whose march it would otherwise have rebuilt.
+    scene
+        .update_box(
+            ids[1],
+            scenarios::spec(scenarios::steady_wind(
+                5.0,
+                glam::DVec2::new(0.7, 1.0),
+                glam::DVec2::new(30.0, -30.0),
+                60.0,
+                90.0,
+                2,
+                12,
+            )),
+        )
+        .unwrap();
     let plan = scene.plan(100.0, None).unwrap();
-    assert!(matches!(
-        pass.evaluate(&ctx, &grid, scene.terrain(), &plan, Some(&[0.0; 7])),
-        Err(ocean_gpu::GpuError::Eval(_))
-    ));
+    let small = ocean_core::Grid::centred(glam::DVec2::ZERO, 1.0, 32);
+    let target = ocean_gpu::TrochoidTarget::new(&ctx, &small).unwrap();
+    let mut encoder = ctx
+        .device()
+        .create_command_encoder(&ocean_gpu::wgpu::CommandEncoderDescriptor { label: None });
+    let refused = pass.encode(
+        &ctx,
+        &mut encoder,
+        &grid,
+        scene.terrain(),
+        &plan,
+        &target,
+        None,
+    );
+    assert!(refused.is_err(), "a target of 32² points for a 64² grid");
     assert_eq!(pass.stats(), new_terrain);
 }

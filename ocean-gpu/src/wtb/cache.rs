@@ -11,6 +11,7 @@ use ocean_wtb::Terrain;
 use ocean_wtb::march::MarchBox;
 use ocean_wtb::scene::BoxId;
 
+use super::height::HeightBuffers;
 use super::params::{BoxSetup, MarchParams};
 
 /// Calls an entry outlives its box's absence from the plans (a box culled for a moment keeps
@@ -64,6 +65,8 @@ pub(crate) struct CachedTerrain {
 pub(crate) struct MarchCache {
     pub(crate) terrain: Option<CachedTerrain>,
     pub(crate) boxes: Vec<CachedBox>,
+    /// The height pass's buffers, over the cached terrain's buffer.
+    pub(crate) height: Option<HeightBuffers>,
     /// Calls so far.
     pub(crate) calls: u64,
     pub(crate) stats: WtbMarchStats,
@@ -118,6 +121,7 @@ impl MarchCache {
     pub(crate) fn clear(&mut self) {
         self.terrain = None;
         self.boxes.clear();
+        self.height = None;
         self.stats.cached_boxes = 0;
     }
 }

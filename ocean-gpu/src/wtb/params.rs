@@ -112,7 +112,7 @@ fn words(v: i64) -> [u32; 2] {
 }
 
 /// `t` split as the shader's `time` (see [`MarchParams::time`]).
-fn split_time(t: f64) -> [f32; 4] {
+pub(crate) fn split_time(t: f64) -> [f32; 4] {
     let whole = t.floor();
     let w = (t - whole) as f32;
     let n = whole as u64;
