@@ -68,6 +68,72 @@
 #define OCEAN_FILTER_N_MAX 2.5
 
 /**
+ * `OceanSaoParams::mip_filter`: rotated grid subsampling (Table 1), the paper's choice: every
+ * MIP texel is one of its children, a true scene value.
+ */
+#define OCEAN_SAO_MIP_FILTER_ROTATED_GRID 0
+
+/**
+ * `OceanSaoParams::mip_filter`: the arithmetic mean of the 2x2 children.
+ */
+#define OCEAN_SAO_MIP_FILTER_ARITHMETIC_MEAN 1
+
+/**
+ * `OceanSaoParams::mip_filter`: the harmonic mean of the 2x2 children (Table 1 misprints it
+ * as a sixteenth of that; ocean-sao implements the mean).
+ */
+#define OCEAN_SAO_MIP_FILTER_HARMONIC_MEAN 2
+
+/**
+ * `OceanSaoParams::mip_filter`: the minimum z of the children (the farthest).
+ */
+#define OCEAN_SAO_MIP_FILTER_MIN 3
+
+/**
+ * `OceanSaoParams::mip_filter`: the maximum z of the children (the nearest).
+ */
+#define OCEAN_SAO_MIP_FILTER_MAX 4
+
+/**
+ * `OceanSaoParams::estimator`: the updated falloff of the paper's appendix,
+ * A = max(0, 1 - (5 intensity / (r^6 n)) sum max(r^2 - v.v, 0)^3 max((v.n - beta)/(v.v + eps), 0)).
+ */
+#define OCEAN_SAO_ESTIMATOR_FALLOFF 0
+
+/**
+ * `OceanSaoParams::estimator`: AlchemyAO's estimator, the paper's Eq. 1,
+ * A = max(0, 1 - (2 sigma / n) sum max(0, v.n + z_C beta)/(v.v + eps))^k.
+ */
+#define OCEAN_SAO_ESTIMATOR_ALCHEMY 1
+
+/**
+ * The camera-space z that `ocean_sao_view_z` stores for background pixels (depth at the far
+ * end of the range): -1e9 m, a finite stand-in for infinity.
+ */
+#define OCEAN_SAO_SKY_Z -1.0e9
+
+/**
+ * The largest input width or height accepted, in pixels.
+ */
+#define OCEAN_SAO_MAX_SIDE 16384
+
+/**
+ * `OceanSaoCamera::depth_source`: the depth buffer holds window depth, the value a depth
+ * texture stores (`glDepthRange(0, 1)`), always in [0, 1]: `(ndc + 1)/2` under
+ * `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, NDC depth itself under the [0, 1] conventions.
+ * This is what `glReadPixels(..., GL_DEPTH_COMPONENT, GL_FLOAT, ...)` and a sampled depth
+ * texture give.
+ */
+#define OCEAN_SAO_DEPTH_WINDOW 0
+
+/**
+ * `OceanSaoCamera::depth_source`: the depth buffer holds NDC depth (clip z / clip w), in the
+ * convention's range: [-1, 1] under `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, [0, 1] otherwise
+ * (where it equals window depth).
+ */
+#define OCEAN_SAO_DEPTH_NDC 1
+
+/**
  * `OceanShaderBinding::glsl_binding` when the binding has no GLSL binding number: a sampler
  * (combined with its texture in GLSL), a GLSL 3.30 export (assign the number by name), or a
  * non-GLSL export.
@@ -392,6 +458,13 @@ typedef struct OceanLighting OceanLighting;
  * use it, but calls on one renderer run one at a time.
  */
 typedef struct OceanRenderer OceanRenderer;
+
+/**
+ * A validated SAO set-up (opaque): image sizes, guard band, camera and parameters. Create with
+ * `ocean_sao_create`, free with `ocean_sao_destroy`. Immutable: a `const OceanSao *` may run
+ * on any number of threads at once.
+ */
+typedef struct OceanSao OceanSao;
 
 /**
  * A Wave Train Boxes scene (opaque): water grid, terrain, boxes, effects and budget. Create
@@ -815,6 +888,232 @@ typedef struct OceanSlopeVariance {
    */
   double sigma_y2;
 } OceanSlopeVariance;
+
+/**
+ * The bilateral reconstruction (paper section 2.4): a horizontal then a vertical pass of `taps`
+ * taps `stride` pixels apart, weighted by exp(-t^2 / (2 sigma^2)) for tap t (counted in taps)
+ * times max(0, 1 - depth_scale |key_t - key_c|), with key = z / z_min. Background pixels
+ * neither change nor contribute.
+ */
+typedef struct OceanSaoBlurParams {
+  /**
+   * Tap count, odd, 1 to 63 (the paper: 7; its released shader: 9). 1 disables the blur.
+   */
+  uint32_t taps;
+  /**
+   * Pixels between taps, 1 to 64 (the paper: 3; its released shader: 2).
+   */
+  uint32_t stride;
+  /**
+   * Depth-difference scale, in [0, 1e9] (the paper: 2^11 = 2048): with z_min = -200 m,
+   * pixels more than 200/2048 m (about 0.1 m) apart in depth do not mix.
+   */
+  float depth_scale;
+  /**
+   * Gaussian standard deviation in taps, in [1e-3, 1e3] (default 1.5: the outermost of 7
+   * taps weighs e^-2 of the centre).
+   */
+  float sigma;
+} OceanSaoBlurParams;
+
+/**
+ * Every parameter of the passes. Start from `ocean_sao_params_default` and change what you
+ * need. Lengths are metres; the default is the paper's set-up for human-scale scenes.
+ */
+typedef struct OceanSaoParams {
+  /**
+   * World-space radius r of the obscurance ball, metres, in [1e-4, 1e4] (default 1).
+   */
+  float radius;
+  /**
+   * Samples per pixel, 1 to 64 (default 9, the paper's).
+   */
+  uint32_t samples;
+  /**
+   * Turns of the sample spiral (Eq. 6-7), in [1e-3, 1e3] (default 7, the paper's value for
+   * 9 samples). It does not follow `samples`: when changing the sample count, set it too.
+   * ocean-sao's convention is the integer nearest 7 * samples / 9 that is coprime with the
+   * sample count (ties to the smaller), so every sample direction differs.
+   */
+  float spiral_turns;
+  /**
+   * log2 of q' in Eq. 9, 0 to 8 (default 3): a sample h pixels from the centre reads MIP
+   * level floor(log2(h)) - mip_switch_log2, clamped to [0, max_mip].
+   */
+  uint32_t mip_switch_log2;
+  /**
+   * Highest MIP level read, 0 to 13 (default 5); 0 reads every sample from full resolution.
+   */
+  uint32_t max_mip;
+  /**
+   * How a MIP level is made from the one below: an `OCEAN_SAO_MIP_FILTER_*` value (default
+   * `OCEAN_SAO_MIP_FILTER_ROTATED_GRID`); other values are refused.
+   */
+  uint32_t mip_filter;
+  /**
+   * `OCEAN_SAO_ESTIMATOR_FALLOFF` (default) or `OCEAN_SAO_ESTIMATOR_ALCHEMY`; other values
+   * are refused. Only the chosen estimator's constants below are read and checked.
+   */
+  uint32_t estimator;
+  /**
+   * Falloff: bias beta, metres, in [0, 1e3] (default 0.01: 1 cm).
+   */
+  float falloff_beta;
+  /**
+   * Falloff: intensity multiplier, in [0, 1e3] (default 1, the appendix's formula).
+   */
+  float falloff_intensity;
+  /**
+   * Eq. 1: intensity sigma, metres, in [0, 1e4] (default 0.25).
+   */
+  float alchemy_sigma;
+  /**
+   * Eq. 1: depth-proportional bias beta, in [0, 1] (default 1e-3: 1 cm at 10 m).
+   */
+  float alchemy_beta;
+  /**
+   * Eq. 1: contrast exponent k, in [1e-2, 16] (default 1).
+   */
+  float alchemy_k;
+  /**
+   * epsilon of both estimators, square metres, in [1e-12, 1e4] (default 0.01).
+   */
+  float epsilon;
+  /**
+   * 1: the 2x2 quad bilateral of section 2.3 (default); 0: off. Other values are refused.
+   */
+  uint8_t quad_filter;
+  /**
+   * The quad bilateral averages two neighbours when their z differ by less than this many
+   * metres, in [0, 1e6] (default 0.02). Read only when `quad_filter` is 1.
+   */
+  float quad_depth_threshold;
+  /**
+   * 1: treat pixels whose reconstructed normal is unreliable (a depth edge inside their 2x2
+   * quad) as unoccluded; 0: the paper's behaviour (default). Other values are refused.
+   */
+  uint8_t normal_rejection;
+  /**
+   * The rejection's largest apparent incidence angle, radians, in [1e-3, pi/2 - 1e-3]
+   * (default 85 degrees, 1.4835 rad). Read only when `normal_rejection` is 1.
+   */
+  float normal_max_incidence;
+  /**
+   * z_min of the depth key the blur compares (section 2.3), metres, negative, in
+   * [-1e8, -1e-4] (default -200): the farthest view depth at which sharp AO edges matter.
+   */
+  float z_min;
+  /**
+   * The blur passes.
+   */
+  struct OceanSaoBlurParams blur;
+} OceanSaoParams;
+
+/**
+ * The camera of an SAO set-up: the projection matrix that produced the depth buffer, its depth
+ * convention, and what the depth values hold. The view matrix plays no part (SAO works in view
+ * space).
+ *
+ * `projection` is column-major, 16 floats, element [4 * column + row]: GLM's layout
+ * (`glm::value_ptr` of a `glm::mat4`). Right-handed view space, the camera looking down its -z
+ * axis. Accepted:
+ * - a symmetric perspective, bottom row (0, 0, -1, 0): `glm::perspective`,
+ *   `glm::infinitePerspective`, and their [0, 1] and reversed-Z forms. Off-centre frusta
+ *   (`projection[8]`, `[9]`, `[12]`, `[13]` non-zero, as in a TAA-jittered matrix) are refused:
+ *   pass the unjittered matrix;
+ * - an orthographic box, bottom row (0, 0, 0, 1), centred or not (`glm::ortho`).
+ *
+ * Both need a positive x scale `projection[0]` and y scale `projection[5]` (no mirrored or
+ * y-flipped matrix: image rows already run top-down, see `ocean_sao_run`) and zero skew
+ * (`projection[1]`, `[2]`, `[4]`, `[6]`). The near and far planes are read from the depth row
+ * (`projection[10]`, `[14]`) under `depth_convention`, and must come out as
+ * 0 < near < far (perspective; far may be infinite: `projection[10]` = -1, or 0 reversed) or
+ * near < far (orthographic). `ocean_sao_describe` reports the planes read.
+ *
+ * The depth row alone cannot tell `OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE` from
+ * `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`: a `glm::perspective` matrix (GLM's default, [-1, 1])
+ * read as [0, 1] gives a near plane at about twice its distance and wrong obscurance, without
+ * any error. Pass the convention the matrix was built for (GLM: [-1, 1] unless
+ * `GLM_FORCE_DEPTH_ZERO_TO_ONE`), and check the near plane with `ocean_sao_describe`.
+ *
+ * The matrix describes the whole depth buffer, guard band included: its aspect P11/P00 is
+ * that of the input image's pixels (it need not equal width/height: non-square pixels are
+ * allowed).
+ */
+typedef struct OceanSaoCamera {
+  /**
+   * The projection matrix, column-major (see above). Every element finite.
+   */
+  float projection[16];
+  /**
+   * An `OceanDepthConvention` value (other values are refused).
+   */
+  uint32_t depth_convention;
+  /**
+   * `OCEAN_SAO_DEPTH_WINDOW` or `OCEAN_SAO_DEPTH_NDC` (other values are refused).
+   */
+  uint32_t depth_source;
+} OceanSaoCamera;
+
+/**
+ * What an `OceanSao` was made of, as `ocean_sao_describe` reports it: the sizes, the planes read
+ * from the projection matrix, and the constants of the passes (the values a GPU shader that
+ * follows ocean-sao needs).
+ */
+typedef struct OceanSaoInfo {
+  /**
+   * Width of the depth buffer, pixels.
+   */
+  uint32_t input_width;
+  /**
+   * Height of the depth buffer, pixels.
+   */
+  uint32_t input_height;
+  /**
+   * Guard band on every side, pixels.
+   */
+  uint32_t guard;
+  /**
+   * Width of the AO image: input_width - 2 guard.
+   */
+  uint32_t output_width;
+  /**
+   * Height of the AO image: input_height - 2 guard.
+   */
+  uint32_t output_height;
+  /**
+   * 1 for an orthographic projection, 0 for a perspective.
+   */
+  uint8_t orthographic;
+  /**
+   * Near-plane distance read from the matrix, metres (in front of the camera; an
+   * orthographic box may start at or behind it: <= 0).
+   */
+  double near;
+  /**
+   * Far-plane distance read from the matrix, metres; `INFINITY` for an infinite perspective.
+   */
+  double far;
+  /**
+   * Eq. 2 with ocean-sao's fourth constant: the view-space z (negative in front) of a depth
+   * d is (c[0] + c[3] d) / (c[1] d + c[2]), in float arithmetic (c[3] = 0 for a
+   * perspective, c[1] = 0 for an orthographic box), for every depth but `far_depth`.
+   */
+  float z_constants[4];
+  /**
+   * The depth value of the near plane (0, -1 for NDC depth under [-1, 1], or 1 reversed).
+   */
+  float near_depth;
+  /**
+   * The depth value of the far plane, or of infinity: the clear value, read as background.
+   */
+  float far_depth;
+  /**
+   * Eq. 5's S' = input_height P11 / 2: pixels per metre at 1 m in front of a perspective
+   * camera, pixels per metre everywhere for an orthographic one.
+   */
+  float pixels_per_metre;
+} OceanSaoInfo;
 
 /**
  * One resource binding of an exported shader. The strings are NUL-terminated UTF-8, owned by
@@ -2116,6 +2415,140 @@ OceanStatus ocean_pixel_footprint(const struct OceanCameraDesc *camera,
                                   double py,
                                   double max_distance,
                                   double *out);
+
+/**
+ * Stores ocean-sao's default parameters in `*out` (the paper's set-up: r = 1 m, 9 samples,
+ * 7 spiral turns, MIP levels 0 to 5 by rotated grid subsampling from q' = 8, the appendix's
+ * falloff with beta = 1 cm, the 2x2 quad filter at 2 cm, no normal rejection, z_min = -200 m,
+ * a 7-tap blur with stride 3 and depth scale 2048). The members of the estimator not chosen
+ * hold that estimator's defaults too.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_sao_params_default(struct OceanSaoParams *out);
+
+/**
+ * Creates an SAO set-up for depth buffers of `input_width` x `input_height` pixels with a
+ * guard band of `guard` pixels on every side, and stores the handle in `*out`.
+ *
+ * The paper renders depth larger than the screen so that geometry just outside the frame can
+ * still occlude: the AO image is the input inset by `guard` on every side,
+ * (input_width - 2 guard) x (input_height - 2 guard) pixels. `camera` describes the projection
+ * of the whole input, guard band included (see `OceanSaoCamera`); `params` the passes (see
+ * `OceanSaoParams`). Both are copied; neither is retained.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_EMPTY` if `input_width` or `input_height` is 0, `OCEAN_STATUS_NON_FINITE` for
+ * a NaN or infinite matrix element or parameter (the message names it),
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for a side outside 2 to `OCEAN_SAO_MAX_SIDE`, a guard band
+ * that leaves no output pixel (2 guard must be below both sides), an unknown enumeration
+ * value or flag, a matrix that is not a supported projection for its depth convention or whose
+ * constants degenerate in float, and a parameter out of its documented range. `*out` is
+ * written only on success. Free the handle with `ocean_sao_destroy`.
+ *
+ * # Safety
+ *
+ * `camera` and `params` must point to readable structs and `out` to a writable pointer.
+ */
+OceanStatus ocean_sao_create(uint32_t input_width,
+                             uint32_t input_height,
+                             uint32_t guard,
+                             const struct OceanSaoCamera *camera,
+                             const struct OceanSaoParams *params,
+                             struct OceanSao **out);
+
+/**
+ * Frees an SAO set-up. NULL is ignored, and so is a pointer that is not even aligned (it
+ * cannot have come from `ocean_sao_create`). Never fails; leaves the last-error message alone.
+ *
+ * # Safety
+ *
+ * `sao` must be NULL or a handle from `ocean_sao_create` that has not been destroyed, and no
+ * other thread may be using it.
+ */
+void ocean_sao_destroy(struct OceanSao *sao);
+
+/**
+ * Stores what `sao` was made of in `*out` (see `OceanSaoInfo`): the sizes, the near and far
+ * planes read from the projection matrix (compare them with yours: a matrix passed with the
+ * wrong depth convention shows here) and the constants of the passes.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `sao` or `out`;
+ * `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `sao` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_sao_describe(const struct OceanSao *sao, struct OceanSaoInfo *out);
+
+/**
+ * Computes ambient obscurance (visibility) from a depth buffer: every pass of the paper, in
+ * ocean-sao's arithmetic, with its result bit-identical to `ocean_sao::Sao::run` on every
+ * platform and thread count.
+ *
+ * `depth`: `depth_len` = input_width * input_height floats, row-major, **row 0 at the top** of
+ * the image (the layout of a wgpu, Vulkan, D3D or Metal texture read back; OpenGL's
+ * `glReadPixels` returns rows bottom-up: flip them first). Each value must be finite and
+ * within the range of the camera's depth source and convention: [0, 1] for window depth
+ * (`OCEAN_SAO_DEPTH_WINDOW`) and for the [0, 1] conventions, [-1, 1] for NDC depth under
+ * `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`. The far end of the range (`far_depth` of
+ * `ocean_sao_describe`: 1, or 0 with reversed Z; the value a depth buffer is cleared to) is
+ * background, at any far plane.
+ *
+ * `ao`: `ao_len` = output_width * output_height floats (see `ocean_sao_create`), row-major,
+ * row 0 at the top: `ao[y * output_width + x]` is the visibility A of input pixel
+ * (x + guard, y + guard), in [0, 1]: 1 is unoccluded, 0 fully occluded; multiply ambient light
+ * by it. Background pixels, and pixels whose normal is rejected, get 1.
+ *
+ * The passes: view-space z from depth (Eq. 2), its MIP levels (Table 1), the spiral samples
+ * (Eq. 6-10) with the chosen estimator, the 2x2 quad bilateral, A packed to 8 bits with a
+ * 16-bit depth key (section 2.3), and the horizontal and vertical bilateral blur (section 2.4).
+ * The result is computed in a buffer of the library's and copied to `ao` at the end.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
+ * alignment for the floats), `OCEAN_STATUS_INVALID_ARGUMENT` if `depth_len` or `ao_len` is not
+ * exactly the size above, the buffers overlap, or a depth value is outside the range (the
+ * message gives the first one, in row-major order, with its pixel), `OCEAN_STATUS_NON_FINITE`
+ * for a NaN or infinite depth value (likewise), `OCEAN_STATUS_LENGTH_OVERFLOW` if a length in
+ * bytes exceeds `PTRDIFF_MAX`. `ao` is written only on success, and then wholly.
+ *
+ * # Safety
+ *
+ * `sao` must be a live handle, `depth` point to `depth_len` readable floats and `ao` to
+ * `ao_len` writable floats, neither touched by another thread during the call.
+ */
+OceanStatus ocean_sao_run(const struct OceanSao *sao,
+                          const float *depth,
+                          size_t depth_len,
+                          float *ao,
+                          size_t ao_len);
+
+/**
+ * Stores the view-space z of every depth value in `z` (the first pass of `ocean_sao_run`,
+ * Eq. 2): `z_len` = input_width * input_height floats, the layout of `depth`, metres, negative
+ * in front of the camera; `OCEAN_SAO_SKY_Z` (-1e9 m) for background (depth at the far end),
+ * and never below it. Useful to linearise a depth buffer with exactly SAO's arithmetic, or to
+ * check a shader's reconstruction.
+ *
+ * `depth` as for `ocean_sao_run`. Returns the same statuses, with `z_len` in place of
+ * `ao_len`; `z` is written only on success, and then wholly.
+ *
+ * # Safety
+ *
+ * `sao` must be a live handle, `depth` point to `depth_len` readable floats and `z` to `z_len`
+ * writable floats, neither touched by another thread during the call.
+ */
+OceanStatus ocean_sao_view_z(const struct OceanSao *sao,
+                             const float *depth,
+                             size_t depth_len,
+                             float *z,
+                             size_t z_len);
 
 /**
  * Returns the number of registered shaders (passes), at least 1. Never fails; leaves the

@@ -27,6 +27,8 @@ mod gpu;
 mod lighting;
 mod lighting_brdf;
 mod lighting_spectrum;
+mod sao;
+mod sao_camera;
 mod shader_export;
 mod status;
 mod version;
@@ -63,6 +65,15 @@ pub use lighting_spectrum::{
     ocean_spectrum_total_slope_variance, ocean_spectrum_wave_count, ocean_spectrum_waves,
     ocean_spectrum_wind_direction,
 };
+pub use sao::{
+    OCEAN_SAO_ESTIMATOR_ALCHEMY, OCEAN_SAO_ESTIMATOR_FALLOFF, OCEAN_SAO_MAX_SIDE,
+    OCEAN_SAO_MIP_FILTER_ARITHMETIC_MEAN, OCEAN_SAO_MIP_FILTER_HARMONIC_MEAN,
+    OCEAN_SAO_MIP_FILTER_MAX, OCEAN_SAO_MIP_FILTER_MIN, OCEAN_SAO_MIP_FILTER_ROTATED_GRID,
+    OCEAN_SAO_SKY_Z, OceanSao, OceanSaoBlurParams, OceanSaoInfo, OceanSaoParams, ocean_sao_create,
+    ocean_sao_describe, ocean_sao_destroy, ocean_sao_params_default, ocean_sao_run,
+    ocean_sao_view_z,
+};
+pub use sao_camera::{OCEAN_SAO_DEPTH_NDC, OCEAN_SAO_DEPTH_WINDOW, OceanSaoCamera};
 pub use shader_export::{
     OCEAN_NO_GLSL_BINDING, OceanBindingKind, OceanShaderBinding, OceanShaderExport,
     OceanShaderLanguage, OceanShaderStage, ocean_shader_count, ocean_shader_export,

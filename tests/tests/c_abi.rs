@@ -1,6 +1,6 @@
 //! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c`, `tests/c/test_wtb.c`,
-//! `tests/c/test_lighting.c`, `tests/c/test_gpu.c`, `tests/cpp/test_waves.cpp` and
-//! `tests/cpp/test_lighting.cpp` against
+//! `tests/c/test_lighting.c`, `tests/c/test_sao.c`, `tests/c/test_gpu.c`,
+//! `tests/cpp/test_waves.cpp` and `tests/cpp/test_lighting.cpp` against
 //! `include/ocean.h` and the static library `libocean.a` with the system compilers and
 //! `-Wall -Wextra -Werror -pedantic`, runs them, and fails unless each reports `0 failures` after
 //! a positive number of checks and exits 0.
@@ -234,6 +234,20 @@ fn c11_lighting_against_the_static_library() {
         "-std=c11",
         "tests/c/test_lighting.c",
         "test_lighting_c",
+    );
+}
+
+/// The Scalable Ambient Obscurance API (`ocean_sao_*`) from C11: a floor meeting a wall with
+/// analytic depth through an OpenGL and a reversed-Z infinite projection, the planes read from
+/// the matrices, view z against the analytic depth, AO exactly 1 away from the crease and
+/// darkening monotonically toward it, the two conventions agreeing, and every error path.
+#[test]
+fn c11_sao_against_the_static_library() {
+    build_and_run(
+        compiler("CC", "cc"),
+        "-std=c11",
+        "tests/c/test_sao.c",
+        "test_sao_c",
     );
 }
 
