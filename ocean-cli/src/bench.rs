@@ -13,7 +13,7 @@ use ocean_core::{Depth, Grid, WaveDesc, WaveSet};
 use rayon::prelude::*;
 use serde_json::{Value, json};
 
-use crate::{bench_gpu, bench_lighting, bench_wtb};
+use crate::{bench_gpu, bench_lighting, bench_sao, bench_wtb};
 
 #[derive(Args)]
 pub struct BenchArgs {
@@ -46,6 +46,9 @@ enum Suite {
     /// Ocean lighting (issue 4): CPU sea-colour evaluations and the paper's validation
     /// (Fig. 10) against a detailed-geometry reference.
     Lighting,
+    /// Scalable ambient obscurance: GPU time against the radius, with and without the z
+    /// hierarchy, per pass at four resolutions with guard bands, and the CPU reference.
+    Sao,
 }
 
 /// A wave set of `n` deep-water trochoids, wavelengths in geometric progression from 0.5 m to
@@ -124,6 +127,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         Suite::Gerstner => gerstner(args),
         Suite::Wtb => bench_wtb::wtb(args),
         Suite::Lighting => bench_lighting::lighting(args),
+        Suite::Sao => bench_sao::sao(args),
     }
 }
 

@@ -4,6 +4,7 @@
 mod bench;
 mod bench_gpu;
 mod bench_lighting;
+mod bench_sao;
 mod bench_wtb;
 mod png;
 mod shaders;

@@ -79,6 +79,18 @@ struct RendererState {
     has_lighting: bool,
 }
 
+impl OceanGpuContext {
+    /// The device and queue.
+    pub(crate) fn context(&self) -> &GpuContext {
+        &self.ctx
+    }
+
+    /// What distinguishes it from other contexts.
+    pub(crate) fn id(&self) -> u64 {
+        self.id
+    }
+}
+
 impl OceanRenderer {
     fn lock(&self) -> MutexGuard<'_, RendererState> {
         // A panic inside a call (reported as OCEAN_STATUS_PANIC) poisons the lock; the renderer
@@ -103,6 +115,7 @@ pub(crate) fn gpu_error(context: &str, e: GpuError) -> Error {
         | GpuError::RequestDevice(_) => OceanStatus::NoAdapter,
         GpuError::Brdf(b) => return brdf_error(context, *b),
         GpuError::Wtb(w) => return crate::wtb::wtb_error(context, *w),
+        GpuError::Sao(e) => return crate::sao::sao_error(context, *e),
         GpuError::Eval(ocean_core::EvalError::Time(_)) => OceanStatus::NonFinite,
         GpuError::Eval(_)
         | GpuError::InvalidInput { .. }

@@ -29,6 +29,7 @@ mod lighting_brdf;
 mod lighting_spectrum;
 mod sao;
 mod sao_camera;
+mod sao_gpu;
 mod shader_export;
 mod status;
 mod version;
@@ -74,6 +75,7 @@ pub use sao::{
     ocean_sao_view_z,
 };
 pub use sao_camera::{OCEAN_SAO_DEPTH_NDC, OCEAN_SAO_DEPTH_WINDOW, OceanSaoCamera};
+pub use sao_gpu::{OceanSaoGpu, ocean_sao_gpu_create, ocean_sao_gpu_destroy, ocean_sao_gpu_run};
 pub use shader_export::{
     OCEAN_NO_GLSL_BINDING, OceanBindingKind, OceanShaderBinding, OceanShaderExport,
     OceanShaderLanguage, OceanShaderStage, ocean_shader_count, ocean_shader_export,

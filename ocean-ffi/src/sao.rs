@@ -295,6 +295,13 @@ pub struct OceanSao {
     far: f64,
 }
 
+impl OceanSao {
+    /// The validated set-up.
+    pub(crate) fn sao(&self) -> &Sao {
+        &self.sao
+    }
+}
+
 const _: () = {
     const fn shareable<T: Send + Sync>() {}
     shareable::<OceanSao>();
@@ -487,8 +494,8 @@ pub unsafe extern "C" fn ocean_sao_describe(
 }
 
 /// The checked input and output buffers of a pass over `sao`'s images.
-struct Buffers<'a> {
-    depth: &'a [f32],
+pub(crate) struct Buffers<'a> {
+    pub(crate) depth: &'a [f32],
     out: *mut f32,
     out_len: usize,
 }
@@ -500,7 +507,7 @@ struct Buffers<'a> {
 ///
 /// `depth` must be NULL, misaligned, or point to `depth_len` readable floats that nothing
 /// writes during the borrow; `out` NULL, misaligned, or `out_len` writable floats.
-unsafe fn buffers<'a>(
+pub(crate) unsafe fn buffers<'a>(
     sao: &OceanSao,
     depth: *const f32,
     depth_len: usize,
@@ -548,7 +555,7 @@ impl Buffers<'_> {
     /// # Safety
     ///
     /// As `buffers`: `out` points to `out_len` writable floats untouched by others.
-    unsafe fn write(self, result: &[f32]) {
+    pub(crate) unsafe fn write(self, result: &[f32]) {
         debug_assert_eq!(result.len(), self.out_len);
         // SAFETY: non-NULL and 4-aligned, byte size fits in isize, disjoint from `depth`
         // (checked in `buffers`); writable and untouched by others (caller's guarantee).

@@ -149,8 +149,8 @@ impl GpuContext {
             .map_err(|e| no_adapter(e.to_string()))
     }
 
-    /// A device on `adapter` with the [`required_limits`] and whichever of the
-    /// [`OPTIONAL_FEATURES`] the adapter supports.
+    /// A device on `adapter` with the [`required_limits`] (but the adapter's largest 2D
+    /// texture) and whichever of the [`OPTIONAL_FEATURES`] the adapter supports.
     pub async fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self, GpuError> {
         let info = adapter.get_info();
         let unsuitable = |reason: String| GpuError::UnsuitableAdapter {
@@ -178,6 +178,16 @@ impl GpuContext {
             )));
         }
         let features = adapter.features() & OPTIONAL_FEATURES;
+        // Texture sizes are the one limit taken from the adapter: they bound the images a pass
+        // can take (a 1080p depth buffer with a guard band exceeds the downlevel 2048), not
+        // what the WGSL may use.
+        let limits = wgpu::Limits {
+            max_texture_dimension_2d: adapter
+                .limits()
+                .max_texture_dimension_2d
+                .max(limits.max_texture_dimension_2d),
+            ..limits
+        };
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("ocean-gpu headless device"),

@@ -16,6 +16,11 @@
 //! - [`WtbMarchPass`]: wave train boxes from an `ocean_wtb` plan, their wave rays marched on the
 //!   GPU (one invocation per ray: land, shadows, shoaling, refraction) and evaluated by the
 //!   layers pass; the GPU twin of `ocean_wtb::march::MarchBox::march` and `Frame::evaluate`.
+//! - [`SaoPass`]: Scalable Ambient Obscurance (McGuire, Mara & Luebke 2012) from the caller's
+//!   depth texture: z reconstruction (Eq. 2), the z MIP levels (Table 1), the spiral samples
+//!   over them (Eq. 1, 3–10, the appendix's falloff) with the 2×2 quad bilateral, and the
+//!   separable bilateral blur (§2.4), into an obscurance texture; the GPU twin of
+//!   [`ocean_sao::Sao`], with per-pass timestamps ([`SaoTimer`]).
 //! - [`OceanRenderer`]: the ocean surface renderer of Bruneton et al. (2010): a projected grid
 //!   displaced by filtered trochoids, per-pixel filtered normals and slope variances lit by the
 //!   Sun, the sky and the sea (Algorithm 5.1), and a sky background, into the caller's targets
@@ -43,6 +48,7 @@ pub mod layers;
 pub mod ocean;
 mod pipeline;
 pub mod readback;
+pub mod sao;
 pub mod shaders;
 pub mod trochoid;
 pub mod wtb;
@@ -51,6 +57,7 @@ pub use context::{ContextOptions, GpuContext};
 pub use layers::{DeviceLayer, LayerDesc, LayersInput, LayersParams, LayersPass, LayersStats};
 pub use ocean::{OceanOptions, OceanRenderer, SeaColorInput, SurfaceProbe};
 pub use readback::{GpuDuration, GpuTimer, TextureData};
+pub use sao::{GpuZLevel, SaoPass, SaoStage, SaoStages, SaoTimer, SaoTimes};
 pub use shaders::{Code, Export, ExportFile, Language, ShaderError};
 pub use trochoid::{
     GridOutput, TrochoidInput, TrochoidParams, TrochoidPass, TrochoidStats, TrochoidTarget,
@@ -143,6 +150,10 @@ pub enum GpuError {
     /// another spacing).
     #[error(transparent)]
     Wtb(#[from] ocean_wtb::WtbError),
+    /// The ambient obscurance set-up or its input refused (a depth slice of the wrong length,
+    /// a depth value outside the convention's range).
+    #[error(transparent)]
+    Sao(#[from] ocean_sao::SaoError),
 }
 
 /// Runs `f` inside validation and out-of-memory error scopes on `device` and returns the first

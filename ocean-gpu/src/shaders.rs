@@ -143,7 +143,33 @@ pub const OCEAN_PROBE_WGSL: &str = concat!(
     include_str!("shaders/ocean_probe.wgsl")
 );
 
-static SHADERS: [ShaderEntry; 6] = [
+/// Source of SAO pass 1 (McGuire, Mara & Luebke 2012, §2.2): camera-space z from the depth
+/// buffer (Eq. 2), after the shared `sao_common.wgsl` (the parameter block).
+pub const SAO_Z_WGSL: &str = concat!(
+    include_str!("shaders/sao_common.wgsl"),
+    include_str!("shaders/sao_z.wgsl")
+);
+
+/// Source of SAO pass 2: one z MIP level from the previous one under Table 1's filters.
+pub const SAO_MIP_WGSL: &str = concat!(
+    include_str!("shaders/sao_common.wgsl"),
+    include_str!("shaders/sao_mip.wgsl")
+);
+
+/// Source of SAO pass 3: the distributed AO samples (Eq. 1, 3–10 and the appendix's falloff),
+/// the 2×2 quad bilateral and the packing of A and z (§2.3).
+pub const SAO_AO_WGSL: &str = concat!(
+    include_str!("shaders/sao_common.wgsl"),
+    include_str!("shaders/sao_ao.wgsl")
+);
+
+/// Source of SAO passes 4 and 5: the horizontal and vertical bilateral blur (§2.4).
+pub const SAO_BLUR_WGSL: &str = concat!(
+    include_str!("shaders/sao_common.wgsl"),
+    include_str!("shaders/sao_blur.wgsl")
+);
+
+static SHADERS: [ShaderEntry; 10] = [
     ShaderEntry {
         name: "trochoid",
         files: &["surface.wgsl", "trochoid.wgsl"],
@@ -272,6 +298,67 @@ static SHADERS: [ShaderEntry; 6] = [
         ],
         description: "probes of the ocean renderer: its grid vertices, per-pixel surface and sea \
                       colour for lists of inputs (parity tests)",
+    },
+    ShaderEntry {
+        name: "sao_z",
+        files: &["sao_common.wgsl", "sao_z.wgsl"],
+        source: SAO_Z_WGSL,
+        kind: ShaderKind::Compute,
+        entry_points: &[EntryPoint {
+            name: "z_pass",
+            stage: Stage::Compute,
+        }],
+        description: "scalable ambient obscurance, pass 1: camera-space z from depth for every \
+                      depth convention (SAO Eq. 2)",
+    },
+    ShaderEntry {
+        name: "sao_mip",
+        files: &["sao_common.wgsl", "sao_mip.wgsl"],
+        source: SAO_MIP_WGSL,
+        kind: ShaderKind::Compute,
+        entry_points: &[EntryPoint {
+            name: "downsample",
+            stage: Stage::Compute,
+        }],
+        description: "scalable ambient obscurance, pass 2: one z MIP level (rotated grid, \
+                      arithmetic or harmonic mean, min, max: SAO Table 1)",
+    },
+    ShaderEntry {
+        name: "sao_ao",
+        files: &["sao_common.wgsl", "sao_ao.wgsl"],
+        source: SAO_AO_WGSL,
+        kind: ShaderKind::Compute,
+        entry_points: &[
+            EntryPoint {
+                name: "ao",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "ao_stages",
+                stage: Stage::Compute,
+            },
+        ],
+        description: "scalable ambient obscurance, pass 3: spiral samples over the z hierarchy, \
+                      AlchemyAO or the appendix's falloff, 2x2 quad bilateral, A and z packed \
+                      (SAO Eq. 1, 3-10)",
+    },
+    ShaderEntry {
+        name: "sao_blur",
+        files: &["sao_common.wgsl", "sao_blur.wgsl"],
+        source: SAO_BLUR_WGSL,
+        kind: ShaderKind::Compute,
+        entry_points: &[
+            EntryPoint {
+                name: "blur_horizontal",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "blur_vertical",
+                stage: Stage::Compute,
+            },
+        ],
+        description: "scalable ambient obscurance, passes 4 and 5: depth-aware separable \
+                      bilateral blur (SAO 2.4)",
     },
 ];
 

@@ -66,6 +66,7 @@ extern crate std;
 
 pub mod blur;
 pub mod error;
+pub mod gpu_params;
 pub mod hierarchy;
 pub mod pack;
 pub mod params;
@@ -78,6 +79,7 @@ pub mod spiral;
 pub mod viewport;
 
 pub use error::SaoError;
+pub use gpu_params::SaoUniforms;
 pub use hierarchy::{MipFilter, ZHierarchy};
 pub use params::{BlurParams, Estimator, SaoParams};
 pub use pipeline::{Sao, Stages};
