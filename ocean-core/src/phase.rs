@@ -12,6 +12,19 @@ const ROUND_MAGIC: f64 = 6_755_399_441_055_744.0;
 /// Beyond this many turns the magic-number rounding no longer applies and `fmod` is used.
 const FAST_TURNS: f64 = 1.0e15;
 
+/// Reduces a phase counted in turns to [-½, ½]: `turns − round(turns)`, exact below 10¹⁵ turns
+/// (the difference of two nearby `f64` loses nothing), `%` beyond.
+///
+/// Non-finite input gives NaN.
+#[inline]
+pub fn reduce_turns(turns: f64) -> f64 {
+    if turns.abs() < FAST_TURNS {
+        turns - ((turns + ROUND_MAGIC) - ROUND_MAGIC)
+    } else {
+        turns % 1.0
+    }
+}
+
 /// Reduces `theta` to [-π, π] (the representative congruent modulo the `f64` value of 2π).
 ///
 /// Non-finite input gives NaN; the public entry points reject such input before it gets here.
@@ -44,6 +57,19 @@ pub fn reduce_angle_f32(theta: f64) -> f32 {
 mod tests {
     use super::*;
     use crate::math;
+
+    #[test]
+    fn turns_reduce_exactly() {
+        // Whole turns vanish; the remainder of a quarter survives at any size below 10¹⁵.
+        for &n in &[0.0, 1.0, -3.0, 1.0e6, -7.0e9, 4.0e14] {
+            assert_eq!(reduce_turns(n), 0.0, "{n}");
+            assert_eq!(reduce_turns(n + 0.25), 0.25, "{n}");
+            assert_eq!(reduce_turns(n - 0.25), -0.25, "{n}");
+        }
+        assert_eq!(reduce_turns(0.75), -0.25);
+        assert_eq!(reduce_turns(3.0e15 + 2.0), 0.0);
+        assert!(reduce_turns(f64::NAN).is_nan());
+    }
 
     #[test]
     fn stays_in_range_and_congruent() {

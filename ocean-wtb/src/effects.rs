@@ -262,8 +262,8 @@ pub fn noise_rate(seed: u64, index: u64) -> f32 {
 /// and its sine comes from the kernels' deterministic `sincos`.
 pub fn noise_height(noise: &Noise, index: u64, t: f64) -> f64 {
     let nu = f64::from(noise_rate(noise.seed, index));
-    let turns = (nu * t) % 1.0;
-    let (s, _) = ocean_core::sincos::sincos(ocean_core::phase::reduce_angle_f32(TAU * turns));
+    let turns = ocean_core::phase::reduce_turns(nu * t);
+    let (s, _) = ocean_core::sincos::sincos((TAU * turns) as f32);
     noise.amplitude * f64::from(s)
 }
 
