@@ -134,6 +134,12 @@
 #define OCEAN_SAO_DEPTH_NDC 1
 
 /**
+ * Size in bytes of the uniform block `Params` that every `sao_*` shader reads at binding 0
+ * (std140); `ocean_sao_uniforms` writes it.
+ */
+#define OCEAN_SAO_UNIFORMS_SIZE 288
+
+/**
  * `OceanShaderBinding::glsl_binding` when the binding has no GLSL binding number: a sampler
  * (combined with its texture in GLSL), a GLSL 3.30 export (assign the number by name), or a
  * non-GLSL export.
@@ -2609,6 +2615,38 @@ OceanStatus ocean_sao_gpu_run(const struct OceanSaoGpu *sao_gpu,
                               size_t depth_len,
                               float *ao,
                               size_t ao_len);
+
+/**
+ * Writes the uniform block of the exported `sao_*` shaders for `sao` into `out` (the
+ * `OCEAN_SAO_UNIFORMS_SIZE` bytes of `Params`, std140, in the machine's byte order: upload
+ * them as they are with `glBufferSubData`) and the number of z levels the passes build into
+ * `*levels` (1 to 14).
+ *
+ * For engines that run the passes in their own OpenGL 4.3 pipeline (`ocean_shader_export`
+ * of `sao_z`, `sao_mip`, `sao_ao` and `sao_blur`, with their binding tables), every dispatch
+ * in 8 x 8 workgroups over its output:
+ * 1. `sao_z` `z_pass`: the depth texture (input size) to z level 0, an `r32f` texture of the
+ *    input size.
+ * 2. `sao_mip` `downsample`, for each level l = 1 to levels - 1: level l - 1 to level l
+ *    (`r32f`, each side halved, rounded down, at least 1), one texture per level.
+ * 3. `sao_ao` `ao`: the levels to the packed A and key (`r32ui`, output size).
+ * 4. `sao_blur` `blur_horizontal`, then `blur_vertical`: packed to packed, the last one also
+ *    writing A (`r32f`, output size), with a memory barrier between the dispatches.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_SAO_UNIFORMS_SIZE`,
+ * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing is written on
+ * failure.
+ *
+ * # Safety
+ *
+ * `sao` must be a live handle, `out` point to `len` writable bytes and `levels` to a writable
+ * `uint32_t`, none touched by another thread during the call.
+ */
+OceanStatus ocean_sao_uniforms(const struct OceanSao *sao,
+                               uint8_t *out,
+                               size_t len,
+                               uint32_t *levels);
 
 /**
  * Returns the number of registered shaders (passes), at least 1. Never fails; leaves the

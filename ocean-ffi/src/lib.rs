@@ -75,7 +75,10 @@ pub use sao::{
     ocean_sao_view_z,
 };
 pub use sao_camera::{OCEAN_SAO_DEPTH_NDC, OCEAN_SAO_DEPTH_WINDOW, OceanSaoCamera};
-pub use sao_gpu::{OceanSaoGpu, ocean_sao_gpu_create, ocean_sao_gpu_destroy, ocean_sao_gpu_run};
+pub use sao_gpu::{
+    OCEAN_SAO_UNIFORMS_SIZE, OceanSaoGpu, ocean_sao_gpu_create, ocean_sao_gpu_destroy,
+    ocean_sao_gpu_run, ocean_sao_uniforms,
+};
 pub use shader_export::{
     OCEAN_NO_GLSL_BINDING, OceanBindingKind, OceanShaderBinding, OceanShaderExport,
     OceanShaderLanguage, OceanShaderStage, ocean_shader_count, ocean_shader_export,

@@ -9,6 +9,7 @@
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use ocean_gpu::SaoPass;
+use ocean_sao::SaoUniforms;
 
 use crate::gpu::{OceanGpuContext, gpu_error};
 use crate::lighting::{borrow, destroy, write_handle};
@@ -146,6 +147,67 @@ pub unsafe extern "C" fn ocean_sao_gpu_run(
     })
 }
 
+/// Size in bytes of the uniform block `Params` that every `sao_*` shader reads at binding 0
+/// (std140); `ocean_sao_uniforms` writes it.
+pub const OCEAN_SAO_UNIFORMS_SIZE: usize = 288;
+
+const _: () = assert!(size_of::<SaoUniforms>() == OCEAN_SAO_UNIFORMS_SIZE);
+
+/// Writes the uniform block of the exported `sao_*` shaders for `sao` into `out` (the
+/// `OCEAN_SAO_UNIFORMS_SIZE` bytes of `Params`, std140, in the machine's byte order: upload
+/// them as they are with `glBufferSubData`) and the number of z levels the passes build into
+/// `*levels` (1 to 14).
+///
+/// For engines that run the passes in their own OpenGL 4.3 pipeline (`ocean_shader_export`
+/// of `sao_z`, `sao_mip`, `sao_ao` and `sao_blur`, with their binding tables), every dispatch
+/// in 8 x 8 workgroups over its output:
+/// 1. `sao_z` `z_pass`: the depth texture (input size) to z level 0, an `r32f` texture of the
+///    input size.
+/// 2. `sao_mip` `downsample`, for each level l = 1 to levels - 1: level l - 1 to level l
+///    (`r32f`, each side halved, rounded down, at least 1), one texture per level.
+/// 3. `sao_ao` `ao`: the levels to the packed A and key (`r32ui`, output size).
+/// 4. `sao_blur` `blur_horizontal`, then `blur_vertical`: packed to packed, the last one also
+///    writing A (`r32f`, output size), with a memory barrier between the dispatches.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_SAO_UNIFORMS_SIZE`,
+/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing is written on
+/// failure.
+///
+/// # Safety
+///
+/// `sao` must be a live handle, `out` point to `len` writable bytes and `levels` to a writable
+/// `uint32_t`, none touched by another thread during the call.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_sao_uniforms(
+    sao: *const OceanSao,
+    out: *mut u8,
+    len: usize,
+    levels: *mut u32,
+) -> OceanStatus {
+    guard("ocean_sao_uniforms", || {
+        // SAFETY: forwarded from this function's contract.
+        let s = unsafe { borrow(sao, "sao") }?;
+        crate::waves::check_ptr(out.cast_const(), "out")?;
+        crate::waves::check_ptr(levels.cast_const(), "levels")?;
+        crate::waves::byte_len::<u8>(len, "out")?;
+        if len < OCEAN_SAO_UNIFORMS_SIZE {
+            return Err(Error::new(
+                OceanStatus::BufferTooSmall,
+                format!("`len` is {len} bytes, the uniform block needs {OCEAN_SAO_UNIFORMS_SIZE}"),
+            ));
+        }
+        let u = SaoUniforms::new(s.sao());
+        let bytes = bytemuck::bytes_of(&u);
+        // SAFETY: non-NULL (checked), `len` >= the block's size, writable and untouched by
+        // others (caller's guarantee); `u8` has alignment 1.
+        unsafe { core::slice::from_raw_parts_mut(out, bytes.len()) }.copy_from_slice(bytes);
+        // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
+        unsafe { levels.write(u.levels()) };
+        Ok(())
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use core::ptr::null_mut;
@@ -263,6 +325,25 @@ mod tests {
         );
         // The scene has a crease: some pixels must be darkened, or the comparison is empty.
         assert!(cpu_ao.iter().any(|&a| a < 0.5));
+
+        // The uniform block the GLSL export reads: the bytes SaoPass uploads.
+        let mut block = vec![0u8; OCEAN_SAO_UNIFORMS_SIZE + 4];
+        let mut levels = 0u32;
+        // SAFETY: live handle, writable buffers.
+        let status =
+            unsafe { ocean_sao_uniforms(sao, block.as_mut_ptr(), block.len(), &mut levels) };
+        assert_eq!(status, OceanStatus::Ok, "{}", last_error());
+        // SAFETY: live handle.
+        let want = SaoUniforms::new(unsafe { &*sao }.sao());
+        assert_eq!(&block[..OCEAN_SAO_UNIFORMS_SIZE], bytemuck::bytes_of(&want));
+        assert_eq!(levels, want.levels());
+        assert!((1..=14).contains(&levels));
+        let mut small = [7u8; 16];
+        // SAFETY: live handle, writable buffers.
+        let status =
+            unsafe { ocean_sao_uniforms(sao, small.as_mut_ptr(), small.len(), &mut levels) };
+        assert_eq!(status, OceanStatus::BufferTooSmall);
+        assert_eq!(small, [7u8; 16]);
 
         // Another context: refused, nothing written.
         let Some(other) = context() else { return };

@@ -499,6 +499,38 @@ static void test_run_errors(const OceanSao *sao)
     CHECK(memcmp(ao, ao_gl, sizeof ao) == 0, "a second run differs from the first");
 }
 
+/* The uniform block of the exported shaders: its size, the z constants that ocean_sao_describe
+ * reports at offset 0, the sizes at offsets 32-51 (the binding table's layout), a level count
+ * for a 160 x 120 input (at most 1 + floor(log2(120)) = 7 levels), and BUFFER_TOO_SMALL with
+ * nothing written for a short buffer. */
+static void check_uniforms(const OceanSao *sao)
+{
+    unsigned char block[OCEAN_SAO_UNIFORMS_SIZE], small[16];
+    float z[4];
+    uint32_t sizes[5], levels = 0, kept = 99;
+    OceanSaoInfo info;
+    size_t i;
+
+    CHECK(OCEAN_SAO_UNIFORMS_SIZE == 288, "uniform block of %d bytes", OCEAN_SAO_UNIFORMS_SIZE);
+    if (!OK(ocean_sao_uniforms(sao, block, sizeof block, &levels)) ||
+        !OK(ocean_sao_describe(sao, &info)))
+        return;
+    memcpy(z, block, sizeof z);
+    memcpy(sizes, block + 32, sizeof sizes);
+    for (i = 0; i < 4; i++)
+        CHECK(z[i] == info.z_constants[i], "z constant %zu: %g in the block, %g described", i,
+              (double)z[i], (double)info.z_constants[i]);
+    CHECK(sizes[0] == W && sizes[1] == H, "input size %u x %u", sizes[0], sizes[1]);
+    CHECK(sizes[2] == W - 2 * GUARD && sizes[3] == H - 2 * GUARD, "output size %u x %u",
+          sizes[2], sizes[3]);
+    CHECK(sizes[4] == GUARD, "guard %u", sizes[4]);
+    CHECK(levels >= 1 && levels <= 7, "%u z levels", levels);
+    memset(small, 7, sizeof small);
+    EXPECT(ocean_sao_uniforms(sao, small, sizeof small, &kept), OCEAN_STATUS_BUFFER_TOO_SMALL);
+    CHECK(small[0] == 7 && small[15] == 7 && kept == 99, "nothing written on failure");
+    EXPECT(ocean_sao_uniforms(sao, NULL, 0, &kept), OCEAN_STATUS_NULL_POINTER);
+}
+
 int main(void)
 {
     OceanSaoParams p;
@@ -538,6 +570,7 @@ int main(void)
         CHECK(beyond * 1000 <= OUT_LEN, "%zu pixels differ by more than 2/255", beyond);
 
         test_run_errors(sao_gl);
+        check_uniforms(sao_gl);
     }
     ocean_sao_destroy(sao_gl);
     ocean_sao_destroy(sao_rev);
