@@ -76,6 +76,7 @@ pub mod math;
 pub mod modulation;
 pub mod phase;
 pub mod rng;
+pub mod rows;
 pub mod sincos;
 pub mod trochoid;
 pub mod wave;

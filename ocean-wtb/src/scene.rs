@@ -713,22 +713,7 @@ fn build_cache(
     })
 }
 
-/// Runs `f(row index, row)` over the rows of `data` (rows of `width` values), on the rayon pool
-/// with `std`. Each row is computed independently, so the result is the same on any thread
-/// count.
-pub(crate) fn for_rows<T: Send>(data: &mut [T], width: usize, f: impl Fn(usize, &mut [T]) + Sync) {
-    #[cfg(feature = "std")]
-    {
-        use rayon::prelude::*;
-        data.par_chunks_mut(width)
-            .enumerate()
-            .for_each(|(j, row)| f(j, row));
-    }
-    #[cfg(not(feature = "std"))]
-    for (j, row) in data.chunks_mut(width).enumerate() {
-        f(j, row);
-    }
-}
+pub(crate) use ocean_core::rows::for_rows;
 
 /// Height-only terms: capillary noise on every grid point (Eq. 9) and the beach run-up.
 fn height_field(grid: &WaterGrid, terrain: &Terrain, e: &Effects, t: f64) -> Option<Vec<f32>> {
