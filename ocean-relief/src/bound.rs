@@ -1,0 +1,509 @@
+//! The cone ratio a cell can carry: the one definition that the fast generator
+//! (`search.rs`) and the brute-force oracle (`brute.rs`) both compute, and its
+//! proof of validity for the bilinear tracer.
+//!
+//! Units here: texel-centre coordinates (texel `(i, j)`'s centre is the point `(i, j)`), depth in
+//! `[0, 1]`, ratios in **texels per unit depth** (the cone map divides by `N` at the end to get
+//! the book's texture widths per unit depth).
+//!
+//! ## What a relaxed cone must guarantee (§18.4, Listing 18-3)
+//!
+//! The tracer stands at `P = (p, z₀)` above the surface (`z₀ < S(p)`, `S` the bilinear depth),
+//! fetches the cone ratio `c` at `p`, and moves along its ray `(r, 1)` (`|r| = ρ`) by
+//! `t = c·(S(p) − z₀)/(ρ + c)`: to where the ray leaves the cone of apex `(p, S(p))` that opens
+//! upwards with ratio `c` (Eq. 1–4). The step is safe when the ray crosses the surface at most
+//! once, inwards, inside that cone. The tracer reuses one cone for **every** `z₀` on its axis
+//! and every ray slope, so the cone at `p` is valid iff no ray through the axis above the apex
+//! enters and then leaves the solid inside the cone.
+//!
+//! **Lemma 1 (the peak rule).** Along a direction `u`, write `g(s) = S(p + s·u)` and
+//! `M(s) = min over [0, s] of g`. The largest valid ratio is
+//! `c*(p) = inf { s / (S(p) − M(s)) : g(s) > M(s), M(s) < S(p) }` over all `u` and `s`.
+//! *Proof.* (⇐) If `c > c*(p)`, pick such an `s`; a ray through the axis at depth just below
+//! `M(s)` and nearly horizontal enters the solid at the running minimum before `s` and is outside
+//! again at `s`, inside the cone. (⇒) If a ray from `(p, z₀)` is inside at `s₁` and outside at
+//! `s₂ > s₁` with depth `z_b < S(p)` there, then `M(s₂) ≤ z(s₁) < z_b < g(s₂)` and
+//! `s₂ ≤ c·(S(p) − z_b) < c·(S(p) − M(s₂))`, so `c > c*(p)`. ∎ So a relaxed cone may not reach
+//! past any point that is a local maximum of height along a line from `p` and higher than the
+//! apex — including gentle hill tops that Listing 18-1 ignores because it only casts rays from
+//! the top of the axis (`z₀ = 0`); see [`crate::book`] for that listing (the validity tests
+//! show its cones failing this rule).
+//!
+//! ## The cell bound
+//!
+//! The tracer samples the cone map bilinearly (with the depth, one fetch), so a texel's value is
+//! used for every apex `p` in the four cells around its centre. We therefore bound
+//! `inf_{p ∈ q} c*(p)` for each **cell** `q` (the unit square between four texel centres) and
+//! give texel `k` the minimum over its four cells ([`crate::cone`]); a bilinear blend of values
+//! that are each `≤ c*(p)` is `≤ c*(p)`.
+//!
+//! For a candidate cell `C` (another unit square, anywhere, wrapped copies included) let
+//! `m_C` be its highest corner (smallest depth), `Smax(q)` the deepest corner of `q`, `G_C` the
+//! box of `C`'s bilinear gradients (`∂S/∂x` lies between `C`'s two x-edge differences, likewise
+//! `y`) and `W = C − q` the box of vectors from `q` to `C`. `C` is a **candidate** for `q` when
+//!
+//! 1. `C` is not flat and `m_C < Smax(q)`;
+//! 2. `F = max_{g ∈ G_C, w ∈ W} g·w > 0` ("falling": the depth can grow away from `q` in
+//!    `C`), or `F = 0` and `C`'s twist `D` (its `x·y` coefficient) has the sign of `wₓ·w_y` for
+//!    some `w ∈ W`.
+//!
+//! Its value is `max(A, B)` with `A = dist(q, C) / (Smax(q) − m_C)` and `B = 1/L`, `L` the
+//! largest gradient magnitude bound of the cells within Chebyshev distance `cheb(q, C)` of `q`
+//! when that distance is at most [`K_LIP`], of all cells otherwise (for relaxed candidates that
+//! close, `B` is sharpened and the cell may drop out: "Near cells" below). The cell's cone is
+//! `w(q) = min(cap, min over candidates of max(A, B))`.
+//!
+//! **Theorem.** For every `p ∈ q`, `c*(p) ≥ w(q)`.
+//! *Proof.* Take `(u, s)` in Lemma 1's set and let `s_e ≤ s` be the left end of the interval of
+//! `{g > M}` that contains `s`: `g(s_e) = M(s_e) = M(s)` and `g > M` just after `s_e`. Let
+//! `b = p + s_e·u` and `C` the cell that contains `b + εu` for small `ε`. In `C`, `g` grows
+//! right after `b`, so `C` is not flat and, along `u ∝ b − p ∈ W`, either `∇S_C(b)·u > 0` or it
+//! is 0 and the second derivative `2·D·uₓ·u_y` is positive (condition 2: `F ≥ ∇S_C(b)·u`, and
+//! `F = 0` forces `∇S_C(b)·u = 0`), and
+//! `m_C ≤ S(b) = M < S(p) ≤ Smax(q)` (condition 1). Then
+//! `s/(S(p) − M) ≥ |b − p|/(S(p) − M) ≥ dist(q, C)/(Smax(q) − m_C) = A`; and with `a` the point
+//! of `[p, b]` where `g` reaches `M`, `S(p) − M ≤ L·|a − p| ≤ L·s` because the segment `[p, a]`
+//! lies in the bounding box of `q ∪ C`, whose cells are within `cheb(q, C)` of `q`; so
+//! `s/(S(p) − M) ≥ B`. Hence every element of Lemma 1's set is `≥ max(A, B) ≥ w(q)`. ∎
+//!
+//! ### Near cells
+//!
+//! Next to the apex the distance term vanishes and `B = 1/L` alone would make every relaxed cone
+//! as narrow as a conservative one, since a plane's side neighbours pass condition 2 for some
+//! direction. But the proof's direction `u` is one direction for the whole path: the surface
+//! falls at `b` along `u`, and, since `S(b) = M < S(p)`, it rises somewhere on `[p, b]` along
+//! the same `u`, at a rate at most `R(u) = max_{g ∈ G_P} (−g·u)`, `G_P` the union of the gradient
+//! boxes of the cells in the bounding box of `q ∪ C`; so `S(p) − M ≤ R(u)·s`. The direction lies
+//! in the directions of `W`, and not in the interior of the arc where every `g ∈ G_C` has
+//! `g·u ≤ 0` (there `∇S_C(b)·u < 0`). Let `ρ` be the supremum of `R` over the closure of the
+//! directions of `W` minus that arc (`arc.rs`, `max_rise`). If `ρ = 0` no exit can lie in
+//! `C` and it is not a candidate; otherwise `s/(S(p) − M) ≥ 1/ρ`, and `B = max(1/ρ, 1/L)`. A
+//! plane has `R(u) > 0` exactly where its cells do not fall, so its near cells drop out.
+//!
+//! The conservative cone (Dummer 2006: the cone contains no solid at all) is bounded the same
+//! way with every cell that has `m_C < Smax(q)` as a candidate, flat or not, no falling test
+//! and `B = 1/L`.
+//!
+//! [`Edge::Clamp`] extends the surface beyond the texel centres by constant strips; the cells
+//! there are the grid's border cells (`i = −1` and `i = N − 1`), whose extrusion to infinity
+//! repeats the same values. An apex cell on the border stands for its whole strip (an apex
+//! outside the texture samples the border texels): its box extends to `±BIG` for the falling
+//! test; distances to the strip equal distances to the border cell for every grid cell.
+//!
+//! ## Floating point
+//!
+//! Depths are `f32`; gradient bounds are stored rounded outwards to `f32` and `L` rounded up,
+//! so the stored boxes contain the exact ones. Every test is evaluated in `f64` where the
+//! products of an `f32` and a small integer are exact, so the sign tests are exact and the node
+//! bounds of the search are never above a leaf's value (monotone rounding). The two generators
+//! evaluate the same expression on the same inputs and agree bit for bit.
+
+use alloc::vec::Vec;
+
+use crate::map::{Edge, HeightMap};
+
+/// "Infinite" extent of a clamp-mode border strip, in texels: larger than any reach a cone can
+/// have (`MAX_RATIO_LIMIT·MAX_SIDE`), exact in `f64` and in products with `f32` values.
+pub(crate) const BIG: f64 = 1_073_741_824.0; // 2^30
+
+/// Chebyshev radius (cells) inside which the Lipschitz bound `B` uses local gradients.
+pub const K_LIP: usize = 3;
+
+/// Which cones to bound.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum ConeKind {
+    /// Relaxed cones (§18.4): rays may enter the relief inside a cone but never leave it.
+    #[default]
+    Relaxed,
+    /// Conservative cones (Dummer 2006, §18.3): the cone contains no solid.
+    Conservative,
+}
+
+/// What the bound needs to know about one cell.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Cell {
+    /// Smallest corner depth (the highest point).
+    pub m: f32,
+    /// Largest corner depth.
+    pub smax: f32,
+    /// Bounds of `∂S/∂x` over the cell, rounded outwards.
+    pub gx: [f32; 2],
+    /// Bounds of `∂S/∂y` over the cell, rounded outwards.
+    pub gy: [f32; 2],
+    /// Upper bound of `|∇S|` over the cell, rounded up.
+    pub lip: f32,
+    /// Sign of the twist `D = d₀₀ − d₁₀ − d₀₁ + d₁₁` (the `x·y` coefficient): along a direction
+    /// `u` the surface's second derivative is `2·D·uₓ·u_y`.
+    pub twist: i8,
+    /// All four corners equal.
+    pub flat: bool,
+}
+
+/// `x` rounded down to `f32`.
+pub(crate) fn down32(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) > x { f.next_down() } else { f }
+}
+
+/// `x` rounded up to `f32`.
+pub(crate) fn up32(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) < x { f.next_up() } else { f }
+}
+
+impl Cell {
+    fn new(d00: f32, d10: f32, d01: f32, d11: f32) -> Self {
+        let (a, b, c, d) = (
+            f64::from(d00),
+            f64::from(d10),
+            f64::from(d01),
+            f64::from(d11),
+        );
+        // Differences of two f32 values are exact in f64.
+        let (ex0, ex1) = (b - a, d - c);
+        let (ey0, ey1) = (c - a, d - b);
+        let mx = ex0.abs().max(ex1.abs());
+        let my = ey0.abs().max(ey1.abs());
+        // |∂x| ≤ mx and |∂y| ≤ my everywhere in the cell; the factor covers the two roundings of
+        // the f64 square root.
+        let lip = libm::sqrt(mx * mx + my * my) * (1.0 + 1.0e-12);
+        Self {
+            m: d00.min(d10).min(d01).min(d11),
+            smax: d00.max(d10).max(d01).max(d11),
+            gx: [down32(ex0.min(ex1)), up32(ex0.max(ex1))],
+            gy: [down32(ey0.min(ey1)), up32(ey0.max(ey1))],
+            lip: up32(lip),
+            twist: {
+                let t = a - b - c + d;
+                if t > 0.0 {
+                    1
+                } else if t < 0.0 {
+                    -1
+                } else {
+                    0
+                }
+            },
+            flat: d00 == d10 && d00 == d01 && d00 == d11,
+        }
+    }
+}
+
+/// The cells of a map: `N × N` in wrap mode, `(N + 1) × (N + 1)` in clamp mode (the border
+/// strips included).
+pub(crate) struct Grid {
+    /// Texels per side.
+    pub n: usize,
+    /// Cells per side.
+    pub nc: usize,
+    pub edge: Edge,
+    /// Spatial index of cell 0 along each axis: 0 (wrap) or −1 (clamp).
+    pub origin: i64,
+    pub cells: Vec<Cell>,
+    /// `L` over all cells.
+    pub lip_global: f64,
+}
+
+impl Grid {
+    pub fn new(map: &HeightMap) -> Self {
+        let n = map.size();
+        let edge = map.edge();
+        let (nc, origin) = match edge {
+            Edge::Wrap => (n, 0),
+            Edge::Clamp => (n + 1, -1),
+        };
+        let mut cells = Vec::with_capacity(nc * nc);
+        let mut lip_global = 0.0f64;
+        for cj in 0..nc as i64 {
+            for ci in 0..nc as i64 {
+                let (i, j) = (ci + origin, cj + origin);
+                let cell = Cell::new(
+                    map.depth(i, j),
+                    map.depth(i + 1, j),
+                    map.depth(i, j + 1),
+                    map.depth(i + 1, j + 1),
+                );
+                lip_global = lip_global.max(f64::from(cell.lip));
+                cells.push(cell);
+            }
+        }
+        Self {
+            n,
+            nc,
+            edge,
+            origin,
+            cells,
+            lip_global,
+        }
+    }
+
+    /// Index of the cell at spatial position `(ci, cj)` (unwrapped in wrap mode), if it exists.
+    #[inline(always)]
+    pub fn index(&self, ci: i64, cj: i64) -> Option<usize> {
+        match self.edge {
+            Edge::Wrap => {
+                let n = self.n as i64;
+                Some(cj.rem_euclid(n) as usize * self.nc + ci.rem_euclid(n) as usize)
+            }
+            Edge::Clamp => {
+                let (x, y) = (ci - self.origin, cj - self.origin);
+                let nc = self.nc as i64;
+                if (0..nc).contains(&x) && (0..nc).contains(&y) {
+                    Some(y as usize * self.nc + x as usize)
+                } else {
+                    None
+                }
+            }
+        }
+    }
+
+    /// The apex cell at spatial position `(qi, qj)` (`0 ≤ qi − origin < nc`).
+    pub fn apex(&self, qi: i64, qj: i64) -> Apex {
+        let cell = &self.cells[self.index(qi, qj).unwrap_or(0)];
+        let (mut x0, mut x1) = (qi as f64, qi as f64 + 1.0);
+        let (mut y0, mut y1) = (qj as f64, qj as f64 + 1.0);
+        if self.edge == Edge::Clamp {
+            let last = self.n as i64 - 1;
+            if qi == -1 {
+                x0 = -BIG;
+            }
+            if qi == last {
+                x1 = BIG;
+            }
+            if qj == -1 {
+                y0 = -BIG;
+            }
+            if qj == last {
+                y1 = BIG;
+            }
+        }
+        let mut lring = [0.0f64; K_LIP + 1];
+        for (r, l) in lring.iter_mut().enumerate() {
+            let r = r as i64;
+            let mut max = 0.0f64;
+            for dj in -r..=r {
+                for di in -r..=r {
+                    if let Some(k) = self.index(qi + di, qj + dj) {
+                        max = max.max(f64::from(self.cells[k].lip));
+                    }
+                }
+            }
+            *l = max;
+        }
+        // Path boxes by dynamic programming outwards from the apex cell, one quadrant at a time:
+        // the box of offsets (dx, dy) is the union of those of (dx − sx, dy), (dx, dy − sy) and
+        // the cell itself.
+        const EMPTY: [f64; 4] = [
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        let k = K_LIP as i64;
+        let mut path = [EMPTY; NEAR * NEAR];
+        let at = |dx: i64, dy: i64| ((dy + k) as usize) * NEAR + (dx + k) as usize;
+        let own = |dx: i64, dy: i64| -> [f64; 4] {
+            match self.index(qi + dx, qj + dy) {
+                Some(i) => {
+                    let c = &self.cells[i];
+                    [
+                        f64::from(c.gx[0]),
+                        f64::from(c.gx[1]),
+                        f64::from(c.gy[0]),
+                        f64::from(c.gy[1]),
+                    ]
+                }
+                None => EMPTY,
+            }
+        };
+        let union = |a: [f64; 4], b: [f64; 4]| {
+            [
+                a[0].min(b[0]),
+                a[1].max(b[1]),
+                a[2].min(b[2]),
+                a[3].max(b[3]),
+            ]
+        };
+        for sy in [-1i64, 1] {
+            for sx in [-1i64, 1] {
+                for ady in 0..=k {
+                    for adx in 0..=k {
+                        let (dx, dy) = (sx * adx, sy * ady);
+                        let mut b = own(dx, dy);
+                        if adx > 0 {
+                            b = union(b, path[at(dx - sx, dy)]);
+                        }
+                        if ady > 0 {
+                            b = union(b, path[at(dx, dy - sy)]);
+                        }
+                        path[at(dx, dy)] = b;
+                    }
+                }
+            }
+        }
+        Apex {
+            qi,
+            qj,
+            rect: [x0, x1, y0, y1],
+            smax: f64::from(cell.smax),
+            lring,
+            path,
+        }
+    }
+}
+
+/// An apex cell with what the bound needs about it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Apex {
+    pub qi: i64,
+    pub qj: i64,
+    /// `[x0, x1, y0, y1]`, ±BIG for clamp-mode border strips.
+    pub rect: [f64; 4],
+    /// Deepest corner.
+    pub smax: f64,
+    /// Largest `lip` within Chebyshev distance `r` of the apex cell.
+    pub lring: [f64; K_LIP + 1],
+    /// For each offset `(dx, dy) ∈ [−K_LIP, K_LIP]²` (row-major), the union `[gx0, gx1, gy0, gy1]`
+    /// of the gradient boxes of the cells in the bounding box of the apex cell and the cell at
+    /// that offset: every gradient a segment from `q` to that cell can meet.
+    pub path: [[f64; 4]; NEAR * NEAR],
+}
+
+/// Side of the near neighbourhood.
+const NEAR: usize = 2 * K_LIP + 1;
+
+/// Largest product `g·w` over `g ∈ [g0, g1]`, `w ∈ [w0, w1]`.
+#[inline(always)]
+fn max_product(g: [f32; 2], w0: f64, w1: f64) -> f64 {
+    let (g0, g1) = (f64::from(g[0]), f64::from(g[1]));
+    (g0 * w0).max(g0 * w1).max(g1 * w0).max(g1 * w1)
+}
+
+/// The largest `g·w` over gradients `gx × gy` and vectors `w` from the apex box into the
+/// rectangle `[x0, x1] × [y0, y1]`, and the box of those vectors.
+#[inline(always)]
+fn growth(q: &Apex, rect: [f64; 4], gx: [f32; 2], gy: [f32; 2]) -> (f64, [f64; 4]) {
+    let [qx0, qx1, qy0, qy1] = q.rect;
+    let [x0, x1, y0, y1] = rect;
+    let w = [x0 - qx1, x1 - qx0, y0 - qy1, y1 - qy0];
+    (max_product(gx, w[0], w[1]) + max_product(gy, w[2], w[3]), w)
+}
+
+/// Condition 2 for a block of cells (a pyramid node): can the depth grow, or stay level, along
+/// some direction from the apex box into `rect` with gradients in `gx × gy`? A node that fails
+/// holds no cell that passes [`falling_cell`].
+#[inline(always)]
+pub(crate) fn falling(q: &Apex, rect: [f64; 4], gx: [f32; 2], gy: [f32; 2]) -> bool {
+    growth(q, rect, gx, gy).0 >= 0.0
+}
+
+/// Condition 2 for one cell: the depth can grow right after the exit point `b` along
+/// `u ∝ b − p` only if `∇S(b)·u > 0`, or `∇S(b)·u = 0` and the second derivative
+/// `2·D·uₓ·u_y > 0`. When the largest `g·w` over the boxes is exactly 0 (a planar ramp seen
+/// along its level direction), only a twisted cell whose box of directions allows
+/// `D·wₓ·w_y > 0` can still have an exit.
+#[inline(always)]
+fn falling_cell(q: &Apex, rect: [f64; 4], cell: &Cell) -> bool {
+    let (f, [wx0, wx1, wy0, wy1]) = growth(q, rect, cell.gx, cell.gy);
+    if f > 0.0 {
+        return true;
+    }
+    if f < 0.0 {
+        return false;
+    }
+    match cell.twist {
+        1 => (wx1 > 0.0 && wy1 > 0.0) || (wx0 < 0.0 && wy0 < 0.0),
+        -1 => (wx1 > 0.0 && wy0 < 0.0) || (wx0 < 0.0 && wy1 > 0.0),
+        _ => false,
+    }
+}
+
+/// Euclidean distance between the apex box and a rectangle.
+#[inline(always)]
+pub(crate) fn distance(q: &Apex, rect: [f64; 4]) -> f64 {
+    let [qx0, qx1, qy0, qy1] = q.rect;
+    let [x0, x1, y0, y1] = rect;
+    let gx = (x0 - qx1).max(qx0 - x1).max(0.0);
+    let gy = (y0 - qy1).max(qy0 - y1).max(0.0);
+    libm::sqrt(gx * gx + gy * gy)
+}
+
+/// A candidate cell's parts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Candidate {
+    /// `dist(q, C)`.
+    pub dist: f64,
+    /// `Smax(q) − m_C > 0`.
+    pub depth: f64,
+    /// `B`.
+    pub b: f64,
+}
+
+impl Candidate {
+    /// `max(A, B)`: the cell's bound on the plain cone.
+    #[inline(always)]
+    pub fn value(&self) -> f64 {
+        (self.dist / self.depth).max(self.b)
+    }
+}
+
+/// Candidate cell `cell` at spatial position `(ci, cj)` for apex `q`, or `None` when it is not
+/// a candidate (module documentation).
+#[inline(always)]
+pub(crate) fn candidate(
+    q: &Apex,
+    cell: &Cell,
+    ci: i64,
+    cj: i64,
+    kind: ConeKind,
+    lip_global: f64,
+) -> Option<Candidate> {
+    let m = f64::from(cell.m);
+    if m >= q.smax || (kind == ConeKind::Relaxed && cell.flat) {
+        return None;
+    }
+    let rect = [ci as f64, ci as f64 + 1.0, cj as f64, cj as f64 + 1.0];
+    if kind == ConeKind::Relaxed && !falling_cell(q, rect, cell) {
+        return None;
+    }
+    let (dx, dy) = (ci - q.qi, cj - q.qj);
+    let cheb = dx.unsigned_abs().max(dy.unsigned_abs()) as usize;
+    let l = if cheb <= K_LIP {
+        q.lring[cheb]
+    } else {
+        lip_global
+    };
+    let mut b = if l > 0.0 { 1.0 / l } else { f64::INFINITY };
+    if kind == ConeKind::Relaxed && cheb <= K_LIP {
+        // Direction-consistent bound (module documentation, "near cells").
+        let [qx0, qx1, qy0, qy1] = q.rect;
+        let w = [rect[0] - qx1, rect[1] - qx0, rect[2] - qy1, rect[3] - qy0];
+        let gc = [
+            f64::from(cell.gx[0]),
+            f64::from(cell.gx[1]),
+            f64::from(cell.gy[0]),
+            f64::from(cell.gy[1]),
+        ];
+        let k = K_LIP as i64;
+        let path = q.path[((dy + k) as usize) * NEAR + (dx + k) as usize];
+        let rise = crate::arc::max_rise(w, gc, path);
+        if rise <= 0.0 {
+            return None;
+        }
+        b = b.max(1.0 / rise);
+    }
+    Some(Candidate {
+        dist: distance(q, rect),
+        depth: q.smax - m,
+        b,
+    })
+}
+
+/// The floor of every candidate's value: `1/L` over the whole map.
+#[inline(always)]
+pub(crate) fn floor_value(lip_global: f64) -> f64 {
+    if lip_global > 0.0 {
+        1.0 / lip_global
+    } else {
+        f64::INFINITY
+    }
+}

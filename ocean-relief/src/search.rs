@@ -1,0 +1,314 @@
+//! The fast generator: for each apex cell, a branch-and-bound over a min-depth pyramid of the
+//! candidate cells, which finds exactly the minimum [`crate::bound`] defines.
+//!
+//! Each pyramid node keeps, over its candidate cells (non-flat ones for relaxed cones), the
+//! smallest depth `m` and the union of their gradient boxes. A node is skipped when
+//!
+//! - `m ≥ Smax(q)`: no cell in it is higher than the apex cell's deepest corner;
+//! - its lower bound `max(dist(q, node)/(Smax(q) − m), 1/L_global)` is not below the best value
+//!   found so far: every cell's `A` has a larger distance and a smaller denominator, and every
+//!   `B` is at least `1/L_global`;
+//! - (relaxed) the falling test fails for the node's box and gradient union, which contain each
+//!   cell's.
+//!
+//! None of these skips can drop a cell whose value is below the current best (`bound`'s
+//! floating-point note: the node bounds are evaluated with the same monotone operations), so the
+//! result is the brute force's bit for bit. Children are visited nearest bound first, and the
+//! previous apex's best cell seeds the bound (its value is a candidate's value, so the minimum is
+//! unchanged). In wrap mode the pyramid is tiled: copies at Chebyshev ring `r ≥ 1` lie at least
+//! `(r − 1)·N` texels away, which bounds their values from below by `(r − 1)·N` (a depth
+//! difference is at most 1), so the rings stop as soon as that reaches the best value.
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use crate::bound::{Apex, ConeKind, Grid, candidate, distance, falling, floor_value};
+use crate::map::Edge;
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    m: f32,
+    gx: [f32; 2],
+    gy: [f32; 2],
+}
+
+const EMPTY: Node = Node {
+    m: f32::INFINITY,
+    gx: [f32::INFINITY, f32::NEG_INFINITY],
+    gy: [f32::INFINITY, f32::NEG_INFINITY],
+};
+
+impl Node {
+    fn merge(a: Node, b: Node) -> Node {
+        Node {
+            m: a.m.min(b.m),
+            gx: [a.gx[0].min(b.gx[0]), a.gx[1].max(b.gx[1])],
+            gy: [a.gy[0].min(b.gy[0]), a.gy[1].max(b.gy[1])],
+        }
+    }
+}
+
+/// Level `l` has `(P >> l)²` nodes, `P` the cell count rounded up to a power of two; node
+/// `(x, y)` of level `l` covers cells `[x·2ˡ, (x + 1)·2ˡ) × [y·2ˡ, (y + 1)·2ˡ)`.
+pub(crate) struct Pyramid {
+    levels: Vec<(usize, Vec<Node>)>,
+}
+
+impl Pyramid {
+    pub fn new(grid: &Grid, kind: ConeKind) -> Self {
+        let p = grid.nc.next_power_of_two();
+        let mut base = vec![EMPTY; p * p];
+        for y in 0..grid.nc {
+            for x in 0..grid.nc {
+                let c = &grid.cells[y * grid.nc + x];
+                if kind == ConeKind::Conservative || !c.flat {
+                    base[y * p + x] = Node {
+                        m: c.m,
+                        gx: c.gx,
+                        gy: c.gy,
+                    };
+                }
+            }
+        }
+        let mut levels = vec![(p, base)];
+        let mut size = p;
+        while size > 1 {
+            let half = size / 2;
+            let prev = &levels[levels.len() - 1].1;
+            let mut next = vec![EMPTY; half * half];
+            for y in 0..half {
+                for x in 0..half {
+                    let at = |dx: usize, dy: usize| prev[(2 * y + dy) * size + 2 * x + dx];
+                    next[y * half + x] = Node::merge(
+                        Node::merge(at(0, 0), at(1, 0)),
+                        Node::merge(at(0, 1), at(1, 1)),
+                    );
+                }
+            }
+            levels.push((half, next));
+            size = half;
+        }
+        Self { levels }
+    }
+}
+
+/// Channels computed in one search: the plain cone `c` (texels per unit depth), the clearance
+/// `D` (texels) of the far candidates and the cap `E` (texels per unit depth) of the near ones.
+pub(crate) const CHANNELS: usize = 3;
+
+/// Candidates closer than this (texels, cell to cell) are near: they bound `E`, the others `D`.
+pub(crate) const NEAR_DISTANCE: f64 = 1.0;
+
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    /// Distance from the apex box and `Smax(q) − m` of the node.
+    dist: f64,
+    depth: f64,
+    level: u32,
+    x: u32,
+    y: u32,
+}
+
+/// Scratch space reused across apexes.
+#[derive(Default)]
+pub(crate) struct Scratch {
+    stack: Vec<Entry>,
+}
+
+/// The result for one apex cell: per channel, the value and the cell that attains it (a seed for
+/// the next apex).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Best {
+    pub value: [f64; CHANNELS],
+    pub cell: [Option<(i64, i64)>; CHANNELS],
+}
+
+/// What one search needs besides the apex.
+pub(crate) struct Search<'a> {
+    pub grid: &'a Grid,
+    pub pyramid: &'a Pyramid,
+    pub kind: ConeKind,
+    /// Cap of every channel, texels (per unit depth for `c`).
+    pub cap: f64,
+}
+
+impl Search<'_> {
+    /// Whether a node (or cell) with this distance and depth can still lower some channel: its
+    /// plain bound `max(dist/depth, 1/L_global)` is below the best `c` (or, when it may hold near
+    /// cells, the best `E`), or its distance below the best `D`.
+    #[inline(always)]
+    fn open(&self, dist: f64, depth: f64, floor: f64, best: &Best) -> bool {
+        let plain = (dist / depth).max(floor);
+        plain < best.value[0]
+            || dist < best.value[1]
+            || (dist < NEAR_DISTANCE && plain < best.value[2])
+    }
+
+    fn offer(&self, q: &Apex, ci: i64, cj: i64, k: usize, best: &mut Best) {
+        if let Some(cand) = candidate(
+            q,
+            &self.grid.cells[k],
+            ci,
+            cj,
+            self.kind,
+            self.grid.lip_global,
+        ) {
+            let near = cand.dist < NEAR_DISTANCE;
+            let v = [
+                cand.value(),
+                if near { f64::INFINITY } else { cand.dist },
+                if near { cand.value() } else { f64::INFINITY },
+            ];
+            for ((value, cell), v) in best.value.iter_mut().zip(&mut best.cell).zip(v) {
+                if v < *value {
+                    *value = v;
+                    *cell = Some((ci, cj));
+                }
+            }
+        }
+    }
+
+    /// `c`, `D` and `E` of apex cell `q`, each capped at `cap`.
+    pub fn cell_cone(
+        &self,
+        q: &Apex,
+        seeds: &[Option<(i64, i64)>; CHANNELS],
+        scratch: &mut Scratch,
+    ) -> Best {
+        let grid = self.grid;
+        let floor = floor_value(grid.lip_global);
+        let mut best = Best {
+            value: [self.cap; CHANNELS],
+            cell: [None; CHANNELS],
+        };
+        for (c, seed) in seeds.iter().enumerate() {
+            if let Some((ci, cj)) = *seed {
+                if seeds[..c].contains(seed) {
+                    continue;
+                }
+                if let Some(k) = grid.index(ci, cj) {
+                    self.offer(q, ci, cj, k, &mut best);
+                }
+            }
+        }
+        // No cell anywhere is higher than the apex's deepest corner: nothing can be a candidate,
+        // in any tile copy.
+        let root = &self.pyramid.levels[self.pyramid.levels.len() - 1].1[0];
+        if f64::from(root.m) >= q.smax {
+            return best;
+        }
+        match grid.edge {
+            Edge::Clamp => self.visit(q, floor, grid.origin, grid.origin, &mut best, scratch),
+            Edge::Wrap => {
+                let n = grid.n as i64;
+                let mut r = 0i64;
+                loop {
+                    // Copies on ring r ≥ 1 are at least (r − 1)·N away with depth ≤ 1.
+                    let gap = ((r - 1).max(0) * n) as f64;
+                    if r >= 1 && !self.open(gap, 1.0, floor, &best) {
+                        break;
+                    }
+                    for b in -r..=r {
+                        for a in -r..=r {
+                            if a.abs().max(b.abs()) == r {
+                                self.visit(q, floor, a * n, b * n, &mut best, scratch);
+                            }
+                        }
+                    }
+                    r += 1;
+                }
+            }
+        }
+        best
+    }
+
+    /// Depth-first search of one copy of the pyramid whose cell `(0, 0)` is at `(ox, oy)`.
+    fn visit(
+        &self,
+        q: &Apex,
+        floor: f64,
+        ox: i64,
+        oy: i64,
+        best: &mut Best,
+        scratch: &mut Scratch,
+    ) {
+        let pyramid = self.pyramid;
+        let top = pyramid.levels.len() as u32 - 1;
+        let nc = self.grid.nc as i64;
+        // Distance and depth of a node, or None when it is skipped.
+        let measure = |level: u32, x: u32, y: u32, best: &Best| -> Option<(f64, f64)> {
+            let (size, nodes) = &pyramid.levels[level as usize];
+            let node = nodes[y as usize * size + x as usize];
+            if f64::from(node.m) >= q.smax {
+                return None;
+            }
+            let (x0, y0) = (i64::from(x) << level, i64::from(y) << level);
+            if x0 >= nc || y0 >= nc {
+                return None;
+            }
+            let x1 = ((i64::from(x) + 1) << level).min(nc);
+            let y1 = ((i64::from(y) + 1) << level).min(nc);
+            let rect = [
+                (ox + x0) as f64,
+                (ox + x1) as f64,
+                (oy + y0) as f64,
+                (oy + y1) as f64,
+            ];
+            let dist = distance(q, rect);
+            let depth = q.smax - f64::from(node.m);
+            if !self.open(dist, depth, floor, best) {
+                return None;
+            }
+            if self.kind == ConeKind::Relaxed && !falling(q, rect, node.gx, node.gy) {
+                return None;
+            }
+            Some((dist, depth))
+        };
+        let Some((dist, depth)) = measure(top, 0, 0, best) else {
+            return;
+        };
+        let stack = &mut scratch.stack;
+        stack.clear();
+        stack.push(Entry {
+            dist,
+            depth,
+            level: top,
+            x: 0,
+            y: 0,
+        });
+        while let Some(e) = stack.pop() {
+            if !self.open(e.dist, e.depth, floor, best) {
+                continue;
+            }
+            if e.level == 0 {
+                let (ci, cj) = (ox + i64::from(e.x), oy + i64::from(e.y));
+                self.offer(q, ci, cj, e.y as usize * self.grid.nc + e.x as usize, best);
+                continue;
+            }
+            let l = e.level - 1;
+            let mut kids: [(f64, Entry); 4] = [(0.0, e); 4];
+            let mut count = 0;
+            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                let (x, y) = (2 * e.x + dx, 2 * e.y + dy);
+                if let Some((dist, depth)) = measure(l, x, y, best) {
+                    let key = dist;
+                    kids[count] = (
+                        key,
+                        Entry {
+                            dist,
+                            depth,
+                            level: l,
+                            x,
+                            y,
+                        },
+                    );
+                    count += 1;
+                }
+            }
+            let kids = &mut kids[..count];
+            // Farthest pushed first so the nearest is popped first.
+            kids.sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
+            stack.extend(kids.iter().map(|k| k.1));
+        }
+    }
+}

@@ -1,0 +1,46 @@
+//! Self-shadowing (§18.2, §18.4): a surface point is lit when the light ray reaches it before
+//! reaching any other point of the relief. The light ray is traced like a viewing ray, with the
+//! same tracer and the same cone map, from where it enters the relief (depth 0) towards the
+//! point; the point is in shadow when that ray stops clearly before it.
+
+use glam::{Vec2, Vec3};
+
+use crate::ReliefError;
+use crate::relief::ReliefTexture;
+use crate::trace::{Method, Ray};
+
+/// Whether the light from direction `light` (tangent space, unit or not, pointing from the
+/// surface towards the light, `light.z > 0` above the polygon) is blocked before it reaches
+/// `point = (u, v, depth)`, for a relief `depth_scale` texture widths deep. The light ray's hit
+/// must lie at least `bias` (depth units) above the point to count: the tracer's final bracket
+/// (its last step over `2^binary`) needs that margin, or the point shadows itself.
+///
+/// A light at or below the polygon's plane (`light.z ≤ 0`) leaves every point in shadow.
+///
+/// # Errors
+///
+/// [`ReliefError::RayDirection`] for non-finite inputs; the tracer's errors for `method`;
+/// [`ReliefError::OutOfRange`] for a negative or non-finite `bias`.
+pub fn in_shadow(
+    texture: &ReliefTexture,
+    method: &Method,
+    point: Vec3,
+    light: Vec3,
+    depth_scale: f32,
+    bias: f32,
+) -> Result<bool, ReliefError> {
+    if !point.is_finite() || !light.is_finite() || !depth_scale.is_finite() {
+        return Err(ReliefError::RayDirection);
+    }
+    crate::check_range("bias", f64::from(bias), 0.0, 1.0)?;
+    if light.z <= 0.0 {
+        return Ok(true);
+    }
+    // The ray towards the point, scaled like a viewing ray: per unit depth it moves
+    // depth_scale·(−light.xy)/light.z; it enters the relief where it is at depth 0.
+    let per_depth = Vec2::new(-light.x, -light.y) * (depth_scale / light.z);
+    let start = Vec2::new(point.x, point.y) - per_depth * point.z;
+    let ray = Ray::from_view(start, -light, depth_scale)?;
+    let hit = method.trace(texture, &ray)?;
+    Ok(hit.pos.z < point.z - bias)
+}
