@@ -14,8 +14,10 @@
  *
  * Checks: the planes and constants ocean_sao_describe reads from GLM-style matrices; the view
  * z of every pixel against the analytic one; the AO against what SAO's estimator implies (see
- * check_ao); a reversed-Z infinite camera on the same scene against the OpenGL one; and every
- * error path with the outputs untouched.
+ * check_ao); a reversed-Z infinite camera on the same scene against the OpenGL one; every
+ * error path with the outputs untouched; the uniform block of the exported shaders
+ * (ocean_sao_uniforms); and the GPU passes on the headless device (ocean_sao_gpu_*) against
+ * the CPU (check_gpu).
  *
  * Prints a summary; exits 0 only if every check passed.
  */
@@ -531,6 +533,48 @@ static void check_uniforms(const OceanSao *sao)
     EXPECT(ocean_sao_uniforms(sao, NULL, 0, &kept), OCEAN_STATUS_NULL_POINTER);
 }
 
+/* The GPU passes on the library's headless device (ocean_sao_gpu_*): the CPU's AO within 2/255
+ * on at least 99.9% of the pixels (the library's parity bound), and a handle refused on another
+ * context with the output untouched. Without an adapter this part is skipped, unless
+ * OCEAN_REQUIRE_GPU=1 makes that a failure. */
+static void check_gpu(const OceanSao *sao, const float *depth, const float *cpu_ao)
+{
+    static float gpu_ao[OUT_LEN], other_ao[OUT_LEN];
+    OceanGpuContext *ctx = NULL, *other = NULL;
+    OceanSaoGpu *gpu = NULL;
+    const char *require = getenv("OCEAN_REQUIRE_GPU");
+    OceanStatus s = ocean_gpu_context_create(&ctx);
+    size_t i, beyond = 0;
+
+    if (s == OCEAN_STATUS_NO_ADAPTER) {
+        if (require != NULL && strcmp(require, "1") == 0)
+            CHECK(0, "OCEAN_REQUIRE_GPU=1 but no GPU context: %s", last_error());
+        else
+            printf("SKIPPED: the GPU passes (no usable adapter: %s)\n", last_error());
+        return;
+    }
+    if (!OK(s))
+        return;
+    if (OK(ocean_sao_gpu_create(ctx, &gpu)) &&
+        OK(ocean_sao_gpu_run(gpu, ctx, sao, depth, IN_LEN, gpu_ao, OUT_LEN))) {
+        for (i = 0; i < OUT_LEN; i++)
+            beyond += fabs((double)gpu_ao[i] - cpu_ao[i]) > 2.0 / 255.0;
+        printf("GPU: %zu of %zu pixels beyond 2/255 of the CPU\n", beyond, OUT_LEN);
+        CHECK(beyond * 1000 <= OUT_LEN, "%zu GPU pixels beyond 2/255", beyond);
+        if (OK(ocean_gpu_context_create(&other))) {
+            for (i = 0; i < OUT_LEN; i++)
+                other_ao[i] = 7.0f;
+            EXPECT(ocean_sao_gpu_run(gpu, other, sao, depth, IN_LEN, other_ao, OUT_LEN),
+                   OCEAN_STATUS_INVALID_ARGUMENT);
+            CHECK(untouched(other_ao, OUT_LEN), "AO written on another context");
+            ocean_gpu_context_destroy(other);
+        }
+    }
+    ocean_sao_gpu_destroy(gpu);
+    ocean_sao_gpu_destroy(NULL);
+    ocean_gpu_context_destroy(ctx);
+}
+
 int main(void)
 {
     OceanSaoParams p;
@@ -571,6 +615,7 @@ int main(void)
 
         test_run_errors(sao_gl);
         check_uniforms(sao_gl);
+        check_gpu(sao_rev, depth_rev, ao_rev);
     }
     ocean_sao_destroy(sao_gl);
     ocean_sao_destroy(sao_rev);
