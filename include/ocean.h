@@ -68,6 +68,138 @@
 #define OCEAN_FILTER_N_MAX 2.5
 
 /**
+ * `edge`: the texture tiles (sampler addressing *repeat*).
+ */
+#define OCEAN_RELIEF_EDGE_WRAP 0
+
+/**
+ * `edge`: texel indices clamp to the border (sampler addressing *clamp-to-edge*).
+ */
+#define OCEAN_RELIEF_EDGE_CLAMP 1
+
+/**
+ * `range` of `ocean_relief_map_create_f32`: a height outside [0, 1] is refused
+ * (`OCEAN_STATUS_INVALID_ARGUMENT`, the message names the first such texel).
+ */
+#define OCEAN_RELIEF_RANGE_REFUSE 0
+
+/**
+ * `range` of `ocean_relief_map_create_f32`: the smallest height becomes 0 and the largest 1
+ * (affinely; a constant map becomes a flat map at height 1, the polygon surface).
+ */
+#define OCEAN_RELIEF_RANGE_NORMALIZE 1
+
+/**
+ * `OceanReliefConeParams::kind`: relaxed cones (section 18.4): a ray may enter the relief
+ * inside a cone but never leave it. For `OCEAN_RELIEF_METHOD_RELAXED`.
+ */
+#define OCEAN_RELIEF_CONES_RELAXED 0
+
+/**
+ * `OceanReliefConeParams::kind`: conservative cones (Dummer 2006): the cone holds no solid.
+ * For `OCEAN_RELIEF_METHOD_CONE_STEP`.
+ */
+#define OCEAN_RELIEF_CONES_CONSERVATIVE 1
+
+/**
+ * `encoding`: 8-bit unorm (`uint8_t`), clamped to 1.0: code k = floor(255 min(r, 1)), read
+ * back as k / 255 (a GPU's `R8Unorm` conversion).
+ */
+#define OCEAN_RELIEF_ENCODING_UNORM8 0
+
+/**
+ * `encoding`: 8-bit unorm of the square root (`uint8_t`), clamped to 1.0: read back as
+ * (k / 255)^2.
+ */
+#define OCEAN_RELIEF_ENCODING_UNORM8_SQRT 1
+
+/**
+ * `encoding`: IEEE binary16 bit patterns (`uint16_t`), unclamped (up to 65504), rounded
+ * toward zero.
+ */
+#define OCEAN_RELIEF_ENCODING_F16 2
+
+/**
+ * `encoding`: `float`, the generator's values as they are.
+ */
+#define OCEAN_RELIEF_ENCODING_F32 3
+
+/**
+ * `rule` of `ocean_relief_mips_create`: a coarse texel is the minimum of a 4x4 window of the
+ * finer level (its 2x2 group and a one-texel ring): valid under bilinear sampling.
+ */
+#define OCEAN_RELIEF_MIP_WINDOW 0
+
+/**
+ * `rule` of `ocean_relief_mips_create`: the book's 2x2 group minimum, valid under nearest
+ * sampling only.
+ */
+#define OCEAN_RELIEF_MIP_GROUP 1
+
+/**
+ * The smallest side of a height map, texels (a bilinear cell needs two texel centres).
+ */
+#define OCEAN_RELIEF_MIN_SIDE 2
+
+/**
+ * The largest side of a height map, texels (16.7 M texels; a generation at this size needs
+ * about 80 bytes a texel).
+ */
+#define OCEAN_RELIEF_MAX_SIDE 4096
+
+/**
+ * The largest `OceanReliefConeParams::max_ratio`, texture widths per unit depth.
+ */
+#define OCEAN_RELIEF_MAX_RATIO_LIMIT 64.0
+
+/**
+ * The most bands a generation with a progress callback is split into: the callback is called
+ * at most `OCEAN_RELIEF_PROGRESS_BANDS + 1` times.
+ */
+#define OCEAN_RELIEF_PROGRESS_BANDS 64
+
+/**
+ * `OceanReliefMethod::method`: linear search (Policarpo et al. 2005): `steps` equal depth
+ * steps, then `binary` bisections of the step that first went inside. Reads only the depth.
+ */
+#define OCEAN_RELIEF_METHOD_LINEAR 0
+
+/**
+ * `OceanReliefMethod::method`: cone step mapping (Dummer 2006): `steps` conservative cone
+ * steps, no refinement (`binary` is not read). Needs conservative cones.
+ */
+#define OCEAN_RELIEF_METHOD_CONE_STEP 1
+
+/**
+ * `OceanReliefMethod::method`: relaxed cone stepping (Listing 18-3): `steps` relaxed cone
+ * steps, then `binary` bisections as `search` says. Needs relaxed cones.
+ */
+#define OCEAN_RELIEF_METHOD_RELAXED 2
+
+/**
+ * `OceanReliefMethod::search`: bisect the last cone step (from the last point above the surface
+ * to the stop point) `binary` times (default).
+ */
+#define OCEAN_RELIEF_SEARCH_LAST_STEP 0
+
+/**
+ * `OceanReliefMethod::search`: Listing 18-3's search, `binary` probes starting halfway from the
+ * entry point to the stop point (kept for comparison: less accurate).
+ */
+#define OCEAN_RELIEF_SEARCH_BOOK 1
+
+/**
+ * `OceanReliefMethod::search`: one budget of `steps + binary` fetches: cone steps while the ray
+ * is above the surface, then bisections of the last step with every fetch left.
+ */
+#define OCEAN_RELIEF_SEARCH_SHARED 2
+
+/**
+ * The largest step count of each phase (`steps`, `binary`).
+ */
+#define OCEAN_RELIEF_MAX_STEPS 4096
+
+/**
  * `OceanSaoParams::mip_filter`: rotated grid subsampling (Table 1), the paper's choice: every
  * MIP texel is one of its children, a true scene value.
  */
@@ -243,6 +375,10 @@ enum OceanStatus
    * out-parameter holds the size required; the buffer itself is untouched.
    */
   OCEAN_STATUS_BUFFER_TOO_SMALL = 13,
+  /**
+   * The caller's progress callback asked to stop (returned nonzero); nothing was written.
+   */
+  OCEAN_STATUS_CANCELLED = 14,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -451,6 +587,26 @@ typedef struct OceanGpuContext OceanGpuContext;
  * `const OceanLighting *` may be used by any number of threads at once.
  */
 typedef struct OceanLighting OceanLighting;
+
+/**
+ * A cone map together with the height map it was made for: what the CPU tracers read
+ * (opaque). Create with `ocean_relief_cones_create` (or `ocean_relief_cones_quantize`), free
+ * with `ocean_relief_cones_destroy`. Immutable and shareable between threads.
+ */
+typedef struct OceanReliefCones OceanReliefCones;
+
+/**
+ * A square height map with its edge mode (opaque). Create with one of
+ * `ocean_relief_map_create_f32` / `_u8` / `_u16`, free with `ocean_relief_map_destroy`.
+ * Immutable: a `const OceanReliefMap *` may be used by any number of threads at once.
+ */
+typedef struct OceanReliefMap OceanReliefMap;
+
+/**
+ * A mip chain of a cone map, level 0 (the cone map) down to 1x1 (opaque). Create with
+ * `ocean_relief_mips_create`, free with `ocean_relief_mips_destroy`. Immutable and shareable.
+ */
+typedef struct OceanReliefMips OceanReliefMips;
 
 /**
  * The GPU ocean renderer (opaque): a projected screen-space grid displaced by the filtered
@@ -903,6 +1059,121 @@ typedef struct OceanSlopeVariance {
    */
   double sigma_y2;
 } OceanSlopeVariance;
+
+/**
+ * How the cones are made. Start from `ocean_relief_cone_params_default`.
+ */
+typedef struct OceanReliefConeParams {
+  /**
+   * `OCEAN_RELIEF_CONES_RELAXED` (default) or `OCEAN_RELIEF_CONES_CONSERVATIVE`; other values
+   * are refused.
+   */
+  uint32_t kind;
+  /**
+   * Cap on the cone ratios (texture widths per unit depth) and the clearances (texture
+   * widths), in (0, `OCEAN_RELIEF_MAX_RATIO_LIMIT`]. Default 1.0, the book's, for 8-bit
+   * storage (which clamps at 1.0 anyway); a larger cap keeps wider cones for f16 / f32.
+   */
+  float max_ratio;
+} OceanReliefConeParams;
+
+/**
+ * A progress callback: `done` of `total` units of work are finished (rows of bilinear cells:
+ * `total` is N in wrap mode and N + 1 in clamp mode). Return 0 to go on, nonzero to cancel:
+ * the function then returns `OCEAN_STATUS_CANCELLED` and writes nothing.
+ *
+ * It is called on the thread that called the generating function, never concurrently with
+ * itself: once with `done` = 0 before any work, then after each band of rows (at most
+ * `OCEAN_RELIEF_PROGRESS_BANDS`), the last time with `done` = `total`. `user` is passed through
+ * untouched. The callback must not unwind (C++ exceptions, `longjmp`) out of the call.
+ */
+typedef int (*OceanReliefProgress)(void *user, size_t done, size_t total);
+
+/**
+ * A ray into the relief (section 18.2): it enters at texture coordinates (start_u, start_v)
+ * at depth 0 and moves by (dir_x, dir_y) texture widths per dir_z of depth. Only the ratios
+ * matter (the tracers divide by dir_z, as the book's `ray_dir /= ray_dir.z`).
+ * `ocean_relief_ray_from_view` makes one from a tangent-space view vector.
+ */
+typedef struct OceanReliefRay {
+  /**
+   * Entry point, texture coordinate u.
+   */
+  float start_u;
+  /**
+   * Entry point, texture coordinate v.
+   */
+  float start_v;
+  /**
+   * Direction along u.
+   */
+  float dir_x;
+  /**
+   * Direction along v.
+   */
+  float dir_y;
+  /**
+   * Direction in depth: positive (into the relief).
+   */
+  float dir_z;
+} OceanReliefRay;
+
+/**
+ * A tracer and its step counts.
+ */
+typedef struct OceanReliefMethod {
+  /**
+   * `OCEAN_RELIEF_METHOD_LINEAR`, `_CONE_STEP` or `_RELAXED`; other values are refused.
+   */
+  uint32_t method;
+  /**
+   * Linear steps, cone steps, or relaxed cone steps: 1 to `OCEAN_RELIEF_MAX_STEPS` (the
+   * book: 15 relaxed steps).
+   */
+  uint32_t steps;
+  /**
+   * Bisections, 0 to `OCEAN_RELIEF_MAX_STEPS` (the book: 6). Not read by cone step mapping.
+   */
+  uint32_t binary;
+  /**
+   * `OCEAN_RELIEF_SEARCH_*`. Read (and checked) only by relaxed cone stepping.
+   */
+  uint32_t search;
+} OceanReliefMethod;
+
+/**
+ * A point of the relief: texture coordinates and normalised depth (0 at the polygon, 1 at the
+ * bottom of the relief).
+ */
+typedef struct OceanReliefPoint {
+  /**
+   * Texture coordinate u (texture widths; texel i's centre is at (i + 0.5)/N).
+   */
+  float u;
+  /**
+   * Texture coordinate v.
+   */
+  float v;
+  /**
+   * Depth, 0 at the polygon surface, 1 at the bottom.
+   */
+  float depth;
+} OceanReliefPoint;
+
+/**
+ * Where a tracer stopped.
+ */
+typedef struct OceanReliefHit {
+  /**
+   * The hit (the midpoint of the final bracket; for cone step mapping, and for a shared
+   * budget spent before the ray got inside, the last point known to be above the surface).
+   */
+  struct OceanReliefPoint pos;
+  /**
+   * Texture fetches spent on the ray.
+   */
+  uint32_t fetches;
+} OceanReliefHit;
 
 /**
  * The bilateral reconstruction (paper section 2.4): a horizontal then a vertical pass of `taps`
@@ -2430,6 +2701,448 @@ OceanStatus ocean_pixel_footprint(const struct OceanCameraDesc *camera,
                                   double py,
                                   double max_distance,
                                   double *out);
+
+/**
+ * Creates a height map from `len` = width * height floats, row-major (texel (i, j) at element
+ * j * width + i), each a **height** (1 = the polygon surface, 0 = the bottom), and stores the
+ * handle in `*out`.
+ *
+ * `edge`: `OCEAN_RELIEF_EDGE_WRAP` or `_CLAMP`. `range`: `OCEAN_RELIEF_RANGE_REFUSE` (heights
+ * must lie in [0, 1]) or `OCEAN_RELIEF_RANGE_NORMALIZE` (the smallest becomes 0, the largest 1).
+ * The heights are copied.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
+ * alignment for `heights`), `OCEAN_STATUS_EMPTY` if `width` or `height` is 0,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if a side is outside 2 to `OCEAN_RELIEF_MAX_SIDE`, the map is
+ * not square, `len` is not width * height, `edge` or `range` is unknown, or (with `_REFUSE`) a
+ * height lies outside [0, 1], `OCEAN_STATUS_NON_FINITE` for a NaN or infinite height (the
+ * message names the first bad texel). `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `heights` must point to `len` readable floats and `out` to a writable pointer.
+ */
+OceanStatus ocean_relief_map_create_f32(const float *heights,
+                                        size_t len,
+                                        uint32_t width,
+                                        uint32_t height,
+                                        uint32_t edge,
+                                        uint32_t range,
+                                        struct OceanReliefMap **out);
+
+/**
+ * Creates a height map from `len` = width * height 8-bit heights (height v / 255, depth
+ * (255 - v) / 255), row-major, and stores the handle in `*out`. Statuses as
+ * `ocean_relief_map_create_f32` (every 8-bit value is in range).
+ *
+ * # Safety
+ *
+ * `heights` must point to `len` readable bytes and `out` to a writable pointer.
+ */
+OceanStatus ocean_relief_map_create_u8(const uint8_t *heights,
+                                       size_t len,
+                                       uint32_t width,
+                                       uint32_t height,
+                                       uint32_t edge,
+                                       struct OceanReliefMap **out);
+
+/**
+ * Creates a height map from `len` = width * height 16-bit heights (height v / 65535, depth
+ * (65535 - v) / 65535), row-major, and stores the handle in `*out`. Statuses as
+ * `ocean_relief_map_create_f32` (2-byte alignment for `heights`).
+ *
+ * # Safety
+ *
+ * `heights` must point to `len` readable `uint16_t` and `out` to a writable pointer.
+ */
+OceanStatus ocean_relief_map_create_u16(const uint16_t *heights,
+                                        size_t len,
+                                        uint32_t width,
+                                        uint32_t height,
+                                        uint32_t edge,
+                                        struct OceanReliefMap **out);
+
+/**
+ * Frees a height map. NULL is ignored, and so is a pointer that is not even aligned. Never
+ * fails; leaves the last-error message alone.
+ *
+ * # Safety
+ *
+ * `map` must be NULL or a handle from an `ocean_relief_map_create_*` function not yet
+ * destroyed, and no other thread may be using it.
+ */
+void ocean_relief_map_destroy(struct OceanReliefMap *map);
+
+/**
+ * Stores the side N of the map, texels, in `*out_size`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out_size`
+ * is written only on success.
+ *
+ * # Safety
+ *
+ * `map` must be a live handle and `out_size` writable.
+ */
+OceanStatus ocean_relief_map_size(const struct OceanReliefMap *map, uint32_t *out_size);
+
+/**
+ * Copies the map's depths (1 - height, after normalisation if asked for; in [0, 1]) into
+ * `depths`: `len` = N * N floats, row-major. These are the depths the cones are valid for:
+ * upload them as the depth channel of the relief texture.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `len` is not N * N. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `map` must be a live handle and `depths` point to `len` writable floats that no other thread
+ * touches during the call.
+ */
+OceanStatus ocean_relief_map_depths(const struct OceanReliefMap *map, float *depths, size_t len);
+
+/**
+ * Computes the tangent-space normal map of `map` for a relief `depth` texel widths deep (the
+ * full depth range spans that many texel widths) by central differences, and stores it in
+ * `xyz`: `len` = 3 N * N floats, row-major, (x, y, z) per texel, unit length, z out of the
+ * polygon, x along the texture's u, y along v; neighbours follow the map's edge mode.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `depth`, `OCEAN_STATUS_INVALID_ARGUMENT` if
+ * `depth` is outside [0, 1e6] or `len` is not 3 N * N. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `map` must be a live handle and `xyz` point to `len` writable floats that no other thread
+ * touches during the call.
+ */
+OceanStatus ocean_relief_normals(const struct OceanReliefMap *map,
+                                 float depth,
+                                 float *xyz,
+                                 size_t len);
+
+/**
+ * Stores the default cone parameters in `*out`: relaxed cones, capped at 1.0 (the book's).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_relief_cone_params_default(struct OceanReliefConeParams *out);
+
+/**
+ * Generates the cone map of `map` (see `OceanReliefConeParams`) and stores a handle that holds
+ * it and a copy of the map in `*out`: what `ocean_relief_trace` and `ocean_relief_shadow` read.
+ *
+ * Every texel gets three channels, each rounded down to float and capped at
+ * `params->max_ratio`: the cone ratio c (texture widths per unit depth, the book's cone map),
+ * the clearance D (texture widths) and the near cap E (per unit depth); a ray h above the
+ * surface may use the cone max(c, min(D/h, E)). The cones are valid for the bilinear surface
+ * of the map's depths, read bilinearly or nearest. The result is bit-identical to
+ * `ocean_relief::ConeMap::generate` on every thread count, with or without `progress`.
+ *
+ * `progress` (may be NULL) is called as `OceanReliefProgress` describes, with `user`; a nonzero
+ * return cancels. Rows of the map are computed on all the threads of the library's pool.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `max_ratio`, `OCEAN_STATUS_INVALID_ARGUMENT`
+ * for an unknown kind or a `max_ratio` outside (0, `OCEAN_RELIEF_MAX_RATIO_LIMIT`],
+ * `OCEAN_STATUS_CANCELLED` when the callback returned nonzero (the arguments are checked before
+ * the first call). `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `map` must be a live handle, `params` readable, `out` writable; `progress`, if not NULL,
+ * must be safe to call with `user` from this thread.
+ */
+OceanStatus ocean_relief_cones_create(const struct OceanReliefMap *map,
+                                      const struct OceanReliefConeParams *params,
+                                      OceanReliefProgress progress,
+                                      void *user,
+                                      struct OceanReliefCones **out);
+
+/**
+ * Frees a cone map. NULL is ignored, and so is a pointer that is not even aligned. Never
+ * fails; leaves the last-error message alone.
+ *
+ * # Safety
+ *
+ * `cones` must be NULL or a handle from `ocean_relief_cones_create` or
+ * `ocean_relief_cones_quantize` not yet destroyed, and no other thread may be using it.
+ */
+void ocean_relief_cones_destroy(struct OceanReliefCones *cones);
+
+/**
+ * Stores the side N of the cone map (that of its height map), texels, in `*out_size`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out_size`
+ * is written only on success.
+ *
+ * # Safety
+ *
+ * `cones` must be a live handle and `out_size` writable.
+ */
+OceanStatus ocean_relief_cones_size(const struct OceanReliefCones *cones, uint32_t *out_size);
+
+/**
+ * Copies the relief texture into `rgba`: `len` = 4 N * N floats, row-major, `[depth, c, D, E]`
+ * per texel (the depth of the map and the three cone channels), the layout of an `RGBA32F`
+ * texture and exactly what the CPU tracers read.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `len` is not 4 N * N. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `cones` must be a live handle and `rgba` point to `len` writable floats that no other thread
+ * touches during the call.
+ */
+OceanStatus ocean_relief_cones_texels(const struct OceanReliefCones *cones,
+                                      float *rgba,
+                                      size_t len);
+
+/**
+ * Encodes the three cone channels for storage and copies them into `out`: `len` = 3 N * N
+ * elements of the encoding's type (`uint8_t` for `OCEAN_RELIEF_ENCODING_UNORM8` and
+ * `_UNORM8_SQRT`, `uint16_t` binary16 bit patterns for `_F16`, `float` for `_F32`), row-major,
+ * `[c, D, E]` per texel. Every value is rounded **down** (a stored cone is never wider than
+ * the exact one, so it stays valid); the 8-bit encodings clamp at 1.0. The depth channel is
+ * not included: take it from `ocean_relief_map_depths` (the cones are valid for those depths).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (aligned for
+ * the element type), `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding or a `len` that
+ * is not 3 N * N. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `cones` must be a live handle and `out` point to `len` writable elements of the encoding's
+ * type that no other thread touches during the call.
+ */
+OceanStatus ocean_relief_cones_encode(const struct OceanReliefCones *cones,
+                                      uint32_t encoding,
+                                      void *out,
+                                      size_t len);
+
+/**
+ * Stores in `*out` a new handle whose cones are those of `cones` after a round trip through
+ * `encoding` (each channel encoded, rounding down, and decoded): what a tracer reading the
+ * stored texture sees. Trace it to measure what a storage format costs.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding. `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `cones` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_relief_cones_quantize(const struct OceanReliefCones *cones,
+                                        uint32_t encoding,
+                                        struct OceanReliefCones **out);
+
+/**
+ * Generates the cone map of `map` straight into `rgba` (no handle): `len` = 4 N * N floats,
+ * `[depth, c, D, E]` per texel, as `ocean_relief_cones_texels` writes them. Arguments,
+ * callback and statuses as `ocean_relief_cones_create`, with `OCEAN_STATUS_INVALID_ARGUMENT`
+ * for a `len` that is not 4 N * N (checked before any work). `rgba` is written only on
+ * success, and then wholly.
+ *
+ * # Safety
+ *
+ * `map` must be a live handle, `params` readable, `rgba` point to `len` writable floats that
+ * no other thread touches during the call; `progress`, if not NULL, must be safe to call with
+ * `user` from this thread.
+ */
+OceanStatus ocean_relief_generate_texels(const struct OceanReliefMap *map,
+                                         const struct OceanReliefConeParams *params,
+                                         OceanReliefProgress progress,
+                                         void *user,
+                                         float *rgba,
+                                         size_t len);
+
+/**
+ * Generates the cone map of `map` and encodes its three channels straight into `out` (no
+ * handle): `len` = 3 N * N elements of the encoding's type, `[c, D, E]` per texel, as
+ * `ocean_relief_cones_encode` writes them. Arguments, callback and statuses as
+ * `ocean_relief_cones_create` and `ocean_relief_cones_encode` (the encoding, the pointer and
+ * `len` are checked before any work). `out` is written only on success, and then wholly.
+ *
+ * # Safety
+ *
+ * `map` must be a live handle, `params` readable, `out` point to `len` writable elements of
+ * the encoding's type that no other thread touches during the call; `progress`, if not NULL,
+ * must be safe to call with `user` from this thread.
+ */
+OceanStatus ocean_relief_generate_encoded(const struct OceanReliefMap *map,
+                                          const struct OceanReliefConeParams *params,
+                                          OceanReliefProgress progress,
+                                          void *user,
+                                          uint32_t encoding,
+                                          void *out,
+                                          size_t len);
+
+/**
+ * Builds the mip chain of the cone map of `cones`, level 0 (the cone map) down to 1x1, and
+ * stores a handle in `*out`. `rule`: `OCEAN_RELIEF_MIP_WINDOW` (the 4x4-window minimum, valid
+ * under bilinear sampling; use it) or `OCEAN_RELIEF_MIP_GROUP` (the book's 2x2 minimum, valid
+ * under nearest sampling only). Every channel takes the same minimum.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown rule or a side that is not a power of two.
+ * `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `cones` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_relief_mips_create(const struct OceanReliefCones *cones,
+                                     uint32_t rule,
+                                     struct OceanReliefMips **out);
+
+/**
+ * Frees a mip chain. NULL is ignored, and so is a pointer that is not even aligned. Never
+ * fails; leaves the last-error message alone.
+ *
+ * # Safety
+ *
+ * `mips` must be NULL or a handle from `ocean_relief_mips_create` not yet destroyed, and no
+ * other thread may be using it.
+ */
+void ocean_relief_mips_destroy(struct OceanReliefMips *mips);
+
+/**
+ * Stores the number of levels, log2(N) + 1, in `*out_count`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out_count`
+ * is written only on success.
+ *
+ * # Safety
+ *
+ * `mips` must be a live handle and `out_count` writable.
+ */
+OceanStatus ocean_relief_mips_level_count(const struct OceanReliefMips *mips, uint32_t *out_count);
+
+/**
+ * Stores the side of mip `level`, N >> level texels, in `*out_size`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `level` >= the level count. `*out_size` is written only on
+ * success.
+ *
+ * # Safety
+ *
+ * `mips` must be a live handle and `out_size` writable.
+ */
+OceanStatus ocean_relief_mips_level_size(const struct OceanReliefMips *mips,
+                                         uint32_t level,
+                                         uint32_t *out_size);
+
+/**
+ * Encodes mip `level` and copies it into `out`: `len` = 3 side * side elements (side from
+ * `ocean_relief_mips_level_size`) of the encoding's type, `[c, D, E]` per texel, row-major,
+ * rounded down, as `ocean_relief_cones_encode` writes level 0.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding, a level that does not exist or a
+ * `len` that is not 3 side * side. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `mips` must be a live handle and `out` point to `len` writable elements of the encoding's
+ * type that no other thread touches during the call.
+ */
+OceanStatus ocean_relief_mips_copy_level(const struct OceanReliefMips *mips,
+                                         uint32_t level,
+                                         uint32_t encoding,
+                                         void *out,
+                                         size_t len);
+
+/**
+ * Stores in `*out` the ray of the tangent-space view vector (view_x, view_y, view_z) (x along
+ * u, y along v, z out of the polygon; view_z < 0 looking at it; any length) entering at
+ * (start_u, start_v), for a relief `depth` texture widths deep: the direction
+ * (depth view_x / -view_z, depth view_y / -view_z, 1). Rescaling the depth changes the ray,
+ * never the cones (section 18.5).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite argument, `OCEAN_STATUS_INVALID_ARGUMENT` if
+ * view_z >= 0 or depth < 0. `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_relief_ray_from_view(float start_u,
+                                       float start_v,
+                                       float view_x,
+                                       float view_y,
+                                       float view_z,
+                                       float depth,
+                                       struct OceanReliefRay *out);
+
+/**
+ * Traces `count` rays through `cones` with `method` and stores where each stopped in
+ * `hits[i]`. Rays are traced in parallel on the library's threads; each result is
+ * bit-identical to `ocean_relief::Method::trace` for that ray.
+ *
+ * Cone step mapping assumes conservative cones and relaxed cone stepping relaxed ones (see
+ * `OceanReliefConeParams::kind`); the other pairing runs but loses the guarantee that no
+ * feature is stepped over. Linear search reads only the depths.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
+ * alignment for the arrays), `OCEAN_STATUS_EMPTY` if `count` is 0,
+ * `OCEAN_STATUS_LENGTH_OVERFLOW` if an array's byte size exceeds `PTRDIFF_MAX`,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite ray member, `OCEAN_STATUS_INVALID_ARGUMENT`
+ * for an unknown method or search, a step count out of range, a ray with dir_z <= 0 (the
+ * message names the first bad ray) or overlapping arrays. `hits` is written only on success,
+ * and then wholly.
+ *
+ * # Safety
+ *
+ * `cones` must be a live handle, `method` readable, `rays` point to `count` readable rays and
+ * `hits` to `count` writable hits, neither touched by another thread during the call.
+ */
+OceanStatus ocean_relief_trace(const struct OceanReliefCones *cones,
+                               const struct OceanReliefMethod *method,
+                               const struct OceanReliefRay *rays,
+                               size_t count,
+                               struct OceanReliefHit *hits);
+
+/**
+ * For each of `count` surface points, whether the light from the tangent-space direction
+ * (light_x, light_y, light_z) (towards the light; light_z > 0 above the polygon; any length)
+ * is blocked before it reaches the point, for a relief `depth_scale` texture widths deep:
+ * the light ray is traced from where it enters the relief towards the point with `method`,
+ * and the point is in shadow (1 in `in_shadow[i]`, else 0) when the ray stops more than `bias`
+ * (depth units, in [0, 1]) above it; the bias absorbs the tracer's final bracket, or a point
+ * shadows itself (a few times the last step over 2^binary works). A light at or below the
+ * polygon's plane (light_z <= 0) leaves every point in shadow. Points are processed in
+ * parallel; each answer equals `ocean_relief::shadow::in_shadow`'s.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_EMPTY` if `count` is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` for an array whose byte
+ * size exceeds `PTRDIFF_MAX`, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite light, depth
+ * scale, bias or point member, `OCEAN_STATUS_INVALID_ARGUMENT` for a bad method, a negative
+ * `depth_scale`, a `bias` outside [0, 1], or overlapping arrays. `in_shadow` is written only
+ * on success, and then wholly.
+ *
+ * # Safety
+ *
+ * `cones` must be a live handle, `method` readable, `points` point to `count` readable points
+ * and `in_shadow` to `count` writable bytes, neither touched by another thread during the
+ * call.
+ */
+OceanStatus ocean_relief_shadow(const struct OceanReliefCones *cones,
+                                const struct OceanReliefMethod *method,
+                                const struct OceanReliefPoint *points,
+                                size_t count,
+                                float light_x,
+                                float light_y,
+                                float light_z,
+                                float depth_scale,
+                                float bias,
+                                uint8_t *in_shadow);
 
 /**
  * Stores ocean-sao's default parameters in `*out` (the paper's set-up: r = 1 m, 9 samples,

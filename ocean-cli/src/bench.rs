@@ -13,7 +13,7 @@ use ocean_core::{Depth, Grid, WaveDesc, WaveSet};
 use rayon::prelude::*;
 use serde_json::{Value, json};
 
-use crate::{bench_gpu, bench_lighting, bench_sao, bench_wtb};
+use crate::{bench_gpu, bench_lighting, bench_relief, bench_sao, bench_wtb};
 
 #[derive(Args)]
 pub struct BenchArgs {
@@ -49,6 +49,10 @@ enum Suite {
     /// Scalable ambient obscurance: GPU time against the radius, with and without the z
     /// hierarchy, per pass at four resolutions with guard bands, and the CPU reference.
     Sao,
+    /// Relief mapping (issue 6): relaxed cone-map generation at 256², 512² and 1024², the
+    /// brute-force oracle at 128², progress overhead, CPU tracer rays per second per method, and
+    /// the accuracy table.
+    Relief,
 }
 
 /// A wave set of `n` deep-water trochoids, wavelengths in geometric progression from 0.5 m to
@@ -128,6 +132,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         Suite::Wtb => bench_wtb::wtb(args),
         Suite::Lighting => bench_lighting::lighting(args),
         Suite::Sao => bench_sao::sao(args),
+        Suite::Relief => bench_relief::relief(args),
     }
 }
 

@@ -4,8 +4,10 @@
 mod bench;
 mod bench_gpu;
 mod bench_lighting;
+mod bench_relief;
 mod bench_sao;
 mod bench_wtb;
+mod cone_map;
 mod png;
 mod shaders;
 
@@ -13,7 +15,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-/// Real-time water and screen-space rendering: benchmarks and shader export.
+/// Real-time water and screen-space rendering: benchmarks, shader export, cone maps.
 #[derive(Parser)]
 #[command(name = "ocean", version, about, long_about = None)]
 struct Cli {
@@ -27,6 +29,10 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Export every WGSL pass to another shading language, with its binding layout.
     Shaders(shaders::ShadersArgs),
+    /// Generate a relief texture (depth and relaxed or conservative cone maps) from a
+    /// height-map PNG.
+    #[command(after_long_help = cone_map::FORMAT)]
+    ConeMap(cone_map::ConeMapArgs),
 }
 
 fn main() -> ExitCode {
@@ -34,6 +40,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Bench(args) => bench::run(&args),
         Command::Shaders(args) => shaders::run(&args),
+        Command::ConeMap(args) => cone_map::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

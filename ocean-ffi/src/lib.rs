@@ -27,6 +27,8 @@ mod gpu;
 mod lighting;
 mod lighting_brdf;
 mod lighting_spectrum;
+mod relief;
+mod relief_trace;
 mod sao;
 mod sao_camera;
 mod sao_gpu;
@@ -65,6 +67,27 @@ pub use lighting_spectrum::{
     ocean_spectrum_slope_variance, ocean_spectrum_steepness_sum,
     ocean_spectrum_total_slope_variance, ocean_spectrum_wave_count, ocean_spectrum_waves,
     ocean_spectrum_wind_direction,
+};
+pub use relief::{
+    OCEAN_RELIEF_CONES_CONSERVATIVE, OCEAN_RELIEF_CONES_RELAXED, OCEAN_RELIEF_EDGE_CLAMP,
+    OCEAN_RELIEF_EDGE_WRAP, OCEAN_RELIEF_ENCODING_F16, OCEAN_RELIEF_ENCODING_F32,
+    OCEAN_RELIEF_ENCODING_UNORM8, OCEAN_RELIEF_ENCODING_UNORM8_SQRT, OCEAN_RELIEF_MAX_RATIO_LIMIT,
+    OCEAN_RELIEF_MAX_SIDE, OCEAN_RELIEF_MIN_SIDE, OCEAN_RELIEF_MIP_GROUP, OCEAN_RELIEF_MIP_WINDOW,
+    OCEAN_RELIEF_PROGRESS_BANDS, OCEAN_RELIEF_RANGE_NORMALIZE, OCEAN_RELIEF_RANGE_REFUSE,
+    OceanReliefConeParams, OceanReliefCones, OceanReliefMap, OceanReliefMips, OceanReliefProgress,
+    ocean_relief_cone_params_default, ocean_relief_cones_create, ocean_relief_cones_destroy,
+    ocean_relief_cones_encode, ocean_relief_cones_quantize, ocean_relief_cones_size,
+    ocean_relief_cones_texels, ocean_relief_generate_encoded, ocean_relief_generate_texels,
+    ocean_relief_map_create_f32, ocean_relief_map_create_u8, ocean_relief_map_create_u16,
+    ocean_relief_map_depths, ocean_relief_map_destroy, ocean_relief_map_size,
+    ocean_relief_mips_copy_level, ocean_relief_mips_create, ocean_relief_mips_destroy,
+    ocean_relief_mips_level_count, ocean_relief_mips_level_size, ocean_relief_normals,
+};
+pub use relief_trace::{
+    OCEAN_RELIEF_MAX_STEPS, OCEAN_RELIEF_METHOD_CONE_STEP, OCEAN_RELIEF_METHOD_LINEAR,
+    OCEAN_RELIEF_METHOD_RELAXED, OCEAN_RELIEF_SEARCH_BOOK, OCEAN_RELIEF_SEARCH_LAST_STEP,
+    OCEAN_RELIEF_SEARCH_SHARED, OceanReliefHit, OceanReliefMethod, OceanReliefPoint,
+    OceanReliefRay, ocean_relief_ray_from_view, ocean_relief_shadow, ocean_relief_trace,
 };
 pub use sao::{
     OCEAN_SAO_ESTIMATOR_ALCHEMY, OCEAN_SAO_ESTIMATOR_FALLOFF, OCEAN_SAO_MAX_SIDE,

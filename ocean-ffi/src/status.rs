@@ -56,10 +56,12 @@ pub enum OceanStatus {
     /// size). The one status after which an output is written: the function's `needed`
     /// out-parameter holds the size required; the buffer itself is untouched.
     BufferTooSmall = 13,
+    /// The caller's progress callback asked to stop (returned nonzero); nothing was written.
+    Cancelled = 14,
 }
 
 /// Every status, in numeric order.
-const ALL_STATUSES: [OceanStatus; 14] = [
+const ALL_STATUSES: [OceanStatus; 15] = [
     OceanStatus::Ok,
     OceanStatus::NullPointer,
     OceanStatus::MisalignedPointer,
@@ -74,6 +76,7 @@ const ALL_STATUSES: [OceanStatus; 14] = [
     OceanStatus::NoAdapter,
     OceanStatus::GpuFailure,
     OceanStatus::BufferTooSmall,
+    OceanStatus::Cancelled,
 ];
 
 impl OceanStatus {
@@ -93,6 +96,7 @@ impl OceanStatus {
             OceanStatus::NoAdapter => c"no usable GPU adapter",
             OceanStatus::GpuFailure => c"the GPU backend failed",
             OceanStatus::BufferTooSmall => c"the buffer is too small for the result",
+            OceanStatus::Cancelled => c"cancelled by the caller's progress callback",
         }
     }
 }

@@ -39,6 +39,7 @@ use alloc::vec::Vec;
 
 use crate::bound::{ConeKind, Grid, down32};
 use crate::map::{Edge, HeightMap};
+use crate::progress::{NoProgress, Progress, band_rows};
 use crate::search::{CHANNELS, Pyramid, Scratch, Search};
 use crate::{ReliefError, brute, check_range, for_rows};
 
@@ -112,6 +113,35 @@ impl ConeMap {
     ///
     /// [`ReliefError::OutOfRange`] / [`ReliefError::NotFinite`] for `max_ratio`.
     pub fn generate(map: &HeightMap, params: ConeParams) -> Result<Self, ReliefError> {
+        Self::generate_in_bands(map, params, None::<&mut NoProgress>)
+    }
+
+    /// [`ConeMap::generate`] with progress reports and cancellation ([`crate::progress`]).
+    ///
+    /// The unit of work is a row of bilinear cells: `total` is `N` in wrap mode and `N + 1` in
+    /// clamp mode. `progress` is called on the calling thread, once with `done = 0` before any
+    /// work and then after each band of rows (at most [`crate::progress::BANDS`] bands), the last
+    /// call with `done = total`. The result is bit-identical to [`ConeMap::generate`]'s.
+    ///
+    /// # Errors
+    ///
+    /// As [`ConeMap::generate`] (checked before the first report); [`ReliefError::Cancelled`]
+    /// when `progress` returns `false`, at any call, the last one included.
+    pub fn generate_with<P: Progress + ?Sized>(
+        map: &HeightMap,
+        params: ConeParams,
+        progress: &mut P,
+    ) -> Result<Self, ReliefError> {
+        Self::generate_in_bands(map, params, Some(progress))
+    }
+
+    /// The generator: all rows in one parallel loop without `progress`, else in bands with a
+    /// report after each.
+    fn generate_in_bands<P: Progress + ?Sized>(
+        map: &HeightMap,
+        params: ConeParams,
+        mut progress: Option<&mut P>,
+    ) -> Result<Self, ReliefError> {
         params.validate()?;
         let grid = Grid::new(map);
         let pyramid = Pyramid::new(&grid, params.kind);
@@ -121,20 +151,40 @@ impl ConeMap {
             kind: params.kind,
             cap: f64::from(params.max_ratio) * grid.n as f64,
         };
+        let rows = grid.nc;
         let mut cells = vec![[0.0f64; CHANNELS]; grid.nc * grid.nc];
-        for_rows(&mut cells, grid.nc, |y, row| {
-            let mut scratch = Scratch::default();
-            let mut seeds = [None; CHANNELS];
-            let qj = grid.origin + y as i64;
-            for (x, out) in row.iter_mut().enumerate() {
-                let q = grid.apex(grid.origin + x as i64, qj);
-                let best = search.cell_cone(&q, &seeds, &mut scratch);
-                *out = best.value;
-                for (s, c) in seeds.iter_mut().zip(best.cell) {
-                    *s = c.or(*s);
+        let band = match progress {
+            Some(_) => band_rows(rows),
+            None => rows,
+        };
+        let mut report = |done: usize| match progress.as_mut() {
+            Some(p) => {
+                if p.report(done, rows) {
+                    Ok(())
+                } else {
+                    Err(ReliefError::Cancelled)
                 }
             }
-        });
+            None => Ok(()),
+        };
+        report(0)?;
+        for (b, chunk) in cells.chunks_mut(band * grid.nc).enumerate() {
+            let first = b * band;
+            for_rows(chunk, grid.nc, |y, row| {
+                let mut scratch = Scratch::default();
+                let mut seeds = [None; CHANNELS];
+                let qj = grid.origin + (first + y) as i64;
+                for (x, out) in row.iter_mut().enumerate() {
+                    let q = grid.apex(grid.origin + x as i64, qj);
+                    let best = search.cell_cone(&q, &seeds, &mut scratch);
+                    *out = best.value;
+                    for (s, c) in seeds.iter_mut().zip(best.cell) {
+                        *s = c.or(*s);
+                    }
+                }
+            });
+            report(first + chunk.len() / grid.nc)?;
+        }
         Ok(Self::from_cells(&grid, &cells))
     }
 

@@ -78,6 +78,9 @@ pub enum ReliefError {
     /// A ray must point into the relief: its depth component must be positive.
     #[error("ray direction must have a positive, finite depth component and finite xy")]
     RayDirection,
+    /// A [`crate::progress::Progress`] asked to stop; nothing was computed or written.
+    #[error("cancelled by the progress callback")]
+    Cancelled,
     /// The projection rejected the hit point (ocean-core's checks).
     #[error("projection: {0}")]
     Camera(#[from] ocean_core::CameraError),

@@ -81,6 +81,7 @@ pub mod map;
 pub mod maps;
 pub mod mip;
 pub mod occlusion;
+pub mod progress;
 pub mod relief;
 pub mod sample;
 pub(crate) mod search;

@@ -1,5 +1,5 @@
 //! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c`, `tests/c/test_wtb.c`,
-//! `tests/c/test_lighting.c`, `tests/c/test_sao.c`, `tests/c/test_gpu.c`,
+//! `tests/c/test_lighting.c`, `tests/c/test_sao.c`, `tests/c/test_relief.c`, `tests/c/test_gpu.c`,
 //! `tests/cpp/test_waves.cpp` and `tests/cpp/test_lighting.cpp` against
 //! `include/ocean.h` and the static library `libocean.a` with the system compilers and
 //! `-Wall -Wextra -Werror -pedantic`, runs them, and fails unless each reports `0 failures` after
@@ -248,6 +248,21 @@ fn c11_sao_against_the_static_library() {
         "-std=c11",
         "tests/c/test_sao.c",
         "test_sao_c",
+    );
+}
+
+/// The relief-mapping API (`ocean_relief_*`) from C11: flat maps (rays stop at their entry
+/// point on a map at height 1, at the analytic point on a plane at depth 0.5; cones at the cap;
+/// normals (0, 0, 1); a constant mip chain), a single box (its top, the floor, the analytic hit
+/// on its wall, its shadow), progress to completion and cancellation from a C callback, and
+/// every error path with the outputs untouched.
+#[test]
+fn c11_relief_against_the_static_library() {
+    build_and_run(
+        compiler("CC", "cc"),
+        "-std=c11",
+        "tests/c/test_relief.c",
+        "test_relief_c",
     );
 }
 

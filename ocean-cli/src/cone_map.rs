@@ -1,0 +1,397 @@
+//! `ocean cone-map HEIGHT.png OUT.png`: a relief texture (depth and cone channels) from a
+//! height-map PNG, by ocean-relief's generator (`ConeMap::generate_with`).
+//!
+//! See [`FORMAT`] for what is read and written; it is the command's long help.
+
+use std::fs::{File, OpenOptions};
+use std::io::{BufReader, IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use clap::{Args, ValueEnum};
+use ocean_relief::storage::{Encoded, Encoding, encode};
+use ocean_relief::{ConeMap, ConeParams, Edge, HeightMap, MAX_RATIO_LIMIT, MAX_SIDE};
+
+/// The long help: input conversions and the output format.
+pub const FORMAT: &str = "\
+INPUT: a PNG whose pixels are heights (white = the polygon surface, black = the bottom of the \
+relief), square, 2x2 to 4096x4096 pixels (ocean-relief's cap), any PNG bit depth:
+  - grayscale, 8 or 16 bits (1, 2 and 4 bits are expanded to 8): used as they are;
+  - gray + alpha: the gray channel; alpha is ignored;
+  - RGB, RGBA and palette images: accepted only when every pixel has R = G = B (a grayscale \
+image saved as colour), then that channel; alpha is ignored; any other colour image is refused \
+(convert it to grayscale first: no luminance weighting is guessed).
+A 16-bit input keeps 16 bits with --encoding f16; the 8-bit encodings round it to 8 bits \
+(nearest) before generating, so that the cones are valid for exactly the depths stored.
+
+OUTPUT: a PNG with the relief texture, row 0 at the top as in the input:
+  - --encoding u8 / u8-sqrt: RGBA, 8 bits. R = depth = 255 - height (the book's convention: 0 \
+at the polygon surface); G = cone ratio c, B = clearance D, A = near cap E, each clamped to 1.0 \
+and rounded down: k = floor(255 v), read back as k/255 (u8) or k = floor(255 sqrt(v)), read \
+back as (k/255)^2 (u8-sqrt).
+  - --encoding f16: RGBA, 16 bits. R = depth as 16-bit unorm = 65535 - height16 (an 8-bit \
+height v is height16 = 257 v, exact); G, B, A = the IEEE binary16 bit patterns of c, D, E, \
+rounded toward zero (up to 65504). Read the file's samples as uint16 and reinterpret G, B, A \
+as half floats.
+  - --encoding f32: refused (a PNG holds 16 bits per channel at most); the C ABI \
+(ocean_relief_generate_texels) gives float cones.
+c and E are in texture widths per unit of depth, D in texture widths (see ocean-relief's cone \
+module): a ray h above the surface may step with the cone max(c, min(D/h, E)); a one-channel \
+tracer (the book's) uses c alone.
+
+The output is written to a hidden temporary file in the same directory and renamed over OUT \
+only when complete: a failure, Ctrl-C or a crash never leaves a partial OUT (an interruption \
+during that final write, which takes milliseconds after the generation, can leave the hidden \
+.OUT.tmp-PID file behind). Progress goes to stderr as a bar when stderr is a terminal \
+(nothing otherwise, or with --quiet).";
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Kind {
+    /// Relaxed cones (section 18.4): for relaxed cone stepping.
+    Relaxed,
+    /// Conservative cones (Dummer 2006): for cone step mapping.
+    Conservative,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum StorageArg {
+    /// RGBA8, cones as k/255, clamped to 1.
+    U8,
+    /// RGBA8, cones as (k/255)^2, clamped to 1.
+    U8Sqrt,
+    /// RGBA16: depth as unorm16, cones as binary16 bit patterns.
+    F16,
+    /// Refused: a PNG holds 16 bits per channel at most.
+    F32,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum EdgeArg {
+    /// The texture tiles (sampler addressing repeat).
+    Wrap,
+    /// The border texels extend outwards (clamp-to-edge).
+    Clamp,
+}
+
+#[derive(Args)]
+pub struct ConeMapArgs {
+    /// The height map (PNG; see below).
+    input: PathBuf,
+    /// The relief texture to write (PNG; see below). Replaced atomically if it exists.
+    output: PathBuf,
+    /// Which cones.
+    #[arg(long, value_enum, default_value_t = Kind::Relaxed)]
+    kind: Kind,
+    /// How the cone channels are stored.
+    #[arg(long, value_enum, default_value_t = StorageArg::U8)]
+    encoding: StorageArg,
+    /// What lies beyond the map's borders (use the sampler's addressing mode).
+    #[arg(long, value_enum, default_value_t = EdgeArg::Wrap)]
+    edge: EdgeArg,
+    /// Cap on the cone ratios and clearances, texture widths (per unit depth), in (0, 64]. The
+    /// 8-bit encodings store at most 1.0.
+    #[arg(long, default_value_t = 1.0)]
+    max_ratio: f32,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// Heights as read from the PNG.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Heights {
+    U8(Vec<u8>),
+    U16(Vec<u16>),
+}
+
+/// A square height map read from a PNG.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HeightImage {
+    pub side: usize,
+    pub heights: Heights,
+}
+
+/// Reads and converts a height-map PNG (see [`FORMAT`]).
+pub fn read_heights(path: &Path) -> Result<HeightImage, String> {
+    let p = path.display();
+    let file = File::open(path).map_err(|e| format!("cannot read {p}: {e}"))?;
+    let mut decoder = ::png::Decoder::new(BufReader::new(file));
+    decoder.set_transformations(::png::Transformations::EXPAND);
+    let mut reader = decoder.read_info().map_err(|e| match e {
+        ::png::DecodingError::IoError(e) => format!("cannot read {p}: {e}"),
+        e => format!("{p} is not a valid PNG file: {e}"),
+    })?;
+    let (w, h) = (reader.info().width, reader.info().height);
+    if w != h {
+        return Err(format!(
+            "{p} is {w} x {h} pixels: relief height maps must be square (cone ratios are measured \
+             in texture widths, which are only isotropic on a square)"
+        ));
+    }
+    let side = w as usize;
+    if !(HeightMap::MIN_SIDE..=MAX_SIDE).contains(&side) {
+        return Err(format!(
+            "{p} is {w} x {h} pixels, outside the supported {0} x {0} to {MAX_SIDE} x {MAX_SIDE}",
+            HeightMap::MIN_SIDE
+        ));
+    }
+    let size = reader
+        .output_buffer_size()
+        .ok_or_else(|| format!("{p}: the decoded image would not fit in memory"))?;
+    let mut buf = vec![0u8; size];
+    let frame = reader
+        .next_frame(&mut buf)
+        .map_err(|e| format!("{p} is corrupt: its image data cannot be decoded: {e}"))?;
+    let channels = match frame.color_type {
+        ::png::ColorType::Grayscale => 1,
+        ::png::ColorType::GrayscaleAlpha => 2,
+        ::png::ColorType::Rgb => 3,
+        ::png::ColorType::Rgba => 4,
+        ::png::ColorType::Indexed => {
+            return Err(format!(
+                "{p}: a palette image was not expanded to RGB by the decoder (unsupported)"
+            ));
+        }
+    };
+    let colour = matches!(
+        frame.color_type,
+        ::png::ColorType::Rgb | ::png::ColorType::Rgba
+    );
+    let bytes = match frame.bit_depth {
+        ::png::BitDepth::Eight => 1,
+        ::png::BitDepth::Sixteen => 2,
+        d => {
+            return Err(format!(
+                "{p}: {} bit samples were not expanded to 8 bits by the decoder (unsupported)",
+                d as u8
+            ));
+        }
+    };
+    let sample = |x: usize, y: usize, c: usize| -> u16 {
+        let at = y * frame.line_size + (x * channels + c) * bytes;
+        if bytes == 1 {
+            u16::from(buf[at])
+        } else {
+            u16::from_be_bytes([buf[at], buf[at + 1]])
+        }
+    };
+    let mut values = Vec::with_capacity(side * side);
+    for y in 0..side {
+        for x in 0..side {
+            let v = sample(x, y, 0);
+            if colour {
+                let (g, b) = (sample(x, y, 1), sample(x, y, 2));
+                if g != v || b != v {
+                    return Err(format!(
+                        "{p} is a colour image (pixel ({x}, {y}) has R, G, B = {v}, {g}, {b}): \
+                         height maps must be grayscale; convert it first"
+                    ));
+                }
+            }
+            values.push(v);
+        }
+    }
+    let heights = if bytes == 1 {
+        Heights::U8(values.into_iter().map(|v| v as u8).collect())
+    } else {
+        Heights::U16(values)
+    };
+    Ok(HeightImage { side, heights })
+}
+
+/// A 16-bit height rounded to the nearest 8-bit one.
+pub fn round_to_u8(v: u16) -> u8 {
+    ((u32::from(v) * 255 + 32767) / 65535) as u8
+}
+
+/// The relief texture of `image` as PNG bytes, with its side: what `ocean cone-map` writes.
+pub fn relief_png(
+    image: &HeightImage,
+    params: ConeParams,
+    edge: Edge,
+    encoding: Encoding,
+    progress: &mut impl FnMut(usize, usize) -> bool,
+) -> Result<Vec<u8>, String> {
+    let n = image.side;
+    let eight = matches!(encoding, Encoding::Unorm8 | Encoding::Unorm8Sqrt);
+    // The heights whose depths the texture stores (see FORMAT): 8 bits for the 8-bit
+    // encodings, else as read.
+    let heights = match (&image.heights, eight) {
+        (Heights::U16(v), true) => Heights::U8(v.iter().map(|&h| round_to_u8(h)).collect()),
+        (h, _) => h.clone(),
+    };
+    let map = match &heights {
+        Heights::U8(v) => HeightMap::from_u8(n, n, v, edge),
+        Heights::U16(v) => HeightMap::from_u16(n, n, v, edge),
+    }
+    .map_err(|e| e.to_string())?;
+    let cones = ConeMap::generate_with(&map, params, progress).map_err(|e| e.to_string())?;
+    let channels =
+        [cones.ratios(), cones.clearance(), cones.near_cap()].map(|v| encode(v, encoding));
+    let mut data = Vec::with_capacity(n * n * if eight { 4 } else { 8 });
+    match (&channels, &heights) {
+        ([Encoded::Unorm8(c), Encoded::Unorm8(d), Encoded::Unorm8(e)], Heights::U8(h)) => {
+            for k in 0..n * n {
+                data.extend_from_slice(&[255 - h[k], c[k], d[k], e[k]]);
+            }
+        }
+        ([Encoded::F16(c), Encoded::F16(d), Encoded::F16(e)], h) => {
+            for k in 0..n * n {
+                let depth = match h {
+                    Heights::U8(h) => 257 * u16::from(255 - h[k]),
+                    Heights::U16(h) => 65535 - h[k],
+                };
+                for v in [depth, c[k], d[k], e[k]] {
+                    data.extend_from_slice(&v.to_be_bytes());
+                }
+            }
+        }
+        _ => return Err(format!("{encoding:?} cannot be stored in a PNG")),
+    }
+    let mut png_bytes = Vec::new();
+    {
+        let mut enc = ::png::Encoder::new(&mut png_bytes, n as u32, n as u32);
+        enc.set_color(::png::ColorType::Rgba);
+        enc.set_depth(if eight {
+            ::png::BitDepth::Eight
+        } else {
+            ::png::BitDepth::Sixteen
+        });
+        let mut writer = enc.write_header().map_err(|e| e.to_string())?;
+        writer.write_image_data(&data).map_err(|e| e.to_string())?;
+        writer.finish().map_err(|e| e.to_string())?;
+    }
+    Ok(png_bytes)
+}
+
+/// Writes `bytes` to `path` atomically: a hidden temporary file in the same directory, flushed
+/// to disk, then renamed over `path`. The temporary file is removed on any failure.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    let p = path.display();
+    let name = path
+        .file_name()
+        .ok_or_else(|| format!("{p} does not name a file"))?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let tmp = dir.join(format!(
+        ".{}.tmp-{}",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    let result = (|| -> std::io::Result<()> {
+        let mut f = OpenOptions::new().write(true).create_new(true).open(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    result.map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        format!("cannot write {p}: {e}")
+    })
+}
+
+/// The progress bar: redrawn on stderr when it is a terminal.
+struct Bar {
+    enabled: bool,
+    last: Option<usize>,
+}
+
+impl Bar {
+    fn report(&mut self, done: usize, total: usize) {
+        if !self.enabled || total == 0 {
+            return;
+        }
+        let pct = done * 100 / total;
+        if self.last == Some(pct) {
+            return;
+        }
+        self.last = Some(pct);
+        let filled = done * 40 / total;
+        let mut err = std::io::stderr().lock();
+        let _ = write!(
+            err,
+            "\rcone map [{}{}] {pct:3}%",
+            "#".repeat(filled),
+            ".".repeat(40 - filled)
+        );
+        if done == total {
+            let _ = writeln!(err);
+        }
+        let _ = err.flush();
+    }
+}
+
+pub fn run(args: &ConeMapArgs) -> Result<(), String> {
+    let encoding = match args.encoding {
+        StorageArg::U8 => Encoding::Unorm8,
+        StorageArg::U8Sqrt => Encoding::Unorm8Sqrt,
+        StorageArg::F16 => Encoding::F16,
+        StorageArg::F32 => {
+            return Err(
+                "--encoding f32 cannot be stored in a PNG (16 bits per channel at \
+                        most): use --encoding f16 (rounded down, up to 65504) or the C ABI's \
+                        ocean_relief_generate_texels for float cones"
+                    .into(),
+            );
+        }
+    };
+    if !(args.max_ratio > 0.0 && args.max_ratio <= MAX_RATIO_LIMIT) {
+        return Err(format!(
+            "--max-ratio {} is outside (0, {MAX_RATIO_LIMIT}]",
+            args.max_ratio
+        ));
+    }
+    let params = match args.kind {
+        Kind::Relaxed => ConeParams::relaxed(args.max_ratio),
+        Kind::Conservative => ConeParams::conservative(args.max_ratio),
+    };
+    let edge = match args.edge {
+        EdgeArg::Wrap => Edge::Wrap,
+        EdgeArg::Clamp => Edge::Clamp,
+    };
+    let image = read_heights(&args.input)?;
+    let mut bar = Bar {
+        enabled: !args.quiet && std::io::stderr().is_terminal(),
+        last: None,
+    };
+    let start = Instant::now();
+    let bytes = relief_png(&image, params, edge, encoding, &mut |done, total| {
+        bar.report(done, total);
+        true
+    })?;
+    let seconds = start.elapsed().as_secs_f64();
+    write_atomically(&args.output, &bytes)?;
+    let n = image.side;
+    let bits = match (&image.heights, encoding) {
+        (Heights::U16(_), Encoding::Unorm8 | Encoding::Unorm8Sqrt) => {
+            " (16-bit heights rounded to 8 bits)"
+        }
+        _ => "",
+    };
+    println!(
+        "{}: {n}x{n} {} cones, {} edges, cap {}, {} ({}){bits}; generated in {seconds:.2} s",
+        args.output.display(),
+        match args.kind {
+            Kind::Relaxed => "relaxed",
+            Kind::Conservative => "conservative",
+        },
+        match edge {
+            Edge::Wrap => "wrapped",
+            Edge::Clamp => "clamped",
+        },
+        args.max_ratio,
+        match encoding {
+            Encoding::Unorm8 => "u8",
+            Encoding::Unorm8Sqrt => "u8-sqrt",
+            _ => "f16",
+        },
+        if matches!(encoding, Encoding::F16) {
+            "RGBA16: R depth unorm16, G/B/A cone, clearance, near cap as binary16"
+        } else {
+            "RGBA8: R depth, G cone, B clearance, A near cap"
+        },
+    );
+    Ok(())
+}

@@ -1,0 +1,1055 @@
+//! Relief mapping by relaxed cone stepping (crate `ocean-relief`; Policarpo & Oliveira, *GPU
+//! Gems 3* ch. 18), part 1 of 2: height maps from a caller's buffer, cone-map generation with a
+//! progress callback and cancellation (into a handle or straight into a caller's buffer), the
+//! storage encodings, mip chains and normal maps. Tracing and shadows are in `relief_trace.rs`.
+//!
+//! Conventions (ocean-relief's `map` module): the map is square, row-major, texel `(i, j)` at
+//! element `j * N + i` with its centre at texture coordinates `((i + 0.5)/N, (j + 0.5)/N)`; the
+//! inputs are **heights** (1 = the polygon surface, 0 = the bottom), stored as the book's
+//! **depths** `1 - height`; the surface the tracers see is the bilinear interpolation of the
+//! texel depths. Cone values are in texture widths (per unit of depth for the ratio `c` and the
+//! near cap `E`, plain texture widths for the clearance `D`).
+
+use core::ffi::{c_int, c_void};
+
+use ocean_relief::mip::{MipRule, chain};
+use ocean_relief::storage::{Encoded, Encoding, encode};
+use ocean_relief::{
+    ConeKind, ConeMap, ConeParams, Edge, HeightMap, HeightRange, ReliefError, ReliefTexture,
+};
+
+use crate::lighting::{borrow, destroy, read_in, write_handle};
+use crate::sao_camera::camera_status;
+use crate::status::{Error, OceanStatus, guard};
+use crate::waves::{byte_len, check_ptr, write_out};
+
+/// `edge`: the texture tiles (sampler addressing *repeat*).
+pub const OCEAN_RELIEF_EDGE_WRAP: u32 = 0;
+/// `edge`: texel indices clamp to the border (sampler addressing *clamp-to-edge*).
+pub const OCEAN_RELIEF_EDGE_CLAMP: u32 = 1;
+
+/// `range` of `ocean_relief_map_create_f32`: a height outside [0, 1] is refused
+/// (`OCEAN_STATUS_INVALID_ARGUMENT`, the message names the first such texel).
+pub const OCEAN_RELIEF_RANGE_REFUSE: u32 = 0;
+/// `range` of `ocean_relief_map_create_f32`: the smallest height becomes 0 and the largest 1
+/// (affinely; a constant map becomes a flat map at height 1, the polygon surface).
+pub const OCEAN_RELIEF_RANGE_NORMALIZE: u32 = 1;
+
+/// `OceanReliefConeParams::kind`: relaxed cones (section 18.4): a ray may enter the relief
+/// inside a cone but never leave it. For `OCEAN_RELIEF_METHOD_RELAXED`.
+pub const OCEAN_RELIEF_CONES_RELAXED: u32 = 0;
+/// `OceanReliefConeParams::kind`: conservative cones (Dummer 2006): the cone holds no solid.
+/// For `OCEAN_RELIEF_METHOD_CONE_STEP`.
+pub const OCEAN_RELIEF_CONES_CONSERVATIVE: u32 = 1;
+
+/// `encoding`: 8-bit unorm (`uint8_t`), clamped to 1.0: code k = floor(255 min(r, 1)), read
+/// back as k / 255 (a GPU's `R8Unorm` conversion).
+pub const OCEAN_RELIEF_ENCODING_UNORM8: u32 = 0;
+/// `encoding`: 8-bit unorm of the square root (`uint8_t`), clamped to 1.0: read back as
+/// (k / 255)^2.
+pub const OCEAN_RELIEF_ENCODING_UNORM8_SQRT: u32 = 1;
+/// `encoding`: IEEE binary16 bit patterns (`uint16_t`), unclamped (up to 65504), rounded
+/// toward zero.
+pub const OCEAN_RELIEF_ENCODING_F16: u32 = 2;
+/// `encoding`: `float`, the generator's values as they are.
+pub const OCEAN_RELIEF_ENCODING_F32: u32 = 3;
+
+/// `rule` of `ocean_relief_mips_create`: a coarse texel is the minimum of a 4x4 window of the
+/// finer level (its 2x2 group and a one-texel ring): valid under bilinear sampling.
+pub const OCEAN_RELIEF_MIP_WINDOW: u32 = 0;
+/// `rule` of `ocean_relief_mips_create`: the book's 2x2 group minimum, valid under nearest
+/// sampling only.
+pub const OCEAN_RELIEF_MIP_GROUP: u32 = 1;
+
+/// The smallest side of a height map, texels (a bilinear cell needs two texel centres).
+pub const OCEAN_RELIEF_MIN_SIDE: u32 = 2;
+/// The largest side of a height map, texels (16.7 M texels; a generation at this size needs
+/// about 80 bytes a texel).
+pub const OCEAN_RELIEF_MAX_SIDE: u32 = 4096;
+/// The largest `OceanReliefConeParams::max_ratio`, texture widths per unit depth.
+pub const OCEAN_RELIEF_MAX_RATIO_LIMIT: f32 = 64.0;
+/// The most bands a generation with a progress callback is split into: the callback is called
+/// at most `OCEAN_RELIEF_PROGRESS_BANDS + 1` times.
+pub const OCEAN_RELIEF_PROGRESS_BANDS: u32 = 64;
+
+const _: () = assert!(OCEAN_RELIEF_MIN_SIDE as usize == HeightMap::MIN_SIDE);
+const _: () = assert!(OCEAN_RELIEF_MAX_SIDE as usize == ocean_relief::MAX_SIDE);
+const _: () = assert!(OCEAN_RELIEF_MAX_RATIO_LIMIT == ocean_relief::MAX_RATIO_LIMIT);
+const _: () = assert!(OCEAN_RELIEF_PROGRESS_BANDS as usize == ocean_relief::progress::BANDS);
+
+/// A progress callback: `done` of `total` units of work are finished (rows of bilinear cells:
+/// `total` is N in wrap mode and N + 1 in clamp mode). Return 0 to go on, nonzero to cancel:
+/// the function then returns `OCEAN_STATUS_CANCELLED` and writes nothing.
+///
+/// It is called on the thread that called the generating function, never concurrently with
+/// itself: once with `done` = 0 before any work, then after each band of rows (at most
+/// `OCEAN_RELIEF_PROGRESS_BANDS`), the last time with `done` = `total`. `user` is passed through
+/// untouched. The callback must not unwind (C++ exceptions, `longjmp`) out of the call.
+pub type OceanReliefProgress =
+    Option<unsafe extern "C" fn(user: *mut c_void, done: usize, total: usize) -> c_int>;
+
+/// How the cones are made. Start from `ocean_relief_cone_params_default`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanReliefConeParams {
+    /// `OCEAN_RELIEF_CONES_RELAXED` (default) or `OCEAN_RELIEF_CONES_CONSERVATIVE`; other values
+    /// are refused.
+    pub kind: u32,
+    /// Cap on the cone ratios (texture widths per unit depth) and the clearances (texture
+    /// widths), in (0, `OCEAN_RELIEF_MAX_RATIO_LIMIT`]. Default 1.0, the book's, for 8-bit
+    /// storage (which clamps at 1.0 anyway); a larger cap keeps wider cones for f16 / f32.
+    pub max_ratio: f32,
+}
+
+/// A square height map with its edge mode (opaque). Create with one of
+/// `ocean_relief_map_create_f32` / `_u8` / `_u16`, free with `ocean_relief_map_destroy`.
+/// Immutable: a `const OceanReliefMap *` may be used by any number of threads at once.
+pub struct OceanReliefMap {
+    map: HeightMap,
+}
+
+/// A cone map together with the height map it was made for: what the CPU tracers read
+/// (opaque). Create with `ocean_relief_cones_create` (or `ocean_relief_cones_quantize`), free
+/// with `ocean_relief_cones_destroy`. Immutable and shareable between threads.
+pub struct OceanReliefCones {
+    map: HeightMap,
+    cones: ConeMap,
+    texture: ReliefTexture,
+}
+
+impl OceanReliefCones {
+    fn new(map: HeightMap, cones: ConeMap) -> Result<Self, Error> {
+        let texture = ReliefTexture::new(&map, &cones).map_err(|e| relief_error("", e))?;
+        Ok(Self {
+            map,
+            cones,
+            texture,
+        })
+    }
+
+    /// The relief texture the tracers read.
+    pub(crate) fn texture(&self) -> &ReliefTexture {
+        &self.texture
+    }
+}
+
+/// A mip chain of a cone map, level 0 (the cone map) down to 1x1 (opaque). Create with
+/// `ocean_relief_mips_create`, free with `ocean_relief_mips_destroy`. Immutable and shareable.
+pub struct OceanReliefMips {
+    levels: Vec<ConeMap>,
+}
+
+const _: () = {
+    const fn shareable<T: Send + Sync>() {}
+    shareable::<OceanReliefMap>();
+    shareable::<OceanReliefCones>();
+    shareable::<OceanReliefMips>();
+};
+
+/// The status of an `ocean-relief` error, and its message prefixed with `context`.
+pub(crate) fn relief_error(context: &str, e: ReliefError) -> Error {
+    let status = match &e {
+        ReliefError::MapSize { width, height, .. } if *width == 0 || *height == 0 => {
+            OceanStatus::Empty
+        }
+        ReliefError::MapSize { .. } => OceanStatus::InvalidArgument,
+        ReliefError::NotSquare { .. } => OceanStatus::InvalidArgument,
+        ReliefError::BufferSize { .. } => OceanStatus::InvalidArgument,
+        ReliefError::HeightNotFinite { .. } => OceanStatus::NonFinite,
+        ReliefError::HeightOutOfRange { .. } => OceanStatus::InvalidArgument,
+        ReliefError::NotFinite(_) => OceanStatus::NonFinite,
+        ReliefError::OutOfRange { .. } => OceanStatus::InvalidArgument,
+        ReliefError::Mismatch(_) => OceanStatus::InvalidArgument,
+        ReliefError::NotPowerOfTwo(_) => OceanStatus::InvalidArgument,
+        ReliefError::RayDirection => OceanStatus::InvalidArgument,
+        ReliefError::Cancelled => OceanStatus::Cancelled,
+        ReliefError::Camera(c) => camera_status(c),
+        // `ReliefError` is non-exhaustive: a variant added later is an argument out of range
+        // until it gets a status of its own.
+        _ => OceanStatus::InvalidArgument,
+    };
+    Error::new(status, format!("{context}{e}"))
+}
+
+pub(crate) fn edge_from(edge: u32) -> Result<Edge, Error> {
+    match edge {
+        OCEAN_RELIEF_EDGE_WRAP => Ok(Edge::Wrap),
+        OCEAN_RELIEF_EDGE_CLAMP => Ok(Edge::Clamp),
+        v => Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!(
+                "`edge` = {v} is neither OCEAN_RELIEF_EDGE_WRAP (0) nor OCEAN_RELIEF_EDGE_CLAMP (1)"
+            ),
+        )),
+    }
+}
+
+pub(crate) fn encoding_from(encoding: u32) -> Result<Encoding, Error> {
+    match encoding {
+        OCEAN_RELIEF_ENCODING_UNORM8 => Ok(Encoding::Unorm8),
+        OCEAN_RELIEF_ENCODING_UNORM8_SQRT => Ok(Encoding::Unorm8Sqrt),
+        OCEAN_RELIEF_ENCODING_F16 => Ok(Encoding::F16),
+        OCEAN_RELIEF_ENCODING_F32 => Ok(Encoding::F32),
+        v => Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("`encoding` = {v} is not an OCEAN_RELIEF_ENCODING_* value (0 to 3)"),
+        )),
+    }
+}
+
+fn params_from(p: &OceanReliefConeParams) -> Result<ConeParams, Error> {
+    let kind = match p.kind {
+        OCEAN_RELIEF_CONES_RELAXED => ConeKind::Relaxed,
+        OCEAN_RELIEF_CONES_CONSERVATIVE => ConeKind::Conservative,
+        v => {
+            return Err(Error::new(
+                OceanStatus::InvalidArgument,
+                format!(
+                    "params->kind = {v} is neither OCEAN_RELIEF_CONES_RELAXED (0) nor \
+                     OCEAN_RELIEF_CONES_CONSERVATIVE (1)"
+                ),
+            ));
+        }
+    };
+    if !p.max_ratio.is_finite() {
+        return Err(Error::new(
+            OceanStatus::NonFinite,
+            format!("params->max_ratio must be finite, got {}", p.max_ratio),
+        ));
+    }
+    if !(p.max_ratio > 0.0 && p.max_ratio <= OCEAN_RELIEF_MAX_RATIO_LIMIT) {
+        return Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!(
+                "params->max_ratio = {} is outside (0, {OCEAN_RELIEF_MAX_RATIO_LIMIT}]",
+                p.max_ratio
+            ),
+        ));
+    }
+    Ok(ConeParams {
+        kind,
+        max_ratio: p.max_ratio,
+    })
+}
+
+/// Borrows `len` values of `T` from a caller's input buffer, after checking the pointer and the
+/// byte size.
+///
+/// # Safety
+///
+/// `p` must be NULL, misaligned, or point to `len` readable values that nothing writes during
+/// the borrow.
+pub(crate) unsafe fn input<'a, T>(p: *const T, len: usize, name: &str) -> Result<&'a [T], Error> {
+    check_ptr(p, name)?;
+    byte_len::<T>(len, name)?;
+    // SAFETY: non-NULL and aligned (checked), `len` values whose byte size fits in isize
+    // (checked), readable and unmodified during the borrow (caller's guarantee).
+    Ok(unsafe { core::slice::from_raw_parts(p, len) })
+}
+
+/// Checks that a caller's buffer of `len` values is exactly `want` long.
+pub(crate) fn check_len(name: &str, len: usize, want: usize, what: &str) -> Result<(), Error> {
+    if len != want {
+        return Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("`{name}` is {len} values long, {what} holds exactly {want}"),
+        ));
+    }
+    Ok(())
+}
+
+/// Copies a finished result into a caller's output buffer (checked for NULL and alignment).
+///
+/// # Safety
+///
+/// `p` must be NULL, misaligned, or point to `values.len()` writable `T` that no other thread
+/// touches during the call and that do not overlap any input still borrowed.
+pub(crate) unsafe fn write_slice<T: Copy>(
+    p: *mut T,
+    name: &str,
+    values: &[T],
+) -> Result<(), Error> {
+    check_ptr(p.cast_const(), name)?;
+    byte_len::<T>(values.len(), name)?;
+    // SAFETY: non-NULL and aligned (checked), `values.len()` elements whose byte size fits in
+    // isize (checked), writable and untouched by others (caller's guarantee).
+    let out = unsafe { core::slice::from_raw_parts_mut(p, values.len()) };
+    out.copy_from_slice(values);
+    Ok(())
+}
+
+/// The side and texel count of a `width` x `height` input, checked the way the crate checks it
+/// (with `OCEAN_STATUS_EMPTY` for a zero side), and `len` against it.
+fn map_dims(width: u32, height: u32, len: usize) -> Result<usize, Error> {
+    if width == 0 || height == 0 {
+        return Err(Error::new(
+            OceanStatus::Empty,
+            format!("the height map is {width} x {height} texels: empty"),
+        ));
+    }
+    let (w, h) = (width as usize, height as usize);
+    let max = ocean_relief::MAX_SIDE;
+    if w < HeightMap::MIN_SIDE || h < HeightMap::MIN_SIDE || w > max || h > max {
+        return Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!(
+                "the height map is {width} x {height} texels, outside {0} x {0} to {max} x {max} \
+                 (OCEAN_RELIEF_MIN_SIDE, OCEAN_RELIEF_MAX_SIDE)",
+                HeightMap::MIN_SIDE
+            ),
+        ));
+    }
+    if w != h {
+        return Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("the height map is {width} x {height} texels; relief maps must be square"),
+        ));
+    }
+    // Both sides are at most 4096: the product fits.
+    let texels = w * h;
+    check_len("len", len, texels, &format!("a {width} x {height} map"))?;
+    Ok(texels)
+}
+
+/// Creates a height map from `len` = width * height floats, row-major (texel (i, j) at element
+/// j * width + i), each a **height** (1 = the polygon surface, 0 = the bottom), and stores the
+/// handle in `*out`.
+///
+/// `edge`: `OCEAN_RELIEF_EDGE_WRAP` or `_CLAMP`. `range`: `OCEAN_RELIEF_RANGE_REFUSE` (heights
+/// must lie in [0, 1]) or `OCEAN_RELIEF_RANGE_NORMALIZE` (the smallest becomes 0, the largest 1).
+/// The heights are copied.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
+/// alignment for `heights`), `OCEAN_STATUS_EMPTY` if `width` or `height` is 0,
+/// `OCEAN_STATUS_INVALID_ARGUMENT` if a side is outside 2 to `OCEAN_RELIEF_MAX_SIDE`, the map is
+/// not square, `len` is not width * height, `edge` or `range` is unknown, or (with `_REFUSE`) a
+/// height lies outside [0, 1], `OCEAN_STATUS_NON_FINITE` for a NaN or infinite height (the
+/// message names the first bad texel). `*out` is written only on success.
+///
+/// # Safety
+///
+/// `heights` must point to `len` readable floats and `out` to a writable pointer.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_map_create_f32(
+    heights: *const f32,
+    len: usize,
+    width: u32,
+    height: u32,
+    edge: u32,
+    range: u32,
+    out: *mut *mut OceanReliefMap,
+) -> OceanStatus {
+    guard("ocean_relief_map_create_f32", || {
+        // SAFETY: forwarded from this function's contract.
+        let heights = unsafe { input(heights, len, "heights") }?;
+        check_ptr(out.cast_const(), "out")?;
+        let edge = edge_from(edge)?;
+        let range = match range {
+            OCEAN_RELIEF_RANGE_REFUSE => HeightRange::Refuse,
+            OCEAN_RELIEF_RANGE_NORMALIZE => HeightRange::Normalize,
+            v => {
+                return Err(Error::new(
+                    OceanStatus::InvalidArgument,
+                    format!(
+                        "`range` = {v} is neither OCEAN_RELIEF_RANGE_REFUSE (0) nor \
+                         OCEAN_RELIEF_RANGE_NORMALIZE (1)"
+                    ),
+                ));
+            }
+        };
+        map_dims(width, height, len)?;
+        let map = HeightMap::from_heights(width as usize, height as usize, heights, edge, range)
+            .map_err(|e| relief_error("", e))?;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_handle(out, OceanReliefMap { map }) }
+    })
+}
+
+/// Creates a height map from `len` = width * height 8-bit heights (height v / 255, depth
+/// (255 - v) / 255), row-major, and stores the handle in `*out`. Statuses as
+/// `ocean_relief_map_create_f32` (every 8-bit value is in range).
+///
+/// # Safety
+///
+/// `heights` must point to `len` readable bytes and `out` to a writable pointer.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_map_create_u8(
+    heights: *const u8,
+    len: usize,
+    width: u32,
+    height: u32,
+    edge: u32,
+    out: *mut *mut OceanReliefMap,
+) -> OceanStatus {
+    guard("ocean_relief_map_create_u8", || {
+        // SAFETY: forwarded from this function's contract.
+        let heights = unsafe { input(heights, len, "heights") }?;
+        check_ptr(out.cast_const(), "out")?;
+        let edge = edge_from(edge)?;
+        map_dims(width, height, len)?;
+        let map = HeightMap::from_u8(width as usize, height as usize, heights, edge)
+            .map_err(|e| relief_error("", e))?;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_handle(out, OceanReliefMap { map }) }
+    })
+}
+
+/// Creates a height map from `len` = width * height 16-bit heights (height v / 65535, depth
+/// (65535 - v) / 65535), row-major, and stores the handle in `*out`. Statuses as
+/// `ocean_relief_map_create_f32` (2-byte alignment for `heights`).
+///
+/// # Safety
+///
+/// `heights` must point to `len` readable `uint16_t` and `out` to a writable pointer.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_map_create_u16(
+    heights: *const u16,
+    len: usize,
+    width: u32,
+    height: u32,
+    edge: u32,
+    out: *mut *mut OceanReliefMap,
+) -> OceanStatus {
+    guard("ocean_relief_map_create_u16", || {
+        // SAFETY: forwarded from this function's contract.
+        let heights = unsafe { input(heights, len, "heights") }?;
+        check_ptr(out.cast_const(), "out")?;
+        let edge = edge_from(edge)?;
+        map_dims(width, height, len)?;
+        let map = HeightMap::from_u16(width as usize, height as usize, heights, edge)
+            .map_err(|e| relief_error("", e))?;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_handle(out, OceanReliefMap { map }) }
+    })
+}
+
+/// Frees a height map. NULL is ignored, and so is a pointer that is not even aligned. Never
+/// fails; leaves the last-error message alone.
+///
+/// # Safety
+///
+/// `map` must be NULL or a handle from an `ocean_relief_map_create_*` function not yet
+/// destroyed, and no other thread may be using it.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_map_destroy(map: *mut OceanReliefMap) {
+    // SAFETY: forwarded from this function's contract.
+    unsafe { destroy(map) }
+}
+
+/// Stores the side N of the map, texels, in `*out_size`.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out_size`
+/// is written only on success.
+///
+/// # Safety
+///
+/// `map` must be a live handle and `out_size` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_map_size(
+    map: *const OceanReliefMap,
+    out_size: *mut u32,
+) -> OceanStatus {
+    guard("ocean_relief_map_size", || {
+        // SAFETY: forwarded from this function's contract.
+        let m = unsafe { borrow(map, "map") }?;
+        // At most OCEAN_RELIEF_MAX_SIDE.
+        let side = m.map.size() as u32;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out_size, "out_size", side) }
+    })
+}
+
+/// Copies the map's depths (1 - height, after normalisation if asked for; in [0, 1]) into
+/// `depths`: `len` = N * N floats, row-major. These are the depths the cones are valid for:
+/// upload them as the depth channel of the relief texture.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_INVALID_ARGUMENT` if `len` is not N * N. Nothing is written on failure.
+///
+/// # Safety
+///
+/// `map` must be a live handle and `depths` point to `len` writable floats that no other thread
+/// touches during the call.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_map_depths(
+    map: *const OceanReliefMap,
+    depths: *mut f32,
+    len: usize,
+) -> OceanStatus {
+    guard("ocean_relief_map_depths", || {
+        // SAFETY: forwarded from this function's contract.
+        let m = unsafe { borrow(map, "map") }?;
+        check_ptr(depths.cast_const(), "depths")?;
+        let d = m.map.depths();
+        check_len("len", len, d.len(), "the map")?;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_slice(depths, "depths", d) }
+    })
+}
+
+/// Computes the tangent-space normal map of `map` for a relief `depth` texel widths deep (the
+/// full depth range spans that many texel widths) by central differences, and stores it in
+/// `xyz`: `len` = 3 N * N floats, row-major, (x, y, z) per texel, unit length, z out of the
+/// polygon, x along the texture's u, y along v; neighbours follow the map's edge mode.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `depth`, `OCEAN_STATUS_INVALID_ARGUMENT` if
+/// `depth` is outside [0, 1e6] or `len` is not 3 N * N. Nothing is written on failure.
+///
+/// # Safety
+///
+/// `map` must be a live handle and `xyz` point to `len` writable floats that no other thread
+/// touches during the call.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_normals(
+    map: *const OceanReliefMap,
+    depth: f32,
+    xyz: *mut f32,
+    len: usize,
+) -> OceanStatus {
+    guard("ocean_relief_normals", || {
+        // SAFETY: forwarded from this function's contract.
+        let m = unsafe { borrow(map, "map") }?;
+        check_ptr(xyz.cast_const(), "xyz")?;
+        let n = m.map.size();
+        check_len("len", len, 3 * n * n, "the normal map (3 floats a texel)")?;
+        let normals =
+            ocean_relief::relief::normals(&m.map, depth).map_err(|e| relief_error("", e))?;
+        let flat: Vec<f32> = normals.iter().flat_map(|v| v.to_array()).collect();
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_slice(xyz, "xyz", &flat) }
+    })
+}
+
+/// Stores the default cone parameters in `*out`: relaxed cones, capped at 1.0 (the book's).
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+/// then left unchanged.
+///
+/// # Safety
+///
+/// `out` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_cone_params_default(
+    out: *mut OceanReliefConeParams,
+) -> OceanStatus {
+    guard("ocean_relief_cone_params_default", || {
+        let d = ConeParams::default();
+        let p = OceanReliefConeParams {
+            kind: match d.kind {
+                ConeKind::Relaxed => OCEAN_RELIEF_CONES_RELAXED,
+                ConeKind::Conservative => OCEAN_RELIEF_CONES_CONSERVATIVE,
+            },
+            max_ratio: d.max_ratio,
+        };
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out, "out", p) }
+    })
+}
+
+/// Runs the generator with the caller's callback (NULL: no reports).
+fn generate(
+    map: &HeightMap,
+    params: ConeParams,
+    progress: OceanReliefProgress,
+    user: *mut c_void,
+) -> Result<ConeMap, Error> {
+    let result = match progress {
+        None => ConeMap::generate(map, params),
+        Some(callback) => {
+            let mut report = |done: usize, total: usize| {
+                // SAFETY: the caller guarantees that `callback` may be called with `user` (this
+                // function's callers' contracts); it runs on this thread.
+                unsafe { callback(user, done, total) == 0 }
+            };
+            ConeMap::generate_with(map, params, &mut report)
+        }
+    };
+    result.map_err(|e| relief_error("", e))
+}
+
+/// Generates the cone map of `map` (see `OceanReliefConeParams`) and stores a handle that holds
+/// it and a copy of the map in `*out`: what `ocean_relief_trace` and `ocean_relief_shadow` read.
+///
+/// Every texel gets three channels, each rounded down to float and capped at
+/// `params->max_ratio`: the cone ratio c (texture widths per unit depth, the book's cone map),
+/// the clearance D (texture widths) and the near cap E (per unit depth); a ray h above the
+/// surface may use the cone max(c, min(D/h, E)). The cones are valid for the bilinear surface
+/// of the map's depths, read bilinearly or nearest. The result is bit-identical to
+/// `ocean_relief::ConeMap::generate` on every thread count, with or without `progress`.
+///
+/// `progress` (may be NULL) is called as `OceanReliefProgress` describes, with `user`; a nonzero
+/// return cancels. Rows of the map are computed on all the threads of the library's pool.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `max_ratio`, `OCEAN_STATUS_INVALID_ARGUMENT`
+/// for an unknown kind or a `max_ratio` outside (0, `OCEAN_RELIEF_MAX_RATIO_LIMIT`],
+/// `OCEAN_STATUS_CANCELLED` when the callback returned nonzero (the arguments are checked before
+/// the first call). `*out` is written only on success.
+///
+/// # Safety
+///
+/// `map` must be a live handle, `params` readable, `out` writable; `progress`, if not NULL,
+/// must be safe to call with `user` from this thread.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_cones_create(
+    map: *const OceanReliefMap,
+    params: *const OceanReliefConeParams,
+    progress: OceanReliefProgress,
+    user: *mut c_void,
+    out: *mut *mut OceanReliefCones,
+) -> OceanStatus {
+    guard("ocean_relief_cones_create", || {
+        // SAFETY: forwarded from this function's contract.
+        let m = unsafe { borrow(map, "map") }?;
+        // SAFETY: forwarded from this function's contract.
+        let params = unsafe { read_in(params, "params") }?;
+        check_ptr(out.cast_const(), "out")?;
+        let params = params_from(&params)?;
+        let cones = generate(&m.map, params, progress, user)?;
+        let handle = OceanReliefCones::new(m.map.clone(), cones)?;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_handle(out, handle) }
+    })
+}
+
+/// Frees a cone map. NULL is ignored, and so is a pointer that is not even aligned. Never
+/// fails; leaves the last-error message alone.
+///
+/// # Safety
+///
+/// `cones` must be NULL or a handle from `ocean_relief_cones_create` or
+/// `ocean_relief_cones_quantize` not yet destroyed, and no other thread may be using it.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_cones_destroy(cones: *mut OceanReliefCones) {
+    // SAFETY: forwarded from this function's contract.
+    unsafe { destroy(cones) }
+}
+
+/// Stores the side N of the cone map (that of its height map), texels, in `*out_size`.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out_size`
+/// is written only on success.
+///
+/// # Safety
+///
+/// `cones` must be a live handle and `out_size` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_cones_size(
+    cones: *const OceanReliefCones,
+    out_size: *mut u32,
+) -> OceanStatus {
+    guard("ocean_relief_cones_size", || {
+        // SAFETY: forwarded from this function's contract.
+        let c = unsafe { borrow(cones, "cones") }?;
+        // At most OCEAN_RELIEF_MAX_SIDE.
+        let side = c.cones.size() as u32;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out_size, "out_size", side) }
+    })
+}
+
+/// `[depth, c, D, E]` per texel, flattened.
+fn texels(map: &HeightMap, cones: &ConeMap) -> Vec<f32> {
+    let (d, c0, c1, c2) = (
+        map.depths(),
+        cones.ratios(),
+        cones.clearance(),
+        cones.near_cap(),
+    );
+    (0..d.len())
+        .flat_map(|k| [d[k], c0[k], c1[k], c2[k]])
+        .collect()
+}
+
+/// The three cone channels of `cones` encoded, interleaved `[c, D, E]` per texel.
+enum Interleaved {
+    U8(Vec<u8>),
+    U16(Vec<u16>),
+    F32(Vec<f32>),
+}
+
+fn interleave<T: Copy>(channels: [Vec<T>; 3]) -> Vec<T> {
+    let [a, b, c] = channels;
+    a.iter()
+        .zip(&b)
+        .zip(&c)
+        .flat_map(|((&x, &y), &z)| [x, y, z])
+        .collect()
+}
+
+fn encode_cones(cones: &ConeMap, encoding: Encoding) -> Interleaved {
+    let chans = [cones.ratios(), cones.clearance(), cones.near_cap()].map(|v| encode(v, encoding));
+    match chans {
+        [Encoded::Unorm8(a), Encoded::Unorm8(b), Encoded::Unorm8(c)] => {
+            Interleaved::U8(interleave([a, b, c]))
+        }
+        [Encoded::F16(a), Encoded::F16(b), Encoded::F16(c)] => {
+            Interleaved::U16(interleave([a, b, c]))
+        }
+        [Encoded::F32(a), Encoded::F32(b), Encoded::F32(c)] => {
+            Interleaved::F32(interleave([a, b, c]))
+        }
+        _ => unreachable!("one encoding gives one variant for every channel"),
+    }
+}
+
+/// The element size of an encoding, bytes.
+fn element_size(encoding: Encoding) -> usize {
+    match encoding {
+        Encoding::Unorm8 | Encoding::Unorm8Sqrt => 1,
+        Encoding::F16 => 2,
+        Encoding::F32 => 4,
+    }
+}
+
+/// Checks a caller's encoded output (`len` elements of the encoding's type, aligned for it).
+fn check_encoded_out(out: *mut c_void, encoding: Encoding) -> Result<(), Error> {
+    match element_size(encoding) {
+        1 => check_ptr(out.cast_const().cast::<u8>(), "out"),
+        2 => check_ptr(out.cast_const().cast::<u16>(), "out"),
+        _ => check_ptr(out.cast_const().cast::<f32>(), "out"),
+    }
+}
+
+/// Writes encoded cones to a checked output.
+///
+/// # Safety
+///
+/// `out` must point to as many writable elements of the encoding's type as `values` holds.
+unsafe fn write_encoded(out: *mut c_void, values: &Interleaved) -> Result<(), Error> {
+    match values {
+        // SAFETY: forwarded from this function's contract.
+        Interleaved::U8(v) => unsafe { write_slice(out.cast::<u8>(), "out", v) },
+        // SAFETY: forwarded from this function's contract.
+        Interleaved::U16(v) => unsafe { write_slice(out.cast::<u16>(), "out", v) },
+        // SAFETY: forwarded from this function's contract.
+        Interleaved::F32(v) => unsafe { write_slice(out.cast::<f32>(), "out", v) },
+    }
+}
+
+/// Copies the relief texture into `rgba`: `len` = 4 N * N floats, row-major, `[depth, c, D, E]`
+/// per texel (the depth of the map and the three cone channels), the layout of an `RGBA32F`
+/// texture and exactly what the CPU tracers read.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_INVALID_ARGUMENT` if `len` is not 4 N * N. Nothing is written on failure.
+///
+/// # Safety
+///
+/// `cones` must be a live handle and `rgba` point to `len` writable floats that no other thread
+/// touches during the call.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_cones_texels(
+    cones: *const OceanReliefCones,
+    rgba: *mut f32,
+    len: usize,
+) -> OceanStatus {
+    guard("ocean_relief_cones_texels", || {
+        // SAFETY: forwarded from this function's contract.
+        let c = unsafe { borrow(cones, "cones") }?;
+        check_ptr(rgba.cast_const(), "rgba")?;
+        let n = c.cones.size();
+        check_len("len", len, 4 * n * n, "the texture (4 floats a texel)")?;
+        let t = texels(&c.map, &c.cones);
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_slice(rgba, "rgba", &t) }
+    })
+}
+
+/// Encodes the three cone channels for storage and copies them into `out`: `len` = 3 N * N
+/// elements of the encoding's type (`uint8_t` for `OCEAN_RELIEF_ENCODING_UNORM8` and
+/// `_UNORM8_SQRT`, `uint16_t` binary16 bit patterns for `_F16`, `float` for `_F32`), row-major,
+/// `[c, D, E]` per texel. Every value is rounded **down** (a stored cone is never wider than
+/// the exact one, so it stays valid); the 8-bit encodings clamp at 1.0. The depth channel is
+/// not included: take it from `ocean_relief_map_depths` (the cones are valid for those depths).
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (aligned for
+/// the element type), `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding or a `len` that
+/// is not 3 N * N. Nothing is written on failure.
+///
+/// # Safety
+///
+/// `cones` must be a live handle and `out` point to `len` writable elements of the encoding's
+/// type that no other thread touches during the call.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_cones_encode(
+    cones: *const OceanReliefCones,
+    encoding: u32,
+    out: *mut c_void,
+    len: usize,
+) -> OceanStatus {
+    guard("ocean_relief_cones_encode", || {
+        // SAFETY: forwarded from this function's contract.
+        let c = unsafe { borrow(cones, "cones") }?;
+        let encoding = encoding_from(encoding)?;
+        check_encoded_out(out, encoding)?;
+        let n = c.cones.size();
+        check_len("len", len, 3 * n * n, "the cone map (3 values a texel)")?;
+        let values = encode_cones(&c.cones, encoding);
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_encoded(out, &values) }
+    })
+}
+
+/// Stores in `*out` a new handle whose cones are those of `cones` after a round trip through
+/// `encoding` (each channel encoded, rounding down, and decoded): what a tracer reading the
+/// stored texture sees. Trace it to measure what a storage format costs.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding. `*out` is written only on success.
+///
+/// # Safety
+///
+/// `cones` must be a live handle and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_cones_quantize(
+    cones: *const OceanReliefCones,
+    encoding: u32,
+    out: *mut *mut OceanReliefCones,
+) -> OceanStatus {
+    guard("ocean_relief_cones_quantize", || {
+        // SAFETY: forwarded from this function's contract.
+        let c = unsafe { borrow(cones, "cones") }?;
+        let encoding = encoding_from(encoding)?;
+        check_ptr(out.cast_const(), "out")?;
+        let q = c
+            .cones
+            .quantized(encoding)
+            .map_err(|e| relief_error("", e))?;
+        let handle = OceanReliefCones::new(c.map.clone(), q)?;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_handle(out, handle) }
+    })
+}
+
+/// Generates the cone map of `map` straight into `rgba` (no handle): `len` = 4 N * N floats,
+/// `[depth, c, D, E]` per texel, as `ocean_relief_cones_texels` writes them. Arguments,
+/// callback and statuses as `ocean_relief_cones_create`, with `OCEAN_STATUS_INVALID_ARGUMENT`
+/// for a `len` that is not 4 N * N (checked before any work). `rgba` is written only on
+/// success, and then wholly.
+///
+/// # Safety
+///
+/// `map` must be a live handle, `params` readable, `rgba` point to `len` writable floats that
+/// no other thread touches during the call; `progress`, if not NULL, must be safe to call with
+/// `user` from this thread.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_generate_texels(
+    map: *const OceanReliefMap,
+    params: *const OceanReliefConeParams,
+    progress: OceanReliefProgress,
+    user: *mut c_void,
+    rgba: *mut f32,
+    len: usize,
+) -> OceanStatus {
+    guard("ocean_relief_generate_texels", || {
+        // SAFETY: forwarded from this function's contract.
+        let m = unsafe { borrow(map, "map") }?;
+        // SAFETY: forwarded from this function's contract.
+        let params = unsafe { read_in(params, "params") }?;
+        check_ptr(rgba.cast_const(), "rgba")?;
+        let params = params_from(&params)?;
+        let n = m.map.size();
+        check_len("len", len, 4 * n * n, "the texture (4 floats a texel)")?;
+        let cones = generate(&m.map, params, progress, user)?;
+        let t = texels(&m.map, &cones);
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_slice(rgba, "rgba", &t) }
+    })
+}
+
+/// Generates the cone map of `map` and encodes its three channels straight into `out` (no
+/// handle): `len` = 3 N * N elements of the encoding's type, `[c, D, E]` per texel, as
+/// `ocean_relief_cones_encode` writes them. Arguments, callback and statuses as
+/// `ocean_relief_cones_create` and `ocean_relief_cones_encode` (the encoding, the pointer and
+/// `len` are checked before any work). `out` is written only on success, and then wholly.
+///
+/// # Safety
+///
+/// `map` must be a live handle, `params` readable, `out` point to `len` writable elements of
+/// the encoding's type that no other thread touches during the call; `progress`, if not NULL,
+/// must be safe to call with `user` from this thread.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_generate_encoded(
+    map: *const OceanReliefMap,
+    params: *const OceanReliefConeParams,
+    progress: OceanReliefProgress,
+    user: *mut c_void,
+    encoding: u32,
+    out: *mut c_void,
+    len: usize,
+) -> OceanStatus {
+    guard("ocean_relief_generate_encoded", || {
+        // SAFETY: forwarded from this function's contract.
+        let m = unsafe { borrow(map, "map") }?;
+        // SAFETY: forwarded from this function's contract.
+        let params = unsafe { read_in(params, "params") }?;
+        let encoding = encoding_from(encoding)?;
+        check_encoded_out(out, encoding)?;
+        let params = params_from(&params)?;
+        let n = m.map.size();
+        check_len("len", len, 3 * n * n, "the cone map (3 values a texel)")?;
+        let cones = generate(&m.map, params, progress, user)?;
+        let values = encode_cones(&cones, encoding);
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_encoded(out, &values) }
+    })
+}
+
+/// Builds the mip chain of the cone map of `cones`, level 0 (the cone map) down to 1x1, and
+/// stores a handle in `*out`. `rule`: `OCEAN_RELIEF_MIP_WINDOW` (the 4x4-window minimum, valid
+/// under bilinear sampling; use it) or `OCEAN_RELIEF_MIP_GROUP` (the book's 2x2 minimum, valid
+/// under nearest sampling only). Every channel takes the same minimum.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown rule or a side that is not a power of two.
+/// `*out` is written only on success.
+///
+/// # Safety
+///
+/// `cones` must be a live handle and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_mips_create(
+    cones: *const OceanReliefCones,
+    rule: u32,
+    out: *mut *mut OceanReliefMips,
+) -> OceanStatus {
+    guard("ocean_relief_mips_create", || {
+        // SAFETY: forwarded from this function's contract.
+        let c = unsafe { borrow(cones, "cones") }?;
+        check_ptr(out.cast_const(), "out")?;
+        let rule = match rule {
+            OCEAN_RELIEF_MIP_WINDOW => MipRule::Window,
+            OCEAN_RELIEF_MIP_GROUP => MipRule::Group,
+            v => {
+                return Err(Error::new(
+                    OceanStatus::InvalidArgument,
+                    format!(
+                        "`rule` = {v} is neither OCEAN_RELIEF_MIP_WINDOW (0) nor \
+                         OCEAN_RELIEF_MIP_GROUP (1)"
+                    ),
+                ));
+            }
+        };
+        let levels = chain(&c.cones, rule).map_err(|e| relief_error("", e))?;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_handle(out, OceanReliefMips { levels }) }
+    })
+}
+
+/// Frees a mip chain. NULL is ignored, and so is a pointer that is not even aligned. Never
+/// fails; leaves the last-error message alone.
+///
+/// # Safety
+///
+/// `mips` must be NULL or a handle from `ocean_relief_mips_create` not yet destroyed, and no
+/// other thread may be using it.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_mips_destroy(mips: *mut OceanReliefMips) {
+    // SAFETY: forwarded from this function's contract.
+    unsafe { destroy(mips) }
+}
+
+/// Stores the number of levels, log2(N) + 1, in `*out_count`.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out_count`
+/// is written only on success.
+///
+/// # Safety
+///
+/// `mips` must be a live handle and `out_count` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_mips_level_count(
+    mips: *const OceanReliefMips,
+    out_count: *mut u32,
+) -> OceanStatus {
+    guard("ocean_relief_mips_level_count", || {
+        // SAFETY: forwarded from this function's contract.
+        let m = unsafe { borrow(mips, "mips") }?;
+        // At most 13 levels (N <= 4096).
+        let count = m.levels.len() as u32;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out_count, "out_count", count) }
+    })
+}
+
+fn level(m: &OceanReliefMips, level: u32) -> Result<&ConeMap, Error> {
+    m.levels.get(level as usize).ok_or_else(|| {
+        Error::new(
+            OceanStatus::InvalidArgument,
+            format!(
+                "level {level} does not exist: the chain has levels 0 to {}",
+                m.levels.len() - 1
+            ),
+        )
+    })
+}
+
+/// Stores the side of mip `level`, N >> level texels, in `*out_size`.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_INVALID_ARGUMENT` if `level` >= the level count. `*out_size` is written only on
+/// success.
+///
+/// # Safety
+///
+/// `mips` must be a live handle and `out_size` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_mips_level_size(
+    mips: *const OceanReliefMips,
+    level: u32,
+    out_size: *mut u32,
+) -> OceanStatus {
+    guard("ocean_relief_mips_level_size", || {
+        // SAFETY: forwarded from this function's contract.
+        let m = unsafe { borrow(mips, "mips") }?;
+        // At most OCEAN_RELIEF_MAX_SIDE.
+        let side = self::level(m, level)?.size() as u32;
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out_size, "out_size", side) }
+    })
+}
+
+/// Encodes mip `level` and copies it into `out`: `len` = 3 side * side elements (side from
+/// `ocean_relief_mips_level_size`) of the encoding's type, `[c, D, E]` per texel, row-major,
+/// rounded down, as `ocean_relief_cones_encode` writes level 0.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding, a level that does not exist or a
+/// `len` that is not 3 side * side. Nothing is written on failure.
+///
+/// # Safety
+///
+/// `mips` must be a live handle and `out` point to `len` writable elements of the encoding's
+/// type that no other thread touches during the call.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_mips_copy_level(
+    mips: *const OceanReliefMips,
+    level: u32,
+    encoding: u32,
+    out: *mut c_void,
+    len: usize,
+) -> OceanStatus {
+    guard("ocean_relief_mips_copy_level", || {
+        // SAFETY: forwarded from this function's contract.
+        let m = unsafe { borrow(mips, "mips") }?;
+        let encoding = encoding_from(encoding)?;
+        check_encoded_out(out, encoding)?;
+        let l = self::level(m, level)?;
+        let side = l.size();
+        check_len(
+            "len",
+            len,
+            3 * side * side,
+            &format!("level {level} (3 values a texel)"),
+        )?;
+        let values = encode_cones(l, encoding);
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_encoded(out, &values) }
+    })
+}
+
+#[cfg(test)]
+#[path = "relief_tests.rs"]
+mod tests;
