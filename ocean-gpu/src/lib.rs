@@ -25,6 +25,13 @@
 //!   displaced by filtered trochoids, per-pixel filtered normals and slope variances lit by the
 //!   Sun, the sky and the sea (Algorithm 5.1), and a sky background, into the caller's targets
 //!   or a headless image; the GPU twin of `ocean_brdf`'s surface and sea colour.
+//! - [`ReliefRenderer`]: relief mapping by relaxed cone stepping (Policarpo & Oliveira, *GPU
+//!   Gems 3* ch. 18): a relief-mapped quad traced per pixel (linear, cone step or relaxed cone
+//!   stepping with the three binary searches), self-shadowed and writing the hit's depth, into
+//!   the caller's targets or a headless image, with a probe of its tracer; and
+//!   [`ConeMapGenerator`], relaxed and conservative cone maps generated in a compute pass; the
+//!   GPU twins of `ocean_relief`'s tracers, shadow test, occlusion depth and
+//!   `ConeMap::generate`.
 //!
 //! ## Conventions
 //!
@@ -48,6 +55,7 @@ pub mod layers;
 pub mod ocean;
 mod pipeline;
 pub mod readback;
+pub mod relief;
 pub mod sao;
 pub mod shaders;
 pub mod trochoid;
@@ -57,6 +65,10 @@ pub use context::{ContextOptions, GpuContext};
 pub use layers::{DeviceLayer, LayerDesc, LayersInput, LayersParams, LayersPass, LayersStats};
 pub use ocean::{OceanOptions, OceanRenderer, SeaColorInput, SurfaceProbe};
 pub use readback::{GpuDuration, GpuTimer, TextureData};
+pub use relief::{
+    ConeGenTimes, ConeMapGenerator, ReliefImage, ReliefOptions, ReliefProbe, ReliefRay,
+    ReliefRenderer, ReliefScene, TangentFrame,
+};
 pub use sao::{GpuZLevel, SaoPass, SaoStage, SaoStages, SaoTimer, SaoTimes};
 pub use shaders::{Code, Export, ExportFile, Language, ShaderError};
 pub use trochoid::{
@@ -154,21 +166,28 @@ pub enum GpuError {
     /// a depth value outside the convention's range).
     #[error(transparent)]
     Sao(#[from] ocean_sao::SaoError),
+    /// The relief-mapping model refused its inputs (a step count out of range, a non-finite
+    /// depth scale, a shadow bias outside `[0, 1]`, a cone cap out of range, a map size).
+    #[error(transparent)]
+    Relief(#[from] ocean_relief::ReliefError),
 }
 
-/// Runs `f` inside validation and out-of-memory error scopes on `device` and returns the first
-/// error either scope caught, so wgpu errors come back as values instead of reaching the
+/// Runs `f` inside validation, out-of-memory and internal error scopes on `device` and returns
+/// the first error a scope caught, so wgpu errors come back as values instead of reaching the
 /// device's uncaptured-error handler (which panics by default).
 pub(crate) fn scoped<R>(
     device: &wgpu::Device,
     f: impl FnOnce() -> Result<R, GpuError>,
 ) -> Result<R, GpuError> {
+    let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
     let oom = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
     let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let result = f();
     let validation = pollster::block_on(validation.pop());
     let oom = pollster::block_on(oom.pop());
-    if let Some(e) = validation.or(oom) {
+    // Internal errors: a backend that cannot translate a shader (naga's GLSL writer).
+    let internal = pollster::block_on(internal.pop());
+    if let Some(e) = validation.or(oom).or(internal) {
         return Err(GpuError::Wgpu(e.to_string()));
     }
     result

@@ -169,7 +169,26 @@ pub const SAO_BLUR_WGSL: &str = concat!(
     include_str!("shaders/sao_blur.wgsl")
 );
 
-static SHADERS: [ShaderEntry; 10] = [
+/// Source of the relief-mapping draw pass (Policarpo & Oliveira, GPU Gems 3 ch. 18): the quad's
+/// vertex stage and the fragment stage that traces, shades, self-shadows and writes the hit's
+/// depth; after the shared tracer `relief_common.wgsl`.
+pub const RELIEF_WGSL: &str = concat!(
+    include_str!("shaders/relief_common.wgsl"),
+    include_str!("shaders/relief_draw.wgsl")
+);
+
+/// Source of the relief tracer's probe: the draw pass's own tracer and shadow test on lists of
+/// rays (parity tests), and a depth-texture copy for headless readback.
+pub const RELIEF_PROBE_WGSL: &str = concat!(
+    include_str!("shaders/relief_common.wgsl"),
+    include_str!("shaders/relief_probe.wgsl")
+);
+
+/// Source of the cone-map generator: relaxed and conservative cone maps by the branch-and-bound
+/// over a min-depth pyramid of `ocean_relief::ConeMap::generate`, in double-`f32` arithmetic.
+pub const RELIEF_CONE_WGSL: &str = include_str!("shaders/relief_cone.wgsl");
+
+static SHADERS: [ShaderEntry; 13] = [
     ShaderEntry {
         name: "trochoid",
         files: &["surface.wgsl", "trochoid.wgsl"],
@@ -359,6 +378,71 @@ static SHADERS: [ShaderEntry; 10] = [
         ],
         description: "scalable ambient obscurance, passes 4 and 5: depth-aware separable \
                       bilateral blur (SAO 2.4)",
+    },
+    ShaderEntry {
+        name: "relief",
+        files: &["relief_common.wgsl", "relief_draw.wgsl"],
+        source: RELIEF_WGSL,
+        kind: ShaderKind::Draw,
+        entry_points: &[
+            EntryPoint {
+                name: "relief_vs",
+                stage: Stage::Vertex,
+            },
+            EntryPoint {
+                name: "relief_fs",
+                stage: Stage::Fragment,
+            },
+        ],
+        description: "relief mapping: a quad traced per pixel by linear search, cone step \
+                      mapping or relaxed cone stepping with binary search through an exact \
+                      bilinear fetch, shaded with the relief normal, self-shadowed, writing the \
+                      hit's depth (GPU Gems 3 ch. 18, Listing 18-3)",
+    },
+    ShaderEntry {
+        name: "relief_probe",
+        files: &["relief_common.wgsl", "relief_probe.wgsl"],
+        source: RELIEF_PROBE_WGSL,
+        kind: ShaderKind::Compute,
+        entry_points: &[
+            EntryPoint {
+                name: "probe_trace",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "copy_depth",
+                stage: Stage::Compute,
+            },
+        ],
+        description: "probes of the relief tracer: the draw pass's tracer and shadow test on \
+                      lists of rays (parity tests), and a depth-texture copy",
+    },
+    ShaderEntry {
+        name: "relief_cone",
+        files: &["relief_cone.wgsl"],
+        source: RELIEF_CONE_WGSL,
+        kind: ShaderKind::Compute,
+        entry_points: &[
+            EntryPoint {
+                name: "cells_pass",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "reduce_pass",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "search_pass",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "texels_pass",
+                stage: Stage::Compute,
+            },
+        ],
+        description: "relaxed and conservative cone maps: per-cell bounds, the min-depth \
+                      pyramid and the branch-and-bound search per apex cell in double-f32 \
+                      arithmetic (GPU Gems 3 ch. 18; ocean_relief::ConeMap::generate)",
     },
 ];
 

@@ -76,6 +76,7 @@ pub(crate) mod brute;
 pub mod check;
 pub mod cone;
 pub mod error;
+pub mod gpu_params;
 pub mod line;
 pub mod map;
 pub mod maps;

@@ -1,0 +1,88 @@
+// The relief-mapped quad (after relief_common.wgsl): the vertex stage places the quad, the
+// fragment stage traces the viewing ray through the relief texture with the uniform's method,
+// shades the hit with the relief normal and a directional light (self-shadowed by tracing the
+// light ray with the same cone map), and writes the hit's depth, so the relief occludes and is
+// occluded correctly (section 18.2; ocean_relief::occlusion).
+
+struct VsOut {
+    @builtin(position) clip: vec4<f32>,
+    // Position on the polygon relative to the eye (world units).
+    @location(0) rel: vec3<f32>,
+    // Texture coordinates (texture widths).
+    @location(1) uv: vec2<f32>,
+}
+
+// Two triangles over the quad: 6 vertices, no vertex buffer.
+@vertex
+fn relief_vs(@builtin(vertex_index) index: u32) -> VsOut {
+    var corners = array<vec2<f32>, 6>(
+        vec2<f32>(0.0, 0.0),
+        vec2<f32>(1.0, 0.0),
+        vec2<f32>(0.0, 1.0),
+        vec2<f32>(0.0, 1.0),
+        vec2<f32>(1.0, 0.0),
+        vec2<f32>(1.0, 1.0),
+    );
+    let c = corners[min(index, 5u)];
+    let p = relief.quad_origin.xyz + c.x * relief.quad_u.xyz + c.y * relief.quad_v.xyz;
+    var out: VsOut;
+    out.clip = relief.view_proj * vec4<f32>(p, 1.0);
+    out.rel = p;
+    out.uv = vec2<f32>(c.x * relief.quad_u.w, c.y * relief.quad_v.w);
+    return out;
+}
+
+struct FsOut {
+    @location(0) color: vec4<f32>,
+    @builtin(frag_depth) depth: f32,
+}
+
+// Linear to sRGB (the piecewise standard curve).
+fn relief_srgb(c: vec3<f32>) -> vec3<f32> {
+    let x = clamp(c, vec3<f32>(0.0), vec3<f32>(1.0));
+    let lo = x * 12.92;
+    let hi = 1.055 * pow(x, vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(hi, lo, x <= vec3<f32>(0.0031308));
+}
+
+@fragment
+fn relief_fs(in: VsOut) -> FsOut {
+    let t = relief.tangent.xyz;
+    let b = relief.bitangent.xyz;
+    let n = relief.normal.xyz;
+    // The unit viewing direction: parallel rays for an orthographic camera, from the eye for a
+    // perspective one.
+    var dir = relief.view_dir.xyz;
+    if relief.view_dir.w == 0.0 {
+        dir = normalize(in.rel);
+    }
+    let view = vec3<f32>(dot(dir, t), dot(dir, b), dot(dir, n));
+    if view.z >= 0.0 {
+        // The back of the quad: the relief lies under its front.
+        discard;
+    }
+    let depth_scale = relief.shading.x;
+    let hit = relief_trace(in.uv, relief_view_ray(view, depth_scale));
+    // occlusion::view_distance: the hit lies d depth_world / cos(theta) beyond the polygon.
+    let cos_theta = -view.z / length(view);
+    let distance = hit.pos.z * relief.bitangent.w / cos_theta;
+    let p = in.rel + dir * distance;
+    let clip = relief.view_proj * vec4<f32>(p, 1.0);
+    var out: FsOut;
+    out.depth = clamp(clip.z / clip.w, 0.0, 1.0);
+
+    let l = relief.light.xyz;
+    let light = vec3<f32>(dot(l, t), dot(l, b), dot(l, n));
+    let normal = relief_normal(hit.pos.x, hit.pos.y, relief.normal.w);
+    var shadow = 0.0;
+    if (relief.steps.z & FLAG_SHADOWS) != 0u {
+        shadow = relief_shadow(hit.pos, light, depth_scale, relief.shading.y).x;
+    }
+    let diffuse = max(dot(normal, light), 0.0) * relief.light.w * (1.0 - shadow);
+    var color = relief.albedo.rgb * (relief.albedo.a + diffuse);
+    if (relief.steps.z & FLAG_SRGB_ENCODE) != 0u {
+        color = relief_srgb(color);
+    }
+    out.color = vec4<f32>(color, 1.0);
+    return out;
+}
