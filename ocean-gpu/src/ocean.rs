@@ -870,34 +870,7 @@ impl OceanRenderer {
         depth: Option<&wgpu::TextureView>,
         size: (u32, u32),
     ) -> Result<(), GpuError> {
-        let fits = |what: &'static str, t: &wgpu::Texture, format: wgpu::TextureFormat| {
-            if t.format().remove_srgb_suffix() != format.remove_srgb_suffix() {
-                return Err(GpuError::InvalidResource {
-                    what,
-                    reason: format!("format {:?}, the renderer draws {format:?}", t.format()),
-                });
-            }
-            if !t.usage().contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
-                return Err(GpuError::InvalidResource {
-                    what,
-                    reason: "needs RENDER_ATTACHMENT usage".to_owned(),
-                });
-            }
-            if t.sample_count() != 1 || t.width() < size.0 || t.height() < size.1 {
-                return Err(GpuError::InvalidResource {
-                    what,
-                    reason: format!(
-                        "{} x {} with {} samples cannot hold a single-sampled {} x {} viewport",
-                        t.width(),
-                        t.height(),
-                        t.sample_count(),
-                        size.0,
-                        size.1
-                    ),
-                });
-            }
-            Ok(())
-        };
+        let fits = |what, t, format| crate::pipeline::check_render_target(what, t, format, size);
         fits("colour target", color.texture(), self.options.color_format)?;
         match (self.options.depth_format, depth) {
             (Some(format), Some(d)) => fits("depth target", d.texture(), format),

@@ -171,3 +171,40 @@ impl BindGroupCache {
         (group, true)
     }
 }
+
+/// Checks that `texture` can be a single-sampled render target of `format` (sRGB or not) for a
+/// viewport of `size`; `what` names it in the error.
+pub(crate) fn check_render_target(
+    what: &'static str,
+    texture: &wgpu::Texture,
+    format: wgpu::TextureFormat,
+    size: (u32, u32),
+) -> Result<(), GpuError> {
+    let t = texture;
+    if t.format().remove_srgb_suffix() != format.remove_srgb_suffix() {
+        return Err(GpuError::InvalidResource {
+            what,
+            reason: format!("format {:?}, the renderer draws {format:?}", t.format()),
+        });
+    }
+    if !t.usage().contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
+        return Err(GpuError::InvalidResource {
+            what,
+            reason: "needs RENDER_ATTACHMENT usage".to_owned(),
+        });
+    }
+    if t.sample_count() != 1 || t.width() < size.0 || t.height() < size.1 {
+        return Err(GpuError::InvalidResource {
+            what,
+            reason: format!(
+                "{} x {} with {} samples cannot hold a single-sampled {} x {} viewport",
+                t.width(),
+                t.height(),
+                t.sample_count(),
+                size.0,
+                size.1
+            ),
+        });
+    }
+    Ok(())
+}

@@ -636,34 +636,7 @@ impl ReliefRenderer {
         depth: &wgpu::TextureView,
         size: (u32, u32),
     ) -> Result<(), GpuError> {
-        let fits = |what: &'static str, t: &wgpu::Texture, format: wgpu::TextureFormat| {
-            if t.format().remove_srgb_suffix() != format.remove_srgb_suffix() {
-                return Err(GpuError::InvalidResource {
-                    what,
-                    reason: format!("format {:?}, the renderer draws {format:?}", t.format()),
-                });
-            }
-            if !t.usage().contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
-                return Err(GpuError::InvalidResource {
-                    what,
-                    reason: "needs RENDER_ATTACHMENT usage".to_owned(),
-                });
-            }
-            if t.sample_count() != 1 || t.width() < size.0 || t.height() < size.1 {
-                return Err(GpuError::InvalidResource {
-                    what,
-                    reason: format!(
-                        "{} x {} with {} samples cannot hold a single-sampled {} x {} viewport",
-                        t.width(),
-                        t.height(),
-                        t.sample_count(),
-                        size.0,
-                        size.1
-                    ),
-                });
-            }
-            Ok(())
-        };
+        let fits = |what, t, format| crate::pipeline::check_render_target(what, t, format, size);
         fits("colour target", color.texture(), self.options.color_format)?;
         fits("depth target", depth.texture(), self.options.depth_format)
     }
