@@ -11,8 +11,10 @@
 //!    fBm map at 128², timed in turn in the same rounds; their ratio, and whether the bits agree.
 //! 3. **Progress**: `generate_with` (bands of rows with a report after each, what
 //!    `ocean cone-map` and the C ABI's callback use) against `generate` on the fBm map at 512².
-//! 4. **GPU generation**: not measured here yet. The GPU generator is being written in
-//!    ocean-gpu; the JSON keeps the key `gpu_generation` for its times, now holding the reason.
+//! 4. **GPU generation**: `ocean_gpu::ConeMapGenerator` on the fBm map at each size (after a
+//!    warm-up on a small map, since drivers compile the shader on the first dispatch), its
+//!    output compared with the CPU's; 1024² is skipped on software adapters (over a minute).
+//!    `--no-gpu` or a missing adapter leaves the reason in `gpu_generation`.
 //! 5. **Tracers**: rays per second for each method of the accuracy table
 //!    (`accuracy::Config::standard_entries`) on the fBm map at 256² (relief 0.1 texture widths
 //!    deep, view 60° from the normal, 2¹⁸ rays with random starts and azimuths), on one thread
@@ -72,6 +74,47 @@ fn maps(n: usize) -> Result<Vec<(&'static str, HeightMap)>, String> {
     .into_iter()
     .map(|(name, h)| Ok((name, to_map(n, &h, Edge::Wrap).map_err(err)?)))
     .collect()
+}
+
+/// Figure 4: the GPU generator, at most 3 runs a size.
+fn gpu_generation(runs: u32) -> Result<Value, String> {
+    let ctx = ocean_gpu::GpuContext::headless().map_err(err)?;
+    let generator = ocean_gpu::ConeMapGenerator::new(&ctx).map_err(err)?;
+    let software = ctx
+        .adapter_info()
+        .is_some_and(|i| i.device_type == ocean_gpu::wgpu::DeviceType::Cpu);
+    let params = ConeParams::relaxed(1.0);
+    let warm = to_map(64, &value_noise(64, 8, 6, 1), Edge::Wrap).map_err(err)?;
+    generator.generate(&ctx, &warm, params).map_err(err)?;
+    let mut sizes = Vec::new();
+    for n in SIZES {
+        if software && n > 512 {
+            sizes.push(json!({ "side": n, "skipped": "over a minute on a software adapter" }));
+            continue;
+        }
+        let map = to_map(n, &value_noise(n, 8, 6, 1), Edge::Wrap).map_err(err)?;
+        let cpu = ConeMap::generate(&map, params).map_err(err)?;
+        let mut times = Vec::new();
+        let mut identical = true;
+        for _ in 0..runs.min(3) {
+            let start = Instant::now();
+            let cones = generator.generate(&ctx, &map, params).map_err(err)?;
+            times.push(start.elapsed().as_secs_f64());
+            identical &= cones == cpu;
+        }
+        sizes.push(json!({
+            "side": n,
+            "map": "fBm 6 octaves",
+            "seconds": median(times),
+            "identical_to_cpu": identical,
+        }));
+    }
+    Ok(json!({
+        "measured": true,
+        "device": ctx.describe(),
+        "software_adapter": software,
+        "sizes": sizes,
+    }))
 }
 
 /// Figure 1.
@@ -280,10 +323,10 @@ pub fn relief(args: &BenchArgs) -> Result<(), String> {
         "generation": generation(runs)?,
         "oracle": oracle(runs)?,
         "progress": progress_overhead(runs)?,
-        "gpu_generation": {
-            "measured": false,
-            "reason": "the GPU cone-map generator (ocean-gpu) is not wired into this benchmark \
-                       yet; its times at 256², 512² and 1024² go here",
+        "gpu_generation": if args.no_gpu {
+            json!({ "measured": false, "reason": "skipped (--no-gpu)" })
+        } else {
+            gpu_generation(runs).unwrap_or_else(|e| json!({ "measured": false, "reason": e }))
         },
         "tracers": tracers(runs)?,
         "accuracy": accuracy.rows.iter().map(|r| json!({
@@ -370,10 +413,27 @@ fn print_table(doc: &Value) {
             .as_f64()
             .map_or_else(|| "-".to_owned(), |x| format!("{:.1}", 100.0 * x))
     );
-    println!(
-        "4. GPU generation: not measured ({})",
-        doc["gpu_generation"]["reason"].as_str().unwrap_or("?")
-    );
+    let g = &doc["gpu_generation"];
+    match g["device"].as_str() {
+        Some(device) => {
+            println!("4. GPU generation on {device}, fBm map:");
+            for c in g["sizes"].as_array().into_iter().flatten() {
+                match c["skipped"].as_str() {
+                    Some(why) => println!("   {}²: skipped ({why})", c["side"]),
+                    None => println!(
+                        "   {}²: {} s, identical to the CPU: {}",
+                        c["side"],
+                        f(&c["seconds"], 3),
+                        c["identical_to_cpu"]
+                    ),
+                }
+            }
+        }
+        None => println!(
+            "4. GPU generation: not measured ({})",
+            g["reason"].as_str().unwrap_or("?")
+        ),
+    }
     let t = &doc["tracers"];
     println!(
         "5. CPU tracers, {}² {}, {} rays at {}°, relief {} deep: rays/s",
