@@ -381,17 +381,17 @@ pub unsafe extern "C" fn ocean_relief_map_create_u8(
     edge: u32,
     out: *mut *mut OceanReliefMap,
 ) -> OceanStatus {
-    guard("ocean_relief_map_create_u8", || {
-        // SAFETY: forwarded from this function's contract.
-        let heights = unsafe { input(heights, len, "heights") }?;
-        check_ptr(out.cast_const(), "out")?;
-        let edge = edge_from(edge)?;
-        map_dims(width, height, len)?;
-        let map = HeightMap::from_u8(width as usize, height as usize, heights, edge)
-            .map_err(|e| relief_error("", e))?;
-        // SAFETY: forwarded from this function's contract.
-        unsafe { write_handle(out, OceanReliefMap { map }) }
-    })
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        create_integer_map(
+            "ocean_relief_map_create_u8",
+            heights,
+            len,
+            (width, height, edge),
+            out,
+            HeightMap::from_u8,
+        )
+    }
 }
 
 /// Creates a height map from `len` = width * height 16-bit heights (height v / 65535, depth
@@ -410,15 +410,42 @@ pub unsafe extern "C" fn ocean_relief_map_create_u16(
     edge: u32,
     out: *mut *mut OceanReliefMap,
 ) -> OceanStatus {
-    guard("ocean_relief_map_create_u16", || {
-        // SAFETY: forwarded from this function's contract.
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        create_integer_map(
+            "ocean_relief_map_create_u16",
+            heights,
+            len,
+            (width, height, edge),
+            out,
+            HeightMap::from_u16,
+        )
+    }
+}
+
+/// The body of the integer `ocean_relief_map_create_*` functions: `make` builds the map from the
+/// checked buffer.
+///
+/// # Safety
+///
+/// As those functions: `heights` points to `len` readable values, `out` to a writable pointer.
+unsafe fn create_integer_map<T>(
+    name: &str,
+    heights: *const T,
+    len: usize,
+    (width, height, edge): (u32, u32, u32),
+    out: *mut *mut OceanReliefMap,
+    make: fn(usize, usize, &[T], Edge) -> Result<HeightMap, ocean_relief::ReliefError>,
+) -> OceanStatus {
+    guard(name, || {
+        // SAFETY: forwarded from the caller's contract.
         let heights = unsafe { input(heights, len, "heights") }?;
         check_ptr(out.cast_const(), "out")?;
         let edge = edge_from(edge)?;
         map_dims(width, height, len)?;
-        let map = HeightMap::from_u16(width as usize, height as usize, heights, edge)
+        let map = make(width as usize, height as usize, heights, edge)
             .map_err(|e| relief_error("", e))?;
-        // SAFETY: forwarded from this function's contract.
+        // SAFETY: forwarded from the caller's contract.
         unsafe { write_handle(out, OceanReliefMap { map }) }
     })
 }
