@@ -159,6 +159,12 @@
 #define OCEAN_RELIEF_PROGRESS_BANDS 64
 
 /**
+ * Size in bytes of the exported `relief` shader's uniform block `Relief` (binding 0, std140);
+ * `ocean_relief_uniforms` writes it.
+ */
+#define OCEAN_RELIEF_UNIFORMS_SIZE 256
+
+/**
  * `OceanReliefMethod::method`: linear search (Policarpo et al. 2005): `steps` equal depth
  * steps, then `binary` bisections of the step that first went inside. Reads only the depth.
  */
@@ -1090,6 +1096,94 @@ typedef struct OceanReliefConeParams {
 typedef int (*OceanReliefProgress)(void *user, size_t done, size_t total);
 
 /**
+ * A tracer and its step counts.
+ */
+typedef struct OceanReliefMethod {
+  /**
+   * `OCEAN_RELIEF_METHOD_LINEAR`, `_CONE_STEP` or `_RELAXED`; other values are refused.
+   */
+  uint32_t method;
+  /**
+   * Linear steps, cone steps, or relaxed cone steps: 1 to `OCEAN_RELIEF_MAX_STEPS` (the
+   * book: 15 relaxed steps).
+   */
+  uint32_t steps;
+  /**
+   * Bisections, 0 to `OCEAN_RELIEF_MAX_STEPS` (the book: 6). Not read by cone step mapping.
+   */
+  uint32_t binary;
+  /**
+   * `OCEAN_RELIEF_SEARCH_*`. Read (and checked) only by relaxed cone stepping.
+   */
+  uint32_t search;
+} OceanReliefMethod;
+
+/**
+ * A relief-mapped quad, how it is traced and how it is lit.
+ *
+ * The quad is the rectangle with a corner at `origin` (texture coordinates (0, 0)) and edges
+ * `edge_u` (along the texture's u) and `edge_v` (along v, the rows), spanning `tiles_u` and
+ * `tiles_v` texture widths. Tangent space is the tracers': x along u, y along v, z =
+ * edge_u x edge_v out of the polygon, towards its front; the relief lies `depth` world units
+ * under it. The edges must be orthogonal and a texture width must have one world length along
+ * both (relative tolerance 1e-6), so the relief is not sheared.
+ */
+typedef struct OceanReliefScene {
+  /**
+   * World position of the corner at texture coordinates (0, 0), metres.
+   */
+  struct OceanDVec3 origin;
+  /**
+   * World vector from `origin` along u to the next corner.
+   */
+  struct OceanDVec3 edge_u;
+  /**
+   * World vector from `origin` along v to the next corner.
+   */
+  struct OceanDVec3 edge_v;
+  /**
+   * Texture widths across `edge_u` (> 0).
+   */
+  double tiles_u;
+  /**
+   * Texture widths across `edge_v` (> 0).
+   */
+  double tiles_v;
+  /**
+   * Depth of the relief below the polygon, world units (>= 0).
+   */
+  double depth;
+  /**
+   * The tracer of the viewing ray and of the light ray.
+   */
+  struct OceanReliefMethod method;
+  /**
+   * 1: trace the light ray for self-shadowing; 0: do not. Other values are refused.
+   */
+  uint8_t shadows;
+  /**
+   * How far (depth units) above a point the light ray must stop to shadow it, in [0, 1].
+   */
+  float shadow_bias;
+  /**
+   * World direction towards the (directional) light; any length but zero.
+   */
+  struct OceanDVec3 light_dir;
+  /**
+   * Light intensity (>= 0).
+   */
+  float light_intensity;
+  /**
+   * Linear albedo, red, green, blue (each >= 0).
+   */
+  float albedo[3];
+  /**
+   * Light that reaches every point whatever the light and shadows (>= 0).
+   */
+  float ambient;
+} OceanReliefScene;
+
+/**
  * A ray into the relief (section 18.2): it enters at texture coordinates (start_u, start_v)
  * at depth 0 and moves by (dir_x, dir_y) texture widths per dir_z of depth. Only the ratios
  * matter (the tracers divide by dir_z, as the book's `ray_dir /= ray_dir.z`).
@@ -1117,29 +1211,6 @@ typedef struct OceanReliefRay {
    */
   float dir_z;
 } OceanReliefRay;
-
-/**
- * A tracer and its step counts.
- */
-typedef struct OceanReliefMethod {
-  /**
-   * `OCEAN_RELIEF_METHOD_LINEAR`, `_CONE_STEP` or `_RELAXED`; other values are refused.
-   */
-  uint32_t method;
-  /**
-   * Linear steps, cone steps, or relaxed cone steps: 1 to `OCEAN_RELIEF_MAX_STEPS` (the
-   * book: 15 relaxed steps).
-   */
-  uint32_t steps;
-  /**
-   * Bisections, 0 to `OCEAN_RELIEF_MAX_STEPS` (the book: 6). Not read by cone step mapping.
-   */
-  uint32_t binary;
-  /**
-   * `OCEAN_RELIEF_SEARCH_*`. Read (and checked) only by relaxed cone stepping.
-   */
-  uint32_t search;
-} OceanReliefMethod;
 
 /**
  * A point of the relief: texture coordinates and normalised depth (0 at the polygon, 1 at the
@@ -3057,6 +3128,68 @@ OceanStatus ocean_relief_mips_copy_level(const struct OceanReliefMips *mips,
                                          uint32_t encoding,
                                          void *out,
                                          size_t len);
+
+/**
+ * Stores the default scene in `*out`: a unit quad in the xz plane facing +y (u along +x, v
+ * along -z), one tile, 0.1 deep; relaxed cone stepping with 15 cone steps and 6 bisections of
+ * the last step; self-shadowing with a bias of 0.02; a white light from (1, 2, 1), grey albedo
+ * 0.8, ambient 0.2.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_relief_scene_default(struct OceanReliefScene *out);
+
+/**
+ * Writes the uniform block of the exported `relief` draw shader for one draw of `scene` seen
+ * by `camera` into `out` (the `OCEAN_RELIEF_UNIFORMS_SIZE` bytes of `Relief`, std140, in the
+ * machine's byte order: upload them as they are with `glBufferSubData`), for a relief texture
+ * of side `size` (2 to `OCEAN_RELIEF_MAX_SIDE`) and edge mode `edge`
+ * (`OCEAN_RELIEF_EDGE_WRAP` or `_CLAMP`, as the cones were generated). With `srgb_encode` = 1
+ * the shader writes sRGB-encoded colour (for a linear `GL_RGBA8` target); with 0 it writes
+ * linear colour (for an sRGB target with `GL_FRAMEBUFFER_SRGB`).
+ *
+ * Positions in the block are relative to the camera's eye (the subtraction happens here, in
+ * double precision), so quads far from the world origin do not jitter.
+ *
+ * To draw (`ocean_shader_export` of `relief`, entry points `relief_vs` and `relief_fs`, with
+ * its binding table):
+ * - binding 0: this block, a uniform buffer;
+ * - binding 1: the relief texture, `GL_RGBA32F`, `size` x `size`, one level, the texels of
+ *   `ocean_relief_cones_texels` (`[depth, c, D, E]`, row v = 0 first). The shader reads it with
+ *   `texelFetch` and filters by hand (bilinear, with the edge mode), so no sampler state
+ *   matters;
+ * - draw 6 vertices as `GL_TRIANGLES` with no vertex buffer (an empty vertex array object);
+ * - depth test `GL_LESS` (`GL_GREATER` for a reversed-Z camera) with depth writes: the fragment
+ *   stage writes the hit point's depth to `gl_FragDepth`, so the relief occludes and is
+ *   occluded correctly. Cull nothing or the back faces (the front faces `edge_u x edge_v`).
+ *
+ * The exported GLSL's clip space is OpenGL's (naga flips y and maps z to [-1, 1]); the depth
+ * it writes is the window depth for `glDepthRange(0, 1)`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite member, `OCEAN_STATUS_INVALID_ARGUMENT` for
+ * a camera, scene, method, size or edge the description above refuses (the message names
+ * it), `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_RELIEF_UNIFORMS_SIZE`,
+ * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing is written on
+ * failure.
+ *
+ * # Safety
+ *
+ * `camera` and `scene` must be readable, `out` point to `len` writable bytes that no other
+ * thread touches during the call.
+ */
+OceanStatus ocean_relief_uniforms(const struct OceanCameraDesc *camera,
+                                  const struct OceanReliefScene *scene,
+                                  uint32_t size,
+                                  uint32_t edge,
+                                  uint8_t srgb_encode,
+                                  uint8_t *out,
+                                  size_t len);
 
 /**
  * Stores in `*out` the ray of the tangent-space view vector (view_x, view_y, view_z) (x along

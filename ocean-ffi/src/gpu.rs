@@ -116,6 +116,7 @@ pub(crate) fn gpu_error(context: &str, e: GpuError) -> Error {
         GpuError::Brdf(b) => return brdf_error(context, *b),
         GpuError::Wtb(w) => return crate::wtb::wtb_error(context, *w),
         GpuError::Sao(e) => return crate::sao::sao_error(context, *e),
+        GpuError::Relief(e) => return crate::relief::relief_error(context, *e),
         GpuError::Eval(ocean_core::EvalError::Time(_)) => OceanStatus::NonFinite,
         GpuError::Eval(_)
         | GpuError::InvalidInput { .. }

@@ -28,6 +28,7 @@ mod lighting;
 mod lighting_brdf;
 mod lighting_spectrum;
 mod relief;
+mod relief_draw;
 mod relief_trace;
 mod sao;
 mod sao_camera;
@@ -82,6 +83,9 @@ pub use relief::{
     ocean_relief_map_depths, ocean_relief_map_destroy, ocean_relief_map_size,
     ocean_relief_mips_copy_level, ocean_relief_mips_create, ocean_relief_mips_destroy,
     ocean_relief_mips_level_count, ocean_relief_mips_level_size, ocean_relief_normals,
+};
+pub use relief_draw::{
+    OCEAN_RELIEF_UNIFORMS_SIZE, OceanReliefScene, ocean_relief_scene_default, ocean_relief_uniforms,
 };
 pub use relief_trace::{
     OCEAN_RELIEF_MAX_STEPS, OCEAN_RELIEF_METHOD_CONE_STEP, OCEAN_RELIEF_METHOD_LINEAR,

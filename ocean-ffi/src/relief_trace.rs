@@ -100,7 +100,7 @@ pub struct OceanReliefHit {
     pub fetches: u32,
 }
 
-fn method_from(m: &OceanReliefMethod) -> Result<Method, Error> {
+pub(crate) fn method_from(m: &OceanReliefMethod) -> Result<Method, Error> {
     let range = |name: &str, v: u32, min: u32| -> Result<(), Error> {
         if v < min || v > MAX_STEPS {
             return Err(Error::new(

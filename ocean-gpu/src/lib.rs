@@ -67,7 +67,7 @@ pub use ocean::{OceanOptions, OceanRenderer, SeaColorInput, SurfaceProbe};
 pub use readback::{GpuDuration, GpuTimer, TextureData};
 pub use relief::{
     ConeGenTimes, ConeMapGenerator, ReliefImage, ReliefOptions, ReliefProbe, ReliefRay,
-    ReliefRenderer, ReliefScene, TangentFrame,
+    ReliefRenderer, ReliefScene, TangentFrame, scene_uniforms,
 };
 pub use sao::{GpuZLevel, SaoPass, SaoStage, SaoStages, SaoTimer, SaoTimes};
 pub use shaders::{Code, Export, ExportFile, Language, ShaderError};

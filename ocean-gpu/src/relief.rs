@@ -294,9 +294,19 @@ fn f4(v: DVec3, w: f32) -> [f32; 4] {
     [v.x as f32, v.y as f32, v.z as f32, w]
 }
 
-/// The uniform block of one draw of `scene` seen by `camera`, for a texture of side `size` and
-/// edge mode `edge`.
-fn scene_uniforms(
+/// The uniform block (binding 0 of `relief_draw.wgsl`, and of its GLSL export) of one draw of
+/// `scene` seen by `camera`, for a relief texture of side `size` and edge mode `edge`; with
+/// `srgb_encode` the fragment stage sRGB-encodes its colour (for a non-sRGB target).
+/// [`ReliefRenderer`] draws with exactly this block; an engine that draws the exported shader
+/// in its own pipeline uploads it as it is.
+///
+/// # Errors
+///
+/// [`GpuError::InvalidInput`] for a quad, light or shading [`ReliefScene`] refuses, a camera
+/// whose eye-relative view-projection is not representable in `f32` or whose view matrix is
+/// degenerate; the [`ReliefError`](ocean_relief::ReliefError)s of the texture size and the
+/// method's step counts.
+pub fn scene_uniforms(
     camera: &Camera,
     scene: &ReliefScene,
     size: usize,

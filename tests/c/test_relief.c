@@ -20,6 +20,9 @@
  *   degrees up from +u with a relief 0.1 texture widths deep, the box's shadow covers the floor
  *   for 6.4 texels on its -u side: a point 2.5 texels from the wall is shadowed, one 9.5 texels
  *   away and one on the lit side are not.
+ * - The uniform block of the exported relief shader: for the default scene seen from an eye at
+ *   (0.5, 2, -0.5) looking down -z, the corner (0, 0, 0) is stored relative to the eye,
+ *   (-0.5, -2, 0.5), and the texture, method and flag words are the ones asked for.
  * - Cancellation from a C callback, progress to completion, and every error path with the
  *   outputs untouched.
  *
@@ -510,11 +513,68 @@ static void test_errors(void)
     ocean_relief_mips_destroy(NULL);
 }
 
+static void test_uniforms(void)
+{
+    OceanReliefScene scene;
+    OceanCameraDesc camera;
+    unsigned char block[OCEAN_RELIEF_UNIFORMS_SIZE];
+    unsigned char small[OCEAN_RELIEF_UNIFORMS_SIZE - 1];
+    float origin[4];
+    uint32_t words[8];
+    size_t i;
+
+    if (!OK(ocean_relief_scene_default(&scene)))
+        return;
+    CHECK(scene.method.method == OCEAN_RELIEF_METHOD_RELAXED && scene.method.steps == 15 &&
+          scene.method.binary == 6 && scene.shadows == 1,
+          "default scene");
+    memset(&camera, 0, sizeof camera);
+    /* World to view: a translation by -eye, column-major (element [4 * column + row]). */
+    camera.view[0] = camera.view[5] = camera.view[10] = camera.view[15] = 1.0;
+    camera.view[12] = -0.5;
+    camera.view[13] = -2.0;
+    camera.view[14] = 0.5;
+    camera.depth_convention = 2; /* OpenGL's [-1, 1] */
+    camera.fov_y = 1.0;
+    camera.aspect = 16.0 / 9.0;
+    camera.z_near = 0.1;
+    camera.z_far = 100.0;
+    if (!OK(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, block,
+                                  sizeof block)))
+        return;
+    /* Offsets of the std140 block: quad_origin at 64, trace at 208, steps at 224. */
+    memcpy(origin, block + 64, sizeof origin);
+    CHECK(origin[0] == -0.5f && origin[1] == -2.0f && origin[2] == 0.5f && origin[3] == 0.0f,
+          "quad origin relative to the eye: %g %g %g %g", origin[0], origin[1], origin[2],
+          origin[3]);
+    memcpy(words, block + 208, sizeof words);
+    CHECK(words[0] == 256 && words[1] == OCEAN_RELIEF_EDGE_WRAP &&
+          words[2] == OCEAN_RELIEF_METHOD_RELAXED && words[3] == OCEAN_RELIEF_SEARCH_LAST_STEP,
+          "trace words %u %u %u %u", words[0], words[1], words[2], words[3]);
+    /* 15 cone steps, 6 bisections, shadows (1) and sRGB encoding (2). */
+    CHECK(words[4] == 15 && words[5] == 6 && words[6] == 3, "step words %u %u %u", words[4],
+          words[5], words[6]);
+
+    memset(small, 0x5A, sizeof small);
+    EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, small,
+                                 sizeof small),
+           OCEAN_STATUS_BUFFER_TOO_SMALL);
+    scene.tiles_u = 0.0;
+    EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, small,
+                                 sizeof block),
+           OCEAN_STATUS_INVALID_ARGUMENT);
+    for (i = 0; i < sizeof small; i++)
+        if (small[i] != 0x5A)
+            break;
+    CHECK(i == sizeof small, "the block was written on failure");
+}
+
 int main(void)
 {
     test_flat_top();
     test_flat_half();
     test_box();
+    test_uniforms();
     test_progress_and_cancel();
     test_errors();
     printf("test_relief.c: library %s, %d checks, %d failures\n", ocean_version(), checks,

@@ -1,0 +1,475 @@
+//! Relief mapping, the shader side: the uniform block of the exported `relief` draw shader, for
+//! engines that draw relief-mapped quads in their own OpenGL (or Vulkan, Metal, D3D) pipeline
+//! with `ocean_shader_export`.
+//!
+//! The block is the one `ocean_gpu::ReliefRenderer` draws with (`ocean_gpu::scene_uniforms`),
+//! byte for byte, so a quad drawn by an engine with the exported GLSL traces the same rays with
+//! the same arithmetic as the library's own renderer and its CPU twin (`ocean_relief_trace`).
+
+use glam::{DVec2, DVec3};
+use ocean_gpu::ReliefScene;
+use ocean_relief::Method;
+use ocean_relief::gpu_params::ReliefUniforms;
+
+use crate::gpu::gpu_error;
+use crate::lighting::{finite_dvec3, read_in};
+use crate::lighting_spectrum::{OceanCameraDesc, camera_from};
+use crate::relief::edge_from;
+use crate::relief_trace::{OceanReliefMethod, method_from};
+use crate::status::{Error, OceanStatus, guard};
+use crate::waves::{byte_len, check_finite, check_ptr, write_out};
+use crate::wtb::OceanDVec3;
+
+/// Size in bytes of the exported `relief` shader's uniform block `Relief` (binding 0, std140);
+/// `ocean_relief_uniforms` writes it.
+pub const OCEAN_RELIEF_UNIFORMS_SIZE: usize = 256;
+
+const _: () = assert!(size_of::<ReliefUniforms>() == OCEAN_RELIEF_UNIFORMS_SIZE);
+
+/// A relief-mapped quad, how it is traced and how it is lit.
+///
+/// The quad is the rectangle with a corner at `origin` (texture coordinates (0, 0)) and edges
+/// `edge_u` (along the texture's u) and `edge_v` (along v, the rows), spanning `tiles_u` and
+/// `tiles_v` texture widths. Tangent space is the tracers': x along u, y along v, z =
+/// edge_u x edge_v out of the polygon, towards its front; the relief lies `depth` world units
+/// under it. The edges must be orthogonal and a texture width must have one world length along
+/// both (relative tolerance 1e-6), so the relief is not sheared.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanReliefScene {
+    /// World position of the corner at texture coordinates (0, 0), metres.
+    pub origin: OceanDVec3,
+    /// World vector from `origin` along u to the next corner.
+    pub edge_u: OceanDVec3,
+    /// World vector from `origin` along v to the next corner.
+    pub edge_v: OceanDVec3,
+    /// Texture widths across `edge_u` (> 0).
+    pub tiles_u: f64,
+    /// Texture widths across `edge_v` (> 0).
+    pub tiles_v: f64,
+    /// Depth of the relief below the polygon, world units (>= 0).
+    pub depth: f64,
+    /// The tracer of the viewing ray and of the light ray.
+    pub method: OceanReliefMethod,
+    /// 1: trace the light ray for self-shadowing; 0: do not. Other values are refused.
+    pub shadows: u8,
+    /// How far (depth units) above a point the light ray must stop to shadow it, in [0, 1].
+    pub shadow_bias: f32,
+    /// World direction towards the (directional) light; any length but zero.
+    pub light_dir: OceanDVec3,
+    /// Light intensity (>= 0).
+    pub light_intensity: f32,
+    /// Linear albedo, red, green, blue (each >= 0).
+    pub albedo: [f32; 3],
+    /// Light that reaches every point whatever the light and shadows (>= 0).
+    pub ambient: f32,
+}
+
+fn dvec3(v: DVec3) -> OceanDVec3 {
+    OceanDVec3 {
+        x: v.x,
+        y: v.y,
+        z: v.z,
+    }
+}
+
+fn method_to(m: &Method) -> OceanReliefMethod {
+    let [method, search, steps, binary] = ocean_relief::gpu_params::method_codes(m);
+    OceanReliefMethod {
+        method,
+        steps,
+        binary,
+        search,
+    }
+}
+
+fn scene_from(s: &OceanReliefScene) -> Result<ReliefScene, Error> {
+    let shadows = match s.shadows {
+        0 => false,
+        1 => true,
+        v => {
+            return Err(Error::new(
+                OceanStatus::InvalidArgument,
+                format!("scene->shadows = {v} is neither 0 nor 1"),
+            ));
+        }
+    };
+    check_finite(
+        "scene->",
+        &[
+            ("tiles_u", s.tiles_u),
+            ("tiles_v", s.tiles_v),
+            ("depth", s.depth),
+            ("shadow_bias", f64::from(s.shadow_bias)),
+            ("light_intensity", f64::from(s.light_intensity)),
+            ("albedo[0]", f64::from(s.albedo[0])),
+            ("albedo[1]", f64::from(s.albedo[1])),
+            ("albedo[2]", f64::from(s.albedo[2])),
+            ("ambient", f64::from(s.ambient)),
+        ],
+    )?;
+    Ok(ReliefScene {
+        origin: finite_dvec3("scene->origin", &s.origin)?,
+        edge_u: finite_dvec3("scene->edge_u", &s.edge_u)?,
+        edge_v: finite_dvec3("scene->edge_v", &s.edge_v)?,
+        tiles: DVec2::new(s.tiles_u, s.tiles_v),
+        depth: s.depth,
+        method: method_from(&s.method)?,
+        shadows,
+        shadow_bias: s.shadow_bias,
+        light_dir: finite_dvec3("scene->light_dir", &s.light_dir)?,
+        light_intensity: s.light_intensity,
+        albedo: s.albedo,
+        ambient: s.ambient,
+    })
+}
+
+/// Stores the default scene in `*out`: a unit quad in the xz plane facing +y (u along +x, v
+/// along -z), one tile, 0.1 deep; relaxed cone stepping with 15 cone steps and 6 bisections of
+/// the last step; self-shadowing with a bias of 0.02; a white light from (1, 2, 1), grey albedo
+/// 0.8, ambient 0.2.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+/// then left unchanged.
+///
+/// # Safety
+///
+/// `out` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_scene_default(out: *mut OceanReliefScene) -> OceanStatus {
+    guard("ocean_relief_scene_default", || {
+        let d = ReliefScene::default();
+        let s = OceanReliefScene {
+            origin: dvec3(d.origin),
+            edge_u: dvec3(d.edge_u),
+            edge_v: dvec3(d.edge_v),
+            tiles_u: d.tiles.x,
+            tiles_v: d.tiles.y,
+            depth: d.depth,
+            method: method_to(&d.method),
+            shadows: u8::from(d.shadows),
+            shadow_bias: d.shadow_bias,
+            light_dir: dvec3(d.light_dir),
+            light_intensity: d.light_intensity,
+            albedo: d.albedo,
+            ambient: d.ambient,
+        };
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out, "out", s) }
+    })
+}
+
+/// Writes the uniform block of the exported `relief` draw shader for one draw of `scene` seen
+/// by `camera` into `out` (the `OCEAN_RELIEF_UNIFORMS_SIZE` bytes of `Relief`, std140, in the
+/// machine's byte order: upload them as they are with `glBufferSubData`), for a relief texture
+/// of side `size` (2 to `OCEAN_RELIEF_MAX_SIDE`) and edge mode `edge`
+/// (`OCEAN_RELIEF_EDGE_WRAP` or `_CLAMP`, as the cones were generated). With `srgb_encode` = 1
+/// the shader writes sRGB-encoded colour (for a linear `GL_RGBA8` target); with 0 it writes
+/// linear colour (for an sRGB target with `GL_FRAMEBUFFER_SRGB`).
+///
+/// Positions in the block are relative to the camera's eye (the subtraction happens here, in
+/// double precision), so quads far from the world origin do not jitter.
+///
+/// To draw (`ocean_shader_export` of `relief`, entry points `relief_vs` and `relief_fs`, with
+/// its binding table):
+/// - binding 0: this block, a uniform buffer;
+/// - binding 1: the relief texture, `GL_RGBA32F`, `size` x `size`, one level, the texels of
+///   `ocean_relief_cones_texels` (`[depth, c, D, E]`, row v = 0 first). The shader reads it with
+///   `texelFetch` and filters by hand (bilinear, with the edge mode), so no sampler state
+///   matters;
+/// - draw 6 vertices as `GL_TRIANGLES` with no vertex buffer (an empty vertex array object);
+/// - depth test `GL_LESS` (`GL_GREATER` for a reversed-Z camera) with depth writes: the fragment
+///   stage writes the hit point's depth to `gl_FragDepth`, so the relief occludes and is
+///   occluded correctly. Cull nothing or the back faces (the front faces `edge_u x edge_v`).
+///
+/// The exported GLSL's clip space is OpenGL's (naga flips y and maps z to [-1, 1]); the depth
+/// it writes is the window depth for `glDepthRange(0, 1)`.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_NON_FINITE` for a NaN or infinite member, `OCEAN_STATUS_INVALID_ARGUMENT` for
+/// a camera, scene, method, size or edge the description above refuses (the message names
+/// it), `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_RELIEF_UNIFORMS_SIZE`,
+/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing is written on
+/// failure.
+///
+/// # Safety
+///
+/// `camera` and `scene` must be readable, `out` point to `len` writable bytes that no other
+/// thread touches during the call.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_uniforms(
+    camera: *const OceanCameraDesc,
+    scene: *const OceanReliefScene,
+    size: u32,
+    edge: u32,
+    srgb_encode: u8,
+    out: *mut u8,
+    len: usize,
+) -> OceanStatus {
+    guard("ocean_relief_uniforms", || {
+        // SAFETY: forwarded from this function's contract.
+        let camera = camera_from(&unsafe { read_in(camera, "camera") }?)?;
+        // SAFETY: forwarded from this function's contract.
+        let scene = scene_from(&unsafe { read_in(scene, "scene") }?)?;
+        let edge = edge_from(edge)?;
+        let srgb_encode = match srgb_encode {
+            0 => false,
+            1 => true,
+            v => {
+                return Err(Error::new(
+                    OceanStatus::InvalidArgument,
+                    format!("`srgb_encode` = {v} is neither 0 nor 1"),
+                ));
+            }
+        };
+        check_ptr(out.cast_const(), "out")?;
+        byte_len::<u8>(len, "out")?;
+        if len < OCEAN_RELIEF_UNIFORMS_SIZE {
+            return Err(Error::new(
+                OceanStatus::BufferTooSmall,
+                format!(
+                    "`len` is {len} bytes, the uniform block needs {OCEAN_RELIEF_UNIFORMS_SIZE}"
+                ),
+            ));
+        }
+        let u = ocean_gpu::scene_uniforms(&camera, &scene, size as usize, edge, srgb_encode)
+            .map_err(|e| gpu_error("", e))?;
+        let bytes = bytemuck::bytes_of(&u);
+        // SAFETY: non-NULL (checked), `len` >= the block's size, writable and untouched by
+        // others (caller's guarantee); `u8` has alignment 1.
+        unsafe { core::slice::from_raw_parts_mut(out, bytes.len()) }.copy_from_slice(bytes);
+        Ok(())
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use core::ptr::{null, null_mut};
+
+    use ocean_core::Camera;
+
+    use super::*;
+    use crate::relief_trace::OCEAN_RELIEF_METHOD_LINEAR;
+    use crate::wtb::OceanDepthConvention;
+
+    fn last_error() -> String {
+        // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
+        unsafe { core::ffi::CStr::from_ptr(crate::ocean_last_error_message()) }
+            .to_string_lossy()
+            .into_owned()
+    }
+
+    /// A camera 3 m above and 2 m beside a quad far from the origin, looking at it, in OpenGL's
+    /// depth convention (the block folds it into WebGPU's).
+    fn camera() -> (OceanCameraDesc, Camera) {
+        let eye = DVec3::new(1.0e5 + 2.0, 3.0, -4.0e4);
+        let view =
+            ocean_core::camera::look_at(eye, DVec3::new(1.0e5, 0.0, -4.0e4), DVec3::Y).unwrap();
+        let desc = OceanCameraDesc {
+            view: view.to_cols_array(),
+            orthographic: 0,
+            depth_convention: OceanDepthConvention::NegOneToOne as u32,
+            fov_y: 0.9,
+            aspect: 1.5,
+            z_near: 0.05,
+            z_far: 500.0,
+            ..Default::default()
+        };
+        let camera = camera_from(&desc).unwrap();
+        (desc, camera)
+    }
+
+    fn default_scene() -> OceanReliefScene {
+        let mut s = OceanReliefScene::default();
+        // SAFETY: writable out.
+        let status = unsafe { ocean_relief_scene_default(&mut s) };
+        assert_eq!(status, OceanStatus::Ok);
+        s
+    }
+
+    fn scene() -> OceanReliefScene {
+        let mut s = default_scene();
+        s.origin = OceanDVec3 {
+            x: 1.0e5 - 0.5,
+            y: 0.0,
+            z: -4.0e4 + 0.5,
+        };
+        s.method = OceanReliefMethod {
+            method: OCEAN_RELIEF_METHOD_LINEAR,
+            steps: 20,
+            binary: 5,
+            search: 0,
+        };
+        s.tiles_u = 2.0;
+        s.tiles_v = 2.0;
+        s
+    }
+
+    #[test]
+    fn the_default_scene_is_the_renderers() {
+        assert_eq!(
+            scene_from(&default_scene()).unwrap(),
+            ReliefScene::default()
+        );
+        // SAFETY: NULL is refused before any write.
+        let status = unsafe { ocean_relief_scene_default(null_mut()) };
+        assert_eq!(status, OceanStatus::NullPointer);
+    }
+
+    /// The bytes are `ocean_gpu::scene_uniforms`' block, the one `ReliefRenderer` draws with
+    /// (whose parity with the CPU tracers the GPU tests check), with the eye subtracted in f64.
+    #[test]
+    fn the_block_is_the_renderers() {
+        let (desc, camera) = camera();
+        let s = scene();
+        let mut out = [0xAAu8; OCEAN_RELIEF_UNIFORMS_SIZE + 4];
+        // SAFETY: readable inputs, `out` holds `len` writable bytes.
+        let status = unsafe {
+            ocean_relief_uniforms(
+                &desc,
+                &s,
+                128,
+                crate::relief::OCEAN_RELIEF_EDGE_CLAMP,
+                1,
+                out.as_mut_ptr(),
+                out.len(),
+            )
+        };
+        assert_eq!(status, OceanStatus::Ok, "{}", last_error());
+        let want = ocean_gpu::scene_uniforms(
+            &camera,
+            &scene_from(&s).unwrap(),
+            128,
+            ocean_relief::Edge::Clamp,
+            true,
+        )
+        .unwrap();
+        assert_eq!(
+            &out[..OCEAN_RELIEF_UNIFORMS_SIZE],
+            bytemuck::bytes_of(&want)
+        );
+        assert_eq!(out[OCEAN_RELIEF_UNIFORMS_SIZE..], [0xAA; 4]);
+        let u: ReliefUniforms = bytemuck::pod_read_unaligned(&out[..OCEAN_RELIEF_UNIFORMS_SIZE]);
+        // The corner relative to the eye: (1e5 − 0.5, 0, −4e4 + 0.5) − (1e5 + 2, 3, −4e4), exact in f32.
+        assert_eq!(u.quad_origin, [-2.5, -3.0, 0.5, 0.0]);
+        // Texture side, clamp (1), linear search (0) with 20 + 5 steps, shadows + sRGB flags.
+        assert_eq!(u.trace, [128, 1, 0, 0]);
+        assert_eq!(u.steps[..3], [20, 5, 3]);
+        // One texture width is 0.5 m: the 0.1 m relief is 0.2 texture widths, 25.6 texels.
+        assert_eq!((u.tangent[3], u.normal[3]), (0.2, 25.6));
+    }
+
+    #[test]
+    fn bad_input_is_refused_and_nothing_is_written() {
+        let (desc, _) = camera();
+        let good = scene();
+        let call = |desc: &OceanCameraDesc, s: &OceanReliefScene, size, edge, srgb, len| {
+            let mut out = [7u8; 300];
+            // SAFETY: readable inputs, `out` holds at least `len` writable bytes.
+            let status =
+                unsafe { ocean_relief_uniforms(desc, s, size, edge, srgb, out.as_mut_ptr(), len) };
+            assert!(out.iter().all(|&b| b == 7), "written on failure");
+            (status, last_error())
+        };
+        let with = |f: &dyn Fn(&mut OceanReliefScene)| {
+            let mut s = good;
+            f(&mut s);
+            call(&desc, &s, 64, 0, 0, 256)
+        };
+        let cases: [(OceanStatus, &str, (OceanStatus, String)); 10] = [
+            (
+                OceanStatus::BufferTooSmall,
+                "needs 256",
+                call(&desc, &good, 64, 0, 0, 255),
+            ),
+            (
+                OceanStatus::InvalidArgument,
+                "size",
+                call(&desc, &good, 1, 0, 0, 256),
+            ),
+            (
+                OceanStatus::InvalidArgument,
+                "edge",
+                call(&desc, &good, 64, 2, 0, 256),
+            ),
+            (
+                OceanStatus::InvalidArgument,
+                "srgb_encode",
+                call(&desc, &good, 64, 0, 2, 256),
+            ),
+            (
+                OceanStatus::NonFinite,
+                "scene->edge_u.y",
+                with(&|s| s.edge_u.y = f64::NAN),
+            ),
+            (
+                OceanStatus::InvalidArgument,
+                "orthogonal",
+                with(&|s| {
+                    s.edge_v = OceanDVec3 {
+                        x: 1.0,
+                        y: 0.0,
+                        z: -1.0,
+                    }
+                }),
+            ),
+            (
+                OceanStatus::InvalidArgument,
+                "method->steps",
+                with(&|s| s.method.steps = 0),
+            ),
+            (
+                OceanStatus::InvalidArgument,
+                "light direction",
+                with(&|s| s.light_dir = OceanDVec3::default()),
+            ),
+            (
+                OceanStatus::InvalidArgument,
+                "shadows",
+                with(&|s| s.shadows = 2),
+            ),
+            (
+                OceanStatus::InvalidArgument,
+                "camera",
+                call(
+                    &OceanCameraDesc { fov_y: 4.0, ..desc },
+                    &good,
+                    64,
+                    0,
+                    0,
+                    256,
+                ),
+            ),
+        ];
+        for (status, text, (got, message)) in cases {
+            assert_eq!(got, status, "{text}: {message}");
+            assert!(message.contains(text), "{text}: {message}");
+        }
+        let mut method = good;
+        method.method = OceanReliefMethod {
+            method: crate::relief_trace::OCEAN_RELIEF_METHOD_RELAXED,
+            steps: 15,
+            binary: 6,
+            search: 7,
+        };
+        let (got, message) = call(&desc, &method, 64, 0, 0, 256);
+        assert_eq!(got, OceanStatus::InvalidArgument, "{message}");
+        assert!(message.contains("method->search"), "{message}");
+        let mut out = [0u8; 256];
+        // SAFETY: NULL pointers are refused before anything is read or written.
+        unsafe {
+            assert_eq!(
+                ocean_relief_uniforms(null(), &good, 64, 0, 0, out.as_mut_ptr(), 256),
+                OceanStatus::NullPointer
+            );
+            assert_eq!(
+                ocean_relief_uniforms(&desc, null(), 64, 0, 0, out.as_mut_ptr(), 256),
+                OceanStatus::NullPointer
+            );
+            assert_eq!(
+                ocean_relief_uniforms(&desc, &good, 64, 0, 0, null_mut(), 256),
+                OceanStatus::NullPointer
+            );
+        }
+    }
+}
