@@ -40,9 +40,9 @@ module): a ray h above the surface may step with the cone max(c, min(D/h, E)); a
 tracer (the book's) uses c alone.
 
 The output is written to a hidden temporary file in the same directory and renamed over OUT \
-only when complete: a failure, Ctrl-C or a crash never leaves a partial OUT (an interruption \
-during that final write, which takes milliseconds after the generation, can leave the hidden \
-.OUT.tmp-PID file behind). Progress goes to stderr as a bar when stderr is a terminal \
+only when complete: a failure or a crash never leaves a partial OUT. Ctrl-C, SIGTERM and \
+SIGHUP stop the generation (exit status 130) and remove the temporary file; a second signal \
+exits at once. Progress goes to stderr as a bar when stderr is a terminal \
 (nothing otherwise, or with --quiet).";
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -280,15 +280,23 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
         name.to_string_lossy(),
         std::process::id()
     ));
-    let result = (|| -> std::io::Result<()> {
-        let mut f = OpenOptions::new().write(true).create_new(true).open(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
+    let result = (|| -> Result<(), String> {
+        let mut f = OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+            .map_err(|e| format!("cannot write {p}: {e}"))?;
+        f.write_all(bytes)
+            .and_then(|()| f.sync_all())
+            .map_err(|e| format!("cannot write {p}: {e}"))?;
+        // The last moment an interruption can stop the job without leaving a file behind.
+        if crate::interrupt::requested() {
+            return Err(format!("{}: {p} not written", crate::interrupt::MESSAGE));
+        }
+        std::fs::rename(&tmp, path).map_err(|e| format!("cannot write {p}: {e}"))
     })();
-    result.map_err(|e| {
+    result.inspect_err(|_| {
         let _ = std::fs::remove_file(&tmp);
-        format!("cannot write {p}: {e}")
     })
 }
 
@@ -351,6 +359,7 @@ pub fn run(args: &ConeMapArgs) -> Result<(), String> {
         EdgeArg::Wrap => Edge::Wrap,
         EdgeArg::Clamp => Edge::Clamp,
     };
+    crate::interrupt::install()?;
     let image = read_heights(&args.input)?;
     let mut bar = Bar {
         enabled: !args.quiet && std::io::stderr().is_terminal(),
@@ -359,7 +368,18 @@ pub fn run(args: &ConeMapArgs) -> Result<(), String> {
     let start = Instant::now();
     let bytes = relief_png(&image, params, edge, encoding, &mut |done, total| {
         bar.report(done, total);
-        true
+        !crate::interrupt::requested()
+    })
+    .map_err(|e| {
+        if crate::interrupt::requested() {
+            format!(
+                "{}: {} not written",
+                crate::interrupt::MESSAGE,
+                args.output.display()
+            )
+        } else {
+            e
+        }
     })?;
     let seconds = start.elapsed().as_secs_f64();
     write_atomically(&args.output, &bytes)?;

@@ -8,6 +8,7 @@ mod bench_relief;
 mod bench_sao;
 mod bench_wtb;
 mod cone_map;
+mod interrupt;
 mod png;
 mod shaders;
 
@@ -46,7 +47,12 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("ocean: {e}");
-            ExitCode::FAILURE
+            if interrupt::requested() {
+                // The shell's status for a job stopped by SIGINT (128 + 2).
+                ExitCode::from(130)
+            } else {
+                ExitCode::FAILURE
+            }
         }
     }
 }

@@ -400,3 +400,51 @@ fn non_square_and_bad_options_are_refused() {
     assert!(!output.exists());
     assert_eq!(files(&d), ["square.png", "tiny.png", "wide.png"]);
 }
+
+/// Ctrl-C during the generation of a 1024² map (seconds on any machine, in any profile): the
+/// command stops, exits with status 130 and says so, and leaves neither the output nor its
+/// temporary file.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_generation_leaves_nothing_behind() {
+    let d = dir("interrupted");
+    let n = 1024u32;
+    // Hashed heights: rough everywhere, so no part of the map is quick.
+    let heights: Vec<u8> = (0..n * n)
+        .map(|i| (i.wrapping_mul(2_654_435_761) >> 24) as u8)
+        .collect();
+    let input = d.join("in.png");
+    write_png(
+        &input,
+        (n, n),
+        png::ColorType::Grayscale,
+        png::BitDepth::Eight,
+        &heights,
+    );
+    let output = d.join("out.png");
+    let child = Command::new(env!("CARGO_BIN_EXE_ocean"))
+        .args([
+            "cone-map",
+            input.to_str().unwrap(),
+            output.to_str().unwrap(),
+            "--quiet",
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(700));
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let out = child.wait_with_output().unwrap();
+    let msg = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{msg}");
+    assert!(
+        msg.contains("interrupted") && msg.contains("out.png not written"),
+        "{msg}"
+    );
+    assert_eq!(files(&d), ["in.png"]);
+}
