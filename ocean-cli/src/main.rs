@@ -10,13 +10,16 @@ mod bench_wtb;
 mod cone_map;
 mod interrupt;
 mod png;
+mod render;
+mod scene;
 mod shaders;
 
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-/// Real-time water and screen-space rendering: benchmarks, shader export, cone maps.
+/// Real-time water and screen-space rendering: scene renders, benchmarks, shader export, cone
+/// maps.
 #[derive(Parser)]
 #[command(name = "ocean", version, about, long_about = None)]
 struct Cli {
@@ -26,6 +29,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Render a scene (the built-in one or a TOML file) into PNG images, headless.
+    Render(render::RenderArgs),
     /// Run a benchmark suite and print its figures.
     Bench(bench::BenchArgs),
     /// Export every WGSL pass to another shading language, with its binding layout.
@@ -39,6 +44,7 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Render(args) => render::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Shaders(args) => shaders::run(&args),
         Command::ConeMap(args) => cone_map::run(&args),

@@ -1,0 +1,261 @@
+//! `ocean render`: a headless render of a scene file into PNG images.
+//!
+//! What it draws today: the open sea to the horizon and the sky, lit by the geometry-to-BRDF
+//! model (Bruneton, Neyret & Holzschuch 2010: Sun, sky and refracted light, Algorithm 5.1) on
+//! the projected grid of `ocean_gpu::OceanRenderer`, with the scene file's spectrum, Sun, sky and
+//! camera ([`crate::scene`]).
+//!
+//! Every PNG is written to a temporary file and renamed when complete, the output directory is
+//! checked before anything is rendered, and an interruption (Ctrl-C, SIGTERM, SIGHUP) stops the
+//! sequence between frames, so only complete images are ever left.
+
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use clap::{Args, ValueEnum};
+use ocean_brdf::{Filter, FilteredSurface, Spectrum};
+use ocean_gpu::{ContextOptions, GpuContext, OceanOptions, OceanRenderer};
+
+use crate::cone_map::write_atomically;
+use crate::scene::{DEFAULT_SCENE, Preset, SceneFile};
+
+/// Most frames one run renders.
+const MAX_FRAMES: u32 = 100_000;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Backend {
+    /// `WGPU_BACKEND` if set, else every backend compiled in (Vulkan first).
+    Auto,
+    /// Vulkan (Mesa's lavapipe on a machine without a GPU).
+    Vulkan,
+    /// OpenGL through EGL (Mesa's llvmpipe on a machine without a GPU).
+    Gl,
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Scene file (TOML, see `ocean-cli/scenes/default.toml`); the built-in scene by default.
+    #[arg(long)]
+    scene: Option<PathBuf>,
+    /// Image width in pixels (overrides the scene's).
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height in pixels (overrides the scene's).
+    #[arg(long)]
+    height: Option<u32>,
+    /// Scene time of the first frame, seconds (overrides the scene's).
+    #[arg(long)]
+    time: Option<f64>,
+    /// Number of frames, 1/fps seconds of scene time apart. With more than one, OUT's name
+    /// gets a four-digit frame number before its extension (ocean.png: ocean-0000.png, ...).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_FRAMES)))]
+    frames: u32,
+    /// Camera preset (overrides the scene's).
+    #[arg(long, value_enum)]
+    camera: Option<Preset>,
+    /// Graphics backend.
+    #[arg(long, value_enum, default_value_t = Backend::Auto)]
+    backend: Backend,
+    /// Output PNG.
+    #[arg(long, default_value = "ocean.png")]
+    out: PathBuf,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// The file of frame `k` of `frames` for the output `out`.
+pub fn frame_path(out: &Path, k: u32, frames: u32) -> PathBuf {
+    if frames == 1 {
+        return out.to_path_buf();
+    }
+    let stem = out
+        .file_stem()
+        .map_or_else(|| "frame".into(), |s| s.to_string_lossy().into_owned());
+    let name = match out.extension() {
+        Some(ext) => format!("{stem}-{k:04}.{}", ext.to_string_lossy()),
+        None => format!("{stem}-{k:04}"),
+    };
+    out.with_file_name(name)
+}
+
+/// Fails unless a file can be created in `out`'s directory (checked by creating and removing
+/// one), so a run never renders for minutes and then cannot write.
+fn check_writable(out: &Path) -> Result<(), String> {
+    if out.file_name().is_none() {
+        return Err(format!("--out {} does not name a file", out.display()));
+    }
+    let dir = match out.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let probe = dir.join(format!(".ocean-render-probe-{}", std::process::id()));
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)
+        .map_err(|e| {
+            format!(
+                "cannot write into {} (for --out {}): {e}",
+                dir.display(),
+                out.display()
+            )
+        })?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
+/// RGBA8 rows from the top as PNG bytes.
+pub fn png_rgba8(width: u32, height: u32, rgba: &[u8]) -> Result<Vec<u8>, String> {
+    let mut bytes = Vec::new();
+    {
+        let mut enc = ::png::Encoder::new(&mut bytes, width, height);
+        enc.set_color(::png::ColorType::Rgba);
+        enc.set_depth(::png::BitDepth::Eight);
+        let mut w = enc.write_header().map_err(|e| e.to_string())?;
+        w.write_image_data(rgba).map_err(|e| e.to_string())?;
+        w.finish().map_err(|e| e.to_string())?;
+    }
+    Ok(bytes)
+}
+
+/// Seconds spent per stage, summed over the frames.
+#[derive(Default)]
+struct Times {
+    setup: f64,
+    device: f64,
+    sea: f64,
+    encode: f64,
+    write: f64,
+}
+
+pub fn run(args: &RenderArgs) -> Result<(), String> {
+    crate::interrupt::install()?;
+    let started = Instant::now();
+    let mut scene = match &args.scene {
+        Some(path) => SceneFile::read(path)?,
+        None => SceneFile::parse(DEFAULT_SCENE, "the built-in scene")?,
+    };
+    if let Some(w) = args.width {
+        scene.render.width = w;
+    }
+    if let Some(h) = args.height {
+        scene.render.height = h;
+    }
+    if let Some(t) = args.time {
+        scene.render.time = t;
+    }
+    scene.check_overrides()?;
+    check_writable(&args.out)?;
+    let (width, height) = (scene.render.width, scene.render.height);
+    let mut times = Times::default();
+
+    let t = Instant::now();
+    let ctx = GpuContext::headless_with(&ContextOptions {
+        backends: match args.backend {
+            Backend::Auto => None,
+            Backend::Vulkan => Some(ocean_gpu::wgpu::Backends::VULKAN),
+            Backend::Gl => Some(ocean_gpu::wgpu::Backends::GL),
+        },
+        ..ContextOptions::default()
+    })
+    .map_err(|e| e.to_string())?;
+    times.device = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let spectrum = Spectrum::new(scene.spectrum()).map_err(|e| format!("spectrum: {e}"))?;
+    let surface =
+        FilteredSurface::new(&spectrum, Filter::PAPER).map_err(|e| format!("spectrum: {e}"))?;
+    let lighting = scene.lighting()?;
+    let gpu = |e: ocean_gpu::GpuError| e.to_string();
+    let mut renderer = OceanRenderer::new(&ctx, OceanOptions::default()).map_err(gpu)?;
+    renderer.set_surface(&ctx, &surface).map_err(gpu)?;
+    renderer.set_lighting(&ctx, &lighting).map_err(gpu)?;
+    ctx.wait_idle().map_err(gpu)?;
+    times.setup = t.elapsed().as_secs_f64();
+
+    let bar = !args.quiet && std::io::stderr().is_terminal();
+    let frames = args.frames;
+    let mut written = 0u32;
+    for k in 0..frames {
+        if crate::interrupt::requested() {
+            break;
+        }
+        let time = scene.render.time + f64::from(k) / scene.render.fps;
+        let camera = scene.camera(args.camera, time, width, height)?;
+        let t = Instant::now();
+        let rgba = renderer
+            .render_image(&ctx, &camera, time, width, height)
+            .map_err(gpu)?;
+        times.sea += t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let png = png_rgba8(width, height, &rgba)?;
+        times.encode += t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        if let Err(e) = write_atomically(&frame_path(&args.out, k, frames), &png) {
+            // Interrupted during the write: this frame was removed, the others are whole.
+            if crate::interrupt::requested() {
+                break;
+            }
+            return Err(e);
+        }
+        times.write += t.elapsed().as_secs_f64();
+        written += 1;
+        if bar {
+            let filled = (written as usize * 40) / frames as usize;
+            let mut err = std::io::stderr().lock();
+            let _ = write!(
+                err,
+                "\rrender [{}{}] {written}/{frames}",
+                "#".repeat(filled),
+                ".".repeat(40 - filled)
+            );
+            if written == frames {
+                let _ = writeln!(err);
+            }
+            let _ = err.flush();
+        }
+    }
+    if bar && written < frames {
+        eprintln!();
+    }
+    if written < frames {
+        return Err(format!(
+            "{}: {written} of {frames} frames written, each complete",
+            crate::interrupt::MESSAGE
+        ));
+    }
+    let per = |s: f64| 1e3 * s / f64::from(written);
+    println!(
+        "{}: {width}x{height}, {written} frame{}, {} waves, on {}",
+        if frames == 1 {
+            args.out.display().to_string()
+        } else {
+            format!(
+                "{} .. {}",
+                frame_path(&args.out, 0, frames).display(),
+                frame_path(&args.out, frames - 1, frames).display()
+            )
+        },
+        if written == 1 { "" } else { "s" },
+        surface.wave_set().waves().len(),
+        ctx.describe()
+    );
+    println!("  device           {:9.1} ms", 1e3 * times.device);
+    println!(
+        "  setup            {:9.1} ms  (spectrum, filtering, sky map and its upload)",
+        1e3 * times.setup
+    );
+    println!(
+        "  sea and sky      {:9.1} ms per frame  (render and readback, wall time)",
+        per(times.sea)
+    );
+    println!("  PNG encoding     {:9.1} ms per frame", per(times.encode));
+    println!("  PNG writing      {:9.1} ms per frame", per(times.write));
+    println!(
+        "  total            {:9.1} ms",
+        1e3 * started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}

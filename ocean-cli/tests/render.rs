@@ -1,0 +1,243 @@
+//! `ocean render` end to end: the built binary on small images. Rendering needs a GPU adapter
+//! (Mesa's lavapipe or llvmpipe will do); without one those tests are skipped unless
+//! `OCEAN_REQUIRE_GPU=1`, which CI sets. The checks of bad input need none.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn dir(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("render")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn files(d: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+fn ocean(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ocean"))
+        .arg("render")
+        .args(args)
+        .output()
+        .expect("run the ocean binary")
+}
+
+/// Whether a failed render failed for want of an adapter; panics on that under
+/// `OCEAN_REQUIRE_GPU=1`.
+fn no_adapter(out: &Output) -> bool {
+    let msg = String::from_utf8_lossy(&out.stderr);
+    let missing = !out.status.success() && msg.contains("no GPU adapter found");
+    if missing && std::env::var("OCEAN_REQUIRE_GPU").as_deref() == Ok("1") {
+        panic!("OCEAN_REQUIRE_GPU=1 but no adapter: {msg}");
+    }
+    if missing {
+        eprintln!("skipped: {msg}");
+    }
+    missing
+}
+
+/// Decodes an RGBA8 PNG: (width, height, pixels).
+fn read_png(path: &Path) -> (u32, u32, Vec<[u8; 4]>) {
+    let file = std::fs::File::open(path).unwrap();
+    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .unwrap();
+    let mut buf = vec![0u8; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(
+        (info.color_type, info.bit_depth),
+        (png::ColorType::Rgba, png::BitDepth::Eight)
+    );
+    buf.truncate(info.buffer_size());
+    let px = buf.chunks(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
+    (info.width, info.height, px)
+}
+
+fn luminance(p: [u8; 4]) -> f64 {
+    0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2])
+}
+
+/// The horizon view of the built-in scene at 96 x 54: a sky above (every pixel of the top row
+/// brighter and bluer than green, as a clear sky is), the sea below, darker than the sky on
+/// average (the sea reflects 2% of the sky at normal incidence, Eq. 14, plus its own colour),
+/// and not uniform: the waves modulate it.
+#[test]
+fn renders_sky_above_the_sea() {
+    let d = dir("horizon");
+    let out = d.join("h.png");
+    let o = ocean(&[
+        "--width",
+        "96",
+        "--height",
+        "54",
+        "--camera",
+        "horizon",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    if no_adapter(&o) {
+        return;
+    }
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("96x54, 1 frame, 60 waves") && stdout.contains("sea and sky"),
+        "{stdout}"
+    );
+    let (w, h, px) = read_png(&out);
+    assert_eq!((w, h), (96, 54));
+    let row = |y: u32| &px[(y * w) as usize..((y + 1) * w) as usize];
+    let mean = |y: u32| row(y).iter().map(|&p| luminance(p)).sum::<f64>() / f64::from(w);
+    for p in row(0) {
+        assert!(p[2] > p[1] && p[3] == 255, "sky pixel {p:?}");
+    }
+    assert!(
+        mean(0) > mean(h - 1) + 20.0,
+        "{} vs {}",
+        mean(0),
+        mean(h - 1)
+    );
+    let sea = row(h - 1).iter().map(|&p| luminance(p));
+    let (lo, hi) = sea.fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v), b.max(v)));
+    assert!(hi - lo > 2.0, "a uniform sea row: {lo}..{hi}");
+    assert_eq!(files(&d), ["h.png"]);
+}
+
+/// Three frames of the orbit: three numbered PNGs, each complete, the camera moving between
+/// them (the images differ).
+#[test]
+fn a_sequence_writes_numbered_frames() {
+    let d = dir("sequence");
+    let out = d.join("o.png");
+    let o = ocean(&[
+        "--width",
+        "48",
+        "--height",
+        "32",
+        "--frames",
+        "3",
+        "--camera",
+        "orbit",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    if no_adapter(&o) {
+        return;
+    }
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(files(&d), ["o-0000.png", "o-0001.png", "o-0002.png"]);
+    let a = read_png(&d.join("o-0000.png"));
+    let b = read_png(&d.join("o-0002.png"));
+    assert_eq!((a.0, a.1, b.0, b.1), (48, 32, 48, 32));
+    assert_ne!(a.2, b.2);
+}
+
+/// A malformed scene names the file, the line and the key; nothing is written.
+#[test]
+fn a_malformed_scene_names_the_line_and_the_key() {
+    let d = dir("malformed");
+    let cases = [
+        ("[sun]\nelevation = 30.0\nglow = 2.0\n", "line 3", "glow"),
+        ("[render]\nwidth = 0\n", "line 2", "render.width"),
+        ("[spectrum]\nwaves = \"many\"\n", "line 2", "waves"),
+    ];
+    for (text, line, key) in cases {
+        let scene = d.join("bad.toml");
+        std::fs::write(&scene, text).unwrap();
+        let out = d.join("x.png");
+        let o = ocean(&[
+            "--scene",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let msg = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{msg}");
+        assert!(
+            msg.contains("bad.toml") && msg.contains(line) && msg.contains(key),
+            "{text:?}: {msg}"
+        );
+        assert_eq!(files(&d), ["bad.toml"]);
+    }
+    let o = ocean(&["--scene", d.join("none.toml").to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("cannot read the scene"));
+}
+
+/// An output directory that does not exist fails at once, before any device is created.
+#[test]
+fn an_unwritable_output_fails_before_rendering() {
+    let d = dir("unwritable");
+    let out = d.join("missing").join("x.png");
+    let o = ocean(&["--out", out.to_str().unwrap(), "--backend", "gl"]);
+    let msg = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{msg}");
+    assert!(
+        msg.contains("cannot write into") && msg.contains("missing"),
+        "{msg}"
+    );
+    assert!(!String::from_utf8_lossy(&o.stdout).contains("device"));
+    let o = ocean(&["--width", "0", "--out", d.join("y.png").to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("render.width"));
+    assert!(files(&d).is_empty());
+}
+
+/// Ctrl-C during a long sequence: exit status 130, a message, and only complete PNGs (every
+/// file there decodes), no temporary file.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_sequence_leaves_only_complete_frames() {
+    let d = dir("interrupted");
+    let out = d.join("f.png");
+    let child = Command::new(env!("CARGO_BIN_EXE_ocean"))
+        .args([
+            "render",
+            "--width",
+            "64",
+            "--height",
+            "36",
+            "--frames",
+            "100000",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Long enough for the device and a few frames on a software adapter.
+    std::thread::sleep(std::time::Duration::from_millis(3000));
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let o = child.wait_with_output().unwrap();
+    if no_adapter(&o) {
+        return;
+    }
+    let msg = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(130), "{msg}");
+    assert!(
+        msg.contains("interrupted") && msg.contains("frames written"),
+        "{msg}"
+    );
+    let names = files(&d);
+    for name in &names {
+        assert!(
+            name.starts_with("f-") && name.ends_with(".png"),
+            "{names:?}"
+        );
+        assert_eq!(read_png(&d.join(name)).0, 64);
+    }
+}
