@@ -9,23 +9,13 @@ use std::process::{Command, Output};
 use ocean_relief::storage::{Encoded, Encoding, encode};
 use ocean_relief::{ConeMap, ConeParams, Edge, HeightMap};
 
+mod common;
+
+use common::files;
+
 /// A fresh, empty directory for one test.
 fn dir(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("cone_map")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn files(d: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(d)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
+    common::dir("cone_map", name)
 }
 
 fn ocean(args: &[&str]) -> Output {

@@ -5,22 +5,13 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn dir(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("render")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+mod common;
 
-fn files(d: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(d)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
+use common::files;
+
+/// A fresh, empty directory for one test.
+fn dir(name: &str) -> PathBuf {
+    common::dir("render", name)
 }
 
 fn ocean(args: &[&str]) -> Output {

@@ -1,0 +1,23 @@
+//! Helpers shared by the command's end-to-end tests.
+
+use std::path::{Path, PathBuf};
+
+/// A fresh, empty directory `group/name` under Cargo's temporary directory for the tests.
+pub fn dir(group: &str, name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(group)
+        .join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The names of the files in `d`, sorted.
+pub fn files(d: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
