@@ -290,6 +290,18 @@ pub fn window_depth(camera: &Camera, ndc_depth: f64) -> f64 {
     }
 }
 
+/// A new uniform buffer holding `u` (written through the queue).
+fn uniform_buffer(ctx: &GpuContext, label: &str, u: &ReliefUniforms) -> wgpu::Buffer {
+    let buffer = ctx.device().create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: std::mem::size_of::<ReliefUniforms>() as u64,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    ctx.queue().write_buffer(&buffer, 0, bytemuck::bytes_of(u));
+    buffer
+}
+
 fn f4(v: DVec3, w: f32) -> [f32; 4] {
     [v.x as f32, v.y as f32, v.z as f32, w]
 }
@@ -757,14 +769,7 @@ impl ReliefRenderer {
         let device = ctx.device();
         let pipeline = self.pipeline(device, camera.depth().direction())?;
         crate::scoped(device, || {
-            let uniform = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("ocean relief uniform"),
-                size: std::mem::size_of::<ReliefUniforms>() as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            ctx.queue()
-                .write_buffer(&uniform, 0, bytemuck::bytes_of(&u));
+            let uniform = uniform_buffer(ctx, "ocean relief uniform", &u);
             let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("ocean relief bind group"),
                 layout: &self.layout,
@@ -1015,20 +1020,13 @@ impl ReliefRenderer {
                 steps: [0, 0, 0, width],
                 ..Default::default()
             };
-            let uniform = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("ocean relief depth copy uniform"),
-                size: std::mem::size_of::<ReliefUniforms>() as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
+            let uniform = uniform_buffer(ctx, "ocean relief depth copy uniform", &u);
             let out = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("ocean relief depth copy"),
                 size: texels * 16,
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             });
-            ctx.queue()
-                .write_buffer(&uniform, 0, bytemuck::bytes_of(&u));
             let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("ocean relief depth copy"),
                 layout: &p.copy_layout,
@@ -1141,11 +1139,7 @@ impl ReliefRenderer {
                     mapped_at_creation: false,
                 })
             };
-            let uniform = buffer(
-                "ocean relief probe uniform",
-                std::mem::size_of::<ReliefUniforms>() as u64,
-                wgpu::BufferUsages::UNIFORM,
-            );
+            let uniform = uniform_buffer(ctx, "ocean relief probe uniform", &u);
             let input = buffer(
                 "ocean relief probe inputs",
                 inputs.len() as u64 * 16,
@@ -1157,7 +1151,6 @@ impl ReliefRenderer {
                 wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             );
             let queue = ctx.queue();
-            queue.write_buffer(&uniform, 0, bytemuck::bytes_of(&u));
             queue.write_buffer(&input, 0, bytemuck::cast_slice(&inputs));
             let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
             let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
