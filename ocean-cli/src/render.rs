@@ -113,6 +113,9 @@ pub fn png_rgba8(width: u32, height: u32, rgba: &[u8]) -> Result<Vec<u8>, String
         let mut enc = ::png::Encoder::new(&mut bytes, width, height);
         enc.set_color(::png::ColorType::Rgba);
         enc.set_depth(::png::BitDepth::Eight);
+        // fdeflate's PNG-tuned mode: several times faster than the default level for about
+        // the same size on rendered images.
+        enc.set_compression(::png::Compression::Fast);
         let mut w = enc.write_header().map_err(|e| e.to_string())?;
         w.write_image_data(rgba).map_err(|e| e.to_string())?;
         w.finish().map_err(|e| e.to_string())?;
