@@ -3,7 +3,9 @@
 //! What it draws today: the open sea to the horizon and the sky, lit by the geometry-to-BRDF
 //! model (Bruneton, Neyret & Holzschuch 2010: Sun, sky and refracted light, Algorithm 5.1) on
 //! the projected grid of `ocean_gpu::OceanRenderer`, with the scene file's spectrum, Sun, sky and
-//! camera ([`crate::scene`]).
+//! camera ([`crate::scene`]); then the scene's rock faces, relief-mapped by relaxed cone
+//! stepping (`ocean_gpu::ReliefRenderer`, cone maps generated at start-up), self-shadowed by the
+//! Sun and writing the depth of their relief, so the sea and the rocks occlude each other.
 //!
 //! Every PNG is written to a temporary file and renamed when complete, the output directory is
 //! checked before anything is rendered, and an interruption (Ctrl-C, SIGTERM, SIGHUP) stops the
@@ -14,8 +16,14 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
+use glam::{DVec2, DVec3};
 use ocean_brdf::{Filter, FilteredSurface, Spectrum};
-use ocean_gpu::{ContextOptions, GpuContext, OceanOptions, OceanRenderer};
+use ocean_core::Camera;
+use ocean_gpu::{
+    ContextOptions, GpuContext, OceanOptions, OceanRenderer, ReliefOptions, ReliefRenderer,
+    ReliefScene,
+};
+use ocean_relief::{ConeMap, ConeParams, Edge, ReliefTexture};
 
 use crate::cone_map::write_atomically;
 use crate::scene::{DEFAULT_SCENE, Preset, SceneFile};
@@ -123,10 +131,168 @@ pub fn png_rgba8(width: u32, height: u32, rgba: &[u8]) -> Result<Vec<u8>, String
     Ok(bytes)
 }
 
+/// A rock face ready to draw: its relief texture in a renderer of its own, and its quad.
+struct RockDraw {
+    renderer: ReliefRenderer,
+    scene: ReliefScene,
+}
+
+/// The rocks of `scene`: each height map (value noise), its relaxed cone map and its quad, lit
+/// by the Sun.
+fn rock_draws(ctx: &GpuContext, scene: &SceneFile, sun: DVec3) -> Result<Vec<RockDraw>, String> {
+    let relief_error = |e: ocean_relief::ReliefError| format!("rock: {e}");
+    scene
+        .rocks
+        .iter()
+        .map(|rock| {
+            let n = rock.map_size;
+            let heights = ocean_relief::maps::value_noise(n, (n / 32).max(2), 5, rock.seed);
+            let map = ocean_relief::maps::to_map(n, &heights, Edge::Wrap).map_err(relief_error)?;
+            let cones = ConeMap::generate(&map, ConeParams::relaxed(4.0)).map_err(relief_error)?;
+            let texture = ReliefTexture::new(&map, &cones).map_err(relief_error)?;
+            let mut renderer =
+                ReliefRenderer::new(ctx, ReliefOptions::default()).map_err(|e| e.to_string())?;
+            renderer
+                .set_texture(ctx, &texture)
+                .map_err(|e| e.to_string())?;
+            // u to the right of the face, v up: u × v is the face's outward normal.
+            let f = rock.facing.to_radians();
+            let u = DVec3::new(f.cos(), 0.0, -f.sin());
+            let centre = DVec3::from_array(rock.centre);
+            let draw = ReliefScene {
+                origin: centre - 0.5 * rock.width * u - 0.5 * rock.height * DVec3::Y,
+                edge_u: rock.width * u,
+                edge_v: rock.height * DVec3::Y,
+                tiles: DVec2::new(rock.width / rock.tile, rock.height / rock.tile),
+                depth: rock.relief_depth,
+                light_dir: sun,
+                light_intensity: 1.0,
+                albedo: rock.albedo,
+                ambient: 0.25,
+                ..ReliefScene::default()
+            };
+            draw.tangent_frame().map_err(|e| e.to_string())?;
+            Ok(RockDraw {
+                renderer,
+                scene: draw,
+            })
+        })
+        .collect()
+}
+
+/// The colour and depth targets of the frames.
+struct Targets {
+    color: ocean_gpu::wgpu::Texture,
+    color_view: ocean_gpu::wgpu::TextureView,
+    depth_view: ocean_gpu::wgpu::TextureView,
+}
+
+fn targets(ctx: &GpuContext, width: u32, height: u32) -> Targets {
+    use ocean_gpu::wgpu;
+    let texture = |label, format, usage| {
+        ctx.device().create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+    };
+    let color = texture(
+        "ocean render colour",
+        OceanOptions::default().color_format,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+    );
+    let depth = texture(
+        "ocean render depth",
+        wgpu::TextureFormat::Depth32Float,
+        wgpu::TextureUsages::RENDER_ATTACHMENT,
+    );
+    Targets {
+        color_view: color.create_view(&wgpu::TextureViewDescriptor::default()),
+        depth_view: depth.create_view(&wgpu::TextureViewDescriptor::default()),
+        color,
+    }
+}
+
+/// Draws one frame (the sea and sky, then the rocks) and reads it back: RGBA8 rows from the
+/// top.
+fn draw_frame(
+    ctx: &GpuContext,
+    ocean: &OceanRenderer,
+    rocks: &[RockDraw],
+    camera: &Camera,
+    time: f64,
+    t: &Targets,
+) -> Result<Vec<u8>, ocean_gpu::GpuError> {
+    use ocean_gpu::wgpu;
+    let size = (t.color.width(), t.color.height());
+    let mut encoder = ctx
+        .device()
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("ocean render"),
+        });
+    // Both renderers load their targets: clear them first (depth to the far plane, 1 in
+    // WebGPU's forward range, which the scene's cameras use).
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("ocean render clear"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: &t.color_view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: &t.depth_view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    ocean.render(
+        ctx,
+        &mut encoder,
+        camera,
+        time,
+        &t.color_view,
+        Some(&t.depth_view),
+        size,
+    )?;
+    for rock in rocks {
+        rock.renderer.render(
+            ctx,
+            &mut encoder,
+            camera,
+            &rock.scene,
+            &t.color_view,
+            &t.depth_view,
+            size,
+        )?;
+    }
+    ctx.queue().submit([encoder.finish()]);
+    Ok(ocean_gpu::readback::read_texture(ctx, &t.color, 0)?.data)
+}
+
 /// Seconds spent per stage, summed over the frames.
 #[derive(Default)]
 struct Times {
     setup: f64,
+    rocks: f64,
     device: f64,
     sea: f64,
     encode: f64,
@@ -177,6 +343,10 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     renderer.set_lighting(&ctx, &lighting).map_err(gpu)?;
     ctx.wait_idle().map_err(gpu)?;
     times.setup = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let rocks = rock_draws(&ctx, &scene, lighting.sky().sun_direction())?;
+    times.rocks = t.elapsed().as_secs_f64();
+    let targets = targets(&ctx, width, height);
 
     let bar = !args.quiet && std::io::stderr().is_terminal();
     let frames = args.frames;
@@ -188,9 +358,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         let time = scene.render.time + f64::from(k) / scene.render.fps;
         let camera = scene.camera(args.camera, time, width, height)?;
         let t = Instant::now();
-        let rgba = renderer
-            .render_image(&ctx, &camera, time, width, height)
-            .map_err(gpu)?;
+        let rgba = draw_frame(&ctx, &renderer, &rocks, &camera, time, &targets).map_err(gpu)?;
         times.sea += t.elapsed().as_secs_f64();
         let t = Instant::now();
         let png = png_rgba8(width, height, &rgba)?;
@@ -251,7 +419,12 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         1e3 * times.setup
     );
     println!(
-        "  sea and sky      {:9.1} ms per frame  (render and readback, wall time)",
+        "  rocks            {:9.1} ms  ({} height and cone maps, relaxed, generated on the CPU)",
+        1e3 * times.rocks,
+        rocks.len()
+    );
+    println!(
+        "  frame            {:9.1} ms per frame  (sea, sky and rocks; render and readback, wall time)",
         per(times.sea)
     );
     println!("  PNG encoding     {:9.1} ms per frame", per(times.encode));

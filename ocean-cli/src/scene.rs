@@ -24,6 +24,67 @@ pub struct SceneFile {
     pub sun: SunSection,
     pub sky: SkySection,
     pub spectrum: SpectrumSection,
+    pub rocks: Vec<Rock>,
+}
+
+/// `[[rocks]]`: a rock face, a vertical rectangle standing in the water, relief-mapped by
+/// relaxed cone stepping (`ocean_gpu::ReliefRenderer`) over a procedural height map.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Rock {
+    /// Centre of the face, metres.
+    pub centre: [f64; 3],
+    /// Width and height of the face, metres.
+    pub width: f64,
+    pub height: f64,
+    /// Direction the face looks towards, degrees from +z towards +x (0 faces the presets).
+    pub facing: f64,
+    /// Depth of the relief behind the face, metres.
+    pub relief_depth: f64,
+    /// World size of one tile of the height map, metres.
+    pub tile: f64,
+    /// Height-map side, texels (a power of two, 16 to 1024).
+    pub map_size: usize,
+    /// Seed of the height map (value noise, 5 octaves).
+    pub seed: u64,
+    /// Linear albedo.
+    pub albedo: [f32; 3],
+}
+
+impl Rock {
+    fn check(&self) -> Result<(), (&'static str, String)> {
+        if let Some(x) = self.centre.iter().find(|x| !x.is_finite()) {
+            return Err(("rocks.centre", format!("holds {x}, which is not finite")));
+        }
+        range("rocks.width", self.width, 1e-3, 1e4)?;
+        range("rocks.height", self.height, 1e-3, 1e4)?;
+        finite("rocks.facing", self.facing)?;
+        range("rocks.relief_depth", self.relief_depth, 0.0, 1e3)?;
+        range("rocks.tile", self.tile, 1e-3, 1e4)?;
+        if !(self.map_size.is_power_of_two() && (16..=1024).contains(&self.map_size)) {
+            return Err((
+                "rocks.map_size",
+                format!("= {} is not a power of two from 16 to 1024", self.map_size),
+            ));
+        }
+        rgb("rocks.albedo", self.albedo.map(f64::from))
+    }
+}
+
+impl Default for Rock {
+    fn default() -> Self {
+        Self {
+            centre: [-14.0, 2.0, -38.0],
+            width: 16.0,
+            height: 8.0,
+            facing: 75.0,
+            relief_depth: 1.5,
+            tile: 8.0,
+            map_size: 256,
+            seed: 1,
+            albedo: [0.32, 0.29, 0.26],
+        }
+    }
 }
 
 /// `[render]`.
@@ -97,7 +158,7 @@ impl Default for SunSection {
     fn default() -> Self {
         Self {
             elevation: 25.0,
-            azimuth: 0.0,
+            azimuth: 35.0,
             irradiance: [1.0, 0.96, 0.90],
         }
     }
@@ -163,7 +224,7 @@ impl SceneFile {
             toml::from_str(text).map_err(|e| format!("{origin}: {}", e.to_string().trim_end()))?;
         scene
             .check()
-            .map_err(|(key, why)| match line_of(text, key) {
+            .map_err(|(key, index, why)| match line_of(text, key, index) {
                 Some(line) => format!("{origin}, line {line}: `{key}` {why}"),
                 None => format!("{origin}: `{key}` {why}"),
             })?;
@@ -187,11 +248,22 @@ impl SceneFile {
     ///
     /// The first value out of range, named as its key.
     pub fn check_overrides(&self) -> Result<(), String> {
-        self.check().map_err(|(key, why)| format!("`{key}` {why}"))
+        self.check()
+            .map_err(|(key, _, why)| format!("`{key}` {why}"))
     }
 
-    /// The first key out of range, as `section.key`, and why.
-    fn check(&self) -> Result<(), (&'static str, String)> {
+    /// The first key out of range, as `section.key` with the index of its table among the
+    /// tables of that name (0 but for `[[rocks]]`), and why.
+    fn check(&self) -> Result<(), (&'static str, usize, String)> {
+        self.check_sections().map_err(|(key, why)| (key, 0, why))?;
+        for (i, r) in self.rocks.iter().enumerate() {
+            r.check()
+                .map_err(|(key, why)| (key, i, format!("(rock {}) {why}", i + 1)))?;
+        }
+        Ok(())
+    }
+
+    fn check_sections(&self) -> Result<(), (&'static str, String)> {
         let r = &self.render;
         for (key, v) in [("render.width", r.width), ("render.height", r.height)] {
             if !(1..=8192).contains(&v) {
@@ -354,18 +426,28 @@ fn rgb(key: &'static str, v: [f64; 3]) -> Result<(), (&'static str, String)> {
     }
 }
 
-/// The 1-based line of `section.key` in `text`: the first line of the section's table that
-/// assigns the key (`key =` or `key=`), if any.
-fn line_of(text: &str, path: &str) -> Option<usize> {
+/// The 1-based line of `section.key` in `text`: the line of table number `index` named
+/// `section` (`[section]`, or the `index`th `[[section]]`) that assigns the key (`key =` or
+/// `key=`), if any.
+fn line_of(text: &str, path: &str, index: usize) -> Option<usize> {
     let (section, key) = path.split_once('.')?;
     let mut current = String::new();
+    // Tables named `section` seen so far.
+    let mut seen = 0usize;
     for (i, line) in text.lines().enumerate() {
         let t = line.trim();
-        if let Some(name) = t.strip_prefix('[').and_then(|r| r.split(']').next()) {
+        if let Some(name) = t
+            .strip_prefix('[')
+            .map(|r| r.trim_start_matches('['))
+            .and_then(|r| r.split(']').next())
+        {
             current = name.trim().to_string();
+            if current == section {
+                seen += 1;
+            }
             continue;
         }
-        if current == section {
+        if current == section && seen == index + 1 {
             if let Some((k, _)) = t.split_once('=') {
                 if k.trim() == key {
                     return Some(i + 1);
@@ -383,11 +465,17 @@ mod tests {
     #[test]
     fn the_built_in_file_is_the_defaults() {
         let scene = SceneFile::parse(DEFAULT_SCENE, "default.toml").unwrap();
-        assert_eq!(scene, SceneFile::default());
+        // The defaults of every key, and one rock with the defaults of its keys.
+        let want = SceneFile {
+            rocks: vec![Rock::default()],
+            ..SceneFile::default()
+        };
+        assert_eq!(scene, want);
         assert_eq!(scene.spectrum(), SpectrumParams::default());
-        // Azimuth 0 and elevation 25° is the lighting model's default Sun.
+        // Elevation 25°, azimuth 35° from −z towards +x.
         let sun = scene.lighting().unwrap().sky().sun_direction();
-        let want = SkyParams::default().sun_direction;
+        let (el, az) = (25f64.to_radians(), 35f64.to_radians());
+        let want = DVec3::new(az.sin() * el.cos(), el.sin(), -az.cos() * el.cos());
         assert!((sun - want).length() < 1e-15, "{sun} vs {want}");
     }
 
@@ -407,6 +495,12 @@ mod tests {
             ("[sun]\n\nelevation = 95\n", "line 3", "sun.elevation"),
             ("[camera]\npreset = \"sideways\"\n", "line 2", "sideways"),
             ("[render\nwidth = 3\n", "line 1", ""),
+            // The second rock's key, not the first's.
+            (
+                "[[rocks]]\nmap_size = 64\n[[rocks]]\nseed = 2\nmap_size = 100\n",
+                "line 5",
+                "(rock 2)",
+            ),
         ];
         for (text, line, key) in cases {
             let e = SceneFile::parse(text, "s.toml").unwrap_err();

@@ -58,7 +58,8 @@ fn luminance(p: [u8; 4]) -> f64 {
 }
 
 /// The horizon view of the built-in scene at 96 x 54: a sky above (every pixel of the top row
-/// brighter and bluer than green, as a clear sky is), the sea below, darker than the sky on
+/// bluer than red and at least as blue as green, as a clear sky is; near the Sun, which this
+/// view holds, blue and green saturate together), the sea below, darker than the sky on
 /// average (the sea reflects 2% of the sky at normal incidence, Eq. 14, plus its own colour),
 /// and not uniform: the waves modulate it.
 #[test]
@@ -82,7 +83,7 @@ fn renders_sky_above_the_sea() {
     assert!(o.status.success(), "{stderr}");
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(
-        stdout.contains("96x54, 1 frame, 60 waves") && stdout.contains("sea and sky"),
+        stdout.contains("96x54, 1 frame, 60 waves") && stdout.contains("frame "),
         "{stdout}"
     );
     let (w, h, px) = read_png(&out);
@@ -90,7 +91,10 @@ fn renders_sky_above_the_sea() {
     let row = |y: u32| &px[(y * w) as usize..((y + 1) * w) as usize];
     let mean = |y: u32| row(y).iter().map(|&p| luminance(p)).sum::<f64>() / f64::from(w);
     for p in row(0) {
-        assert!(p[2] > p[1] && p[3] == 255, "sky pixel {p:?}");
+        assert!(
+            p[2] > p[0] && p[2] >= p[1] && p[3] == 255,
+            "sky pixel {p:?}"
+        );
     }
     assert!(
         mean(0) > mean(h - 1) + 20.0,
@@ -231,4 +235,46 @@ fn an_interrupted_sequence_leaves_only_complete_frames() {
         );
         assert_eq!(read_png(&d.join(name)).0, 64);
     }
+}
+
+/// The built-in scene's rock face is drawn: its albedo is reddish grey (0.32, 0.29, 0.26: red
+/// at least 4 sRGB levels above blue, lit or in shadow), which neither the sky nor the sea is
+/// (both bluer than red, up to the Sun's glitter, which saturates every channel), so reddish
+/// pixels appear with it and none without it (the same scene with no `[[rocks]]` table).
+#[test]
+fn the_rock_face_is_drawn() {
+    let d = dir("rock");
+    let reddish = |path: &Path| {
+        let (_, _, px) = read_png(path);
+        px.iter().filter(|p| p[0] > p[2].saturating_add(4)).count() as f64 / px.len() as f64
+    };
+    let with = d.join("with.png");
+    let o = ocean(&[
+        "--width",
+        "128",
+        "--height",
+        "72",
+        "--out",
+        with.to_str().unwrap(),
+    ]);
+    if no_adapter(&o) {
+        return;
+    }
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("1 height and cone maps"));
+    let scene = d.join("no-rocks.toml");
+    std::fs::write(&scene, "[render]\nwidth = 128\nheight = 72\n").unwrap();
+    let without = d.join("without.png");
+    let o = ocean(&[
+        "--scene",
+        scene.to_str().unwrap(),
+        "--out",
+        without.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (a, b) = (reddish(&with), reddish(&without));
+    assert!(
+        a > 0.02 && b == 0.0,
+        "reddish share {a} with the rock, {b} without"
+    );
 }
