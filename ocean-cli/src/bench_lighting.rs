@@ -60,7 +60,7 @@ pub fn lighting(args: &BenchArgs) -> Result<(), String> {
     }
     let sun = sun_figures()?;
     if let Some(path) = &args.plot {
-        plot(&curves, path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        plot(&curves, path)?;
     }
     let doc = json!({
         "suite": "lighting",
@@ -392,7 +392,7 @@ type Pick = fn(&RowMeans) -> [f64; 3];
 /// Fig. 10's right column: for each sea (one band of panels) and component (sky, refracted
 /// light), the row means against the row, far rows at the top: reference black, model red,
 /// constant BRDF blue; each panel scaled to its largest value.
-fn plot(curves: &[(f64, Vec<RowMeans>)], path: &Path) -> std::io::Result<()> {
+fn plot(curves: &[(f64, Vec<RowMeans>)], path: &Path) -> Result<(), String> {
     const PANEL_W: usize = 320;
     const PANEL_H: usize = 280;
     const MARGIN: f64 = 12.0;

@@ -3,7 +3,7 @@
 //!
 //! See [`FORMAT`] for what is read and written; it is the command's long help.
 
-use std::fs::{File, OpenOptions};
+use std::fs::File;
 use std::io::{BufReader, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -248,56 +248,17 @@ pub fn relief_png(
         }
         _ => return Err(format!("{encoding:?} cannot be stored in a PNG")),
     }
-    let mut png_bytes = Vec::new();
-    {
-        let mut enc = ::png::Encoder::new(&mut png_bytes, n as u32, n as u32);
-        enc.set_color(::png::ColorType::Rgba);
-        enc.set_depth(if eight {
+    crate::png::encode(
+        n as u32,
+        n as u32,
+        ::png::ColorType::Rgba,
+        if eight {
             ::png::BitDepth::Eight
         } else {
             ::png::BitDepth::Sixteen
-        });
-        let mut writer = enc.write_header().map_err(|e| e.to_string())?;
-        writer.write_image_data(&data).map_err(|e| e.to_string())?;
-        writer.finish().map_err(|e| e.to_string())?;
-    }
-    Ok(png_bytes)
-}
-
-/// Writes `bytes` to `path` atomically: a hidden temporary file in the same directory, flushed
-/// to disk, then renamed over `path`. The temporary file is removed on any failure.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let p = path.display();
-    let name = path
-        .file_name()
-        .ok_or_else(|| format!("{p} does not name a file"))?;
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let tmp = dir.join(format!(
-        ".{}.tmp-{}",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = (|| -> Result<(), String> {
-        let mut f = OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)
-            .map_err(|e| format!("cannot write {p}: {e}"))?;
-        f.write_all(bytes)
-            .and_then(|()| f.sync_all())
-            .map_err(|e| format!("cannot write {p}: {e}"))?;
-        // The last moment an interruption can stop the job without leaving a file behind.
-        if crate::interrupt::requested() {
-            return Err(format!("{}: {p} not written", crate::interrupt::MESSAGE));
-        }
-        std::fs::rename(&tmp, path).map_err(|e| format!("cannot write {p}: {e}"))
-    })();
-    result.inspect_err(|_| {
-        let _ = std::fs::remove_file(&tmp);
-    })
+        },
+        &data,
+    )
 }
 
 /// The progress bar: redrawn on stderr when it is a terminal.
@@ -382,7 +343,7 @@ pub fn run(args: &ConeMapArgs) -> Result<(), String> {
         }
     })?;
     let seconds = start.elapsed().as_secs_f64();
-    write_atomically(&args.output, &bytes)?;
+    crate::png::write_atomically(&args.output, &bytes)?;
     let n = image.side;
     let bits = match (&image.heights, encoding) {
         (Heights::U16(_), Encoding::Unorm8 | Encoding::Unorm8Sqrt) => {

@@ -25,7 +25,7 @@ use ocean_gpu::{
 };
 use ocean_relief::{ConeMap, ConeParams, Edge, ReliefTexture};
 
-use crate::cone_map::write_atomically;
+use crate::png::write_atomically;
 use crate::scene::{DEFAULT_SCENE, Preset, SceneFile};
 
 /// Most frames one run renders.
@@ -112,23 +112,6 @@ fn check_writable(out: &Path) -> Result<(), String> {
         })?;
     let _ = std::fs::remove_file(&probe);
     Ok(())
-}
-
-/// RGBA8 rows from the top as PNG bytes.
-pub fn png_rgba8(width: u32, height: u32, rgba: &[u8]) -> Result<Vec<u8>, String> {
-    let mut bytes = Vec::new();
-    {
-        let mut enc = ::png::Encoder::new(&mut bytes, width, height);
-        enc.set_color(::png::ColorType::Rgba);
-        enc.set_depth(::png::BitDepth::Eight);
-        // fdeflate's PNG-tuned mode: several times faster than the default level for about
-        // the same size on rendered images.
-        enc.set_compression(::png::Compression::Fast);
-        let mut w = enc.write_header().map_err(|e| e.to_string())?;
-        w.write_image_data(rgba).map_err(|e| e.to_string())?;
-        w.finish().map_err(|e| e.to_string())?;
-    }
-    Ok(bytes)
 }
 
 /// A rock face ready to draw: its relief texture in a renderer of its own, and its quad.
@@ -294,7 +277,7 @@ struct Times {
     setup: f64,
     rocks: f64,
     device: f64,
-    sea: f64,
+    frame: f64,
     encode: f64,
     write: f64,
 }
@@ -359,9 +342,15 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         let camera = scene.camera(args.camera, time, width, height)?;
         let t = Instant::now();
         let rgba = draw_frame(&ctx, &renderer, &rocks, &camera, time, &targets).map_err(gpu)?;
-        times.sea += t.elapsed().as_secs_f64();
+        times.frame += t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let png = png_rgba8(width, height, &rgba)?;
+        let png = crate::png::encode(
+            width,
+            height,
+            ::png::ColorType::Rgba,
+            ::png::BitDepth::Eight,
+            &rgba,
+        )?;
         times.encode += t.elapsed().as_secs_f64();
         let t = Instant::now();
         if let Err(e) = write_atomically(&frame_path(&args.out, k, frames), &png) {
@@ -425,7 +414,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     );
     println!(
         "  frame            {:9.1} ms per frame  (sea, sky and rocks; render and readback, wall time)",
-        per(times.sea)
+        per(times.frame)
     );
     println!("  PNG encoding     {:9.1} ms per frame", per(times.encode));
     println!("  PNG writing      {:9.1} ms per frame", per(times.write));

@@ -280,13 +280,8 @@ fn sky_params_from(p: &OceanSkyParams) -> Result<SkyParams, Error> {
 }
 
 fn sky_params_to(p: &SkyParams) -> OceanSkyParams {
-    let d = p.sun_direction;
     OceanSkyParams {
-        sun_direction: OceanDVec3 {
-            x: d.x,
-            y: d.y,
-            z: d.z,
-        },
+        sun_direction: OceanDVec3::from_dvec3(p.sun_direction),
         sun_irradiance: OceanRgb::from_dvec3(p.sun_irradiance),
         zenith_radiance: OceanRgb::from_dvec3(p.zenith_radiance),
         cie: OceanCieSky {

@@ -6,7 +6,7 @@
 //! byte for byte, so a quad drawn by an engine with the exported GLSL traces the same rays with
 //! the same arithmetic as the library's own renderer and its CPU twin (`ocean_relief_trace`).
 
-use glam::{DVec2, DVec3};
+use glam::DVec2;
 use ocean_gpu::ReliefScene;
 use ocean_relief::Method;
 use ocean_relief::gpu_params::ReliefUniforms;
@@ -63,14 +63,6 @@ pub struct OceanReliefScene {
     pub albedo: [f32; 3],
     /// Light that reaches every point whatever the light and shadows (>= 0).
     pub ambient: f32,
-}
-
-fn dvec3(v: DVec3) -> OceanDVec3 {
-    OceanDVec3 {
-        x: v.x,
-        y: v.y,
-        z: v.z,
-    }
 }
 
 fn method_to(m: &Method) -> OceanReliefMethod {
@@ -140,16 +132,16 @@ pub unsafe extern "C" fn ocean_relief_scene_default(out: *mut OceanReliefScene) 
     guard("ocean_relief_scene_default", || {
         let d = ReliefScene::default();
         let s = OceanReliefScene {
-            origin: dvec3(d.origin),
-            edge_u: dvec3(d.edge_u),
-            edge_v: dvec3(d.edge_v),
+            origin: OceanDVec3::from_dvec3(d.origin),
+            edge_u: OceanDVec3::from_dvec3(d.edge_u),
+            edge_v: OceanDVec3::from_dvec3(d.edge_v),
             tiles_u: d.tiles.x,
             tiles_v: d.tiles.y,
             depth: d.depth,
             method: method_to(&d.method),
             shadows: u8::from(d.shadows),
             shadow_bias: d.shadow_bias,
-            light_dir: dvec3(d.light_dir),
+            light_dir: OceanDVec3::from_dvec3(d.light_dir),
             light_intensity: d.light_intensity,
             albedo: d.albedo,
             ambient: d.ambient,
@@ -246,6 +238,7 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
 mod tests {
     use core::ptr::{null, null_mut};
 
+    use glam::DVec3;
     use ocean_core::Camera;
 
     use super::*;

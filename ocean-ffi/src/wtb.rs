@@ -48,6 +48,16 @@ pub struct OceanDVec3 {
     pub z: f64,
 }
 
+impl OceanDVec3 {
+    pub(crate) fn from_dvec3(v: glam::DVec3) -> Self {
+        Self {
+            x: v.x,
+            y: v.y,
+            z: v.z,
+        }
+    }
+}
+
 /// The water grid of a scene: `nx * nz` points, point (i, j) resting at world
 /// (origin_x + i*spacing, 0, origin_z + j*spacing), stored row-major at j*nx + i. The spacing is
 /// the same along x and z (a box's internal frame steps by it along both of its axes).
