@@ -25,6 +25,8 @@
 //! - [`sea`]: Algorithm 5.1, the Sun's, the sky's and the refracted light for one pixel.
 //! - [`surface`]: the filtered surface (Eq. 2–4) at a screen point and the footprints it is
 //!   filtered on: the CPU twin of the GPU renderer's geometry.
+//! - [`local`]: local waves (§6): wave trains modulated over the sea (a wave train box's μ),
+//!   filtered per train and added to the open sea's position, normal and variance.
 //! - [`tonemap`]: exposure and sRGB encoding.
 //! - `validation` (feature `std`): the paper's Fig. 10 comparison against a detailed-geometry,
 //!   perfect-mirror reference.
@@ -43,6 +45,7 @@ pub mod error;
 pub mod filter;
 pub mod fresnel;
 pub mod fresnel_table;
+pub mod local;
 mod quadrature;
 pub mod ross;
 pub mod sea;
@@ -57,6 +60,7 @@ pub mod variance;
 
 pub use error::BrdfError;
 pub use filter::Filter;
+pub use local::{LocalPoint, LocalWaves};
 pub use sea::{Lighting, SeaLight, SeaParams};
 pub use sky::{Sky, SkyParams};
 pub use sky_map::SkyMap;

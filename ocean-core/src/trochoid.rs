@@ -322,8 +322,29 @@ impl WaveSet {
         weights: impl IntoIterator<Item = f64>,
         sums: &mut PointSums,
     ) -> Result<(), EvalError> {
+        self.add_filtered_sums_f64(rest, t, weights, [1.0, 0.0], sums)
+    }
+
+    /// [`WaveSet::add_weighted_sums_f64`] with the waves also multiplied by the complex
+    /// amplitude `mu` = [m cos φ, m sin φ] (amplitudes m·wᵢ·Aᵢ, phases θᵢ + φ), as
+    /// [`WaveSet::add_sums_f64`]: a wave train box's trains at one point, filtered per wave
+    /// (local waves on the filtered ocean of Bruneton et al., their §6). With `mu` = [1, 0]
+    /// the sums equal those of [`WaveSet::add_weighted_sums_f64`] (up to the sign of zeros).
+    ///
+    /// # Errors
+    ///
+    /// As [`WaveSet::add_weighted_sums_f64`], and [`EvalError::Position`] for a non-finite
+    /// `mu`. `sums` is unchanged on error.
+    pub fn add_filtered_sums_f64(
+        &self,
+        rest: DVec2,
+        t: f64,
+        weights: impl IntoIterator<Item = f64>,
+        mu: [f64; 2],
+        sums: &mut PointSums,
+    ) -> Result<(), EvalError> {
         check_time(t)?;
-        if !rest.is_finite() {
+        if !rest.is_finite() || !(mu[0].is_finite() && mu[1].is_finite()) {
             return Err(EvalError::Position { index: 0 });
         }
         let mut acc = *sums;
@@ -339,7 +360,10 @@ impl WaveSet {
                 continue;
             }
             let theta = w.phase_at(rest, t);
-            let (s, c) = (m * math::sin(theta), m * math::cos(theta));
+            let (sin, cos) = (math::sin(theta), math::cos(theta));
+            // sin(θ + φ), cos(θ + φ) times |μ| by angle addition; exact for μ = [1, 0].
+            let s = m * (sin * mu[0] + cos * mu[1]);
+            let c = m * (cos * mu[0] - sin * mu[1]);
             let [a, ahx, ahz, cxx, cxz, czz, gx, gz] = *c64;
             acc.dx -= ahx * s;
             acc.dz -= ahz * s;
