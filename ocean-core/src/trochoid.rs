@@ -344,7 +344,7 @@ impl WaveSet {
         sums: &mut PointSums,
     ) -> Result<(), EvalError> {
         check_time(t)?;
-        if !rest.is_finite() || !(mu[0].is_finite() && mu[1].is_finite()) {
+        if !(rest.is_finite() && mu[0].is_finite() && mu[1].is_finite()) {
             return Err(EvalError::Position { index: 0 });
         }
         let mut acc = *sums;

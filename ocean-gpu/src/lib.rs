@@ -53,6 +53,7 @@
 pub mod context;
 pub mod layers;
 pub mod ocean;
+mod ocean_local;
 mod pipeline;
 pub mod readback;
 pub mod relief;

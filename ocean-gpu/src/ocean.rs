@@ -11,6 +11,12 @@
 //! cost follows the number of resolved waves and distant views are cheaper (§7.1). A sky
 //! background fills the rest of the screen.
 //!
+//! Local waves (§6, [`OceanRenderer::set_local_waves`]): wave trains modulated over a grid, such
+//! as a wave train box scene's near a shore, join the same sums, each train filtered by the same
+//! weights for the same footprints, so near and far water are one surface lit one way; the open
+//! sea's own waves can be faded out over that grid (an amplitude factor per grid point). The
+//! CPU twin is [`ocean_brdf::local`].
+//!
 //! Every stage has a CPU twin in `ocean_brdf`: [`ocean_brdf::surface`] (rays, sea-plane hits,
 //! footprints, Eq. 2–4), [`ocean_brdf::sea::sea_color_unchecked`] (Algorithm 5.1) and
 //! [`ocean_brdf::tonemap`]. The probes ([`OceanRenderer::probe_surface`],
@@ -34,10 +40,11 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use ocean_brdf::sky_map::{SKY_MAP_EXTENT, SKY_MAP_MAX_SIZE, SKY_MAP_MIN_SIZE};
 use ocean_brdf::variance::{trochoid_slope_variance, wave_variance_term};
-use ocean_brdf::{FilteredSurface, Lighting, SeaLight, SlopeVariance};
+use ocean_brdf::{FilteredSurface, Lighting, LocalWaves, SeaLight, SlopeVariance};
 use ocean_core::phase::reduce_angle;
 use ocean_core::{Camera, DepthDirection, DepthRange, EvalError, Wave};
 
+use crate::ocean_local::LocalTextures;
 use crate::readback::{GpuTimer, read_buffer_as, read_texture};
 use crate::{GpuContext, GpuError, shaders};
 
@@ -93,7 +100,7 @@ impl Default for OceanOptions {
     }
 }
 
-/// The shaders' uniform block, byte for byte the WGSL `Frame` of `ocean_common.wgsl` (288 bytes,
+/// The shaders' uniform block, byte for byte the WGSL `Frame` of `ocean_common.wgsl` (320 bytes,
 /// std140); the field documentation is there.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
@@ -122,6 +129,10 @@ pub struct FrameUniform {
     pub sky: [f32; 4],
     /// Probe item count.
     pub probe: [u32; 4],
+    /// Local waves: the local grid's point (0, 0) relative to o, 1 / its spacing.
+    pub local: [f32; 4],
+    /// Local grid points per row and rows, local trains.
+    pub local_counts: [u32; 4],
 }
 
 /// What [`OceanRenderer::probe_surface`] reads back for one screen point: what the vertex stage
@@ -225,6 +236,8 @@ pub struct OceanRenderer {
     bind_group: wgpu::BindGroup,
     surface: Option<SurfaceState>,
     lighting: Option<Lighting>,
+    /// The local waves (§6), empty until [`OceanRenderer::set_local_waves`].
+    local: LocalTextures,
 }
 
 fn invalid(what: &'static str, reason: impl Into<String>) -> GpuError {
@@ -409,6 +422,7 @@ impl OceanRenderer {
             let wave_view = wave_texture.create_view(&wgpu::TextureViewDescriptor::default());
             let fresnel_view =
                 fresnel_table_texture(ctx).create_view(&wgpu::TextureViewDescriptor::default());
+            let local = LocalTextures::empty(ctx);
             let bind_group = draw_bind_group(
                 device,
                 &layout,
@@ -417,6 +431,7 @@ impl OceanRenderer {
                 &sky_view,
                 &sampler,
                 &fresnel_view,
+                &local,
             );
             Ok(Self {
                 options,
@@ -436,6 +451,7 @@ impl OceanRenderer {
                 bind_group,
                 surface: None,
                 lighting: None,
+                local,
             })
         })
     }
@@ -499,6 +515,7 @@ impl OceanRenderer {
                 &self.sky_view,
                 &self.sampler,
                 &self.fresnel_view,
+                &self.local,
             );
             Ok((texture, view, bind_group))
         })?;
@@ -558,6 +575,70 @@ impl OceanRenderer {
             Ok(())
         })?;
         self.lighting = Some(*lighting);
+        Ok(())
+    }
+
+    /// Sets the local waves drawn on the open sea (§6, [`ocean_brdf::local`]): wave trains
+    /// modulated over a grid, such as a wave train box scene's (`ocean_wtb::Frame::layers`),
+    /// each filtered like the open sea's waves into the geometry (w_p), the normals (w_n) and
+    /// the slope variances (w_r), and the open sea's amplitude factor over that grid. `None`
+    /// removes them. Set them again when the sets change (each frame, for boxes that move,
+    /// grow or die); the trains' phases follow the frame's time by themselves.
+    ///
+    /// # Errors
+    ///
+    /// [`GpuError::NotConfigured`] before [`set_surface`](Self::set_surface);
+    /// [`GpuError::InvalidInput`] if `local`'s wind is not the surface's (the variances must
+    /// share one frame) or its filter differs; [`GpuError::TooLarge`] for a grid side or train
+    /// count beyond the device's largest 2D texture or more sets than its array layers;
+    /// [`GpuError::Wgpu`] if the device refuses a texture. The previous local waves stay on
+    /// error.
+    pub fn set_local_waves(
+        &mut self,
+        ctx: &GpuContext,
+        local: Option<&LocalWaves>,
+    ) -> Result<(), GpuError> {
+        let surface = self.surface.as_ref().ok_or(GpuError::NotConfigured {
+            what: "ocean surface",
+            call: "OceanRenderer::set_surface",
+        })?;
+        let textures = match local {
+            Some(l) => {
+                if (l.wind() - surface.wind).length() > 1e-9 {
+                    return Err(invalid(
+                        "local waves",
+                        format!(
+                            "wind {:?} is not the surface's {:?}: both variances must be measured along one wind",
+                            l.wind(),
+                            surface.wind
+                        ),
+                    ));
+                }
+                let f = l.filter();
+                if f.n_min() != surface.n_min || f.n_max() != surface.n_max {
+                    return Err(invalid(
+                        "local waves",
+                        "their filter must be the surface's (the shader has one)",
+                    ));
+                }
+                LocalTextures::new(ctx, l)?
+            }
+            None => LocalTextures::empty(ctx),
+        };
+        let bind_group = crate::scoped(ctx.device(), || {
+            Ok(draw_bind_group(
+                ctx.device(),
+                &self.layout,
+                &self.uniform,
+                &self.wave_view,
+                &self.sky_view,
+                &self.sampler,
+                &self.fresnel_view,
+                &textures,
+            ))
+        })?;
+        self.local = textures;
+        self.bind_group = bind_group;
         Ok(())
     }
 
@@ -814,6 +895,7 @@ impl OceanRenderer {
         u.counts[1] = ny;
         u.sun_radiance[3] = far as f32;
         u.probe[0] = probe_items;
+        (u.local, u.local_counts) = self.local.uniform(o);
         // θ₀ = k·o − ωt + Φ, reduced modulo 2π in f64 (DESIGN.md): the shader adds k·(x − o).
         let phases = surface
             .waves
@@ -904,7 +986,8 @@ impl OceanRenderer {
     ) -> Result<(), GpuError> {
         self.check_viewport(ctx, size.0, size.1)?;
         self.check_targets(color, depth, size)?;
-        let (u, phases, _) = self.frame(camera, time, size.0, size.1, 0)?;
+        let (u, phases, o) = self.frame(camera, time, size.0, size.1, 0)?;
+        let local_phases = self.local.phases(o, time);
         self.lighting_set()?;
         let device = ctx.device();
         let key = self
@@ -931,6 +1014,7 @@ impl OceanRenderer {
             let queue = ctx.queue();
             queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&u));
             write_waves(ctx, &self.wave_texture, &phases, phases.len() as u32, 1);
+            self.local.write_phases(ctx, &local_phases);
             let load_color = match clear_depth {
                 Some(_) => wgpu::LoadOp::Clear(wgpu::Color::BLACK),
                 None => wgpu::LoadOp::Load,
@@ -1063,7 +1147,15 @@ impl OceanRenderer {
             .iter()
             .map(|p| [p.x as f32, p.y as f32, 0.0, 0.0])
             .collect();
-        let out = self.run_probe(ctx, &u, Some(&phases), &inputs, 4 * items, true)?;
+        let local_phases = self.local.phases(o, time);
+        let out = self.run_probe(
+            ctx,
+            &u,
+            Some((&phases, &local_phases)),
+            &inputs,
+            4 * items,
+            true,
+        )?;
         Ok(out
             .chunks_exact(4)
             .take(pixels.len())
@@ -1165,7 +1257,7 @@ impl OceanRenderer {
         &self,
         ctx: &GpuContext,
         u: &FrameUniform,
-        phases: Option<&[[f32; 4]]>,
+        phases: Option<FramePhases<'_>>,
         inputs: &[[f32; 4]],
         outputs: u32,
         surface: bool,
@@ -1219,8 +1311,9 @@ impl OceanRenderer {
             queue.write_buffer(&input, 0, bytemuck::cast_slice(inputs));
             // The surface probe reads a wave texture of its own, so that probing never changes
             // the phases a `render` recorded but not yet submitted will see.
+            let probe_local = phases.map(|(_, local)| self.local.view_with_phases(ctx, local));
             let probe_waves = match (phases, self.surface.as_ref()) {
-                (Some(phases), Some(surface)) => {
+                (Some((phases, _)), Some(surface)) => {
                     let n = phases.len();
                     let mut texels = surface.texels.clone();
                     texels[..n].copy_from_slice(phases);
@@ -1250,6 +1343,16 @@ impl OceanRenderer {
                         FRESNEL_BINDING,
                         wgpu::BindingResource::TextureView(&self.fresnel_view),
                     ),
+                    entry(
+                        LOCAL_FIELDS_BINDING,
+                        wgpu::BindingResource::TextureView(&self.local.fields_view),
+                    ),
+                    entry(
+                        LOCAL_TRAINS_BINDING,
+                        wgpu::BindingResource::TextureView(
+                            probe_local.as_ref().unwrap_or(&self.local.trains_view),
+                        ),
+                    ),
                 ],
             });
             let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -1271,6 +1374,9 @@ impl OceanRenderer {
     }
 }
 
+/// A frame's phase rows: the open sea's waves', and the local trains'.
+type FramePhases<'a> = (&'a [[f32; 4]], &'a [[f32; 4]]);
+
 /// The probe's item count as `u32`, at least 1 and at most 2²² (64 × 65536 workgroups).
 fn probe_items(n: usize) -> Result<u32, GpuError> {
     const MAX: usize = 1 << 22;
@@ -1283,8 +1389,8 @@ fn probe_items(n: usize) -> Result<u32, GpuError> {
     Ok(n as u32)
 }
 
-/// Bindings 0–3 and 6 of `ocean_common.wgsl`, visible to `stages`.
-fn common_layout_entries(stages: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEntry; 5] {
+/// Bindings 0–3 and 6–8 of `ocean_common.wgsl`, visible to `stages`.
+fn common_layout_entries(stages: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEntry; 7] {
     let texture = |binding, filterable| wgpu::BindGroupLayoutEntry {
         binding,
         visibility: stages,
@@ -1315,11 +1421,25 @@ fn common_layout_entries(stages: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEn
             count: None,
         },
         texture(FRESNEL_BINDING, false),
+        wgpu::BindGroupLayoutEntry {
+            binding: LOCAL_FIELDS_BINDING,
+            visibility: stages,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2Array,
+                multisampled: false,
+            },
+            count: None,
+        },
+        texture(LOCAL_TRAINS_BINDING, false),
     ]
 }
 
 /// Binding of the effective Fresnel table (after the probes' 4 and 5).
 const FRESNEL_BINDING: u32 = 6;
+/// Bindings of the local waves' fields and trains.
+const LOCAL_FIELDS_BINDING: u32 = 7;
+const LOCAL_TRAINS_BINDING: u32 = 8;
 
 /// The effective Fresnel table (`ocean_brdf::fresnel_table`) as a 33 × 33 `r32float` texture:
 /// texel (j, i) holds the correction `D(cos θ_v = (i/32)², σ_v = (j/32)²)` to Schlick's value.
@@ -1363,6 +1483,7 @@ fn fresnel_table_texture(ctx: &GpuContext) -> wgpu::Texture {
     texture
 }
 
+#[allow(clippy::too_many_arguments)]
 fn draw_bind_group(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
@@ -1371,6 +1492,7 @@ fn draw_bind_group(
     sky: &wgpu::TextureView,
     sampler: &wgpu::Sampler,
     fresnel: &wgpu::TextureView,
+    local: &LocalTextures,
 ) -> wgpu::BindGroup {
     let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
     device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -1382,6 +1504,14 @@ fn draw_bind_group(
             entry(2, wgpu::BindingResource::TextureView(sky)),
             entry(3, wgpu::BindingResource::Sampler(sampler)),
             entry(FRESNEL_BINDING, wgpu::BindingResource::TextureView(fresnel)),
+            entry(
+                LOCAL_FIELDS_BINDING,
+                wgpu::BindingResource::TextureView(&local.fields_view),
+            ),
+            entry(
+                LOCAL_TRAINS_BINDING,
+                wgpu::BindingResource::TextureView(&local.trains_view),
+            ),
         ],
     })
 }
@@ -1479,7 +1609,7 @@ fn probe_pipelines(device: &wgpu::Device) -> Result<ProbePipelines, GpuError> {
         source: wgpu::ShaderSource::Wgsl(entry.source.into()),
     });
     let stages = wgpu::ShaderStages::COMPUTE;
-    let [e0, e1, e2, e3, e6] = common_layout_entries(stages);
+    let [e0, e1, e2, e3, e6, e7, e8] = common_layout_entries(stages);
     let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
         binding,
         visibility: stages,
@@ -1492,7 +1622,17 @@ fn probe_pipelines(device: &wgpu::Device) -> Result<ProbePipelines, GpuError> {
     };
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("ocean probe bind group layout"),
-        entries: &[e0, e1, e2, e3, e6, storage(4, true), storage(5, false)],
+        entries: &[
+            e0,
+            e1,
+            e2,
+            e3,
+            e6,
+            e7,
+            e8,
+            storage(4, true),
+            storage(5, false),
+        ],
     });
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("ocean probe pipeline layout"),
@@ -1522,8 +1662,8 @@ mod tests {
 
     #[test]
     fn frame_uniform_matches_the_wgsl_struct() {
-        // Two mat4x4 (128 bytes) and ten vec4 (160): 288 bytes, the WGSL `Frame`.
-        assert_eq!(std::mem::size_of::<FrameUniform>(), 288);
+        // Two mat4x4 (128 bytes) and twelve vec4 (192): 320 bytes, the WGSL `Frame`.
+        assert_eq!(std::mem::size_of::<FrameUniform>(), 320);
         let b = shaders::get("ocean").unwrap().bindings().unwrap();
         assert_eq!(b[0].name, "frame");
         assert_eq!(b[0].size as usize, std::mem::size_of::<FrameUniform>());
@@ -1547,6 +1687,8 @@ mod tests {
                 ("sea_radiance", 240),
                 ("sky", 256),
                 ("probe", 272),
+                ("local", 288),
+                ("local_counts", 304),
             ]
         );
         // The probe module declares the same block.

@@ -54,6 +54,11 @@ struct Frame {
     sky: vec4<f32>,
     // x: number of probe items (probe entry points only), yzw: unused.
     probe: vec4<u32>,
+    // Local waves (§6, `ocean_brdf::local`): xy: the local grid's point (0, 0) relative to o,
+    // z: 1 / its spacing (m⁻¹), w: unused.
+    local: vec4<f32>,
+    // x, y: the local grid's points per row and rows, z: number of local trains, w: unused.
+    local_counts: vec4<u32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -72,6 +77,15 @@ struct Frame {
 // Eq. 24, at 33 × 33 nodes, texel (j, i) for cos θ_v = (i/32)² and σ_v = (j/32)² (r32float, textureLoad
 // only; bindings 4 and 5 are the probes').
 @group(0) @binding(6) var fresnel_table: texture_2d<f32>;
+// Local waves' fields over the local grid (rg32float, textureLoad only), one texel per grid
+// point: layer 0 holds (s, 0), the open sea's amplitude factor, layer 1 + k the complex
+// amplitude μ = (m cos φ, m sin φ) of train set k.
+@group(0) @binding(7) var local_fields: texture_2d_array<f32>;
+// The local trains, one texel column each (rgba32float, textureLoad only), grouped by set:
+//   row 0: (λ, k_x, k_z, θ₀), θ₀ formed per frame in f64 as for the open sea's waves;
+//   row 1: (A, A k_x/|k|, A k_z/|k|, set index k);
+//   row 2: (k·A clamped to 1, (k̂·wind)², 0, 0).
+@group(0) @binding(8) var local_trains: texture_2d<f32>;
 
 // w(N_min, N_max, λ/size) of §3.2 (`Filter::weight`): 0 up to N_min footprints per wavelength,
 // 1 from N_max, the smoothstep 3x̄² − 2x̄³ between.
@@ -95,20 +109,88 @@ fn wave_phase(a: vec4<f32>, rest: vec2<f32>) -> f32 {
 fn displacement(rest: vec2<f32>, cell: f32) -> vec4<f32> {
     var d = vec3<f32>(0.0);
     let n = frame.counts.z;
+    let open = open_scale(rest);
     var i = 0u;
     for (; i < n; i++) {
         let a = textureLoad(waves, vec2<u32>(i, 0u), 0);
-        let w = wave_weight(a.x, cell);
-        if w <= 0.0 {
+        let w0 = wave_weight(a.x, cell);
+        if w0 <= 0.0 {
             break;
         }
+        let w = w0 * open;
         let b = textureLoad(waves, vec2<u32>(i, 1u), 0);
         let theta = wave_phase(a, rest);
         let s = w * sin(theta);
         let c = w * cos(theta);
         d += vec3<f32>(-b.y * s, b.x * c, -b.z * s);
     }
+    // The local trains (§6), each weighted by w_p and its set's μ.
+    var last = LocalSet(0xffffffffu, vec2<f32>(0.0));
+    for (var j = 0u; j < frame.local_counts.z; j++) {
+        let a = textureLoad(local_trains, vec2<u32>(j, 0u), 0);
+        let w = wave_weight(a.x, cell);
+        if w <= 0.0 {
+            continue;
+        }
+        let b = textureLoad(local_trains, vec2<u32>(j, 1u), 0);
+        last = local_set(last, u32(b.w), rest);
+        let sc = local_sin_cos(a, rest, last.mu, w);
+        d += vec3<f32>(-b.y * sc.x, b.x * sc.y, -b.z * sc.x);
+    }
     return vec4<f32>(d, f32(i));
+}
+
+// A bilinear read of layer `layer` of the local fields at rest position `rest` (relative to
+// o), `outside` for the texels past the grid (`LocalWaves::bilinear`).
+fn local_field(rest: vec2<f32>, layer: u32, outside: vec2<f32>) -> vec2<f32> {
+    let n = vec2<i32>(frame.local_counts.xy);
+    // Clamped before the conversion to i32, which is undefined beyond its range; every texel
+    // of a point clamped there is outside anyway.
+    let g = clamp((rest - frame.local.xy) * frame.local.z, vec2<f32>(-2.0), vec2<f32>(n + 1));
+    let f = floor(g);
+    let t = g - f;
+    let i = vec2<i32>(f);
+    let t00 = local_texel(i, n, layer, outside);
+    let t10 = local_texel(i + vec2<i32>(1, 0), n, layer, outside);
+    let t01 = local_texel(i + vec2<i32>(0, 1), n, layer, outside);
+    let t11 = local_texel(i + vec2<i32>(1, 1), n, layer, outside);
+    let a = t00 * (1.0 - t.x) + t10 * t.x;
+    let b = t01 * (1.0 - t.x) + t11 * t.x;
+    return a * (1.0 - t.y) + b * t.y;
+}
+
+fn local_texel(i: vec2<i32>, n: vec2<i32>, layer: u32, outside: vec2<f32>) -> vec2<f32> {
+    if any(i < vec2<i32>(0)) || any(i >= n) {
+        return outside;
+    }
+    return textureLoad(local_fields, i, layer, 0).xy;
+}
+
+// The open sea's amplitude factor s at `rest`: 1 beyond the local grid.
+fn open_scale(rest: vec2<f32>) -> f32 {
+    return clamp(local_field(rest, 0u, vec2<f32>(1.0, 0.0)).x, 0.0, 1.0);
+}
+
+// The set whose μ was read last, so that the trains of one set read it once.
+struct LocalSet {
+    index: u32,
+    mu: vec2<f32>,
+}
+
+fn local_set(last: LocalSet, index: u32, rest: vec2<f32>) -> LocalSet {
+    if index == last.index {
+        return last;
+    }
+    return LocalSet(index, local_field(rest, index + 1u, vec2<f32>(0.0)));
+}
+
+// w·m sin(θ + φ) and w·m cos(θ + φ) of a local train (row-0 texel `a`) at `rest`, by angle
+// addition with μ = (m cos φ, m sin φ) (`WaveSet::add_filtered_sums_f64`).
+fn local_sin_cos(a: vec4<f32>, rest: vec2<f32>, mu: vec2<f32>, w: f32) -> vec2<f32> {
+    let theta = wave_phase(a, rest);
+    let s = sin(theta);
+    let c = cos(theta);
+    return w * vec2<f32>(s * mu.x + c * mu.y, c * mu.x - s * mu.y);
 }
 
 // What the fragment stage needs of the surface at one pixel.
@@ -145,6 +227,7 @@ fn pixel_surface(rest: vec2<f32>, l: f32) -> PixelSurface {
     var sz = 0.0;
     var variance = vec2<f32>(0.0);
     let n = frame.counts.z;
+    let open = open_scale(rest);
     var i = 0u;
     for (; i < n; i++) {
         let a = textureLoad(waves, vec2<u32>(i, 0u), 0);
@@ -155,8 +238,8 @@ fn pixel_surface(rest: vec2<f32>, l: f32) -> PixelSurface {
         let b = textureLoad(waves, vec2<u32>(i, 1u), 0);
         let v = textureLoad(waves, vec2<u32>(i, 2u), 0);
         let theta = wave_phase(a, rest);
-        let s = w * sin(theta);
-        let c = w * cos(theta);
+        let s = w * open * sin(theta);
+        let c = w * open * cos(theta);
         // ∂/∂x₀ and ∂/∂z₀ of Eq. 2's trochoid, as ocean-core's PointSums.
         jxx -= b.y * a.y * c;
         jxz -= b.y * a.z * c;
@@ -168,6 +251,29 @@ fn pixel_surface(rest: vec2<f32>, l: f32) -> PixelSurface {
     }
     if i < n {
         variance += textureLoad(waves, vec2<u32>(i, 2u), 0).zw;
+    }
+    // The open sea's factor s scales its slopes by s and its variances by s² (small-slope
+    // form, `ocean_brdf::local`).
+    variance *= open * open;
+    // The local trains (§6): their derivatives weighted by w_n and μ join the sums; what w_n
+    // leaves, a trochoid of steepness k·A·|μ|·w_r, joins the variances.
+    var last = LocalSet(0xffffffffu, vec2<f32>(0.0));
+    for (var j = 0u; j < frame.local_counts.z; j++) {
+        let a = textureLoad(local_trains, vec2<u32>(j, 0u), 0);
+        let b = textureLoad(local_trains, vec2<u32>(j, 1u), 0);
+        let v = textureLoad(local_trains, vec2<u32>(j, 2u), 0);
+        last = local_set(last, u32(b.w), rest);
+        let w = wave_weight(a.x, l);
+        if w > 0.0 {
+            let sc = local_sin_cos(a, rest, last.mu, w);
+            jxx -= b.y * a.y * sc.y;
+            jxz -= b.y * a.z * sc.y;
+            jzz -= b.z * a.z * sc.y;
+            sx -= b.x * a.y * sc.x;
+            sz -= b.x * a.z * sc.x;
+        }
+        let left = trochoid_slope_variance(min(v.x * length(last.mu) * (1.0 - w), 1.0));
+        variance += left * vec2<f32>(v.y, 1.0 - v.y);
     }
     var out: PixelSurface;
     out.normal = unit_normal(jxx, jxz, jzz, sx, sz);
