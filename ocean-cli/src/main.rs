@@ -9,10 +9,12 @@ mod bench_sao;
 mod bench_wtb;
 mod cone_map;
 mod interrupt;
+mod island;
 mod png;
 mod render;
 mod scene;
 mod shaders;
+mod terrain;
 
 use std::process::ExitCode;
 

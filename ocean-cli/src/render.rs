@@ -17,7 +17,7 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use glam::{DVec2, DVec3};
-use ocean_brdf::{Filter, FilteredSurface, Spectrum};
+use ocean_brdf::{Filter, FilteredSurface, Lighting, Spectrum};
 use ocean_core::Camera;
 use ocean_gpu::{
     ContextOptions, GpuContext, OceanOptions, OceanRenderer, ReliefOptions, ReliefRenderer,
@@ -25,8 +25,10 @@ use ocean_gpu::{
 };
 use ocean_relief::{ConeMap, ConeParams, Edge, ReliefTexture};
 
+use crate::island::Island;
 use crate::png::write_atomically;
 use crate::scene::{DEFAULT_SCENE, Preset, SceneFile};
+use crate::terrain::TerrainRenderer;
 
 /// Most frames one run renders.
 const MAX_FRAMES: u32 = 100_000;
@@ -205,12 +207,19 @@ fn targets(ctx: &GpuContext, width: u32, height: u32) -> Targets {
     }
 }
 
-/// Draws one frame (the sea and sky, then the rocks) and reads it back: RGBA8 rows from the
-/// top.
+/// What one frame draws besides the sea.
+struct Dressing<'a> {
+    terrain: Option<&'a TerrainRenderer>,
+    lighting: &'a Lighting,
+    rocks: &'a [RockDraw],
+}
+
+/// Draws one frame (the sea and sky, the island, then the rocks) and reads it back: RGBA8
+/// rows from the top.
 fn draw_frame(
     ctx: &GpuContext,
     ocean: &OceanRenderer,
-    rocks: &[RockDraw],
+    dressing: &Dressing<'_>,
     camera: &Camera,
     time: f64,
     t: &Targets,
@@ -256,7 +265,41 @@ fn draw_frame(
         Some(&t.depth_view),
         size,
     )?;
-    for rock in rocks {
+    if let Some(terrain) = dressing.terrain {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("island terrain"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &t.color_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &t.depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        let o = ocean.options();
+        terrain.draw(
+            ctx,
+            &mut pass,
+            camera,
+            dressing.lighting,
+            o.exposure,
+            !o.color_format.is_srgb(),
+        );
+    }
+    for rock in dressing.rocks {
         rock.renderer.render(
             ctx,
             &mut encoder,
@@ -275,6 +318,8 @@ fn draw_frame(
 #[derive(Default)]
 struct Times {
     setup: f64,
+    island: f64,
+    waves: f64,
     rocks: f64,
     device: f64,
     frame: f64,
@@ -327,6 +372,23 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     ctx.wait_idle().map_err(gpu)?;
     times.setup = t.elapsed().as_secs_f64();
     let t = Instant::now();
+    let mut island = match &scene.island {
+        Some(section) => Some(Island::new(section, &scene.boxes)?),
+        None => None,
+    };
+    let terrain = match &island {
+        Some(i) => Some(TerrainRenderer::new(
+            &ctx,
+            &i.heights,
+            (i.grid.nx(), i.grid.nz()),
+            i.grid.origin(),
+            i.grid.spacing(),
+            renderer.options().color_format,
+        )?),
+        None => None,
+    };
+    times.island = t.elapsed().as_secs_f64();
+    let t = Instant::now();
     let rocks = rock_draws(&ctx, &scene, lighting.sky().sun_direction())?;
     times.rocks = t.elapsed().as_secs_f64();
     let targets = targets(&ctx, width, height);
@@ -341,7 +403,18 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         let time = scene.render.time + f64::from(k) / scene.render.fps;
         let camera = scene.camera(args.camera, time, width, height)?;
         let t = Instant::now();
-        let rgba = draw_frame(&ctx, &renderer, &rocks, &camera, time, &targets).map_err(gpu)?;
+        if let Some(island) = island.as_mut() {
+            let local = island.local_waves(&surface, time)?;
+            renderer.set_local_waves(&ctx, Some(&local)).map_err(gpu)?;
+        }
+        times.waves += t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let dressing = Dressing {
+            terrain: terrain.as_ref(),
+            lighting: &lighting,
+            rocks: &rocks,
+        };
+        let rgba = draw_frame(&ctx, &renderer, &dressing, &camera, time, &targets).map_err(gpu)?;
         times.frame += t.elapsed().as_secs_f64();
         let t = Instant::now();
         let png = crate::png::encode(
@@ -408,12 +481,21 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         1e3 * times.setup
     );
     println!(
+        "  island           {:9.1} ms  (terrain, wave train boxes, terrain mesh upload)",
+        1e3 * times.island
+    );
+    println!(
+        "  wave trains      {:9.1} ms per frame  ({} boxes marched on the CPU, uploaded as local waves)",
+        per(times.waves),
+        scene.boxes.len()
+    );
+    println!(
         "  rocks            {:9.1} ms  ({} height and cone maps, relaxed, generated on the CPU)",
         1e3 * times.rocks,
         rocks.len()
     );
     println!(
-        "  frame            {:9.1} ms per frame  (sea, sky and rocks; render and readback, wall time)",
+        "  frame            {:9.1} ms per frame  (sea, sky, island and rocks; render and readback, wall time)",
         per(times.frame)
     );
     println!("  PNG encoding     {:9.1} ms per frame", per(times.encode));

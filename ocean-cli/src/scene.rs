@@ -12,6 +12,8 @@ use ocean_brdf::{Lighting, SeaParams, SkyParams, SpectrumParams};
 use ocean_core::{Camera, DepthConvention, Far, Projection};
 use serde::Deserialize;
 
+use crate::island::{IslandSection, WaveBox};
+
 /// The built-in scene.
 pub const DEFAULT_SCENE: &str = include_str!("../scenes/default.toml");
 
@@ -24,6 +26,10 @@ pub struct SceneFile {
     pub sun: SunSection,
     pub sky: SkySection,
     pub spectrum: SpectrumSection,
+    /// `[island]`: absent for the open sea alone.
+    pub island: Option<IslandSection>,
+    /// `[[boxes]]`: the winds raising wave train boxes around the island.
+    pub boxes: Vec<WaveBox>,
     pub rocks: Vec<Rock>,
 }
 
@@ -256,6 +262,20 @@ impl SceneFile {
     /// tables of that name (0 but for `[[rocks]]`), and why.
     fn check(&self) -> Result<(), (&'static str, usize, String)> {
         self.check_sections().map_err(|(key, why)| (key, 0, why))?;
+        if let Some(island) = &self.island {
+            island.check().map_err(|(key, why)| (key, 0, why))?;
+        }
+        for (i, b) in self.boxes.iter().enumerate() {
+            b.check()
+                .map_err(|(key, why)| (key, i, format!("(box {}) {why}", i + 1)))?;
+        }
+        if !self.boxes.is_empty() && self.island.is_none() {
+            return Err((
+                "boxes.centre",
+                0,
+                "needs an [island] section: the boxes are computed on its grid".to_owned(),
+            ));
+        }
         for (i, r) in self.rocks.iter().enumerate() {
             r.check()
                 .map_err(|(key, why)| (key, i, format!("(rock {}) {why}", i + 1)))?;
@@ -467,6 +487,8 @@ mod tests {
         let scene = SceneFile::parse(DEFAULT_SCENE, "default.toml").unwrap();
         // The defaults of every key, and one rock with the defaults of its keys.
         let want = SceneFile {
+            island: Some(IslandSection::default()),
+            boxes: vec![WaveBox::default()],
             rocks: vec![Rock::default()],
             ..SceneFile::default()
         };

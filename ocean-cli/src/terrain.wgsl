@@ -1,0 +1,89 @@
+// The island's terrain in `ocean render`: a height field drawn as a grid of triangles, lit by
+// the same Sun and sky as the sea (Lambert: albedo/π times the Sun's irradiance on the facet
+// plus the sky's, the latter times the share of the sky the facet sees, (1 + n_y)/2), tone
+// mapped like the sea (`ocean_light.wgsl`'s `display`). Positions are relative to the eye, so
+// the numbers stay small wherever the island is.
+//
+// Draw: counts.x × counts.y vertices (vertex j·counts.x + i is height texel (i, j)), indexed as
+// two triangles per cell.
+
+struct Terrain {
+    // Eye-relative position → clip (WebGPU depth range).
+    view_proj: mat4x4<f32>,
+    // xyz: grid point (0, 0) at y = 0, relative to the eye; w: spacing, metres.
+    origin: vec4<f32>,
+    // x, y: points per row and rows; z: flags (bit 0: sRGB-encode in the shader); w: unused.
+    counts: vec4<u32>,
+    // xyz: unit vector towards the Sun; w: the tone mapping's exposure.
+    sun_dir: vec4<f32>,
+    // rgb: the Sun's irradiance on a surface facing it (L_sun Ω_sun).
+    sun: vec4<f32>,
+    // rgb: the sky's irradiance on a horizontal surface.
+    sky: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> terrain: Terrain;
+// Heights, metres above the sea at rest (r32float, textureLoad only).
+@group(0) @binding(1) var heights: texture_2d<f32>;
+
+struct Vertex {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) normal: vec3<f32>,
+    @location(1) height: f32,
+}
+
+fn height_at(i: i32, j: i32) -> f32 {
+    let n = vec2<i32>(terrain.counts.xy);
+    return textureLoad(heights, clamp(vec2<i32>(i, j), vec2<i32>(0), n - 1), 0).x;
+}
+
+@vertex
+fn terrain_vs(@builtin(vertex_index) index: u32) -> Vertex {
+    let nx = terrain.counts.x;
+    let i = i32(index % nx);
+    let j = i32(index / nx);
+    let s = terrain.origin.w;
+    let h = height_at(i, j);
+    // Central differences (one-sided at the edges).
+    let dx = (height_at(i + 1, j) - height_at(i - 1, j)) / (f32(min(i + 1, i32(nx) - 1) - max(i - 1, 0)) * s);
+    let dz = (height_at(i, j + 1) - height_at(i, j - 1)) / (f32(min(j + 1, i32(terrain.counts.y) - 1) - max(j - 1, 0)) * s);
+    let p = terrain.origin.xyz + vec3<f32>(f32(i) * s, h, f32(j) * s);
+    var out: Vertex;
+    out.clip = terrain.view_proj * vec4<f32>(p, 1.0);
+    out.normal = normalize(vec3<f32>(-dx, 1.0, -dz));
+    out.height = h;
+    return out;
+}
+
+// Linear albedo by height and slope: wet sand at the waterline, dry sand, grass, rock on the
+// steep parts.
+fn albedo(height: f32, n: vec3<f32>) -> vec3<f32> {
+    let wet = vec3<f32>(0.20, 0.17, 0.12);
+    let sand = vec3<f32>(0.50, 0.44, 0.32);
+    let grass = vec3<f32>(0.10, 0.17, 0.05);
+    let rock = vec3<f32>(0.26, 0.24, 0.22);
+    var c = mix(wet, sand, smoothstep(0.2, 0.8, height));
+    c = mix(c, grass, smoothstep(1.6, 3.0, height));
+    return mix(c, rock, smoothstep(0.25, 0.45, 1.0 - n.y));
+}
+
+fn tone_map(radiance: vec3<f32>) -> vec3<f32> {
+    let y = vec3<f32>(1.0) - exp(-terrain.sun_dir.w * radiance);
+    return select(vec3<f32>(0.0), min(y, vec3<f32>(1.0)), y > vec3<f32>(0.0));
+}
+
+fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
+    let x = clamp(c, vec3<f32>(0.0), vec3<f32>(1.0));
+    let hi = 1.055 * pow(max(x, vec3<f32>(0.0031308)), vec3<f32>(1.0 / 2.4)) - vec3<f32>(0.055);
+    return select(hi, 12.92 * x, x <= vec3<f32>(0.0031308));
+}
+
+@fragment
+fn terrain_fs(in: Vertex) -> @location(0) vec4<f32> {
+    let n = normalize(in.normal);
+    let sun = terrain.sun.rgb * max(dot(n, terrain.sun_dir.xyz), 0.0);
+    let sky = terrain.sky.rgb * (0.5 + 0.5 * n.y);
+    let radiance = albedo(in.height, n) / 3.14159265 * (sun + sky);
+    let c = tone_map(radiance);
+    return vec4<f32>(select(c, linear_to_srgb(c), (terrain.counts.z & 1u) != 0u), 1.0);
+}
