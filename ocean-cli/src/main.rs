@@ -7,6 +7,7 @@ mod bench_lighting;
 mod bench_relief;
 mod bench_sao;
 mod bench_wtb;
+mod composite;
 mod cone_map;
 mod interrupt;
 mod island;

@@ -25,6 +25,7 @@ use ocean_gpu::{
 };
 use ocean_relief::{ConeMap, ConeParams, Edge, ReliefTexture};
 
+use crate::composite::Obscurance;
 use crate::island::Island;
 use crate::png::write_atomically;
 use crate::scene::{DEFAULT_SCENE, Preset, SceneFile};
@@ -169,7 +170,11 @@ fn rock_draws(ctx: &GpuContext, scene: &SceneFile, sun: DVec3) -> Result<Vec<Roc
 struct Targets {
     color: ocean_gpu::wgpu::Texture,
     color_view: ocean_gpu::wgpu::TextureView,
+    depth: ocean_gpu::wgpu::Texture,
     depth_view: ocean_gpu::wgpu::TextureView,
+    /// What the obscurance composite writes, and what is read back then.
+    out: ocean_gpu::wgpu::Texture,
+    out_view: ocean_gpu::wgpu::TextureView,
 }
 
 fn targets(ctx: &GpuContext, width: u32, height: u32) -> Targets {
@@ -193,23 +198,35 @@ fn targets(ctx: &GpuContext, width: u32, height: u32) -> Targets {
     let color = texture(
         "ocean render colour",
         OceanOptions::default().color_format,
-        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::COPY_SRC
+            | wgpu::TextureUsages::TEXTURE_BINDING,
     );
     let depth = texture(
         "ocean render depth",
         wgpu::TextureFormat::Depth32Float,
-        wgpu::TextureUsages::RENDER_ATTACHMENT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
     );
+    let out = texture(
+        "ocean render obscured colour",
+        OceanOptions::default().color_format,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+    );
+    let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
     Targets {
-        color_view: color.create_view(&wgpu::TextureViewDescriptor::default()),
-        depth_view: depth.create_view(&wgpu::TextureViewDescriptor::default()),
+        color_view: view(&color),
+        depth_view: view(&depth),
+        out_view: view(&out),
         color,
+        depth,
+        out,
     }
 }
 
 /// What one frame draws besides the sea.
 struct Dressing<'a> {
     terrain: Option<&'a TerrainRenderer>,
+    obscurance: Option<&'a mut Obscurance>,
     lighting: &'a Lighting,
     rocks: &'a [RockDraw],
 }
@@ -219,7 +236,7 @@ struct Dressing<'a> {
 fn draw_frame(
     ctx: &GpuContext,
     ocean: &OceanRenderer,
-    dressing: &Dressing<'_>,
+    dressing: &mut Dressing<'_>,
     camera: &Camera,
     time: f64,
     t: &Targets,
@@ -310,8 +327,15 @@ fn draw_frame(
             size,
         )?;
     }
+    let result = match dressing.obscurance.as_deref_mut() {
+        Some(o) => {
+            o.encode(ctx, &mut encoder, &t.depth, &t.color_view, &t.out_view)?;
+            &t.out
+        }
+        None => &t.color,
+    };
     ctx.queue().submit([encoder.finish()]);
-    Ok(ocean_gpu::readback::read_texture(ctx, &t.color, 0)?.data)
+    Ok(ocean_gpu::readback::read_texture(ctx, result, 0)?.data)
 }
 
 /// Seconds spent per stage, summed over the frames.
@@ -392,6 +416,16 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let rocks = rock_draws(&ctx, &scene, lighting.sky().sun_direction())?;
     times.rocks = t.elapsed().as_secs_f64();
     let targets = targets(&ctx, width, height);
+    let mut obscurance = match &scene.obscurance {
+        o if o.enabled => Some(Obscurance::new(
+            &ctx,
+            o,
+            &scene.camera(args.camera, scene.render.time, width, height)?,
+            (width, height),
+            renderer.options().color_format,
+        )?),
+        _ => None,
+    };
 
     let bar = !args.quiet && std::io::stderr().is_terminal();
     let frames = args.frames;
@@ -409,12 +443,14 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         }
         times.waves += t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let dressing = Dressing {
+        let mut dressing = Dressing {
             terrain: terrain.as_ref(),
+            obscurance: obscurance.as_mut(),
             lighting: &lighting,
             rocks: &rocks,
         };
-        let rgba = draw_frame(&ctx, &renderer, &dressing, &camera, time, &targets).map_err(gpu)?;
+        let rgba =
+            draw_frame(&ctx, &renderer, &mut dressing, &camera, time, &targets).map_err(gpu)?;
         times.frame += t.elapsed().as_secs_f64();
         let t = Instant::now();
         let png = crate::png::encode(
@@ -495,7 +531,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         rocks.len()
     );
     println!(
-        "  frame            {:9.1} ms per frame  (sea, sky, island and rocks; render and readback, wall time)",
+        "  frame            {:9.1} ms per frame  (sea, sky, island, rocks and obscurance; render and readback, wall time)",
         per(times.frame)
     );
     println!("  PNG encoding     {:9.1} ms per frame", per(times.encode));

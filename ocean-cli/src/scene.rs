@@ -12,6 +12,7 @@ use ocean_brdf::{Lighting, SeaParams, SkyParams, SpectrumParams};
 use ocean_core::{Camera, DepthConvention, Far, Projection};
 use serde::Deserialize;
 
+use crate::composite::ObscuranceSection;
 use crate::island::{IslandSection, WaveBox};
 
 /// The built-in scene.
@@ -31,6 +32,8 @@ pub struct SceneFile {
     /// `[[boxes]]`: the winds raising wave train boxes around the island.
     pub boxes: Vec<WaveBox>,
     pub rocks: Vec<Rock>,
+    /// `[obscurance]`: ambient obscurance over the whole frame.
+    pub obscurance: ObscuranceSection,
 }
 
 /// `[[rocks]]`: a rock face, a vertical rectangle standing in the water, relief-mapped by
@@ -265,6 +268,9 @@ impl SceneFile {
         if let Some(island) = &self.island {
             island.check().map_err(|(key, why)| (key, 0, why))?;
         }
+        self.obscurance
+            .check()
+            .map_err(|(key, why)| (key, 0, why))?;
         for (i, b) in self.boxes.iter().enumerate() {
             b.check()
                 .map_err(|(key, why)| (key, i, format!("(box {}) {why}", i + 1)))?;
