@@ -7,17 +7,13 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+mod common;
+
 const W: usize = 192;
 const H: usize = 108;
 
-/// A fresh, empty directory for one test.
 fn dir(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("render-scene")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::dir("render-scene", name)
 }
 
 /// Renders `scene` (the built-in one when `None`) at W × H into `out`; `None` when no

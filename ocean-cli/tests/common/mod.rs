@@ -13,6 +13,8 @@ pub fn dir(group: &str, name: &str) -> PathBuf {
 }
 
 /// The names of the files in `d`, sorted.
+// Each test binary compiles this module; not all of them list files.
+#[allow(dead_code)]
 pub fn files(d: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(d)
         .unwrap()
