@@ -53,6 +53,9 @@ enum Suite {
     /// brute-force oracle at 128², progress overhead, CPU tracer rays per second per method, and
     /// the accuracy table.
     Relief,
+    /// Every suite above in turn; with `--json`, one document holding each suite's report with
+    /// the date and the machine.
+    All,
 }
 
 /// A wave set of `n` deep-water trochoids, wavelengths in geometric progression from 0.5 m to
@@ -126,17 +129,112 @@ pub fn memory_baseline(nx: usize, pos: &mut [Vec3], nrm: &mut [Vec3]) {
     std::hint::black_box((pos, nrm));
 }
 
-pub fn run(args: &BenchArgs) -> Result<(), String> {
-    match args.suite {
-        Suite::Gerstner => gerstner(args),
-        Suite::Wtb => bench_wtb::wtb(args),
-        Suite::Lighting => bench_lighting::lighting(args),
-        Suite::Sao => bench_sao::sao(args),
-        Suite::Relief => bench_relief::relief(args),
+impl Suite {
+    /// Every suite, in the order of `ocean bench all`.
+    const ALL: [Suite; 5] = [
+        Suite::Gerstner,
+        Suite::Wtb,
+        Suite::Lighting,
+        Suite::Sao,
+        Suite::Relief,
+    ];
+
+    fn name(self) -> &'static str {
+        match self {
+            Suite::Gerstner => "gerstner",
+            Suite::Wtb => "wtb",
+            Suite::Lighting => "lighting",
+            Suite::Sao => "sao",
+            Suite::Relief => "relief",
+            Suite::All => "all",
+        }
+    }
+
+    /// Runs the suite and returns its report.
+    fn report(self, args: &BenchArgs) -> Result<Value, String> {
+        match self {
+            Suite::Gerstner => gerstner(args),
+            Suite::Wtb => bench_wtb::wtb(args),
+            Suite::Lighting => bench_lighting::lighting(args),
+            Suite::Sao => bench_sao::sao(args),
+            Suite::Relief => bench_relief::relief(args),
+            Suite::All => Err("`all` is not one suite".to_owned()),
+        }
+    }
+
+    /// Prints a report of this suite as tables.
+    fn print(self, doc: &Value) {
+        match self {
+            Suite::Gerstner => print_gerstner(doc),
+            Suite::Wtb => bench_wtb::print(doc),
+            Suite::Lighting => bench_lighting::print(doc),
+            Suite::Sao => bench_sao::print(doc),
+            Suite::Relief => bench_relief::print(doc),
+            Suite::All => {}
+        }
     }
 }
 
-fn gerstner(args: &BenchArgs) -> Result<(), String> {
+pub fn run(args: &BenchArgs) -> Result<(), String> {
+    let json = |v: &Value| serde_json::to_string_pretty(v).map_err(|e| e.to_string());
+    if !matches!(args.suite, Suite::All) {
+        let doc = args.suite.report(args)?;
+        if args.json {
+            println!("{}", json(&doc)?);
+        } else {
+            args.suite.print(&doc);
+        }
+        return Ok(());
+    }
+    let started = std::time::Instant::now();
+    let mut suites = serde_json::Map::new();
+    for suite in Suite::ALL {
+        if crate::interrupt::requested() {
+            return Err(crate::interrupt::MESSAGE.to_owned());
+        }
+        let t = std::time::Instant::now();
+        let doc = suite.report(args)?;
+        if !args.json {
+            println!("== {} ({:.1} s)", suite.name(), t.elapsed().as_secs_f64());
+            suite.print(&doc);
+            println!();
+        }
+        suites.insert(suite.name().to_owned(), doc);
+    }
+    if args.json {
+        let doc = json!({
+            "suite": "all",
+            "date": utc_date(std::time::SystemTime::now()),
+            "cpu": cpu_name(),
+            "threads": rayon::current_num_threads(),
+            "os": std::env::consts::OS,
+            "wall_s": started.elapsed().as_secs_f64(),
+            "suites": suites,
+        });
+        println!("{}", json(&doc)?);
+    }
+    Ok(())
+}
+
+/// The UTC calendar date of `t` as YYYY-MM-DD (the proleptic Gregorian calendar, from the days
+/// since 1970-01-01 by Howard Hinnant's `civil_from_days`).
+fn utc_date(t: std::time::SystemTime) -> String {
+    let secs = t
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let z = (secs / 86_400) as i64 + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z.rem_euclid(146_097);
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!("{year:04}-{month:02}-{day:02}")
+}
+
+fn gerstner(args: &BenchArgs) -> Result<Value, String> {
     let side = args.size as usize;
     let n = side * side;
     let grid = Grid::centred(DVec2::new(100.0, -40.0), 0.25, side);
@@ -207,12 +305,7 @@ fn gerstner(args: &BenchArgs) -> Result<(), String> {
             "60_waves_evals_per_s_per_core_min": 3.0e8,
         },
     });
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&report).expect("JSON"));
-    } else {
-        print_gerstner(&report);
-    }
-    Ok(())
+    Ok(report)
 }
 
 fn print_gerstner(r: &Value) {
@@ -270,4 +363,20 @@ pub fn cpu_name() -> String {
                 .map(|m| m.trim().to_string())
         })
         .unwrap_or_else(|| std::env::consts::ARCH.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Dates around the epoch, a leap day and a century rule (2000 is leap, 2100 is not).
+    #[test]
+    fn utc_dates() {
+        let at = |s: u64| utc_date(std::time::UNIX_EPOCH + std::time::Duration::from_secs(s));
+        assert_eq!(at(0), "1970-01-01");
+        assert_eq!(at(86_399), "1970-01-01");
+        assert_eq!(at(951_782_400), "2000-02-29");
+        assert_eq!(at(1_795_392_000), "2026-11-23");
+        assert_eq!(at(4_107_542_400), "2100-03-01");
+    }
 }

@@ -33,7 +33,7 @@ const BATCH: usize = 1 << 16;
 /// The seas of the validation: wind speeds, m/s.
 const SEAS: [f64; 2] = [5.0, 15.0];
 
-pub fn lighting(args: &BenchArgs) -> Result<(), String> {
+pub fn lighting(args: &BenchArgs) -> Result<Value, String> {
     let cpu = cpu_figures(args.runs)?;
     let gpu = if args.no_gpu {
         Value::Null
@@ -71,16 +71,13 @@ pub fn lighting(args: &BenchArgs) -> Result<(), String> {
         "validation": seas,
         "sun_validation": sun,
     });
-    if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?
-        );
-    } else {
-        print_table(&doc);
-        print_sun(&doc);
-    }
-    Ok(())
+    Ok(doc)
+}
+
+/// The suite's tables.
+pub fn print(doc: &Value) {
+    print_table(doc);
+    print_sun(doc);
 }
 
 /// Viewport sizes of the GPU figures.

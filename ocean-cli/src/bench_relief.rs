@@ -312,7 +312,7 @@ fn tracers(runs: u32) -> Result<Value, String> {
     }))
 }
 
-pub fn relief(args: &BenchArgs) -> Result<(), String> {
+pub fn relief(args: &BenchArgs) -> Result<Value, String> {
     let runs = args.runs;
     let accuracy = table(&Config::standard(128, 4096).map_err(err)?).map_err(err)?;
     let doc = json!({
@@ -341,13 +341,18 @@ pub fn relief(args: &BenchArgs) -> Result<(), String> {
             "rays": r.rays,
         })).collect::<Vec<_>>(),
     });
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&doc).map_err(err)?);
-    } else {
-        print_table(&doc);
-        println!("\naccuracy (128² maps, 4096 rays a row):\n{accuracy}");
-    }
-    Ok(())
+    let mut doc = doc;
+    doc["accuracy_table"] = Value::from(accuracy.to_string());
+    Ok(doc)
+}
+
+/// The suite's tables.
+pub fn print(doc: &Value) {
+    print_table(doc);
+    println!(
+        "\naccuracy (128² maps, 4096 rays a row):\n{}",
+        doc["accuracy_table"].as_str().unwrap_or("-")
+    );
 }
 
 fn print_table(doc: &Value) {

@@ -427,7 +427,7 @@ fn cpu_reference(runs: u32) -> Result<Value, String> {
     }))
 }
 
-pub fn sao(args: &BenchArgs) -> Result<(), String> {
+pub fn sao(args: &BenchArgs) -> Result<Value, String> {
     let runs = args.runs;
     let gpu_doc = if args.no_gpu {
         json!({ "skipped": "--no-gpu" })
@@ -456,12 +456,12 @@ pub fn sao(args: &BenchArgs) -> Result<(), String> {
         "gpu": gpu_doc,
         "cpu_reference": cpu_reference(runs)?,
     });
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&doc).map_err(err)?);
-    } else {
-        print_table(&doc);
-    }
-    Ok(())
+    Ok(doc)
+}
+
+/// The suite's tables.
+pub fn print(doc: &Value) {
+    print_table(doc);
 }
 
 fn ms(v: &Value) -> String {

@@ -321,7 +321,7 @@ impl Baseline {
     }
 }
 
-pub fn wtb(args: &BenchArgs) -> Result<(), String> {
+pub fn wtb(args: &BenchArgs) -> Result<Value, String> {
     let runs = args.runs;
     let threads = rayon::current_num_threads();
     let started = Instant::now();
@@ -567,12 +567,12 @@ pub fn wtb(args: &BenchArgs) -> Result<(), String> {
         ],
         "wall_s": started.elapsed().as_secs_f64(),
     });
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&report).expect("JSON"));
-    } else {
-        print_wtb(&report);
-    }
-    Ok(())
+    Ok(report)
+}
+
+/// The suite's tables.
+pub fn print(doc: &Value) {
+    print_wtb(doc);
 }
 
 fn target(name: &str, kind: &str, bound: Value, measured: f64, met: bool) -> Value {
