@@ -8,6 +8,7 @@ mod bench_relief;
 mod bench_sao;
 mod bench_wtb;
 mod composite;
+mod cone_cache;
 mod cone_map;
 mod interrupt;
 mod island;

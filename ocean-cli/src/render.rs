@@ -1,11 +1,14 @@
 //! `ocean render`: a headless render of a scene file into PNG images.
 //!
-//! What it draws today: the open sea to the horizon and the sky, lit by the geometry-to-BRDF
-//! model (Bruneton, Neyret & Holzschuch 2010: Sun, sky and refracted light, Algorithm 5.1) on
-//! the projected grid of `ocean_gpu::OceanRenderer`, with the scene file's spectrum, Sun, sky and
-//! camera ([`crate::scene`]); then the scene's rock faces, relief-mapped by relaxed cone
-//! stepping (`ocean_gpu::ReliefRenderer`, cone maps generated at start-up), self-shadowed by the
-//! Sun and writing the depth of their relief, so the sea and the rocks occlude each other.
+//! What it draws: the open sea to the horizon and the sky, lit by the geometry-to-BRDF model
+//! (Bruneton, Neyret & Holzschuch 2010: Sun, sky and refracted light, Algorithm 5.1) on the
+//! projected grid of `ocean_gpu::OceanRenderer`, with the scene file's spectrum, Sun, sky and
+//! camera ([`crate::scene`]); the island's terrain ([`crate::terrain`]) and the wave trains of
+//! its wave train boxes, drawn on the same sea as local waves ([`crate::island`]); the scene's
+//! rock faces, relief-mapped by relaxed cone stepping (`ocean_gpu::ReliefRenderer`, cone maps
+//! generated at start-up and cached on disk, [`crate::cone_cache`]), self-shadowed by the Sun
+//! and writing the depth of their relief; and the ambient obscurance of the whole depth buffer
+//! ([`crate::composite`]).
 //!
 //! Every PNG is written to a temporary file and renamed when complete, the output directory is
 //! checked before anything is rendered, and an interruption (Ctrl-C, SIGTERM, SIGHUP) stops the
@@ -23,9 +26,10 @@ use ocean_gpu::{
     ContextOptions, GpuContext, OceanOptions, OceanRenderer, ReliefOptions, ReliefRenderer,
     ReliefScene,
 };
-use ocean_relief::{ConeMap, ConeParams, Edge, ReliefTexture};
+use ocean_relief::{ConeParams, Edge, ReliefTexture};
 
 use crate::composite::Obscurance;
+use crate::cone_cache;
 use crate::island::Island;
 use crate::png::write_atomically;
 use crate::scene::{DEFAULT_SCENE, Preset, SceneFile};
@@ -121,6 +125,8 @@ fn check_writable(out: &Path) -> Result<(), String> {
 struct RockDraw {
     renderer: ReliefRenderer,
     scene: ReliefScene,
+    /// Whether its cone map came from the cache on disk.
+    cached: bool,
 }
 
 /// The rocks of `scene`: each height map (value noise), its relaxed cone map and its quad, lit
@@ -134,7 +140,8 @@ fn rock_draws(ctx: &GpuContext, scene: &SceneFile, sun: DVec3) -> Result<Vec<Roc
             let n = rock.map_size;
             let heights = ocean_relief::maps::value_noise(n, (n / 32).max(2), 5, rock.seed);
             let map = ocean_relief::maps::to_map(n, &heights, Edge::Wrap).map_err(relief_error)?;
-            let cones = ConeMap::generate(&map, ConeParams::relaxed(4.0)).map_err(relief_error)?;
+            let (cones, source) =
+                cone_cache::cones(&map, ConeParams::relaxed(4.0)).map_err(relief_error)?;
             let texture = ReliefTexture::new(&map, &cones).map_err(relief_error)?;
             let mut renderer =
                 ReliefRenderer::new(ctx, ReliefOptions::default()).map_err(|e| e.to_string())?;
@@ -161,6 +168,7 @@ fn rock_draws(ctx: &GpuContext, scene: &SceneFile, sun: DVec3) -> Result<Vec<Roc
             Ok(RockDraw {
                 renderer,
                 scene: draw,
+                cached: source == cone_cache::Source::Cached,
             })
         })
         .collect()
@@ -525,10 +533,16 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         per(times.waves),
         scene.boxes.len()
     );
+    let cached = rocks.iter().filter(|r| r.cached).count();
     println!(
-        "  rocks            {:9.1} ms  ({} height and cone maps, relaxed, generated on the CPU)",
+        "  rocks            {:9.1} ms  ({} height and cone maps, relaxed: {} generated on the CPU, {cached} from the cache{})",
         1e3 * times.rocks,
-        rocks.len()
+        rocks.len(),
+        rocks.len() - cached,
+        cone_cache::dir().map_or_else(
+            || " (none: no cache directory)".to_owned(),
+            |d| format!(" in {}", d.display())
+        )
     );
     println!(
         "  frame            {:9.1} ms per frame  (sea, sky, island, rocks and obscurance; render and readback, wall time)",

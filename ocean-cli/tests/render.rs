@@ -14,8 +14,14 @@ fn dir(name: &str) -> PathBuf {
     common::dir("render", name)
 }
 
+/// The tests' cone-map cache (never the user's).
+fn cache_dir() -> PathBuf {
+    Path::new(env!("CARGO_TARGET_TMPDIR")).join("render-cone-cache")
+}
+
 fn ocean(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_ocean"))
+        .env("OCEAN_CACHE_DIR", cache_dir())
         .arg("render")
         .args(args)
         .output()
@@ -277,4 +283,54 @@ fn the_rock_face_is_drawn() {
         a > 0.02 && b == 0.0,
         "reddish share {a} with the rock, {b} without"
     );
+}
+
+/// The rock's cone map is generated once and then read from the cache, with the same image;
+/// a corrupt cache file is ignored and written again.
+#[test]
+fn cone_maps_are_cached_on_disk() {
+    let d = dir("cache");
+    let cache = d.join("cones");
+    let run = |name: &str| {
+        let out = d.join(name);
+        let o = Command::new(env!("CARGO_BIN_EXE_ocean"))
+            .env("OCEAN_CACHE_DIR", &cache)
+            .args(["render", "--width", "64", "--height", "36", "--out"])
+            .arg(&out)
+            .output()
+            .expect("run the ocean binary");
+        (o, out)
+    };
+    let (o, first) = run("first.png");
+    if no_adapter(&o) {
+        return;
+    }
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(
+        text.contains("1 generated on the CPU, 0 from the cache"),
+        "{text}"
+    );
+    let stored = files(&cache);
+    assert_eq!(stored.len(), 1, "{stored:?}");
+    let (o, second) = run("second.png");
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(
+        text.contains("0 generated on the CPU, 1 from the cache"),
+        "{text}"
+    );
+    assert_eq!(read_png(&first), read_png(&second));
+    // Corrupt the file: it is generated and stored again.
+    let path = cache.join(&stored[0]);
+    let mut bytes = std::fs::read(&path).unwrap();
+    let mid = bytes.len() / 2;
+    bytes[mid] ^= 1;
+    std::fs::write(&path, &bytes).unwrap();
+    let (o, third) = run("third.png");
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(
+        text.contains("1 generated on the CPU, 0 from the cache"),
+        "{text}"
+    );
+    assert_eq!(read_png(&first), read_png(&third));
+    assert_ne!(std::fs::read(&path).unwrap(), bytes);
 }

@@ -21,6 +21,11 @@ fn dir(name: &str) -> PathBuf {
 fn render(scene: Option<&str>, d: &Path, name: &str) -> Option<Vec<[u8; 4]>> {
     let out = d.join(format!("{name}.png"));
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_ocean"));
+    // The tests' cone-map cache, never the user's.
+    cmd.env(
+        "OCEAN_CACHE_DIR",
+        Path::new(env!("CARGO_TARGET_TMPDIR")).join("render-cone-cache"),
+    );
     cmd.args(["render", "--quiet", "--width", "192", "--height", "108"]);
     if let Some(text) = scene {
         let path = d.join(format!("{name}.toml"));
