@@ -3521,7 +3521,9 @@ OceanStatus ocean_shader_name(size_t index, const char **out);
  *
  * GLSL and GLSL ES give one file per entry point, named `<pass>.<entry>.<vert|frag|comp>.glsl`
  * (`.es.glsl` for ES), in the order the WGSL declares them; the draw pass "ocean" has the vertex
- * and fragment stages of the sea (`ocean_vs`, `ocean_fs`) and of the sky (`sky_vs`, `sky_fs`).
+ * and fragment stages of the sea (`ocean_vs`, `ocean_fs`), of the sky (`sky_vs`, `sky_fs`), of
+ * a caller's water mesh (`mesh_vs`, `mesh_fs`) and of the full-screen pass composing that
+ * mesh's light with an ambient obscurance (`sky_vs`, `compose_fs`).
  * HLSL (`<pass>.hlsl`), MSL (`<pass>.metal`) and SPIR-V (`<pass>.spv`) give one file with every
  * entry point. The translation is deterministic: the same library gives the same bytes.
  *

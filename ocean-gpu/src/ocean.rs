@@ -100,7 +100,7 @@ impl Default for OceanOptions {
     }
 }
 
-/// The shaders' uniform block, byte for byte the WGSL `Frame` of `ocean_common.wgsl` (320 bytes,
+/// The shaders' uniform block, byte for byte the WGSL `Frame` of `ocean_common.wgsl` (352 bytes,
 /// std140); the field documentation is there.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
@@ -133,6 +133,11 @@ pub struct FrameUniform {
     pub local: [f32; 4],
     /// Local grid points per row and rows, local trains.
     pub local_counts: [u32; 4],
+    /// The caller's mesh (`mesh_vs`): its grid point (0, 0) at rest relative to the eye, its
+    /// spacing.
+    pub mesh_grid: [f32; 4],
+    /// The mesh's grid points per row and rows.
+    pub mesh_counts: [u32; 4],
 }
 
 /// What [`OceanRenderer::probe_surface`] reads back for one screen point: what the vertex stage
@@ -1662,8 +1667,8 @@ mod tests {
 
     #[test]
     fn frame_uniform_matches_the_wgsl_struct() {
-        // Two mat4x4 (128 bytes) and twelve vec4 (192): 320 bytes, the WGSL `Frame`.
-        assert_eq!(std::mem::size_of::<FrameUniform>(), 320);
+        // Two mat4x4 (128 bytes) and fourteen vec4 (224): 352 bytes, the WGSL `Frame`.
+        assert_eq!(std::mem::size_of::<FrameUniform>(), 352);
         let b = shaders::get("ocean").unwrap().bindings().unwrap();
         assert_eq!(b[0].name, "frame");
         assert_eq!(b[0].size as usize, std::mem::size_of::<FrameUniform>());
@@ -1689,6 +1694,8 @@ mod tests {
                 ("probe", 272),
                 ("local", 288),
                 ("local_counts", 304),
+                ("mesh_grid", 320),
+                ("mesh_counts", 336),
             ]
         );
         // The probe module declares the same block.

@@ -290,10 +290,24 @@ static SHADERS: [ShaderEntry; 13] = [
                 name: "sky_fs",
                 stage: Stage::Fragment,
             },
+            EntryPoint {
+                name: "mesh_vs",
+                stage: Stage::Vertex,
+            },
+            EntryPoint {
+                name: "mesh_fs",
+                stage: Stage::Fragment,
+            },
+            EntryPoint {
+                name: "compose_fs",
+                stage: Stage::Fragment,
+            },
         ],
         description: "ocean surface: projected grid displaced by filtered trochoids, per-pixel \
                       filtered normals and slope variance lit by the Sun, the sky and the sea \
-                      (Bruneton et al. 2010 Eq. 2-4, 15, 26-28, Algorithm 5.1), and the sky",
+                      (Bruneton et al. 2010 Eq. 2-4, 15, 26-28, Algorithm 5.1), and the sky; \
+                      or the caller's own mesh lit the same way, its direct and ambient light \
+                      composed with an ambient obscurance",
     },
     ShaderEntry {
         name: "ocean_probe",

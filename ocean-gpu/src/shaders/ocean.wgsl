@@ -11,6 +11,16 @@
 //   vertex (i, j) at pixel frame.viewport.zw + cell_px (i, j), indexed as triangles of the
 //   cells (vertex index j·counts.x + i). The grid overlaps the viewport by a margin on every
 //   side, so waves that pull its edges inwards do not uncover the background (DESIGN.md).
+// - `mesh_vs`/`mesh_fs`: the caller's own water mesh instead of the projected grid (a wave
+//   train box scene's grid evaluated on the CPU each frame): vertex buffers at locations 0
+//   (position relative to the mesh's grid point (0, 0) at rest, vec3) and 1 (unit normal,
+//   vec3), vertex index j·mesh_counts.x + i for grid point (i, j), drawn as indexed
+//   triangles with depth. It writes linear radiance to two targets, the direct (Sun) part at
+//   location 0 and the ambient (sky and sea) part at location 1, alpha 1, for an ambient
+//   obscurance pass to darken the ambient part alone.
+// - `sky_vs`/`compose_fs`: after the mesh pass (and the obscurance), the full-screen triangle
+//   that writes each pixel's final colour: display(direct + A · ambient) where the mesh drew
+//   (ambient alpha 1), the sky (as `sky_fs`) elsewhere. No depth test.
 //
 // Output: tone-mapped colour, sRGB-encoded by the shader when frame.counts.w bit 0 is set (a
 // non-sRGB target such as rgba8unorm), linear otherwise (an sRGB target encodes it).
@@ -62,7 +72,13 @@ fn sky_vs(@builtin(vertex_index) index: u32) -> SkyVertex {
 
 @fragment
 fn sky_fs(in: SkyVertex) -> @location(0) vec4<f32> {
-    let dir = pixel_ray(in.clip.xy).dir;
+    return display(sky_radiance(in.clip.xy));
+}
+
+// The radiance the environment sends towards the viewer through `pixel`: the sky map, and the
+// Sun's disc.
+fn sky_radiance(pixel: vec2<f32>) -> vec3<f32> {
+    let dir = pixel_ray(pixel).dir;
     // The sky map's level 0 (the sky is smooth at the scale of a pixel); outside the horizon
     // circle it holds the radiance the environment shows below the horizon (§6). The bilinear
     // blend across that circle would draw the texels' staircase along the horizon, so a
@@ -81,5 +97,111 @@ fn sky_fs(in: SkyVertex) -> @location(0) vec4<f32> {
     if dot(dir, frame.sun_dir.xyz) >= frame.sun_dir.w {
         radiance += frame.sun_radiance.rgb;
     }
-    return display(radiance);
+    return radiance;
+}
+
+// The mesh pass's targets and the ambient obscurance, read by `compose_fs` one texel per pixel
+// (textureLoad only): the linear direct and ambient radiances `mesh_fs` wrote (rgba32float, or
+// rgba16float where the Sun's reflection stays below 65504 after exposure), and the
+// obscurance A in [0, 1] (r32float, 1 = unoccluded; an ambient obscurance pass's output, such
+// as the exported `sao_blur`'s, covering the viewport pixel for pixel).
+@group(0) @binding(9) var mesh_direct: texture_2d<f32>;
+@group(0) @binding(10) var mesh_ambient: texture_2d<f32>;
+@group(0) @binding(11) var obscurance: texture_2d<f32>;
+
+struct MeshVertex {
+    @builtin(position) clip: vec4<f32>,
+    // The grid point's rest position (x, z), relative to o: where the open sea's waves are
+    // evaluated (Eq. 3 and 4), as `OceanVertex::rest`.
+    @location(0) rest: vec2<f32>,
+    // Position relative to the eye.
+    @location(1) position: vec3<f32>,
+    // The mesh's normal.
+    @location(2) normal: vec3<f32>,
+}
+
+@vertex
+fn mesh_vs(
+    @builtin(vertex_index) index: u32,
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+) -> MeshVertex {
+    // Grid point (i, j) of vertex j·nx + i rests at mesh_grid.xz + (i, j)·spacing.
+    let nx = max(frame.mesh_counts.x, 1u);
+    let ij = vec2<f32>(f32(index % nx), f32(index / nx));
+    let relative = frame.mesh_grid.xyz + position;
+    var out: MeshVertex;
+    out.clip = frame.view_proj * vec4<f32>(relative, 1.0);
+    out.rest = frame.mesh_grid.xz + ij * frame.mesh_grid.w;
+    out.position = relative;
+    out.normal = normal;
+    return out;
+}
+
+struct MeshOutput {
+    // Linear radiance of the Sun's reflection (Eq. 15), alpha 1.
+    @location(0) direct: vec4<f32>,
+    // Linear radiance of the sky's reflection and the refracted light (Eq. 21, 28), alpha 1:
+    // the part an ambient obscurance darkens.
+    @location(1) ambient: vec4<f32>,
+}
+
+// The least y of a unit normal whose slope is taken (a slope of 10³): the mesh's normals and
+// the filtered ones point up, and a grazing one must not divide by zero.
+const MIN_NORMAL_Y: f32 = 1e-3;
+
+// The slope (∂y/∂x, ∂y/∂z) of the surface whose unit normal is `n`.
+fn normal_slope(n: vec3<f32>) -> vec2<f32> {
+    return -n.xz / max(n.y, MIN_NORMAL_Y);
+}
+
+@fragment
+fn mesh_fs(in: MeshVertex) -> MeshOutput {
+    // The mesh's own slope at the pixel, and an estimate of what the pixel does not resolve of
+    // it. The lighting paper's model takes any waves whose slope variance is known (§6, "local
+    // waves"); a mesh brings no statistics of its own, so its unresolved slope variance is
+    // estimated from the screen-space derivatives of its interpolated slope: a slope varying
+    // linearly by d_x per pixel across and d_y per pixel down, over a pixel's square, has the
+    // variance (d_x² + d_y²)/12 along each axis (a uniform distribution over [−½, ½]²). Where
+    // the mesh's cells shrink below a pixel, the differences between neighbouring pixels grow
+    // with the mesh's detail that the pixel averages, and the estimate turns that detail into
+    // roughness instead of aliasing. Measured along the wind and across it, the axes of the
+    // variances of Eq. 4. (Derivatives first: they need uniform control flow.)
+    let mesh_slope = normal_slope(normalize(in.normal));
+    let dx = dpdx(mesh_slope);
+    let dy = dpdy(mesh_slope);
+    let wind = frame.sea.xy;
+    let across = vec2<f32>(-wind.y, wind.x);
+    let along_var = dot(dx, wind) * dot(dx, wind) + dot(dy, wind) * dot(dy, wind);
+    let across_var = dot(dx, across) * dot(dx, across) + dot(dy, across) * dot(dy, across);
+    let mesh_variance = vec2<f32>(along_var, across_var) / 12.0;
+
+    // The open sea's waves at the mesh's rest position, filtered for the pixel (Eq. 3, 4), as
+    // `ocean_fs` does; the mesh carries the geometry, these waves only the normal and the
+    // BRDF. Without a spectrum (no waves) the normal is +y and the variance 0.
+    let l = pixel_footprint(in.clip.xy);
+    let s = pixel_surface(in.rest, l);
+    // The two surfaces superposed as height fields: slopes add (the spectrum's waves ride on
+    // the mesh, their horizontal displacement neglected), and so do the independent slope
+    // variances.
+    let slope = mesh_slope + normal_slope(s.normal);
+    let n = normalize(vec3<f32>(-slope.x, 1.0, -slope.y));
+    let v = normalize(-in.position);
+    let light = sea_color(v, n, wind, s.variance + mesh_variance);
+    var out: MeshOutput;
+    out.direct = vec4<f32>(light.sun, 1.0);
+    out.ambient = vec4<f32>(light.sky + light.sea, 1.0);
+    return out;
+}
+
+@fragment
+fn compose_fs(in: SkyVertex) -> @location(0) vec4<f32> {
+    let p = vec2<i32>(in.clip.xy);
+    let ambient = textureLoad(mesh_ambient, p, 0);
+    if ambient.a == 0.0 {
+        return display(sky_radiance(in.clip.xy));
+    }
+    let direct = textureLoad(mesh_direct, p, 0).rgb;
+    let a = clamp(textureLoad(obscurance, p, 0).x, 0.0, 1.0);
+    return display(direct + a * ambient.rgb);
 }

@@ -23,7 +23,7 @@ const MIN_DEPRESSION: f32 = 1e-6;
 // The smallest footprint a weight is computed for, metres: guards λ/size against 0 and NaN.
 const MIN_FOOTPRINT: f32 = 1e-9;
 
-// Matches `ocean_gpu::ocean::FrameUniform` (288 bytes).
+// Matches `ocean_gpu::ocean::FrameUniform` (352 bytes).
 struct Frame {
     // Camera-relative (minus E) position → clip, WebGPU depth range, the camera's direction.
     view_proj: mat4x4<f32>,
@@ -59,6 +59,11 @@ struct Frame {
     local: vec4<f32>,
     // x, y: the local grid's points per row and rows, z: number of local trains, w: unused.
     local_counts: vec4<u32>,
+    // The caller's mesh (`mesh_vs`, ocean.wgsl): xyz: its grid point (0, 0) at rest relative
+    // to E (so y = −eye_y), w: its grid spacing (m). Zero when no mesh is drawn.
+    mesh_grid: vec4<f32>,
+    // x, y: the mesh's grid points per row and rows, zw: unused.
+    mesh_counts: vec4<u32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
