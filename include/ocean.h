@@ -68,6 +68,23 @@
 #define OCEAN_FILTER_N_MAX 2.5
 
 /**
+ * Size in bytes of the exported `ocean` shader's uniform block `Frame` (binding 0, std140);
+ * `ocean_ocean_uniforms` writes it.
+ */
+#define OCEAN_OCEAN_UNIFORMS_SIZE 352
+
+/**
+ * Rows of the wave texture (binding 1 of the `ocean` shader): `ocean_ocean_wave_texels`.
+ */
+#define OCEAN_WAVE_TEXTURE_ROWS 3
+
+/**
+ * Side of the effective Fresnel table texture (binding 6 of the `ocean` shader), texels:
+ * `ocean_ocean_fresnel_texels`.
+ */
+#define OCEAN_FRESNEL_TABLE_SIZE 33
+
+/**
  * `edge`: the texture tiles (sampler addressing *repeat*).
  */
 #define OCEAN_RELIEF_EDGE_WRAP 0
@@ -1067,6 +1084,80 @@ typedef struct OceanSlopeVariance {
 } OceanSlopeVariance;
 
 /**
+ * How the exported `ocean` shader draws: the parts of the uniform block that do not come from
+ * the camera, the spectrum or the lighting. `ocean_ocean_draw_params_default` fills in the
+ * library's defaults (those of `ocean_renderer_options_default`, the paper's filter).
+ */
+typedef struct OceanOceanDrawParams {
+  /**
+   * N_min of the filter (paper section 7.1): a wave enters a pixel's normal once its
+   * wavelength spans this many pixels (a grid vertex's position: grid cells). > 0.
+   */
+  double n_min;
+  /**
+   * N_max of the filter: fully present from this many. In (n_min, 1e6].
+   */
+  double n_max;
+  /**
+   * Projected grid (`ocean_vs`): cell size, pixels, in [1, 256]. Unused by the mesh.
+   */
+  double cell_px;
+  /**
+   * Projected grid: margin beyond the viewport, a fraction of its size, in [0, 2]. Unused by
+   * the mesh.
+   */
+  double margin;
+  /**
+   * Distance cap of the view rays' hits on the sea plane, metres, in (0, 1e7]: pixel
+   * footprints (hence the filtering) are measured on the sea plane, and rays above the
+   * horizon stop there.
+   */
+  double max_distance;
+  /**
+   * Exposure of the tone mapping 1 - exp(-exposure * L), in (0, 1e6].
+   */
+  double exposure;
+  /**
+   * Level-0 size of the sky map texture the engine uploads (`ocean_lighting_sky_map_create`
+   * with this size), a power of two in [`OCEAN_SKY_MAP_MIN_SIZE`, `OCEAN_SKY_MAP_MAX_SIZE`].
+   */
+  uint32_t sky_map_size;
+  /**
+   * 1: the shader sRGB-encodes its colour (for a linear `GL_RGBA8` target); 0: it writes
+   * linear colour (for an sRGB target with `GL_FRAMEBUFFER_SRGB`). Other values are refused.
+   */
+  uint8_t srgb_encode;
+} OceanOceanDrawParams;
+
+/**
+ * The water grid of a scene: `nx * nz` points, point (i, j) resting at world
+ * (origin_x + i*spacing, 0, origin_z + j*spacing), stored row-major at j*nx + i. The spacing is
+ * the same along x and z (a box's internal frame steps by it along both of its axes).
+ */
+typedef struct OceanWaterGridDesc {
+  /**
+   * World x of point (0, 0), metres, finite, |origin_x| <= 1e9.
+   */
+  double origin_x;
+  /**
+   * World z of point (0, 0), metres, finite, |origin_z| <= 1e9.
+   */
+  double origin_z;
+  /**
+   * Distance between neighbouring points along x and z, metres, in [1e-3, 1e4].
+   */
+  double spacing;
+  /**
+   * Columns (along x), 2 to 4096.
+   */
+  size_t nx;
+  /**
+   * Rows (along z), 2 to 4096.
+   */
+  size_t nz;
+} OceanWaterGridDesc;
+
+/**
  * How the cones are made. Start from `ocean_relief_cone_params_default`.
  */
 typedef struct OceanReliefConeParams {
@@ -1688,34 +1779,6 @@ typedef struct OceanEffects {
    */
   struct OceanBeach beach;
 } OceanEffects;
-
-/**
- * The water grid of a scene: `nx * nz` points, point (i, j) resting at world
- * (origin_x + i*spacing, 0, origin_z + j*spacing), stored row-major at j*nx + i. The spacing is
- * the same along x and z (a box's internal frame steps by it along both of its axes).
- */
-typedef struct OceanWaterGridDesc {
-  /**
-   * World x of point (0, 0), metres, finite, |origin_x| <= 1e9.
-   */
-  double origin_x;
-  /**
-   * World z of point (0, 0), metres, finite, |origin_z| <= 1e9.
-   */
-  double origin_z;
-  /**
-   * Distance between neighbouring points along x and z, metres, in [1e-3, 1e4].
-   */
-  double spacing;
-  /**
-   * Columns (along x), 2 to 4096.
-   */
-  size_t nx;
-  /**
-   * Rows (along z), 2 to 4096.
-   */
-  size_t nz;
-} OceanWaterGridDesc;
 
 /**
  * A wind, which creates one wave train box (paper section 2).
@@ -2772,6 +2835,141 @@ OceanStatus ocean_pixel_footprint(const struct OceanCameraDesc *camera,
                                   double py,
                                   double max_distance,
                                   double *out);
+
+/**
+ * Stores the default draw parameters in `*out`: the paper's filter (`OCEAN_FILTER_N_MIN`,
+ * `OCEAN_FILTER_N_MAX`), 8-pixel grid cells, a 10 % margin, a 50 km distance cap, exposure
+ * `OCEAN_DEFAULT_EXPOSURE`, a 512 x 512 sky map, sRGB encoding by the shader.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_ocean_draw_params_default(struct OceanOceanDrawParams *out);
+
+/**
+ * Writes the uniform block of the exported `ocean` draw shader for one frame of `width` x
+ * `height` pixels seen by `camera` at `time` seconds into `out` (the
+ * `OCEAN_OCEAN_UNIFORMS_SIZE` bytes of `Frame`, std140, in the machine's byte order: upload
+ * them as they are with `glBufferSubData`): the spectrum's waves filtered by `params->n_min`
+ * and `n_max` (their texture: `ocean_ocean_wave_texels` for the same camera and time), the
+ * Sun, sky and sea of `lighting`, and, when `mesh` is not NULL, the water mesh that `mesh_vs`
+ * draws (a wave train box scene's grid: pass the `OceanWaterGridDesc` it was created with).
+ * The camera is the one of `ocean_pixel_footprint`, above the sea (eye y > 0); its
+ * `aspect` should be width / height. Positions in the block are relative to the camera's eye
+ * (subtracted here in double precision, with the waves' phases reduced per frame), so a sea
+ * far from the world origin does not jitter.
+ *
+ * To draw a mesh with its ambient light obscured (`ocean_shader_export` of `ocean`, GLSL 3.30
+ * core; assign bindings by the names in its binding table: `glUniformBlockBinding` for the
+ * blocks `Frame_block_0Vertex` and `Frame_block_0Fragment`, `glUniform1i` texture units for
+ * the samplers `_group_0_binding_<b>_vs` / `_fs`):
+ * - binding 0: this block, a uniform buffer;
+ * - binding 1: the wave texture, `GL_RGBA32F`, wave count x `OCEAN_WAVE_TEXTURE_ROWS`, one
+ *   level, the texels of `ocean_ocean_wave_texels` (refreshed every frame);
+ * - bindings 2 and 3: the sky map, `GL_RGBA16F` (or `GL_RGBA32F`), `params->sky_map_size`
+ *   square with every level of `ocean_sky_map_copy_level`, sampled with linear min, mag and
+ *   mip filtering and clamp-to-edge (the sampler of binding 3 is folded into binding 2's);
+ * - binding 6: the effective Fresnel table, `GL_R32F`, `OCEAN_FRESNEL_TABLE_SIZE` square, the
+ *   texels of `ocean_ocean_fresnel_texels`;
+ * - bindings 7 and 8: local waves, never read when none are set (as here): any complete
+ *   `GL_RG32F` 2D array texture and `GL_RGBA32F` 2D texture;
+ * - pass 1, `mesh_vs` + `mesh_fs`: attribute 0 the positions and attribute 1 the normals that
+ *   `ocean_scene_evaluate` writes (3 floats each, point (i, j) at vertex j * nx + i), drawn as
+ *   indexed `GL_TRIANGLES` over the grid's cells, depth test `GL_LESS` (`GL_GREATER`
+ *   reversed) with writes, no culling, into two colour targets of linear radiance: location 0
+ *   the Sun's reflection, location 1 the sky's reflection plus the refracted light, both
+ *   `GL_RGBA32F` cleared to 0 (alpha 1 marks the pixels the mesh covers);
+ * - an ambient obscurance over pass 1's depth (the exported `sao_*` shaders,
+ *   `ocean_sao_uniforms`; the depth buffer holds window depth, `OCEAN_SAO_DEPTH_WINDOW`), with
+ *   no guard band, so that its output covers the viewport pixel for pixel;
+ * - pass 2, `sky_vs` + `compose_fs`: 3 vertices, no vertex buffer, no depth test, with
+ *   bindings 9 and 10 the two targets of pass 1 and binding 11 the obscurance (`GL_R32F`, 1
+ *   unoccluded): each pixel becomes the tone-mapped Sun term plus the obscured ambient terms
+ *   where the mesh drew, the sky elsewhere.
+ *
+ * The projected grid (`ocean_vs` + `ocean_fs`, the `OceanRenderer`'s sea) and the sky alone
+ * (`sky_vs` + `sky_fs`) draw from the same block. The exported GLSL's clip space is OpenGL's
+ * with y flipped (naga's convention, as wgpu's GL backend): image row 0 is the top row, so an
+ * image read back with `glReadPixels` is upright, and a frame shown in a window is blitted
+ * with its rows reversed.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (`mesh` may be
+ * NULL), `OCEAN_STATUS_EMPTY` if `width` or `height` is 0 or the mesh has a side of 0,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time`, parameter, camera or mesh member,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for a parameter, camera or mesh outside its documented
+ * ranges (the message names it) or a camera not above the sea, `OCEAN_STATUS_BUFFER_TOO_SMALL`
+ * if `len` is below `OCEAN_OCEAN_UNIFORMS_SIZE`, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len`
+ * exceeds `PTRDIFF_MAX`. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `camera`, `params` and `mesh` (unless NULL) must be readable, `spectrum` and `lighting` live
+ * handles, and `out` point to `len` writable bytes that no other thread touches during the
+ * call.
+ */
+OceanStatus ocean_ocean_uniforms(const struct OceanCameraDesc *camera,
+                                 const struct OceanSpectrum *spectrum,
+                                 const struct OceanLighting *lighting,
+                                 const struct OceanOceanDrawParams *params,
+                                 const struct OceanWaterGridDesc *mesh,
+                                 double time,
+                                 uint32_t width,
+                                 uint32_t height,
+                                 uint8_t *out,
+                                 size_t len);
+
+/**
+ * Writes the wave texture of the exported `ocean` shader (binding 1) for one frame seen by
+ * `camera` at `time` seconds into `out`: `OCEAN_WAVE_TEXTURE_ROWS` rows of wave count
+ * (`ocean_spectrum_wave_count`) RGBA float texels, row 0 first, one column per wave, longest
+ * first; `len` counts floats and must be exactly 12 * wave count. Upload it as a `GL_RGBA32F`
+ * texture of wave count x 3 texels every frame, with the block of `ocean_ocean_uniforms` for
+ * the same camera and time.
+ *
+ * Row 0 holds (wavelength, k_x, k_z, phase at the eye's horizontal position o, k.o - omega t +
+ * phi reduced modulo 2 pi in double precision); row 1 (A, A k_x/|k|, A k_z/|k|, 0); row 2
+ * (k A, the squared cosine of the wave's angle to the wind, and the slope variances along and
+ * across the wind of this wave and every shorter one, Eq. 4 with w_r = 1, summed in double
+ * precision). Only row 0 changes between frames. The texels do not depend on the filter.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
+ * alignment for `out`), `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or camera
+ * member, `OCEAN_STATUS_INVALID_ARGUMENT` for a camera outside its documented ranges or a
+ * `len` other than 12 * wave count, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)`
+ * exceeds `PTRDIFF_MAX`. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `camera` must be readable, `spectrum` a live handle, and `out` point to `len` writable
+ * floats that no other thread touches during the call.
+ */
+OceanStatus ocean_ocean_wave_texels(const struct OceanCameraDesc *camera,
+                                    const struct OceanSpectrum *spectrum,
+                                    double time,
+                                    float *out,
+                                    size_t len);
+
+/**
+ * Writes the effective Fresnel table texture of the exported `ocean` shader (binding 6) into
+ * `out`: `OCEAN_FRESNEL_TABLE_SIZE` rows of as many floats, `len` exactly 33 * 33. Element
+ * 33 i + j (texel (j, i): column j, row i) holds the roughness correction
+ * D = M - (1 - cos theta_v)^5 of Eq. 24 at cos theta_v = (i/32)^2 and sigma_v = (j/32)^2, the
+ * table behind `ocean_effective_fresnel_table`, rounded to float. Upload it as a `GL_R32F`
+ * texture of 33 x 33 texels once.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for a `len` other than 33 * 33. Nothing is written on
+ * failure.
+ *
+ * # Safety
+ *
+ * `out` must point to `len` writable floats that no other thread touches during the call.
+ */
+OceanStatus ocean_ocean_fresnel_texels(float *out, size_t len);
 
 /**
  * Creates a height map from `len` = width * height floats, row-major (texel (i, j) at element

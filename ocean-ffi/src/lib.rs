@@ -27,6 +27,7 @@ mod gpu;
 mod lighting;
 mod lighting_brdf;
 mod lighting_spectrum;
+mod ocean_draw;
 mod relief;
 mod relief_draw;
 mod relief_trace;
@@ -68,6 +69,11 @@ pub use lighting_spectrum::{
     ocean_spectrum_slope_variance, ocean_spectrum_steepness_sum,
     ocean_spectrum_total_slope_variance, ocean_spectrum_wave_count, ocean_spectrum_waves,
     ocean_spectrum_wind_direction,
+};
+pub use ocean_draw::{
+    OCEAN_FRESNEL_TABLE_SIZE, OCEAN_OCEAN_UNIFORMS_SIZE, OCEAN_WAVE_TEXTURE_ROWS,
+    OceanOceanDrawParams, ocean_ocean_draw_params_default, ocean_ocean_fresnel_texels,
+    ocean_ocean_uniforms, ocean_ocean_wave_texels,
 };
 pub use relief::{
     OCEAN_RELIEF_CONES_CONSERVATIVE, OCEAN_RELIEF_CONES_RELAXED, OCEAN_RELIEF_EDGE_CLAMP,

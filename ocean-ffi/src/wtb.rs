@@ -464,21 +464,22 @@ fn stats_to(s: &FrameStats) -> OceanFrameStats {
 }
 
 /// Reads and validates a grid description.
-fn water_grid(g: &OceanWaterGridDesc) -> Result<WaterGrid, Error> {
+/// The water grid described by `g`, checked; messages name it `name` (the argument).
+pub(crate) fn water_grid(g: &OceanWaterGridDesc, name: &str) -> Result<WaterGrid, Error> {
     if g.nx == 0 || g.nz == 0 {
         return Err(Error::new(
             OceanStatus::Empty,
-            format!("grid is {} x {}: both sizes must be >= 2", g.nx, g.nz),
+            format!("{name} is {} x {}: both sizes must be >= 2", g.nx, g.nz),
         ));
     }
     g.nx.checked_mul(g.nz).ok_or_else(|| {
         Error::new(
             OceanStatus::LengthOverflow,
-            format!("grid point count {} x {} overflows size_t", g.nx, g.nz),
+            format!("{name} point count {} x {} overflows size_t", g.nx, g.nz),
         )
     })?;
     check_finite(
-        "grid->",
+        &format!("{name}->"),
         &[
             ("origin_x", g.origin_x),
             ("origin_z", g.origin_z),
@@ -486,7 +487,7 @@ fn water_grid(g: &OceanWaterGridDesc) -> Result<WaterGrid, Error> {
         ],
     )?;
     WaterGrid::new(DVec2::new(g.origin_x, g.origin_z), g.spacing, g.nx, g.nz)
-        .map_err(|e| wtb_error("grid: ", e))
+        .map_err(|e| wtb_error(&format!("{name}: "), e))
 }
 
 /// A terrain from the caller's heights: NULL with length 0 is deep sea.
@@ -747,7 +748,7 @@ pub unsafe extern "C" fn ocean_scene_create(
         check_ptr(grid, "grid")?;
         check_ptr(out.cast_const(), "out")?;
         // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
-        let g = water_grid(&unsafe { grid.read() })?;
+        let g = water_grid(&unsafe { grid.read() }, "grid")?;
         // SAFETY: forwarded from this function's contract.
         let t = unsafe { terrain(&g, terrain_heights, terrain_len) }?;
         let scene = Scene::new(g, t).map_err(|e| wtb_error("", e))?;

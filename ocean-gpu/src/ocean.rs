@@ -201,15 +201,95 @@ struct GridIndices {
     buffer: wgpu::Buffer,
 }
 
-/// The waves of the surface, in the wave texture's order (longest first).
-#[derive(Debug)]
-struct SurfaceState {
+/// The wave texture of a filtered surface (binding 1 of `ocean_common.wgsl`): one column per
+/// wave, longest first, three rows of `rgba32float` texels.
+///
+/// Row 0 holds `(λ, k_x, k_z, θ₀)` with the phase `θ₀ = k·o − ωt + Φ` of the frame (`o` the
+/// eye's horizontal position), reduced modulo 2π in `f64`; row 1 `(A, A k_x/|k|, A k_z/|k|, 0)`;
+/// row 2 `(k·A, (k̂·wind)², S_x, S_y)`, `S` the slope variance (Eq. 4 with `w_r = 1`, Appendix
+/// A) of the wave and every shorter one, summed in `f64`. Rows 1 and 2 are fixed; row 0
+/// changes every frame ([`WaveTexels::phases`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct WaveTexels {
     waves: Vec<Wave>,
-    /// The wave texture's texels, row 0's phases to be filled per frame.
+    /// Rows 0 to 2, row-major, row 0's phases 0.
     texels: Vec<[f32; 4]>,
     n_min: f64,
     n_max: f64,
     wind: DVec2,
+}
+
+impl WaveTexels {
+    /// The texels of `surface`'s waves (sorted longest first, as [`FilteredSurface`] keeps
+    /// them), with its filter thresholds and wind for the uniform block.
+    pub fn new(surface: &FilteredSurface) -> Self {
+        let waves = surface.wave_set().waves();
+        let n = waves.len();
+        let wind = surface.wind();
+        let mut texels = vec![[0.0f32; 4]; n * WAVE_ROWS as usize];
+        // The variance of wave i and every shorter one (they follow it), in f64.
+        let mut suffix = DVec2::ZERO;
+        for i in (0..n).rev() {
+            let w = &waves[i];
+            let k = w.wave_vector();
+            let m = w.wavenumber();
+            let a = w.amplitude();
+            let (ka, cos2) = wave_variance_term(w, wind);
+            let var = trochoid_slope_variance(ka);
+            suffix += DVec2::new(var * cos2, var * (1.0 - cos2));
+            texels[i] = [surface.wavelengths()[i] as f32, k.x as f32, k.y as f32, 0.0];
+            texels[n + i] = [a as f32, (a * k.x / m) as f32, (a * k.y / m) as f32, 0.0];
+            texels[2 * n + i] = [ka as f32, cos2 as f32, suffix.x as f32, suffix.y as f32];
+        }
+        Self {
+            waves: waves.to_vec(),
+            texels,
+            n_min: surface.filter().n_min(),
+            n_max: surface.filter().n_max(),
+            wind,
+        }
+    }
+
+    /// The number of waves: the texture's width.
+    pub fn wave_count(&self) -> usize {
+        self.waves.len()
+    }
+
+    /// Row 0 for a frame at `time` seen from an eye at horizontal position `o` (world x, z):
+    /// `θ₀ = k·o − ωt + Φ` reduced modulo 2π in `f64` (DESIGN.md), so the shader's phase
+    /// `k·(x − o) + θ₀` never holds a large number in `f32`.
+    pub fn phases(&self, o: DVec2, time: f64) -> Vec<[f32; 4]> {
+        self.waves
+            .iter()
+            .zip(&self.texels)
+            .map(|(w, t)| [t[0], t[1], t[2], reduce_angle(w.phase_at(o, time)) as f32])
+            .collect()
+    }
+
+    /// The whole texture for a frame at `time` seen by `camera`: the three rows, row-major,
+    /// row 0 with [`phases`](Self::phases) at the eye's horizontal position.
+    pub fn frame_texels(&self, camera: &Camera, time: f64) -> Vec<[f32; 4]> {
+        let eye = camera.eye();
+        let phases = self.phases(DVec2::new(eye.x, eye.z), time);
+        let mut texels = self.texels.clone();
+        texels[..phases.len()].copy_from_slice(&phases);
+        texels
+    }
+}
+
+/// A water mesh that `mesh_vs` draws (ocean.wgsl): a grid of `nx × nz` points, point `(i, j)`
+/// resting at world `(origin.x + i·spacing, 0, origin.y + j·spacing)`, its vertex index
+/// `j·nx + i` (a wave train box scene's water grid, [`ocean_wtb::WaterGrid`]'s layout).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshGrid {
+    /// World `(x, z)` of grid point (0, 0), metres.
+    pub origin: DVec2,
+    /// Distance between neighbouring points along x and z, metres, > 0.
+    pub spacing: f64,
+    /// Points per row (along x), ≥ 1.
+    pub nx: u32,
+    /// Rows (along z), ≥ 1.
+    pub nz: u32,
 }
 
 /// The GPU ocean renderer: projected grid, filtered waves, Algorithm 5.1, sky.
@@ -239,7 +319,7 @@ pub struct OceanRenderer {
     /// The effective Fresnel table (binding 6; the view keeps its texture alive).
     fresnel_view: wgpu::TextureView,
     bind_group: wgpu::BindGroup,
-    surface: Option<SurfaceState>,
+    surface: Option<WaveTexels>,
     lighting: Option<Lighting>,
     /// The local waves (§6), empty until [`OceanRenderer::set_local_waves`].
     local: LocalTextures,
@@ -261,6 +341,20 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
 impl OceanOptions {
     /// Checks every field against its documented range and the device's limits.
     fn validate(&self, device: &wgpu::Device) -> Result<(), GpuError> {
+        self.check()?;
+        let size = self.sky_map_size;
+        let max_dim = device.limits().max_texture_dimension_2d;
+        if size > max_dim {
+            return Err(invalid(
+                "sky_map_size",
+                format!("{size} exceeds the device's largest texture ({max_dim})"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Checks every field against its documented range.
+    fn check(&self) -> Result<(), GpuError> {
         let range = |what, v: f64, lo: f64, hi: f64, lo_open: bool| {
             let above = if lo_open { v > lo } else { v >= lo };
             if v.is_finite() && above && v <= hi {
@@ -275,16 +369,11 @@ impl OceanOptions {
         range("max_distance", self.max_distance, 0.0, 1e7, true)?;
         range("exposure", self.exposure, 0.0, 1e6, true)?;
         let size = self.sky_map_size;
-        let max_dim = device.limits().max_texture_dimension_2d;
-        if !size.is_power_of_two()
-            || !(SKY_MAP_MIN_SIZE..=SKY_MAP_MAX_SIZE).contains(&size)
-            || size > max_dim
-        {
+        if !size.is_power_of_two() || !(SKY_MAP_MIN_SIZE..=SKY_MAP_MAX_SIZE).contains(&size) {
             return Err(invalid(
                 "sky_map_size",
                 format!(
-                    "{size} must be a power of two in [{SKY_MAP_MIN_SIZE}, {}]",
-                    SKY_MAP_MAX_SIZE.min(max_dim)
+                    "{size} must be a power of two in [{SKY_MAP_MIN_SIZE}, {SKY_MAP_MAX_SIZE}]"
                 ),
             ));
         }
@@ -356,6 +445,157 @@ fn mat_f32(m: DMat4, what: &'static str) -> Result<[[f32; 4]; 4], GpuError> {
 
 fn rgb(v: DVec3, w: f32) -> [f32; 4] {
     [v.x as f32, v.y as f32, v.z as f32, w]
+}
+
+/// The uniform block `Frame` of `ocean_common.wgsl` for one frame of `width × height` pixels
+/// (`size`) seen by `camera` at `time`: what [`OceanRenderer::render`] draws with, and what a
+/// caller drawing the exported shader in its own pipeline uploads. The surface's filter and
+/// wind and the lighting's Sun, sky and sea fill their fields (the lighting's stay zero for
+/// `None`: nothing lit); `mesh`, if given, is the water mesh `mesh_vs` draws (its origin
+/// stored relative to the eye, subtracted in `f64`). The local waves and the probe count are
+/// zero (none). Pair it with [`WaveTexels::frame_texels`] for the same camera and time.
+///
+/// The camera's matrices are formed relative to its eye in `f64` and folded into WebGPU's
+/// clip space (an OpenGL `[−1, 1]` camera's `z` is halved and shifted; naga's GLSL export maps
+/// it back).
+///
+/// # Errors
+///
+/// [`GpuError::InvalidInput`] for an option outside its documented range, an empty viewport,
+/// a camera not above the sea (`eye.y ≤ 0`) or whose matrices overflow `f32`, or a mesh with a
+/// non-finite origin, a spacing that is not finite and positive, or no points;
+/// [`GpuError::Eval`] for a non-finite time; [`GpuError::TooLarge`] for a projected grid
+/// beyond 2³² − 1 vertices.
+pub fn frame_uniform(
+    options: &OceanOptions,
+    surface: &WaveTexels,
+    lighting: Option<&Lighting>,
+    camera: &Camera,
+    time: f64,
+    size: (u32, u32),
+    mesh: Option<&MeshGrid>,
+) -> Result<FrameUniform, GpuError> {
+    options.check()?;
+    let (width, height) = size;
+    if width == 0 || height == 0 {
+        return Err(invalid("viewport", format!("{width} x {height} is empty")));
+    }
+    if !time.is_finite() {
+        return Err(GpuError::Eval(EvalError::Time(time)));
+    }
+    let eye = camera.eye();
+    if !eye.is_finite() || eye.y <= 0.0 {
+        return Err(invalid(
+            "camera",
+            format!(
+                "the eye at ({}, {}, {}) must be above the sea (y > 0)",
+                eye.x, eye.y, eye.z
+            ),
+        ));
+    }
+    let (nx, ny) = grid_counts(options, width, height)?;
+    let o = DVec2::new(eye.x, eye.z);
+    let (remap, to_wgpu) = depth_remap(camera);
+    let view_proj = remap * camera.view_projection_f64() * DMat4::from_translation(eye);
+    let inv_view_proj =
+        DMat4::from_translation(-eye) * camera.inverse_view_projection_f64() * remap.inverse();
+    let depth = camera.depth();
+    let near = to_wgpu(depth.near_ndc());
+    let far = to_wgpu(depth.far_ndc());
+    let mut u = lighting_uniform(options, surface, lighting);
+    u.view_proj = mat_f32(view_proj, "camera view-projection")?;
+    u.inv_view_proj = mat_f32(inv_view_proj, "camera inverse view-projection")?;
+    u.camera = [
+        eye.y as f32,
+        options.max_distance as f32,
+        near as f32,
+        (0.5 * (near + far)) as f32,
+    ];
+    u.viewport = [
+        width as f32,
+        height as f32,
+        (-options.margin * f64::from(width)) as f32,
+        (-options.margin * f64::from(height)) as f32,
+    ];
+    u.counts[0] = nx;
+    u.counts[1] = ny;
+    u.sun_radiance[3] = far as f32;
+    if let Some(m) = mesh {
+        let origin = m.origin - o;
+        let fits = |v: f64| v.is_finite() && (v as f32).is_finite();
+        if !fits(origin.x) || !fits(origin.y) {
+            return Err(invalid(
+                "mesh",
+                format!(
+                    "its origin ({}, {}) must be finite and within f32's range of the eye",
+                    m.origin.x, m.origin.y
+                ),
+            ));
+        }
+        if !(m.spacing.is_finite() && m.spacing > 0.0 && (m.spacing as f32) > 0.0) {
+            return Err(invalid(
+                "mesh",
+                format!("its spacing {} must be finite and > 0", m.spacing),
+            ));
+        }
+        if m.nx == 0 || m.nz == 0 {
+            return Err(invalid(
+                "mesh",
+                format!("{} x {} points: it needs at least one", m.nx, m.nz),
+            ));
+        }
+        u.mesh_grid = [
+            origin.x as f32,
+            (-eye.y) as f32,
+            origin.y as f32,
+            m.spacing as f32,
+        ];
+        u.mesh_counts = [m.nx, m.nz, 0, 0];
+    }
+    Ok(u)
+}
+
+/// The uniform block's surface and lighting fields (the lighting's are zero
+/// without a lighting).
+fn lighting_uniform(
+    options: &OceanOptions,
+    surface: &WaveTexels,
+    lighting: Option<&Lighting>,
+) -> FrameUniform {
+    let mut u = FrameUniform {
+        grid: [
+            options.cell_px as f32,
+            surface.n_min as f32,
+            surface.n_max as f32,
+            options.exposure as f32,
+        ],
+        counts: [
+            0,
+            0,
+            surface.waves.len() as u32,
+            u32::from(!options.color_format.is_srgb()),
+        ],
+        sky: [
+            options.sky_map_size as f32,
+            SKY_MAP_EXTENT as f32,
+            // Set with the lighting below; until then no Sun is drawn.
+            0.0,
+            0.0,
+        ],
+        ..Default::default()
+    };
+    u.sea[0] = surface.wind.x as f32;
+    u.sea[1] = surface.wind.y as f32;
+    if let Some(l) = lighting {
+        let sky = l.sky();
+        u.sea[2] = l.sea().fresnel_r as f32;
+        u.sea[3] = sky.sun_solid_angle() as f32;
+        u.sun_dir = rgb(sky.sun_direction(), sky.sun_angular_radius().cos() as f32);
+        u.sky[2] = sky.sun_min_variance() as f32;
+        u.sun_radiance = rgb(sky.sun_radiance(), 0.0);
+        u.sea_radiance = rgb(l.sea_radiance(), 0.0);
+    }
+    u
 }
 
 impl OceanRenderer {
@@ -482,8 +722,7 @@ impl OceanRenderer {
         surface: &FilteredSurface,
     ) -> Result<(), GpuError> {
         let device = ctx.device();
-        let waves = surface.wave_set().waves();
-        let n = waves.len();
+        let n = surface.wave_set().waves().len();
         let limit = device.limits().max_texture_dimension_2d;
         if n == 0 || n as u64 > u64::from(limit) {
             return Err(GpuError::TooLarge {
@@ -492,26 +731,11 @@ impl OceanRenderer {
                 limit: u64::from(limit),
             });
         }
-        let wind = surface.wind();
-        let mut texels = vec![[0.0f32; 4]; n * WAVE_ROWS as usize];
-        // The variance of wave i and every shorter one (they follow it), in f64.
-        let mut suffix = DVec2::ZERO;
-        for i in (0..n).rev() {
-            let w = &waves[i];
-            let k = w.wave_vector();
-            let m = w.wavenumber();
-            let a = w.amplitude();
-            let (ka, cos2) = wave_variance_term(w, wind);
-            let var = trochoid_slope_variance(ka);
-            suffix += DVec2::new(var * cos2, var * (1.0 - cos2));
-            texels[i] = [surface.wavelengths()[i] as f32, k.x as f32, k.y as f32, 0.0];
-            texels[n + i] = [a as f32, (a * k.x / m) as f32, (a * k.y / m) as f32, 0.0];
-            texels[2 * n + i] = [ka as f32, cos2 as f32, suffix.x as f32, suffix.y as f32];
-        }
+        let waves = WaveTexels::new(surface);
         let (texture, view, bind_group) = crate::scoped(device, || {
             let texture = wave_texture(device, n as u32);
             let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-            write_waves(ctx, &texture, &texels, n as u32, WAVE_ROWS);
+            write_waves(ctx, &texture, &waves.texels, n as u32, WAVE_ROWS);
             let bind_group = draw_bind_group(
                 device,
                 &self.layout,
@@ -527,13 +751,7 @@ impl OceanRenderer {
         self.wave_texture = texture;
         self.wave_view = view;
         self.bind_group = bind_group;
-        self.surface = Some(SurfaceState {
-            waves: waves.to_vec(),
-            texels,
-            n_min: surface.filter().n_min(),
-            n_max: surface.filter().n_max(),
-            wind,
-        });
+        self.surface = Some(waves);
         Ok(())
     }
 
@@ -844,9 +1062,9 @@ impl OceanRenderer {
         Ok(())
     }
 
-    /// The uniform block and the wave texture's phase row for one frame, after checking every
-    /// input (surface and lighting set, time finite, camera above the sea, matrices finite in
-    /// f32). Also returns `o`, the eye's horizontal position.
+    /// The uniform block and the wave texture's phase row for one frame ([`frame_uniform`] with
+    /// the renderer's options, surface, lighting and local waves). Also returns `o`, the eye's
+    /// horizontal position.
     fn frame(
         &self,
         camera: &Camera,
@@ -859,95 +1077,20 @@ impl OceanRenderer {
             what: "ocean surface",
             call: "OceanRenderer::set_surface",
         })?;
-        if !time.is_finite() {
-            return Err(GpuError::Eval(EvalError::Time(time)));
-        }
+        let mut u = frame_uniform(
+            &self.options,
+            surface,
+            self.lighting.as_ref(),
+            camera,
+            time,
+            (width, height),
+            None,
+        )?;
         let eye = camera.eye();
-        if !eye.is_finite() || eye.y <= 0.0 {
-            return Err(invalid(
-                "camera",
-                format!(
-                    "the eye at ({}, {}, {}) must be above the sea (y > 0)",
-                    eye.x, eye.y, eye.z
-                ),
-            ));
-        }
-        let (nx, ny) = grid_counts(&self.options, width, height)?;
         let o = DVec2::new(eye.x, eye.z);
-        let (remap, to_wgpu) = depth_remap(camera);
-        let view_proj = remap * camera.view_projection_f64() * DMat4::from_translation(eye);
-        let inv_view_proj =
-            DMat4::from_translation(-eye) * camera.inverse_view_projection_f64() * remap.inverse();
-        let depth = camera.depth();
-        let near = to_wgpu(depth.near_ndc());
-        let far = to_wgpu(depth.far_ndc());
-        let mut u = self.lighting_uniform(surface);
-        u.view_proj = mat_f32(view_proj, "camera view-projection")?;
-        u.inv_view_proj = mat_f32(inv_view_proj, "camera inverse view-projection")?;
-        u.camera = [
-            eye.y as f32,
-            self.options.max_distance as f32,
-            near as f32,
-            (0.5 * (near + far)) as f32,
-        ];
-        u.viewport = [
-            width as f32,
-            height as f32,
-            (-self.options.margin * f64::from(width)) as f32,
-            (-self.options.margin * f64::from(height)) as f32,
-        ];
-        u.counts[0] = nx;
-        u.counts[1] = ny;
-        u.sun_radiance[3] = far as f32;
         u.probe[0] = probe_items;
         (u.local, u.local_counts) = self.local.uniform(o);
-        // θ₀ = k·o − ωt + Φ, reduced modulo 2π in f64 (DESIGN.md): the shader adds k·(x − o).
-        let phases = surface
-            .waves
-            .iter()
-            .zip(&surface.texels)
-            .map(|(w, t)| [t[0], t[1], t[2], reduce_angle(w.phase_at(o, time)) as f32])
-            .collect();
-        Ok((u, phases, o))
-    }
-
-    /// The uniform block's surface and lighting fields (the lighting's are zero until
-    /// [`set_lighting`](Self::set_lighting)).
-    fn lighting_uniform(&self, surface: &SurfaceState) -> FrameUniform {
-        let mut u = FrameUniform {
-            grid: [
-                self.options.cell_px as f32,
-                surface.n_min as f32,
-                surface.n_max as f32,
-                self.options.exposure as f32,
-            ],
-            counts: [
-                0,
-                0,
-                surface.waves.len() as u32,
-                u32::from(!self.options.color_format.is_srgb()),
-            ],
-            sky: [
-                self.options.sky_map_size as f32,
-                SKY_MAP_EXTENT as f32,
-                // Set with the lighting below; until then no Sun is drawn.
-                0.0,
-                0.0,
-            ],
-            ..Default::default()
-        };
-        u.sea[0] = surface.wind.x as f32;
-        u.sea[1] = surface.wind.y as f32;
-        if let Some(l) = &self.lighting {
-            let sky = l.sky();
-            u.sea[2] = l.sea().fresnel_r as f32;
-            u.sea[3] = sky.sun_solid_angle() as f32;
-            u.sun_dir = rgb(sky.sun_direction(), sky.sun_angular_radius().cos() as f32);
-            u.sky[2] = sky.sun_min_variance() as f32;
-            u.sun_radiance = rgb(sky.sun_radiance(), 0.0);
-            u.sea_radiance = rgb(l.sea_radiance(), 0.0);
-        }
-        u
+        Ok((u, surface.phases(o, time), o))
     }
 
     /// Validates the targets against the options and the viewport.
@@ -1220,14 +1363,18 @@ impl OceanRenderer {
             }
         }
         // Lighting only: the surface fields of a default surface state are unused by the probe.
-        let placeholder = SurfaceState {
+        let placeholder = WaveTexels {
             waves: Vec::new(),
             texels: Vec::new(),
             n_min: 1.0,
             n_max: 2.5,
             wind: DVec2::X,
         };
-        let mut u = self.lighting_uniform(self.surface.as_ref().unwrap_or(&placeholder));
+        let mut u = lighting_uniform(
+            &self.options,
+            self.surface.as_ref().unwrap_or(&placeholder),
+            self.lighting.as_ref(),
+        );
         u.probe[0] = items;
         let mut data = Vec::with_capacity(3 * inputs.len());
         for s in inputs {
@@ -1446,11 +1593,21 @@ const FRESNEL_BINDING: u32 = 6;
 const LOCAL_FIELDS_BINDING: u32 = 7;
 const LOCAL_TRAINS_BINDING: u32 = 8;
 
+/// The texels of the effective Fresnel table texture (binding 6 of `ocean_common.wgsl`, 33 × 33
+/// `r32float`, row-major): texel `(j, i)`, element `33 i + j`, holds the roughness correction
+/// `D(cos θ_v = (i/32)², σ_v = (j/32)²)` of [`ocean_brdf::fresnel_table`] (Eq. 24) rounded to
+/// `f32`.
+pub fn fresnel_table_texels() -> Vec<f32> {
+    ocean_brdf::fresnel_table::FRESNEL_TABLE
+        .iter()
+        .map(|&m| m as f32)
+        .collect()
+}
+
 /// The effective Fresnel table (`ocean_brdf::fresnel_table`) as a 33 × 33 `r32float` texture:
 /// texel (j, i) holds the correction `D(cos θ_v = (i/32)², σ_v = (j/32)²)` to Schlick's value.
 fn fresnel_table_texture(ctx: &GpuContext) -> wgpu::Texture {
-    use ocean_brdf::fresnel_table::{FRESNEL_TABLE, FRESNEL_TABLE_SIZE};
-    let n = FRESNEL_TABLE_SIZE as u32;
+    let n = ocean_brdf::fresnel_table::FRESNEL_TABLE_SIZE as u32;
     let texture = ctx.device().create_texture(&wgpu::TextureDescriptor {
         label: Some("ocean effective Fresnel table"),
         size: wgpu::Extent3d {
@@ -1465,7 +1622,7 @@ fn fresnel_table_texture(ctx: &GpuContext) -> wgpu::Texture {
         usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
         view_formats: &[],
     });
-    let texels: Vec<f32> = FRESNEL_TABLE.iter().map(|&m| m as f32).collect();
+    let texels = fresnel_table_texels();
     ctx.queue().write_texture(
         wgpu::TexelCopyTextureInfo {
             texture: &texture,
@@ -1758,5 +1915,156 @@ mod tests {
         assert_eq!(to_wgpu(-1.0), 0.0);
         assert_eq!(to_wgpu(0.0), 0.5);
         assert_eq!(to_wgpu(1.0), 1.0);
+    }
+
+    fn test_surface() -> FilteredSurface {
+        let spectrum =
+            ocean_brdf::Spectrum::new(ocean_brdf::SpectrumParams::default()).expect("spectrum");
+        FilteredSurface::new(&spectrum, ocean_brdf::Filter::PAPER).expect("surface")
+    }
+
+    /// An OpenGL camera 3 m above the sea, 100 km and 40 km from the origin, looking ahead and
+    /// down.
+    fn far_camera() -> Camera {
+        use ocean_core::{DepthConvention, Far, Projection};
+        let eye = DVec3::new(1.0e5 + 2.0, 3.0, -4.0e4);
+        Camera::look_at(
+            eye,
+            eye + DVec3::new(0.0, -1.0, -10.0),
+            DVec3::Y,
+            Projection::Perspective {
+                fov_y: 1.0,
+                aspect: 1.5,
+                near: 0.1,
+                far: Far::Finite(1000.0),
+            },
+            DepthConvention::NEG_ONE_TO_ONE,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn the_mesh_origin_is_stored_relative_to_the_eye() {
+        let waves = WaveTexels::new(&test_surface());
+        let camera = far_camera();
+        let mesh = MeshGrid {
+            origin: DVec2::new(1.0e5 - 10.0, -4.0e4 - 20.0),
+            spacing: 0.5,
+            nx: 129,
+            nz: 65,
+        };
+        let options = OceanOptions::default();
+        let with =
+            frame_uniform(&options, &waves, None, &camera, 7.0, (96, 64), Some(&mesh)).unwrap();
+        // (1e5 − 10, 0, −4e4 − 20) − (1e5 + 2, 3, −4e4), formed in f64: exact in f32.
+        assert_eq!(with.mesh_grid, [-12.0, -3.0, -20.0, 0.5]);
+        assert_eq!(with.mesh_counts, [129, 65, 0, 0]);
+        // Everything else is the renderer's block: the projected grid of a 96 x 64 viewport
+        // (16 x 11 vertices, as `grid_covers_the_viewport_and_its_margin`), the spectrum's
+        // waves, sRGB encoding for rgba8unorm, no lighting, no local waves.
+        let without = frame_uniform(&options, &waves, None, &camera, 7.0, (96, 64), None).unwrap();
+        assert_eq!(
+            FrameUniform {
+                mesh_grid: [0.0; 4],
+                mesh_counts: [0; 4],
+                ..with
+            },
+            without
+        );
+        assert_eq!(without.counts, [16, 11, waves.wave_count() as u32, 1]);
+        assert_eq!(without.camera[0], 3.0);
+        // No Sun without a lighting; w is the far plane's depth, OpenGL's 1 folded into
+        // WebGPU's range (still 1).
+        assert_eq!(without.sun_radiance, [0.0, 0.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn frame_uniform_refuses_bad_input() {
+        let waves = WaveTexels::new(&test_surface());
+        let camera = far_camera();
+        let options = OceanOptions::default();
+        let mesh = MeshGrid {
+            origin: DVec2::ZERO,
+            spacing: 1.0,
+            nx: 2,
+            nz: 2,
+        };
+        let call = |o: &OceanOptions, time: f64, size, m: &MeshGrid| {
+            frame_uniform(o, &waves, None, &camera, time, size, Some(m))
+        };
+        assert!(call(&options, 0.0, (8, 8), &mesh).is_ok());
+        assert!(matches!(
+            call(&options, f64::NAN, (8, 8), &mesh),
+            Err(GpuError::Eval(_))
+        ));
+        assert!(matches!(
+            call(&options, 0.0, (0, 8), &mesh),
+            Err(GpuError::InvalidInput {
+                what: "viewport",
+                ..
+            })
+        ));
+        let bad_options = OceanOptions {
+            exposure: 0.0,
+            ..OceanOptions::default()
+        };
+        assert!(matches!(
+            call(&bad_options, 0.0, (8, 8), &mesh),
+            Err(GpuError::InvalidInput {
+                what: "exposure",
+                ..
+            })
+        ));
+        for m in [
+            MeshGrid {
+                spacing: 0.0,
+                ..mesh
+            },
+            MeshGrid {
+                spacing: f64::INFINITY,
+                ..mesh
+            },
+            MeshGrid { nx: 0, ..mesh },
+            MeshGrid {
+                origin: DVec2::new(f64::NAN, 0.0),
+                ..mesh
+            },
+            MeshGrid {
+                origin: DVec2::new(1e300, 0.0),
+                ..mesh
+            },
+        ] {
+            assert!(
+                matches!(
+                    call(&options, 0.0, (8, 8), &m),
+                    Err(GpuError::InvalidInput { what: "mesh", .. })
+                ),
+                "{m:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn wave_texels_form_each_frames_phases_in_f64() {
+        let surface = test_surface();
+        let waves = WaveTexels::new(&surface);
+        let n = waves.wave_count();
+        assert_eq!(n, surface.wave_set().waves().len());
+        let camera = far_camera();
+        let time = 1.0e6;
+        let texels = waves.frame_texels(&camera, time);
+        assert_eq!(texels.len(), 3 * n);
+        // Rows 1 and 2 are the fixed ones; row 0 keeps (λ, k) and gains θ₀ at o.
+        assert_eq!(texels[n..], waves.texels[n..]);
+        let o = DVec2::new(1.0e5 + 2.0, -4.0e4);
+        for (i, w) in surface.wave_set().waves().iter().enumerate() {
+            assert_eq!(texels[i][..3], waves.texels[i][..3]);
+            // k·o − ωt + Φ reaches about 10⁸ rad here; reduced in f64 it lies in [−π, π] and
+            // equals the unreduced phase modulo 2π.
+            let theta = f64::from(texels[i][3]);
+            assert!(theta.abs() <= std::f64::consts::PI + 1e-6, "{theta}");
+            let d = (w.phase_at(o, time) - theta) / std::f64::consts::TAU;
+            assert!((d - d.round()).abs() < 1e-6, "wave {i}: {d}");
+        }
     }
 }

@@ -1,6 +1,6 @@
 //! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c`, `tests/c/test_wtb.c`,
-//! `tests/c/test_lighting.c`, `tests/c/test_sao.c`, `tests/c/test_relief.c`, `tests/c/test_gpu.c`,
-//! `tests/cpp/test_waves.cpp` and `tests/cpp/test_lighting.cpp` against
+//! `tests/c/test_lighting.c`, `tests/c/test_sao.c`, `tests/c/test_relief.c`, `tests/c/test_draw.c`,
+//! `tests/c/test_gpu.c`, `tests/cpp/test_waves.cpp` and `tests/cpp/test_lighting.cpp` against
 //! `include/ocean.h` and the static library `libocean.a` with the system compilers and
 //! `-Wall -Wextra -Werror -pedantic`, runs them, and fails unless each reports `0 failures` after
 //! a positive number of checks and exits 0.
@@ -263,6 +263,21 @@ fn c11_relief_against_the_static_library() {
         "-std=c11",
         "tests/c/test_relief.c",
         "test_relief_c",
+    );
+}
+
+/// The shader side of the ocean renderer (`ocean_ocean_*`) from C11: the uniform block of the
+/// exported `ocean` shader field by field (the mesh's origin relative to the eye, the
+/// projected grid, the waves, the Sun, the sky map), the wave texture (order, phases per
+/// frame, steepness, the suffix variances summing to the spectrum's total), the Fresnel table
+/// against `ocean_effective_fresnel_table` at its nodes, and every error path.
+#[test]
+fn c11_ocean_draw_against_the_static_library() {
+    build_and_run(
+        compiler("CC", "cc"),
+        "-std=c11",
+        "tests/c/test_draw.c",
+        "test_draw_c",
     );
 }
 
