@@ -65,8 +65,8 @@ pub mod wtb;
 pub use context::{ContextOptions, GpuContext};
 pub use layers::{DeviceLayer, LayerDesc, LayersInput, LayersParams, LayersPass, LayersStats};
 pub use ocean::{
-    FrameUniform, MeshGrid, OceanOptions, OceanRenderer, SeaColorInput, SurfaceProbe, WaveTexels,
-    frame_uniform, fresnel_table_texels,
+    FrameUniform, MeshGeometry, MeshGrid, OceanOptions, OceanRenderer, SeaColorInput, SurfaceProbe,
+    WaveTexels, frame_uniform, fresnel_table_texels,
 };
 pub use readback::{GpuDuration, GpuTimer, TextureData};
 pub use relief::{

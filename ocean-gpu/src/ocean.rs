@@ -17,6 +17,13 @@
 //! sea's own waves can be faded out over that grid (an amplitude factor per grid point). The
 //! CPU twin is [`ocean_brdf::local`].
 //!
+//! A caller's own water mesh (a wave train box scene evaluated on the CPU) can take the
+//! projected grid's place: `mesh_vs`/`mesh_fs` light it the same way, with the surface's waves
+//! filtered per pixel on top of it, into direct and ambient light that `compose_fs` combines
+//! with an ambient obscurance ([`OceanRenderer::render_mesh_image`]; an engine runs the same
+//! exported shaders with [`frame_uniform`]'s block, [`WaveTexels`] and
+//! [`fresnel_table_texels`]).
+//!
 //! Every stage has a CPU twin in `ocean_brdf`: [`ocean_brdf::surface`] (rays, sea-plane hits,
 //! footprints, Eq. 2–4), [`ocean_brdf::sea::sea_color_unchecked`] (Algorithm 5.1) and
 //! [`ocean_brdf::tonemap`]. The probes ([`OceanRenderer::probe_surface`],
@@ -45,8 +52,11 @@ use ocean_core::phase::reduce_angle;
 use ocean_core::{Camera, DepthDirection, DepthRange, EvalError, Wave};
 
 use crate::ocean_local::LocalTextures;
+
+mod mesh;
 use crate::readback::{GpuTimer, read_buffer_as, read_texture};
 use crate::{GpuContext, GpuError, shaders};
+pub use mesh::MeshGeometry;
 
 /// Invocations per workgroup of the probe entry points (`@workgroup_size(64)`).
 const PROBE_WORKGROUP: u32 = 64;

@@ -101,8 +101,9 @@ fn sky_radiance(pixel: vec2<f32>) -> vec3<f32> {
 }
 
 // The mesh pass's targets and the ambient obscurance, read by `compose_fs` one texel per pixel
-// (textureLoad only): the linear direct and ambient radiances `mesh_fs` wrote (rgba32float, or
-// rgba16float where the Sun's reflection stays below 65504 after exposure), and the
+// (textureLoad only): the linear direct and ambient radiances `mesh_fs` wrote (rgba32float;
+// or rgba16float, whose 3 significant digits and 65504 limit the tone map cannot tell apart
+// from f32 as long as exposure × 65504 saturates it, as the default exposure 8 does), and the
 // obscurance A in [0, 1] (r32float, 1 = unoccluded; an ambient obscurance pass's output, such
 // as the exported `sao_blur`'s, covering the viewport pixel for pixel).
 @group(0) @binding(9) var mesh_direct: texture_2d<f32>;
