@@ -584,14 +584,8 @@ mod tests {
         ocean_spectrum_params_default,
     };
     use crate::wtb::OceanDepthConvention;
-    use core::ffi::CStr;
 
-    fn last_error() -> String {
-        // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
-        unsafe { CStr::from_ptr(crate::ocean_last_error_message()) }
-            .to_string_lossy()
-            .into_owned()
-    }
+    use crate::status::last_error;
 
     #[test]
     fn default_options_are_the_crates() {
@@ -728,7 +722,10 @@ mod tests {
             assert_eq!((got, small), (needed, [7 as c_char; 2]));
             let s = ocean_gpu_context_describe(ctx, text.as_mut_ptr(), needed, &mut got);
             assert_eq!(s, OceanStatus::Ok, "{}", last_error());
-            let text = CStr::from_ptr(text.as_ptr()).to_str().unwrap().to_owned();
+            let text = core::ffi::CStr::from_ptr(text.as_ptr())
+                .to_str()
+                .unwrap()
+                .to_owned();
             assert_eq!(text.len() + 1, needed);
             assert_eq!(text, (*ctx).ctx.describe());
 

@@ -908,14 +908,8 @@ const _: () = assert!(size_of::<OceanRgb>() == 24 && align_of::<OceanRgb>() == 8
 #[cfg(test)]
 mod tests {
     use super::*;
-    use core::ffi::CStr;
 
-    fn last_error() -> String {
-        // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
-        unsafe { CStr::from_ptr(crate::ocean_last_error_message()) }
-            .to_string_lossy()
-            .into_owned()
-    }
+    use crate::status::last_error;
 
     fn lighting() -> *mut OceanLighting {
         let mut sky = OceanSkyParams::default();

@@ -696,7 +696,6 @@ pub unsafe extern "C" fn ocean_pixel_footprint(
 mod tests {
     use super::*;
     use core::f64::consts::TAU;
-    use core::ffi::CStr;
 
     #[test]
     fn filter_constants_are_the_papers() {
@@ -704,12 +703,7 @@ mod tests {
         assert_eq!(OCEAN_FILTER_N_MAX, Filter::PAPER.n_max());
     }
 
-    fn last_error() -> String {
-        // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
-        unsafe { CStr::from_ptr(crate::ocean_last_error_message()) }
-            .to_string_lossy()
-            .into_owned()
-    }
+    use crate::status::last_error;
 
     fn create(p: &OceanSpectrumParams) -> (OceanStatus, *mut OceanSpectrum) {
         let mut s = core::ptr::null_mut();

@@ -371,12 +371,7 @@ mod tests {
     use super::*;
     use crate::wtb::OceanDepthConvention;
 
-    fn last_error() -> String {
-        // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
-        unsafe { core::ffi::CStr::from_ptr(crate::ocean_last_error_message()) }
-            .to_string_lossy()
-            .into_owned()
-    }
+    use crate::status::last_error;
 
     /// An OpenGL camera 6 m above the sea, 100 km and 40 km from the origin, looking ahead
     /// and down.

@@ -245,12 +245,7 @@ mod tests {
     use crate::relief_trace::OCEAN_RELIEF_METHOD_LINEAR;
     use crate::wtb::OceanDepthConvention;
 
-    fn last_error() -> String {
-        // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
-        unsafe { core::ffi::CStr::from_ptr(crate::ocean_last_error_message()) }
-            .to_string_lossy()
-            .into_owned()
-    }
+    use crate::status::last_error;
 
     /// A camera 3 m above and 2 m beside a quad far from the origin, looking at it, in OpenGL's
     /// depth convention (the block folds it into WebGPU's).

@@ -2,7 +2,7 @@
 //! output bit-identical to the crate's), maps every error to a status with a message, never
 //! writes an output on failure, and cancels from a C callback.
 
-use core::ffi::{CStr, c_int, c_void};
+use core::ffi::{c_int, c_void};
 use core::ptr::{null, null_mut};
 
 use ocean_relief::maps::{boxes, to_map, value_noise};
@@ -17,12 +17,7 @@ use crate::relief_trace::*;
 const N: u32 = 32;
 const TEXELS: usize = (N * N) as usize;
 
-fn last_error() -> String {
-    // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
-    unsafe { CStr::from_ptr(crate::ocean_last_error_message()) }
-        .to_string_lossy()
-        .into_owned()
-}
+use crate::status::last_error;
 
 /// Value-noise heights in [0, 1] (the crate's `to_map` input).
 fn heights() -> Vec<f32> {

@@ -228,12 +228,7 @@ mod tests {
     const H: u32 = 64;
     const G: u32 = 8;
 
-    fn last_error() -> String {
-        // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
-        unsafe { core::ffi::CStr::from_ptr(crate::ocean_last_error_message()) }
-            .to_string_lossy()
-            .into_owned()
-    }
+    use crate::status::last_error;
 
     fn context() -> Option<*mut OceanGpuContext> {
         let mut ctx = null_mut();

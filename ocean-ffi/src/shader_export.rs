@@ -543,12 +543,7 @@ pub unsafe extern "C" fn ocean_shader_export_binding(
 mod tests {
     use super::*;
 
-    fn last_error() -> String {
-        // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
-        unsafe { CStr::from_ptr(crate::ocean_last_error_message()) }
-            .to_string_lossy()
-            .into_owned()
-    }
+    use crate::status::last_error;
 
     fn export(name: &CStr, language: u32) -> (OceanStatus, *mut OceanShaderExport) {
         let mut e = core::ptr::null_mut();

@@ -193,18 +193,19 @@ pub(crate) fn guard(function: &str, body: impl FnOnce() -> Result<(), Error>) ->
     status
 }
 
+/// The thread's last error message, copied (for the tests of every module).
+#[cfg(test)]
+pub(crate) fn last_error() -> String {
+    // SAFETY: `ocean_last_error_message` returns a valid NUL-terminated string that lives until
+    // the next status-returning call on this thread; it is copied at once.
+    unsafe { CStr::from_ptr(ocean_last_error_message()) }
+        .to_string_lossy()
+        .into_owned()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn last_error() -> String {
-        // SAFETY: `ocean_last_error_message` returns a valid NUL-terminated string that lives
-        // until the next status-returning call on this thread; it is copied at once.
-        unsafe { CStr::from_ptr(ocean_last_error_message()) }
-            .to_str()
-            .unwrap()
-            .to_owned()
-    }
 
     #[test]
     fn every_status_has_a_distinct_message_and_unknown_values_are_safe() {

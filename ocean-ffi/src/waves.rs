@@ -588,14 +588,8 @@ const _: () = {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use core::ffi::CStr;
 
-    fn last_error() -> String {
-        // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
-        unsafe { CStr::from_ptr(crate::ocean_last_error_message()) }
-            .to_string_lossy()
-            .into_owned()
-    }
+    use crate::status::last_error;
 
     const DESCS: [OceanWaveDesc; 2] = [
         OceanWaveDesc {

@@ -1390,15 +1390,9 @@ pub unsafe extern "C" fn ocean_scene_heights(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use core::ffi::CStr;
     use ocean_wtb::scenarios;
 
-    fn last_error() -> String {
-        // SAFETY: a valid NUL-terminated string until the next status call; copied at once.
-        unsafe { CStr::from_ptr(crate::ocean_last_error_message()) }
-            .to_string_lossy()
-            .into_owned()
-    }
+    use crate::status::last_error;
 
     const GRID: OceanWaterGridDesc = OceanWaterGridDesc {
         origin_x: 0.0,
