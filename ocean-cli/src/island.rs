@@ -203,10 +203,11 @@ impl WaveBox {
 
 /// The island of a scene: its terrain heights and its wave train box scene.
 pub struct Island {
-    pub section: IslandSection,
     pub grid: WaterGrid,
     /// Heights at the grid points, row-major.
     pub heights: Vec<f32>,
+    /// The open sea's factor at the grid points, from their depth.
+    open_scale: Vec<f32>,
     scene: Scene,
 }
 
@@ -230,10 +231,14 @@ impl Island {
                 .add_box(b.spec())
                 .map_err(|e| format!("box {}: {e}", k + 1))?;
         }
+        let open_scale = heights
+            .iter()
+            .map(|&h| section.open_sea_factor(-f64::from(h)))
+            .collect();
         Ok(Self {
-            section: section.clone(),
             grid,
             heights,
+            open_scale,
             scene,
         })
     }
@@ -255,13 +260,8 @@ impl Island {
             *sea.filter(),
         )
         .map_err(|e| format!("island: {e}"))?;
-        let factors: Vec<f32> = self
-            .heights
-            .iter()
-            .map(|&h| self.section.open_sea_factor(-f64::from(h)))
-            .collect();
         local
-            .set_open_scale(&factors)
+            .set_open_scale(&self.open_scale)
             .map_err(|e| format!("island: {e}"))?;
         let frame = self
             .scene

@@ -854,6 +854,11 @@ impl OceanRenderer {
                         "their filter must be the surface's (the shader has one)",
                     ));
                 }
+                // The same shape as the last local waves (each frame of a scene): rewrite the
+                // textures in place, with no new texture or bind group.
+                if self.local.rewrite(ctx, l) {
+                    return Ok(());
+                }
                 LocalTextures::new(ctx, l)?
             }
             None => LocalTextures::empty(ctx),

@@ -17,6 +17,9 @@ pub(crate) const TRAIN_ROWS: u32 = 3;
 /// trains, with what the host needs to form each frame's phases.
 #[derive(Debug)]
 pub(crate) struct LocalTextures {
+    fields: wgpu::Texture,
+    /// Layers of `fields`: the open-sea factor and one per set.
+    layers: u32,
     pub fields_view: wgpu::TextureView,
     pub trains_texture: wgpu::Texture,
     pub trains_view: wgpu::TextureView,
@@ -101,6 +104,8 @@ impl LocalTextures {
         );
         Self {
             fields_view: array_view(&fields),
+            fields,
+            layers: 1,
             trains_view: trains_texture.create_view(&wgpu::TextureViewDescriptor::default()),
             trains_texture,
             trains: Vec::new(),
@@ -142,39 +147,12 @@ impl LocalTextures {
                 limit: u64::from(limits.max_texture_array_layers),
             });
         }
-        let mut field = Vec::with_capacity(nx * nz * layers);
-        field.extend(local.open_scale().iter().map(|&s| [s, 0.0]));
-        let mut trains = Vec::new();
-        let mut rows12 = Vec::new();
-        for k in 0..local.set_count() {
-            let Some((waves, mu)) = local.set(k) else {
-                break;
-            };
-            field.extend_from_slice(mu);
-            for w in waves.waves() {
-                let (kv, m, a) = (w.wave_vector(), w.wavenumber(), w.amplitude());
-                let (ka, cos2) = wave_variance_term(w, local.wind());
-                rows12.push((
-                    [
-                        a as f32,
-                        (a * kv.x / m) as f32,
-                        (a * kv.y / m) as f32,
-                        k as f32,
-                    ],
-                    [ka as f32, cos2 as f32, 0.0, 0.0],
-                ));
-                trains.push(*w);
-            }
-        }
-        let n = trains.len();
-        let columns = n.max(1);
-        let mut texels = vec![[0.0f32; 4]; columns * TRAIN_ROWS as usize];
-        for (j, (w, (r1, r2))) in trains.iter().zip(&rows12).enumerate() {
-            let k = w.wave_vector();
-            texels[j] = [w.wavelength() as f32, k.x as f32, k.y as f32, 0.0];
-            texels[columns + j] = *r1;
-            texels[2 * columns + j] = *r2;
-        }
+        let Contents {
+            field,
+            trains,
+            texels,
+            columns,
+        } = Contents::of(local);
         let size = (nx as u32, nz as u32, layers as u32);
         let (fields_view, trains_texture) = crate::scoped(device, || {
             let fields = texture(
@@ -197,16 +175,58 @@ impl LocalTextures {
                 (columns as u32, TRAIN_ROWS, 1),
                 16,
             );
-            Ok((array_view(&fields), trains_texture))
+            Ok((fields, trains_texture))
         })?;
         Ok(Self {
-            fields_view,
+            fields_view: array_view(&fields_view),
+            fields: fields_view,
+            layers: layers as u32,
             trains_view: trains_texture.create_view(&wgpu::TextureViewDescriptor::default()),
             trains_texture,
             trains,
             texels,
             grid: Some((origin, spacing, nx as u32, nz as u32)),
         })
+    }
+
+    /// Writes `local` into these textures if it has their shape (the grid's size, the number
+    /// of sets and of trains): the per-frame case of boxes whose μ and trains change while the
+    /// scene stays. Returns whether it did; `false` leaves everything as it was (make new
+    /// textures with [`LocalTextures::new`] then).
+    pub fn rewrite(&mut self, ctx: &GpuContext, local: &LocalWaves) -> bool {
+        let (origin, spacing, nx, nz) = local.grid();
+        let same = self
+            .grid
+            .is_some_and(|(_, _, gx, gz)| (gx as usize, gz as usize) == (nx, nz))
+            && self.layers as usize == local.set_count() + 1
+            && self.trains.len() == local.train_count();
+        if !same {
+            return false;
+        }
+        let Contents {
+            field,
+            trains,
+            texels,
+            columns,
+        } = Contents::of(local);
+        write(
+            ctx,
+            &self.fields,
+            bytemuck::cast_slice(&field),
+            (nx as u32, nz as u32, self.layers),
+            8,
+        );
+        write(
+            ctx,
+            &self.trains_texture,
+            bytemuck::cast_slice(&texels),
+            (columns as u32, TRAIN_ROWS, 1),
+            16,
+        );
+        self.trains = trains;
+        self.texels = texels;
+        self.grid = Some((origin, spacing, nx as u32, nz as u32));
+        true
     }
 
     /// The uniform block's `local` and `local_counts` for a frame centred on `o`.
@@ -269,5 +289,61 @@ impl LocalTextures {
             16,
         );
         t.create_view(&wgpu::TextureViewDescriptor::default())
+    }
+}
+
+/// What the textures hold for some local waves.
+struct Contents {
+    /// The fields texture's texels, layer after layer: the open-sea factor, then each set's μ.
+    field: Vec<[f32; 2]>,
+    /// The trains in column order.
+    trains: Vec<Wave>,
+    /// The trains texture's texels (three rows of `columns`; row 0's phases filled per frame).
+    texels: Vec<[f32; 4]>,
+    /// Columns of the trains texture (at least 1).
+    columns: usize,
+}
+
+impl Contents {
+    fn of(local: &LocalWaves) -> Self {
+        let (_, _, nx, nz) = local.grid();
+        let mut field = Vec::with_capacity(nx * nz * (local.set_count() + 1));
+        field.extend(local.open_scale().iter().map(|&s| [s, 0.0]));
+        let mut trains = Vec::new();
+        let mut rows12 = Vec::new();
+        for k in 0..local.set_count() {
+            let Some((waves, mu)) = local.set(k) else {
+                break;
+            };
+            field.extend_from_slice(mu);
+            for w in waves.waves() {
+                let (kv, m, a) = (w.wave_vector(), w.wavenumber(), w.amplitude());
+                let (ka, cos2) = wave_variance_term(w, local.wind());
+                rows12.push((
+                    [
+                        a as f32,
+                        (a * kv.x / m) as f32,
+                        (a * kv.y / m) as f32,
+                        k as f32,
+                    ],
+                    [ka as f32, cos2 as f32, 0.0, 0.0],
+                ));
+                trains.push(*w);
+            }
+        }
+        let columns = trains.len().max(1);
+        let mut texels = vec![[0.0f32; 4]; columns * TRAIN_ROWS as usize];
+        for (j, (w, (r1, r2))) in trains.iter().zip(&rows12).enumerate() {
+            let k = w.wave_vector();
+            texels[j] = [w.wavelength() as f32, k.x as f32, k.y as f32, 0.0];
+            texels[columns + j] = *r1;
+            texels[2 * columns + j] = *r2;
+        }
+        Self {
+            field,
+            trains,
+            texels,
+            columns,
+        }
     }
 }

@@ -145,7 +145,8 @@ fn local_waves_match_the_cpu_twin() {
 }
 
 /// Removing the local waves gives back the open sea exactly (the renderer's probe equals one
-/// that never had them), and a wind other than the surface's is refused.
+/// that never had them), setting new ones of the same shape equals a renderer given only those,
+/// and a wind or filter other than the surface's is refused.
 #[test]
 fn local_waves_can_be_removed_and_must_share_the_wind() {
     let Some(ctx) = gpu_context_or_skip() else {
@@ -172,6 +173,23 @@ fn local_waves_can_be_removed_and_must_share_the_wind() {
         .expect("probe");
     assert_eq!(without, reference);
     assert_ne!(with, reference);
+    // Local waves of the same shape at another time (the per-frame case, written into the
+    // renderer's textures in place) probe exactly as in a renderer given only them.
+    r.set_local_waves(&ctx, Some(&local)).expect("set again");
+    let mut later = island_local_waves(&sea, 40.0);
+    // A field that differs from the first one's, so a texture left unwritten would show.
+    let half = vec![0.5f32; later.open_scale().len()];
+    later.set_open_scale(&half).expect("factors");
+    r.set_local_waves(&ctx, Some(&later))
+        .expect("same shape, rewritten");
+    let fresh = renderer(&ctx, Some(&later));
+    let want = fresh
+        .probe_surface(&ctx, &cam, 40.0, width, height, &pixels)
+        .expect("probe");
+    let got = r
+        .probe_surface(&ctx, &cam, 40.0, width, height, &pixels)
+        .expect("probe");
+    assert_eq!(got, want);
     let other = LocalWaves::new(DVec2::ZERO, 1.0, 4, 4, DVec2::new(0.0, 1.0), Filter::PAPER)
         .expect("local waves");
     assert!(r.set_local_waves(&ctx, Some(&other)).is_err());
