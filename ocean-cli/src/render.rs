@@ -19,20 +19,21 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Args, ValueEnum};
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use ocean_brdf::{Filter, FilteredSurface, Lighting, Spectrum};
 use ocean_core::Camera;
 use ocean_gpu::{
-    ContextOptions, GpuContext, OceanOptions, OceanRenderer, ReliefOptions, ReliefRenderer,
-    ReliefScene,
+    ComposeInputs, ContextOptions, GpuContext, LightTargets, OceanOptions, OceanRenderer,
+    RADIANCE_FORMAT, ReliefOptions, ReliefRenderer, ReliefScene,
 };
 use ocean_relief::{ConeParams, Edge, ReliefTexture};
 
-use crate::composite::Obscurance;
 use crate::cone_cache;
 use crate::island::Island;
+use crate::obscurance::Obscurance;
 use crate::png::write_atomically;
 use crate::scene::{DEFAULT_SCENE, Preset, SceneFile};
+use crate::solids::SolidRenderer;
 use crate::terrain::TerrainRenderer;
 
 /// Most frames one run renders.
@@ -121,126 +122,180 @@ fn check_writable(out: &Path) -> Result<(), String> {
     Ok(())
 }
 
-/// A rock face ready to draw: its relief texture in a renderer of its own, and its quad.
+/// Relief-mapped blocks that share one relief texture: their renderer and their faces.
 struct RockDraw {
     renderer: ReliefRenderer,
-    scene: ReliefScene,
+    faces: Vec<ReliefScene>,
     /// Whether its cone map came from the cache on disk.
     cached: bool,
 }
 
-/// The rocks of `scene`: each height map (value noise), its relaxed cone map and its quad, lit
-/// by the Sun.
-fn rock_draws(ctx: &GpuContext, scene: &SceneFile, sun: DVec3) -> Result<Vec<RockDraw>, String> {
-    let relief_error = |e: ocean_relief::ReliefError| format!("rock: {e}");
-    scene
-        .rocks
-        .iter()
-        .map(|rock| {
-            let n = rock.map_size;
-            let heights = ocean_relief::maps::value_noise(n, (n / 32).max(2), 5, rock.seed);
-            let map = ocean_relief::maps::to_map(n, &heights, Edge::Wrap).map_err(relief_error)?;
-            let (cones, source) =
-                cone_cache::cones(&map, ConeParams::relaxed(4.0)).map_err(relief_error)?;
-            let texture = ReliefTexture::new(&map, &cones).map_err(relief_error)?;
-            let mut renderer =
-                ReliefRenderer::new(ctx, ReliefOptions::default()).map_err(|e| e.to_string())?;
-            renderer
-                .set_texture(ctx, &texture)
-                .map_err(|e| e.to_string())?;
-            // u to the right of the face, v up: u × v is the face's outward normal.
-            let f = rock.facing.to_radians();
-            let u = DVec3::new(f.cos(), 0.0, -f.sin());
-            let centre = DVec3::from_array(rock.centre);
-            let draw = ReliefScene {
-                origin: centre - 0.5 * rock.width * u - 0.5 * rock.height * DVec3::Y,
-                edge_u: rock.width * u,
-                edge_v: rock.height * DVec3::Y,
-                tiles: DVec2::new(rock.width / rock.tile, rock.height / rock.tile),
-                depth: rock.relief_depth,
-                light_dir: sun,
-                light_intensity: 1.0,
-                albedo: rock.albedo,
-                ambient: 0.25,
-                ..ReliefScene::default()
-            };
-            draw.tangent_frame().map_err(|e| e.to_string())?;
-            Ok(RockDraw {
-                renderer,
-                scene: draw,
-                cached: source == cone_cache::Source::Cached,
-            })
-        })
-        .collect()
+/// The lighting of relief faces in the sea's radiance units (a Lambertian face's radiance is
+/// albedo × E/π): the Sun's direction and the luminance of its irradiance over π, and the
+/// luminance of the sky's irradiance on a horizontal surface over π. The relief shader takes
+/// scalar light levels, so the Sun's and the sky's colours reduce to their luminance (Rec. 709
+/// weights) on the rocks.
+#[derive(Clone, Copy, Debug)]
+pub struct FaceLight {
+    pub sun_dir: DVec3,
+    pub sun: f64,
+    pub sky: f64,
 }
 
-/// The colour and depth targets of the frames.
+impl FaceLight {
+    pub fn new(lighting: &Lighting) -> Self {
+        let sky = lighting.sky();
+        let lum = |c: DVec3| (0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z) / std::f64::consts::PI;
+        Self {
+            sun_dir: sky.sun_direction(),
+            sun: lum(sky.sun_radiance() * sky.sun_solid_angle()),
+            sky: lum(sky.sky_irradiance()),
+        }
+    }
+}
+
+/// Builds the relief texture of `heights` (an `n × n` map, wrapping), its relaxed cone map
+/// (from the cache on disk when there) and a renderer holding it.
+fn relief_renderer(
+    ctx: &GpuContext,
+    n: usize,
+    heights: &[f32],
+) -> Result<(ReliefRenderer, bool), String> {
+    let relief_error = |e: ocean_relief::ReliefError| format!("relief: {e}");
+    let map = ocean_relief::maps::to_map(n, heights, Edge::Wrap).map_err(relief_error)?;
+    let (cones, source) =
+        cone_cache::cones(&map, ConeParams::relaxed(4.0)).map_err(relief_error)?;
+    let texture = ReliefTexture::new(&map, &cones).map_err(relief_error)?;
+    let mut renderer =
+        ReliefRenderer::new(ctx, ReliefOptions::default()).map_err(|e| e.to_string())?;
+    renderer
+        .set_texture(ctx, &texture)
+        .map_err(|e| e.to_string())?;
+    Ok((renderer, source == cone_cache::Source::Cached))
+}
+
+/// The rocks and the pier of `scene`: their relief textures and faces.
+fn rock_draws(
+    ctx: &GpuContext,
+    scene: &SceneFile,
+    light: FaceLight,
+) -> Result<Vec<RockDraw>, String> {
+    let mut draws = Vec::new();
+    for rock in &scene.rocks {
+        let n = rock.map_size;
+        let heights = ocean_relief::maps::value_noise(n, (n / 32).max(2), 5, rock.seed);
+        let (renderer, cached) = relief_renderer(ctx, n, &heights)?;
+        draws.push(RockDraw {
+            renderer,
+            faces: rock.faces(light)?,
+            cached,
+        });
+    }
+    if let Some(pier) = &scene.pier {
+        let (renderer, cached) = relief_renderer(ctx, pier.map_size, &pier.plank_heights())?;
+        draws.push(RockDraw {
+            renderer,
+            faces: pier.deck().faces(light)?,
+            cached,
+        });
+    }
+    Ok(draws)
+}
+
+/// The targets of the frames: split light and depth (what every renderer draws into) and the
+/// composed display colour (what is read back).
 struct Targets {
-    color: ocean_gpu::wgpu::Texture,
-    color_view: ocean_gpu::wgpu::TextureView,
+    direct: ocean_gpu::wgpu::TextureView,
+    ambient: ocean_gpu::wgpu::TextureView,
     depth: ocean_gpu::wgpu::Texture,
     depth_view: ocean_gpu::wgpu::TextureView,
-    /// What the obscurance composite writes, and what is read back then.
-    out: ocean_gpu::wgpu::Texture,
-    out_view: ocean_gpu::wgpu::TextureView,
+    color: ocean_gpu::wgpu::Texture,
+    color_view: ocean_gpu::wgpu::TextureView,
 }
 
-fn targets(ctx: &GpuContext, width: u32, height: u32) -> Targets {
-    use ocean_gpu::wgpu;
-    let texture = |label, format, usage| {
-        ctx.device().create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
-    };
-    let color = texture(
-        "ocean render colour",
-        OceanOptions::default().color_format,
-        wgpu::TextureUsages::RENDER_ATTACHMENT
-            | wgpu::TextureUsages::COPY_SRC
-            | wgpu::TextureUsages::TEXTURE_BINDING,
-    );
-    let depth = texture(
-        "ocean render depth",
-        wgpu::TextureFormat::Depth32Float,
-        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-    );
-    let out = texture(
-        "ocean render obscured colour",
-        OceanOptions::default().color_format,
-        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-    );
-    let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
-    Targets {
-        color_view: view(&color),
-        depth_view: view(&depth),
-        out_view: view(&out),
-        color,
-        depth,
-        out,
+impl Targets {
+    fn new(ctx: &GpuContext, width: u32, height: u32) -> Self {
+        use ocean_gpu::wgpu;
+        let texture = |label, format, usage| {
+            ctx.device().create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let drawn_and_read =
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+        let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
+        let direct = texture("ocean render direct", RADIANCE_FORMAT, drawn_and_read);
+        let ambient = texture("ocean render ambient", RADIANCE_FORMAT, drawn_and_read);
+        let depth = texture(
+            "ocean render depth",
+            wgpu::TextureFormat::Depth32Float,
+            drawn_and_read,
+        );
+        let color = texture(
+            "ocean render colour",
+            OceanOptions::default().color_format,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        );
+        Self {
+            direct: view(&direct),
+            ambient: view(&ambient),
+            depth_view: view(&depth),
+            color_view: view(&color),
+            depth,
+            color,
+        }
+    }
+
+    fn light(&self) -> LightTargets<'_> {
+        LightTargets {
+            direct: &self.direct,
+            ambient: &self.ambient,
+            depth: &self.depth_view,
+        }
     }
 }
 
 /// What one frame draws besides the sea.
 struct Dressing<'a> {
     terrain: Option<&'a TerrainRenderer>,
-    obscurance: Option<&'a mut Obscurance>,
+    obscurance: &'a mut Obscurance,
     lighting: &'a Lighting,
     rocks: &'a [RockDraw],
+    solids: Option<&'a SolidRenderer>,
 }
 
-/// Draws one frame (the sea and sky, the island, then the rocks) and reads it back: RGBA8
-/// rows from the top.
+/// The passes of a frame, in order, for the timing summary.
+const PASSES: [(&str, &str); 7] = [
+    ("clear", "the split light and depth targets"),
+    (
+        "sea",
+        "projected grid, filtered waves and local waves, Algorithm 5.1 split",
+    ),
+    ("island", "terrain"),
+    (
+        "rocks, pier",
+        "relief mapping by relaxed cone stepping, self-shadowed; posts",
+    ),
+    ("obscurance", "SAO: z, MIP levels, samples, two blurs"),
+    ("compose", "direct + A x ambient, sky, tone mapping"),
+    ("readback", "copy to the CPU"),
+];
+
+/// Draws one frame (the sea, the island, the rocks, their obscurance and the composition) and
+/// reads it back: RGBA8 rows from the top. Each pass is submitted and waited for alone, and its
+/// wall time added to `times` (in `PASSES` order): the figures are then per pass on every
+/// backend, timestamp queries or not.
 fn draw_frame(
     ctx: &GpuContext,
     ocean: &OceanRenderer,
@@ -248,27 +303,42 @@ fn draw_frame(
     camera: &Camera,
     time: f64,
     t: &Targets,
+    times: &mut [f64; PASSES.len()],
 ) -> Result<Vec<u8>, ocean_gpu::GpuError> {
     use ocean_gpu::wgpu;
     let size = (t.color.width(), t.color.height());
-    let mut encoder = ctx
-        .device()
-        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("ocean render"),
-        });
-    // Both renderers load their targets: clear them first (depth to the far plane, 1 in
-    // WebGPU's forward range, which the scene's cameras use).
-    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("ocean render clear"),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view: &t.color_view,
+    let encoder = || {
+        ctx.device()
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("ocean render"),
+            })
+    };
+    let submit = |encoder: wgpu::CommandEncoder, slot: &mut f64, started: Instant| {
+        ctx.queue().submit([encoder.finish()]);
+        ctx.wait_idle()?;
+        *slot += started.elapsed().as_secs_f64();
+        Ok::<_, ocean_gpu::GpuError>(())
+    };
+    let light = t.light();
+
+    let started = Instant::now();
+    let mut e = encoder();
+    let clear = |view| {
+        Some(wgpu::RenderPassColorAttachment {
+            view,
             depth_slice: None,
             resolve_target: None,
             ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
                 store: wgpu::StoreOp::Store,
             },
-        })],
+        })
+    };
+    // Every renderer loads the targets: clear them first (depth to the far plane, 1 in
+    // WebGPU's forward range, which the scene's cameras use; alpha 0 marks the sky).
+    e.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("ocean render clear"),
+        color_attachments: &[clear(&t.direct), clear(&t.ambient)],
         depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
             view: &t.depth_view,
             depth_ops: Some(wgpu::Operations {
@@ -281,69 +351,61 @@ fn draw_frame(
         occlusion_query_set: None,
         multiview_mask: None,
     });
-    ocean.render(
-        ctx,
-        &mut encoder,
-        camera,
-        time,
-        &t.color_view,
-        Some(&t.depth_view),
-        size,
-    )?;
+    submit(e, &mut times[0], started)?;
+
+    let started = Instant::now();
+    let mut e = encoder();
+    ocean.render_layers(ctx, &mut e, camera, time, &light, size)?;
+    submit(e, &mut times[1], started)?;
+
     if let Some(terrain) = dressing.terrain {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("island terrain"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &t.color_view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &t.depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        let o = ocean.options();
-        terrain.draw(
-            ctx,
-            &mut pass,
-            camera,
-            dressing.lighting,
-            o.exposure,
-            !o.color_format.is_srgb(),
-        );
+        let started = Instant::now();
+        let mut e = encoder();
+        terrain.draw(ctx, &mut e, camera, dressing.lighting, &light);
+        submit(e, &mut times[2], started)?;
     }
-    for rock in dressing.rocks {
-        rock.renderer.render(
-            ctx,
-            &mut encoder,
-            camera,
-            &rock.scene,
-            &t.color_view,
-            &t.depth_view,
-            size,
-        )?;
-    }
-    let result = match dressing.obscurance.as_deref_mut() {
-        Some(o) => {
-            o.encode(ctx, &mut encoder, &t.depth, &t.color_view, &t.out_view)?;
-            &t.out
+
+    if !dressing.rocks.is_empty() || dressing.solids.is_some() {
+        let started = Instant::now();
+        let mut e = encoder();
+        let eye = camera.eye();
+        for rock in dressing.rocks {
+            // Only the faces whose front the eye sees: the shader would discard the others
+            // after rasterising them.
+            let faces: Vec<ReliefScene> = rock
+                .faces
+                .iter()
+                .filter(|f| (eye - f.origin).dot(f.edge_u.cross(f.edge_v)) > 0.0)
+                .cloned()
+                .collect();
+            rock.renderer
+                .render_layers(ctx, &mut e, camera, &faces, &light, size)?;
         }
-        None => &t.color,
+        if let Some(solids) = dressing.solids {
+            solids.draw(ctx, &mut e, camera, dressing.lighting, &light);
+        }
+        submit(e, &mut times[3], started)?;
+    }
+
+    let started = Instant::now();
+    let mut e = encoder();
+    let obscurance = dressing.obscurance.encode(ctx, &mut e, &t.depth)?;
+    submit(e, &mut times[4], started)?;
+
+    let started = Instant::now();
+    let mut e = encoder();
+    let inputs = ComposeInputs {
+        direct: &t.direct,
+        ambient: &t.ambient,
+        obscurance,
     };
-    ctx.queue().submit([encoder.finish()]);
-    Ok(ocean_gpu::readback::read_texture(ctx, result, 0)?.data)
+    ocean.compose(ctx, &mut e, &inputs, &t.color_view, size)?;
+    submit(e, &mut times[5], started)?;
+
+    let started = Instant::now();
+    let rgba = ocean_gpu::readback::read_texture(ctx, &t.color, 0)?.data;
+    times[6] += started.elapsed().as_secs_f64();
+    Ok(rgba)
 }
 
 /// Seconds spent per stage, summed over the frames.
@@ -355,6 +417,9 @@ struct Times {
     rocks: f64,
     device: f64,
     frame: f64,
+    /// The first frame's wall time, when more follow (then not in `frame` and `passes`).
+    first: Option<f64>,
+    passes: [f64; PASSES.len()],
     encode: f64,
     write: f64,
 }
@@ -415,25 +480,24 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             (i.grid.nx(), i.grid.nz()),
             i.grid.origin(),
             i.grid.spacing(),
-            renderer.options().color_format,
         )?),
         None => None,
     };
     times.island = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let rocks = rock_draws(&ctx, &scene, lighting.sky().sun_direction())?;
-    times.rocks = t.elapsed().as_secs_f64();
-    let targets = targets(&ctx, width, height);
-    let mut obscurance = match &scene.obscurance {
-        o if o.enabled => Some(Obscurance::new(
-            &ctx,
-            o,
-            &scene.camera(args.camera, scene.render.time, width, height)?,
-            (width, height),
-            renderer.options().color_format,
-        )?),
-        _ => None,
+    let rocks = rock_draws(&ctx, &scene, FaceLight::new(&lighting))?;
+    let solids = match &scene.pier {
+        Some(pier) => Some(SolidRenderer::new(&ctx, &pier.posts())?),
+        None => None,
     };
+    times.rocks = t.elapsed().as_secs_f64();
+    let targets = Targets::new(&ctx, width, height);
+    let mut obscurance = Obscurance::new(
+        &ctx,
+        &scene.obscurance,
+        &scene.camera(args.camera, scene.render.time, width, height)?,
+        (width, height),
+    )?;
 
     let bar = !args.quiet && std::io::stderr().is_terminal();
     let frames = args.frames;
@@ -453,13 +517,29 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         let t = Instant::now();
         let mut dressing = Dressing {
             terrain: terrain.as_ref(),
-            obscurance: obscurance.as_mut(),
+            obscurance: &mut obscurance,
             lighting: &lighting,
             rocks: &rocks,
+            solids: solids.as_ref(),
         };
-        let rgba =
-            draw_frame(&ctx, &renderer, &mut dressing, &camera, time, &targets).map_err(gpu)?;
-        times.frame += t.elapsed().as_secs_f64();
+        let rgba = draw_frame(
+            &ctx,
+            &renderer,
+            &mut dressing,
+            &camera,
+            time,
+            &targets,
+            &mut times.passes,
+        )
+        .map_err(gpu)?;
+        if k == 0 && frames > 1 {
+            // The first frame builds the pipelines (and the driver compiles their shaders):
+            // reported apart, so the per-pass figures are those of a running sequence.
+            times.first = Some(t.elapsed().as_secs_f64());
+            times.passes = [0.0; PASSES.len()];
+        } else {
+            times.frame += t.elapsed().as_secs_f64();
+        }
         let t = Instant::now();
         let png = crate::png::encode(
             width,
@@ -535,7 +615,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     );
     let cached = rocks.iter().filter(|r| r.cached).count();
     println!(
-        "  rocks            {:9.1} ms  ({} height and cone maps, relaxed: {} generated on the CPU, {cached} from the cache{})",
+        "  relief maps      {:9.1} ms  ({} height and cone maps for the rocks and the pier, relaxed: {} generated on the CPU, {cached} from the cache{})",
         1e3 * times.rocks,
         rocks.len(),
         rocks.len() - cached,
@@ -544,10 +624,36 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             |d| format!(" in {}", d.display())
         )
     );
+    let steady = written - u32::from(times.first.is_some());
+    let per_steady = |s: f64| 1e3 * s / f64::from(steady.max(1));
+    if let Some(first) = times.first {
+        println!(
+            "  first frame      {:9.1} ms  (the passes below, and building their pipelines)",
+            1e3 * first
+        );
+    }
     println!(
-        "  frame            {:9.1} ms per frame  (sea, sky, island, rocks and obscurance; render and readback, wall time)",
-        per(times.frame)
+        "  frame            {:9.1} ms per frame{}  (wall time of the passes below)",
+        per_steady(times.frame),
+        if times.first.is_some() {
+            " after the first"
+        } else {
+            " (with building the pipelines)"
+        }
     );
+    for ((name, what), s) in PASSES.iter().zip(times.passes) {
+        let skipped = match *name {
+            "island" => terrain.is_none(),
+            "rocks, pier" => rocks.is_empty() && solids.is_none(),
+            "obscurance" => !obscurance.enabled(),
+            _ => false,
+        };
+        if skipped {
+            println!("    {name:<14} {:>9}     (none in the scene)", "-");
+        } else {
+            println!("    {name:<14} {:9.1} ms  ({what})", per_steady(s));
+        }
+    }
     println!("  PNG encoding     {:9.1} ms per frame", per(times.encode));
     println!("  PNG writing      {:9.1} ms per frame", per(times.write));
     println!(

@@ -12,8 +12,11 @@ use ocean_brdf::{Lighting, SeaParams, SkyParams, SpectrumParams};
 use ocean_core::{Camera, DepthConvention, Far, Projection};
 use serde::Deserialize;
 
-use crate::composite::ObscuranceSection;
+use crate::blocks::{Block, Faces};
 use crate::island::{IslandSection, WaveBox};
+use crate::obscurance::ObscuranceSection;
+use crate::pier::PierSection;
+use crate::render::FaceLight;
 
 /// The built-in scene.
 pub const DEFAULT_SCENE: &str = include_str!("../scenes/default.toml");
@@ -32,12 +35,15 @@ pub struct SceneFile {
     /// `[[boxes]]`: the winds raising wave train boxes around the island.
     pub boxes: Vec<WaveBox>,
     pub rocks: Vec<Rock>,
+    /// `[pier]`: absent for no pier.
+    pub pier: Option<PierSection>,
     /// `[obscurance]`: ambient obscurance over the whole frame.
     pub obscurance: ObscuranceSection,
 }
 
-/// `[[rocks]]`: a rock face, a vertical rectangle standing in the water, relief-mapped by
-/// relaxed cone stepping (`ocean_gpu::ReliefRenderer`) over a procedural height map.
+/// `[[rocks]]`: a rock standing in the water, a block whose faces are relief-mapped by relaxed
+/// cone stepping (`ocean_gpu::ReliefRenderer`) over a procedural height map
+/// ([`crate::blocks`]); with `thickness = 0`, its front face alone.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(default, deny_unknown_fields)]
 pub struct Rock {
@@ -46,6 +52,8 @@ pub struct Rock {
     /// Width and height of the face, metres.
     pub width: f64,
     pub height: f64,
+    /// Extent of the block behind its front face, metres (0: the front face alone).
+    pub thickness: f64,
     /// Direction the face looks towards, degrees from +z towards +x (0 faces the presets).
     pub facing: f64,
     /// Depth of the relief behind the face, metres.
@@ -67,6 +75,7 @@ impl Rock {
         }
         range("rocks.width", self.width, 1e-3, 1e4)?;
         range("rocks.height", self.height, 1e-3, 1e4)?;
+        range("rocks.thickness", self.thickness, 0.0, 1e4)?;
         finite("rocks.facing", self.facing)?;
         range("rocks.relief_depth", self.relief_depth, 0.0, 1e3)?;
         range("rocks.tile", self.tile, 1e-3, 1e4)?;
@@ -80,12 +89,45 @@ impl Rock {
     }
 }
 
+impl Rock {
+    /// The relief quads of the rock: its front face, and with a thickness its back, sides and
+    /// top.
+    ///
+    /// # Errors
+    ///
+    /// A message for a face the relief renderer refuses.
+    pub fn faces(&self, light: FaceLight) -> Result<Vec<ocean_gpu::ReliefScene>, String> {
+        let right = Block::right_of(self.facing);
+        let front = DVec3::from_array(self.centre);
+        let block = Block {
+            centre: front + 0.5 * self.thickness * DVec3::Y.cross(right),
+            right,
+            size: DVec3::new(self.width, self.height, self.thickness),
+            faces: Faces {
+                sides: true,
+                top: self.thickness > 0.0,
+                bottom: false,
+            },
+            tile: self.tile,
+            depth: self.relief_depth,
+            albedo: self.albedo,
+        };
+        let mut faces = block.faces(light)?;
+        if self.thickness == 0.0 {
+            // The front face alone (the first of the sides).
+            faces.truncate(1);
+        }
+        Ok(faces)
+    }
+}
+
 impl Default for Rock {
     fn default() -> Self {
         Self {
             centre: [-14.0, 2.0, -38.0],
             width: 16.0,
             height: 8.0,
+            thickness: 10.0,
             facing: 75.0,
             relief_depth: 1.5,
             tile: 8.0,
@@ -271,6 +313,9 @@ impl SceneFile {
         self.obscurance
             .check()
             .map_err(|(key, why)| (key, 0, why))?;
+        if let Some(pier) = &self.pier {
+            pier.check().map_err(|(key, why)| (key, 0, why))?;
+        }
         for (i, b) in self.boxes.iter().enumerate() {
             b.check()
                 .map_err(|(key, why)| (key, i, format!("(box {}) {why}", i + 1)))?;
@@ -496,6 +541,7 @@ mod tests {
             island: Some(IslandSection::default()),
             boxes: vec![WaveBox::default()],
             rocks: vec![Rock::default()],
+            pier: Some(PierSection::default()),
             ..SceneFile::default()
         };
         assert_eq!(scene, want);

@@ -1,6 +1,6 @@
 //! The island's terrain in `ocean render`: a height field (the wave train box scene's terrain,
-//! [`crate::island`]) drawn as triangles, lit by the scene's Sun and sky and tone mapped like
-//! the sea, into the frame's colour and depth targets (`terrain.wgsl`).
+//! [`crate::island`]) drawn as triangles, lit by the scene's Sun and sky, into the frame's split
+//! light targets and depth (`terrain.wgsl`, `ocean_gpu::LightTargets`).
 //!
 //! Scene dressing rather than one of the library's techniques: the sea drawn over it (and the
 //! wave trains that break on it) are the library's; the terrain only has to occlude, write the
@@ -10,18 +10,43 @@ use glam::{DMat4, DVec2, DVec3};
 use ocean_brdf::Lighting;
 use ocean_core::Camera;
 use ocean_gpu::wgpu::util::DeviceExt;
-use ocean_gpu::{GpuContext, wgpu};
+use ocean_gpu::{GpuContext, LightTargets, wgpu};
 
 /// `terrain.wgsl`'s `Terrain` block (std140, 144 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct Uniform {
+pub(crate) struct Uniform {
     view_proj: [[f32; 4]; 4],
     origin: [f32; 4],
     counts: [u32; 4],
     sun_dir: [f32; 4],
     sun: [f32; 4],
     sky: [f32; 4],
+}
+
+impl Uniform {
+    /// The block for `camera` and `lighting`, with `origin` (a world point, whose position
+    /// relative to the eye the block holds), `spacing` and `counts` as the entry points read them.
+    pub(crate) fn new(
+        camera: &Camera,
+        lighting: &Lighting,
+        origin: DVec3,
+        spacing: f64,
+        counts: (u32, u32),
+    ) -> Self {
+        let eye = camera.eye();
+        let view_proj = camera.view_projection_f64() * DMat4::from_translation(eye);
+        let sky = lighting.sky();
+        let o = origin - eye;
+        Self {
+            view_proj: view_proj.as_mat4().to_cols_array_2d(),
+            origin: [o.x as f32, o.y as f32, o.z as f32, spacing as f32],
+            counts: [counts.0, counts.1, 0, 0],
+            sun_dir: rgb(sky.sun_direction(), 0.0),
+            sun: rgb(sky.sun_radiance() * sky.sun_solid_angle(), 0.0),
+            sky: rgb(sky.sky_irradiance(), 0.0),
+        }
+    }
 }
 
 /// A height field ready to draw.
@@ -43,9 +68,8 @@ fn rgb(v: DVec3, w: f32) -> [f32; 4] {
 
 impl TerrainRenderer {
     /// Uploads `heights` (row-major, `size.0` per row, metres above the sea at rest) of a grid
-    /// whose point (0, 0) is at world `(x, z)` = `origin`, `spacing` metres apart, for targets
-    /// of `color_format` (shader sRGB encoding when it is not an sRGB format) and
-    /// `Depth32Float`, depth tested `Less` (WebGPU's forward range).
+    /// whose point (0, 0) is at world `(x, z)` = `origin`, `spacing` metres apart, for split
+    /// light targets and `Depth32Float`, depth tested `Less` (WebGPU's forward range).
     ///
     /// # Errors
     ///
@@ -57,7 +81,6 @@ impl TerrainRenderer {
         size: (usize, usize),
         origin: DVec2,
         spacing: f64,
-        color_format: wgpu::TextureFormat,
     ) -> Result<Self, String> {
         let device = ctx.device();
         let side = device.limits().max_texture_dimension_2d as usize;
@@ -165,7 +188,10 @@ impl TerrainRenderer {
                 module: &module,
                 entry_point: Some("terrain_fs"),
                 compilation_options: wgpu::PipelineCompilationOptions::default(),
-                targets: &[Some(color_format.into())],
+                targets: &[
+                    Some(ocean_gpu::RADIANCE_FORMAT.into()),
+                    Some(ocean_gpu::RADIANCE_FORMAT.into()),
+                ],
             }),
             multiview_mask: None,
             cache: None,
@@ -197,34 +223,33 @@ impl TerrainRenderer {
     }
 
     /// Records the terrain seen by `camera` (WebGPU's forward depth range) under `lighting`
-    /// into `pass`; the uniform block is written through the queue.
+    /// into `targets` (loaded) as one render pass; the uniform block is written through the
+    /// queue.
     pub fn draw(
         &self,
         ctx: &GpuContext,
-        pass: &mut wgpu::RenderPass<'_>,
+        encoder: &mut wgpu::CommandEncoder,
         camera: &Camera,
         lighting: &Lighting,
-        exposure: f64,
-        srgb_encode: bool,
+        targets: &LightTargets<'_>,
     ) {
-        let eye = camera.eye();
-        let view_proj = camera.view_projection_f64() * DMat4::from_translation(eye);
-        let sky = lighting.sky();
-        let u = Uniform {
-            view_proj: view_proj.as_mat4().to_cols_array_2d(),
-            origin: [
-                (self.origin.x - eye.x) as f32,
-                (-eye.y) as f32,
-                (self.origin.y - eye.z) as f32,
-                self.spacing as f32,
-            ],
-            counts: [self.size.0, self.size.1, u32::from(srgb_encode), 0],
-            sun_dir: rgb(sky.sun_direction(), exposure as f32),
-            sun: rgb(sky.sun_radiance() * sky.sun_solid_angle(), 0.0),
-            sky: rgb(sky.sky_irradiance(), 0.0),
-        };
+        let u = Uniform::new(
+            camera,
+            lighting,
+            DVec3::new(self.origin.x, 0.0, self.origin.y),
+            self.spacing,
+            self.size,
+        );
         ctx.queue()
             .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&u));
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("island terrain"),
+            color_attachments: &targets.color_attachments(),
+            depth_stencil_attachment: Some(targets.depth_attachment()),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.bind_group, &[]);
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);

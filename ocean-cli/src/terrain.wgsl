@@ -1,8 +1,10 @@
 // The island's terrain in `ocean render`: a height field drawn as a grid of triangles, lit by
 // the same Sun and sky as the sea (Lambert: albedo/π times the Sun's irradiance on the facet
-// plus the sky's, the latter times the share of the sky the facet sees, (1 + n_y)/2), tone
-// mapped like the sea (`ocean_light.wgsl`'s `display`). Positions are relative to the eye, so
-// the numbers stay small wherever the island is.
+// plus the sky's, the latter times the share of the sky the facet sees, (1 + n_y)/2), written
+// as linear radiance into the frame's split light targets (`ocean_gpu::LightTargets`): the
+// Sun's part and the sky's part, which the ambient obscurance darkens before the sea's
+// `compose_fs` tone maps the frame. Positions are relative to the eye, so the numbers stay
+// small wherever the island is.
 //
 // Draw: counts.x × counts.y vertices (vertex j·counts.x + i is height texel (i, j)), indexed as
 // two triangles per cell.
@@ -12,9 +14,9 @@ struct Terrain {
     view_proj: mat4x4<f32>,
     // xyz: grid point (0, 0) at y = 0, relative to the eye; w: spacing, metres.
     origin: vec4<f32>,
-    // x, y: points per row and rows; z: flags (bit 0: sRGB-encode in the shader); w: unused.
+    // x, y: points per row and rows; zw: unused.
     counts: vec4<u32>,
-    // xyz: unit vector towards the Sun; w: the tone mapping's exposure.
+    // xyz: unit vector towards the Sun; w: unused.
     sun_dir: vec4<f32>,
     // rgb: the Sun's irradiance on a surface facing it (L_sun Ω_sun).
     sun: vec4<f32>,
@@ -67,23 +69,52 @@ fn albedo(height: f32, n: vec3<f32>) -> vec3<f32> {
     return mix(c, rock, smoothstep(0.25, 0.45, 1.0 - n.y));
 }
 
-fn tone_map(radiance: vec3<f32>) -> vec3<f32> {
-    let y = vec3<f32>(1.0) - exp(-terrain.sun_dir.w * radiance);
-    return select(vec3<f32>(0.0), min(y, vec3<f32>(1.0)), y > vec3<f32>(0.0));
+struct Light {
+    // albedo/π × the Sun's irradiance on the facet: direct light, alpha 1.
+    @location(0) direct: vec4<f32>,
+    // albedo/π × the sky's irradiance on the facet: ambient light, alpha 1, what the ambient
+    // obscurance darkens.
+    @location(1) ambient: vec4<f32>,
 }
 
-fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
-    let x = clamp(c, vec3<f32>(0.0), vec3<f32>(1.0));
-    let hi = 1.055 * pow(max(x, vec3<f32>(0.0031308)), vec3<f32>(1.0 / 2.4)) - vec3<f32>(0.055);
-    return select(hi, 12.92 * x, x <= vec3<f32>(0.0031308));
+// A Lambertian surface of linear `albedo` and unit normal `n`.
+fn lambert(albedo: vec3<f32>, n: vec3<f32>) -> Light {
+    let a = albedo / 3.14159265;
+    var out: Light;
+    out.direct = vec4<f32>(a * terrain.sun.rgb * max(dot(n, terrain.sun_dir.xyz), 0.0), 1.0);
+    out.ambient = vec4<f32>(a * terrain.sky.rgb * (0.5 + 0.5 * n.y), 1.0);
+    return out;
 }
 
 @fragment
-fn terrain_fs(in: Vertex) -> @location(0) vec4<f32> {
+fn terrain_fs(in: Vertex) -> Light {
     let n = normalize(in.normal);
-    let sun = terrain.sun.rgb * max(dot(n, terrain.sun_dir.xyz), 0.0);
-    let sky = terrain.sky.rgb * (0.5 + 0.5 * n.y);
-    let radiance = albedo(in.height, n) / 3.14159265 * (sun + sky);
-    let c = tone_map(radiance);
-    return vec4<f32>(select(c, linear_to_srgb(c), (terrain.counts.z & 1u) != 0u), 1.0);
+    return lambert(albedo(in.height, n), n);
+}
+
+// Solids (the pier's posts): triangles from vertex buffers, world positions at location 0,
+// unit normals at 1 and linear albedos at 2; `terrain.origin.xyz` is then the world origin
+// relative to the eye.
+struct SolidVertex {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) normal: vec3<f32>,
+    @location(1) albedo: vec3<f32>,
+}
+
+@vertex
+fn solid_vs(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) albedo: vec3<f32>,
+) -> SolidVertex {
+    var out: SolidVertex;
+    out.clip = terrain.view_proj * vec4<f32>(terrain.origin.xyz + position, 1.0);
+    out.normal = normal;
+    out.albedo = albedo;
+    return out;
+}
+
+@fragment
+fn solid_fs(in: SolidVertex) -> Light {
+    return lambert(in.albedo, normalize(in.normal));
 }

@@ -243,10 +243,11 @@ fn an_interrupted_sequence_leaves_only_complete_frames() {
     }
 }
 
-/// The built-in scene's rock face is drawn: its albedo is reddish grey (0.32, 0.29, 0.26: red
-/// at least 4 sRGB levels above blue, lit or in shadow), which neither the sky nor the sea is
-/// (both bluer than red, up to the Sun's glitter, which saturates every channel), so reddish
-/// pixels appear with it and none without it (the same scene with no `[[rocks]]` table).
+/// The built-in scene's rock and pier are drawn: their albedos are reddish (rock 0.32, 0.29,
+/// 0.26; pier 0.30, 0.21, 0.13: red at least 4 sRGB levels above blue, lit or in shadow), which
+/// neither the sky nor the sea is (both bluer than red, up to the Sun's glitter, which
+/// saturates every channel), so reddish pixels appear with them and none without them (the
+/// same scene with no `[[rocks]]` and no `[pier]` table).
 #[test]
 fn the_rock_face_is_drawn() {
     let d = dir("rock");
@@ -267,7 +268,8 @@ fn the_rock_face_is_drawn() {
         return;
     }
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(String::from_utf8_lossy(&o.stdout).contains("1 height and cone maps"));
+    // The rock's map and the pier's planks.
+    assert!(String::from_utf8_lossy(&o.stdout).contains("2 height and cone maps"));
     let scene = d.join("no-rocks.toml");
     std::fs::write(&scene, "[render]\nwidth = 128\nheight = 72\n").unwrap();
     let without = d.join("without.png");
@@ -285,8 +287,8 @@ fn the_rock_face_is_drawn() {
     );
 }
 
-/// The rock's cone map is generated once and then read from the cache, with the same image;
-/// a corrupt cache file is ignored and written again.
+/// The cone maps (the rock's and the pier's planks') are generated once and then
+/// read from the cache, with the same image; a corrupt cache file is ignored and written again.
 #[test]
 fn cone_maps_are_cached_on_disk() {
     let d = dir("cache");
@@ -307,15 +309,15 @@ fn cone_maps_are_cached_on_disk() {
     }
     let text = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(
-        text.contains("1 generated on the CPU, 0 from the cache"),
+        text.contains("2 generated on the CPU, 0 from the cache"),
         "{text}"
     );
     let stored = files(&cache);
-    assert_eq!(stored.len(), 1, "{stored:?}");
+    assert_eq!(stored.len(), 2, "{stored:?}");
     let (o, second) = run("second.png");
     let text = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(
-        text.contains("0 generated on the CPU, 1 from the cache"),
+        text.contains("0 generated on the CPU, 2 from the cache"),
         "{text}"
     );
     assert_eq!(read_png(&first), read_png(&second));
@@ -328,7 +330,7 @@ fn cone_maps_are_cached_on_disk() {
     let (o, third) = run("third.png");
     let text = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(
-        text.contains("1 generated on the CPU, 0 from the cache"),
+        text.contains("1 generated on the CPU, 1 from the cache"),
         "{text}"
     );
     assert_eq!(read_png(&first), read_png(&third));

@@ -113,8 +113,9 @@ fn the_built_in_scene_matches_the_stored_image() {
 ///   change the water near the island: without the box, at least 2 % of the pixels differ by
 ///   more than 8 levels, all of them below the horizon;
 /// - the obscurance (McGuire et al.) darkens the image only: no pixel is brighter with it, at
-///   least 0.5 % of the pixels are darker by more than 6 %, and none of the sky's (A = 1 on
-///   the far plane) changes.
+///   least 0.5 % of the pixels are darker by more than 6 %, none of the sky's (A = 1 on the
+///   far plane) changes, and the water where the rock and the pier stand in it loses on
+///   average more than 5 % of its light and more than 5 times what the open water loses.
 #[test]
 fn each_technique_contributes() {
     let d = dir("techniques");
@@ -166,4 +167,34 @@ fn each_technique_contributes() {
         100.0 * share
     );
     assert!(share >= 0.005, "{share}");
+
+    // Darker at the contact points than in the open: the water within 2 pixels below a rock
+    // or pier pixel (reddish, see render.rs's test) loses much more of its light than the
+    // open water of the bottom quarter, far from every object.
+    let reddish = |p: [u8; 4]| p[0] > p[2].saturating_add(4);
+    let loss = |k: usize| 1.0 - luminance(full[k]) / luminance(without_ao[k]).max(1e-6);
+    let (mut contact, mut open) = (Vec::new(), Vec::new());
+    for y in sky_rows.end..H {
+        for x in 0..W {
+            let k = y * W + x;
+            if reddish(full[k]) {
+                continue;
+            }
+            if (1..=2).any(|dy| y >= dy && reddish(full[k - dy * W])) {
+                contact.push(loss(k));
+            } else if y >= 3 * H / 4 {
+                open.push(loss(k));
+            }
+        }
+    }
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+    let (c, o) = (mean(&contact), mean(&open));
+    println!(
+        "obscurance: {:.1} % darker at {} contact pixels, {:.2} % in {} open ones",
+        100.0 * c,
+        contact.len(),
+        100.0 * o,
+        open.len()
+    );
+    assert!(contact.len() >= 20 && c > 0.05 && c > 5.0 * o, "{c} vs {o}");
 }

@@ -52,6 +52,7 @@
 
 pub mod context;
 pub mod layers;
+mod light_targets;
 pub mod ocean;
 mod ocean_local;
 mod pipeline;
@@ -64,9 +65,10 @@ pub mod wtb;
 
 pub use context::{ContextOptions, GpuContext};
 pub use layers::{DeviceLayer, LayerDesc, LayersInput, LayersParams, LayersPass, LayersStats};
+pub use light_targets::{LightTargets, RADIANCE_FORMAT};
 pub use ocean::{
-    FrameUniform, MeshGeometry, MeshGrid, OceanOptions, OceanRenderer, SeaColorInput, SurfaceProbe,
-    WaveTexels, frame_uniform, fresnel_table_texels,
+    ComposeInputs, FrameUniform, MeshGeometry, MeshGrid, OceanOptions, OceanRenderer,
+    SeaColorInput, SurfaceProbe, WaveTexels, frame_uniform, fresnel_table_texels,
 };
 pub use readback::{GpuDuration, GpuTimer, TextureData};
 pub use relief::{

@@ -53,9 +53,11 @@ use ocean_core::{Camera, DepthDirection, DepthRange, EvalError, Wave};
 
 use crate::ocean_local::LocalTextures;
 
+mod layers;
 mod mesh;
 use crate::readback::{GpuTimer, read_buffer_as, read_texture};
 use crate::{GpuContext, GpuError, shaders};
+pub use layers::ComposeInputs;
 pub use mesh::MeshGeometry;
 
 /// Invocations per workgroup of the probe entry points (`@workgroup_size(64)`).
@@ -318,6 +320,10 @@ pub struct OceanRenderer {
     pipeline_layout: wgpu::PipelineLayout,
     module: wgpu::ShaderModule,
     pipelines: Mutex<Vec<DrawPipelines>>,
+    /// The split-light sea pipelines, per depth direction ([`OceanRenderer::render_layers`]).
+    layer_pipelines: Mutex<Vec<(DepthDirection, wgpu::RenderPipeline)>>,
+    /// The composition's pipeline and bind group layout, built on first use.
+    compose: Mutex<Option<layers::ComposePipeline>>,
     probes: Mutex<Option<ProbePipelines>>,
     indices: Mutex<Option<GridIndices>>,
     uniform: wgpu::Buffer,
@@ -694,6 +700,8 @@ impl OceanRenderer {
                 pipeline_layout,
                 module,
                 pipelines: Mutex::new(Vec::new()),
+                layer_pipelines: Mutex::new(Vec::new()),
+                compose: Mutex::new(None),
                 probes: Mutex::new(None),
                 indices: Mutex::new(None),
                 uniform,
@@ -1157,7 +1165,6 @@ impl OceanRenderer {
             .options
             .depth_format
             .map(|_| camera.depth().direction());
-        let (nx, ny) = (u.counts[0], u.counts[1]);
         let mut pipelines = lock(&self.pipelines);
         if !pipelines.iter().any(|p| p.key == key) {
             let p = crate::scoped(device, || Ok(self.draw_pipelines(device, key)))?;
@@ -1166,18 +1173,9 @@ impl OceanRenderer {
         let Some(p) = pipelines.iter().find(|p| p.key == key) else {
             return Err(GpuError::Wgpu("ocean pipelines missing".to_owned()));
         };
-        let mut indices = lock(&self.indices);
-        if indices.as_ref().is_none_or(|i| i.size != (nx, ny)) {
-            *indices = Some(grid_indices(ctx, nx, ny)?);
-        }
-        let Some(grid) = indices.as_ref() else {
-            return Err(GpuError::Wgpu("ocean grid indices missing".to_owned()));
-        };
+        let (indices, index_count) = self.grid_index_buffer(ctx, &u)?;
         crate::scoped(device, || {
-            let queue = ctx.queue();
-            queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&u));
-            write_waves(ctx, &self.wave_texture, &phases, phases.len() as u32, 1);
-            self.local.write_phases(ctx, &local_phases);
+            self.write_frame(ctx, &u, &phases, &local_phases);
             let load_color = match clear_depth {
                 Some(_) => wgpu::LoadOp::Clear(wgpu::Color::BLACK),
                 None => wgpu::LoadOp::Load,
@@ -1218,10 +1216,42 @@ impl OceanRenderer {
                 pass.draw(0..3, 0..1);
             }
             pass.set_pipeline(&p.ocean);
-            pass.set_index_buffer(grid.buffer.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..grid.count, 0, 0..1);
+            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..index_count, 0, 0..1);
             Ok(())
         })
+    }
+
+    /// The index buffer of the projected grid of frame `u` (built when the grid's size changes)
+    /// and its index count.
+    fn grid_index_buffer(
+        &self,
+        ctx: &GpuContext,
+        u: &FrameUniform,
+    ) -> Result<(wgpu::Buffer, u32), GpuError> {
+        let (nx, ny) = (u.counts[0], u.counts[1]);
+        let mut indices = lock(&self.indices);
+        if indices.as_ref().is_none_or(|i| i.size != (nx, ny)) {
+            *indices = Some(grid_indices(ctx, nx, ny)?);
+        }
+        match indices.as_ref() {
+            Some(grid) => Ok((grid.buffer.clone(), grid.count)),
+            None => Err(GpuError::Wgpu("ocean grid indices missing".to_owned())),
+        }
+    }
+
+    /// Writes a frame's uniform block and phases (they take effect at the next submit).
+    fn write_frame(
+        &self,
+        ctx: &GpuContext,
+        u: &FrameUniform,
+        phases: &[[f32; 4]],
+        local_phases: &[[f32; 4]],
+    ) {
+        ctx.queue()
+            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(u));
+        write_waves(ctx, &self.wave_texture, phases, phases.len() as u32, 1);
+        self.local.write_phases(ctx, local_phases);
     }
 
     /// The sky and sea pipelines for a depth direction (`None`: no depth buffer).

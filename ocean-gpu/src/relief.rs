@@ -430,8 +430,27 @@ pub struct ReliefImage {
 
 #[derive(Debug)]
 struct Pipelines {
-    key: DepthDirection,
+    key: (DepthDirection, Output),
     pipeline: wgpu::RenderPipeline,
+}
+
+/// The targets of one draw.
+#[derive(Clone, Copy)]
+enum Targets<'a> {
+    Color {
+        color: &'a wgpu::TextureView,
+        depth: &'a wgpu::TextureView,
+    },
+    Layers(&'a crate::LightTargets<'a>),
+}
+
+/// What a draw writes besides depth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Output {
+    /// One colour target of the options' format (`relief_fs`).
+    Color,
+    /// Split light targets (`relief_layers_fs`).
+    Layers,
 }
 
 #[derive(Debug)]
@@ -666,8 +685,15 @@ impl ReliefRenderer {
     fn pipeline(
         &self,
         device: &wgpu::Device,
-        key: DepthDirection,
+        key: (DepthDirection, Output),
     ) -> Result<wgpu::RenderPipeline, GpuError> {
+        let (direction, output) = key;
+        let color_targets = [Some(self.options.color_format.into())];
+        let layer_targets = crate::light_targets::radiance_targets();
+        let (entry_point, targets): (_, &[Option<wgpu::ColorTargetState>]) = match output {
+            Output::Color => ("relief_fs", &color_targets),
+            Output::Layers => ("relief_layers_fs", &layer_targets),
+        };
         let mut pipelines = lock(&self.pipelines);
         if let Some(p) = pipelines.iter().find(|p| p.key == key) {
             return Ok(p.pipeline.clone());
@@ -692,7 +718,7 @@ impl ReliefRenderer {
                     depth_stencil: Some(wgpu::DepthStencilState {
                         format: self.options.depth_format,
                         depth_write_enabled: Some(true),
-                        depth_compare: Some(match key {
+                        depth_compare: Some(match direction {
                             DepthDirection::Forward => wgpu::CompareFunction::Less,
                             DepthDirection::Reversed => wgpu::CompareFunction::Greater,
                         }),
@@ -702,9 +728,9 @@ impl ReliefRenderer {
                     multisample: wgpu::MultisampleState::default(),
                     fragment: Some(wgpu::FragmentState {
                         module: &self.module,
-                        entry_point: Some("relief_fs"),
+                        entry_point: Some(entry_point),
                         compilation_options: wgpu::PipelineCompilationOptions::default(),
-                        targets: &[Some(self.options.color_format.into())],
+                        targets,
                     }),
                     multiview_mask: None,
                     cache: None,
@@ -741,74 +767,152 @@ impl ReliefRenderer {
         depth: &wgpu::TextureView,
         size: (u32, u32),
     ) -> Result<(), GpuError> {
-        self.record(ctx, encoder, camera, scene, color, depth, size, None)
+        self.check_targets(color, depth, size)?;
+        self.record(
+            ctx,
+            encoder,
+            camera,
+            std::slice::from_ref(scene),
+            Targets::Color { color, depth },
+            size,
+            None,
+        )
     }
 
+    /// Records the draws of `scenes` (quads sharing the renderer's texture, such as the faces
+    /// of a block) as [`render`](Self::render) draws one, in one render pass, into split light
+    /// targets ([`crate::LightTargets`], depth of the options' format): the directional light's
+    /// term
+    /// (albedo × the self-shadowed diffuse term × `light_intensity`) as direct light and the
+    /// ambient term (albedo × `ambient`) as ambient light, linear (never sRGB-encoded), alpha 1.
+    /// Give both in the radiance units of the other renderers that share the targets (for the
+    /// ocean: `E/π` of the Sun's and the sky's irradiance make a Lambertian face's radiance).
+    ///
+    /// # Errors
+    ///
+    /// As [`render`](Self::render).
+    pub fn render_layers(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        camera: &Camera,
+        scenes: &[ReliefScene],
+        targets: &crate::LightTargets<'_>,
+        size: (u32, u32),
+    ) -> Result<(), GpuError> {
+        self.check_viewport(ctx, size.0, size.1)?;
+        targets.check(self.options.depth_format, size)?;
+        self.record(
+            ctx,
+            encoder,
+            camera,
+            scenes,
+            Targets::Layers(targets),
+            size,
+            None,
+        )
+    }
+
+    /// Records the draws of `scenes` into checked `targets` as one render pass (cleared first,
+    /// to black and that depth, when `clear_depth` is given; colour targets only).
     #[allow(clippy::too_many_arguments)]
     fn record(
         &self,
         ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         camera: &Camera,
-        scene: &ReliefScene,
-        color: &wgpu::TextureView,
-        depth: &wgpu::TextureView,
+        scenes: &[ReliefScene],
+        targets: Targets<'_>,
         size: (u32, u32),
         clear_depth: Option<f32>,
     ) -> Result<(), GpuError> {
         let tex = self.texture_state()?;
         self.check_viewport(ctx, size.0, size.1)?;
-        self.check_targets(color, depth, size)?;
-        let u = scene_uniforms(
-            camera,
-            scene,
-            tex.size,
-            tex.edge,
-            !self.options.color_format.is_srgb(),
-        )?;
+        let output = match targets {
+            Targets::Color { .. } => Output::Color,
+            Targets::Layers(_) => Output::Layers,
+        };
+        let encode = output == Output::Color && !self.options.color_format.is_srgb();
+        let blocks = scenes
+            .iter()
+            .map(|scene| scene_uniforms(camera, scene, tex.size, tex.edge, encode))
+            .collect::<Result<Vec<_>, _>>()?;
+        if blocks.is_empty() {
+            return Ok(());
+        }
         let device = ctx.device();
-        let pipeline = self.pipeline(device, camera.depth().direction())?;
+        let pipeline = self.pipeline(device, (camera.depth().direction(), output))?;
+        // One buffer for every draw's block, each at an offset the device can bind.
+        let align = u64::from(device.limits().min_uniform_buffer_offset_alignment);
+        let block = std::mem::size_of::<ReliefUniforms>() as u64;
+        let stride = block.div_ceil(align) * align;
         crate::scoped(device, || {
-            let uniform = uniform_buffer(ctx, "ocean relief uniform", &u);
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("ocean relief bind group"),
-                layout: &self.layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: uniform.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::TextureView(&tex.view),
-                    },
-                ],
+            let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("ocean relief uniforms"),
+                size: stride * blocks.len() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
             });
+            let mut bytes = vec![0u8; (stride * blocks.len() as u64) as usize];
+            for (k, u) in blocks.iter().enumerate() {
+                let at = k * stride as usize;
+                bytes[at..at + block as usize].copy_from_slice(bytemuck::bytes_of(u));
+            }
+            ctx.queue().write_buffer(&uniform, 0, &bytes);
+            let groups: Vec<wgpu::BindGroup> = (0..blocks.len() as u64)
+                .map(|k| {
+                    device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("ocean relief bind group"),
+                        layout: &self.layout,
+                        entries: &[
+                            wgpu::BindGroupEntry {
+                                binding: 0,
+                                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                                    buffer: &uniform,
+                                    offset: k * stride,
+                                    size: wgpu::BufferSize::new(block),
+                                }),
+                            },
+                            wgpu::BindGroupEntry {
+                                binding: 1,
+                                resource: wgpu::BindingResource::TextureView(&tex.view),
+                            },
+                        ],
+                    })
+                })
+                .collect();
+            let (color_attachments, depth_stencil_attachment) = match targets {
+                Targets::Color { color, depth } => (
+                    vec![Some(wgpu::RenderPassColorAttachment {
+                        view: color,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: match clear_depth {
+                                Some(_) => wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                                None => wgpu::LoadOp::Load,
+                            },
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })],
+                    wgpu::RenderPassDepthStencilAttachment {
+                        view: depth,
+                        depth_ops: Some(wgpu::Operations {
+                            load: match clear_depth {
+                                Some(d) => wgpu::LoadOp::Clear(d),
+                                None => wgpu::LoadOp::Load,
+                            },
+                            store: wgpu::StoreOp::Store,
+                        }),
+                        stencil_ops: None,
+                    },
+                ),
+                Targets::Layers(t) => (t.color_attachments().to_vec(), t.depth_attachment()),
+            };
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("ocean relief"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: color,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: match clear_depth {
-                            Some(_) => wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                            None => wgpu::LoadOp::Load,
-                        },
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: depth,
-                    depth_ops: Some(wgpu::Operations {
-                        load: match clear_depth {
-                            Some(d) => wgpu::LoadOp::Clear(d),
-                            None => wgpu::LoadOp::Load,
-                        },
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
+                color_attachments: &color_attachments,
+                depth_stencil_attachment: Some(depth_stencil_attachment),
                 timestamp_writes: None,
                 occlusion_query_set: None,
                 multiview_mask: None,
@@ -816,8 +920,10 @@ impl ReliefRenderer {
             pass.set_viewport(0.0, 0.0, size.0 as f32, size.1 as f32, 0.0, 1.0);
             pass.set_scissor_rect(0, 0, size.0, size.1);
             pass.set_pipeline(&pipeline);
-            pass.set_bind_group(0, &group, &[]);
-            pass.draw(0..6, 0..1);
+            for group in &groups {
+                pass.set_bind_group(0, group, &[]);
+                pass.draw(0..6, 0..1);
+            }
             Ok(())
         })
     }
@@ -896,9 +1002,11 @@ impl ReliefRenderer {
             ctx,
             &mut encoder,
             camera,
-            scene,
-            &color_view,
-            &depth_view,
+            std::slice::from_ref(scene),
+            Targets::Color {
+                color: &color_view,
+                depth: &depth_view,
+            },
             (width, height),
             Some(clear),
         )?;

@@ -302,12 +302,16 @@ static SHADERS: [ShaderEntry; 13] = [
                 name: "compose_fs",
                 stage: Stage::Fragment,
             },
+            EntryPoint {
+                name: "ocean_layers_fs",
+                stage: Stage::Fragment,
+            },
         ],
         description: "ocean surface: projected grid displaced by filtered trochoids, per-pixel \
                       filtered normals and slope variance lit by the Sun, the sky and the sea \
                       (Bruneton et al. 2010 Eq. 2-4, 15, 26-28, Algorithm 5.1), and the sky; \
-                      or the caller's own mesh lit the same way, its direct and ambient light \
-                      composed with an ambient obscurance",
+                      or the caller's own mesh lit the same way; either with its direct and \
+                      ambient light apart, composed with an ambient obscurance",
     },
     ShaderEntry {
         name: "ocean_probe",
@@ -407,11 +411,16 @@ static SHADERS: [ShaderEntry; 13] = [
                 name: "relief_fs",
                 stage: Stage::Fragment,
             },
+            EntryPoint {
+                name: "relief_layers_fs",
+                stage: Stage::Fragment,
+            },
         ],
         description: "relief mapping: a quad traced per pixel by linear search, cone step \
                       mapping or relaxed cone stepping with binary search through an exact \
                       bilinear fetch, shaded with the relief normal, self-shadowed, writing the \
-                      hit's depth (GPU Gems 3 ch. 18, Listing 18-3)",
+                      hit's depth (GPU Gems 3 ch. 18, Listing 18-3); one colour or the direct \
+                      and ambient light apart",
     },
     ShaderEntry {
         name: "relief_probe",

@@ -8,24 +8,13 @@ use glam::DVec2;
 use ocean_core::{Camera, DepthDirection};
 use wgpu::util::DeviceExt;
 
+use super::layers::{ComposeInputs, depth_state};
 use super::{
-    FrameUniform, MeshGrid, OceanRenderer, common_layout_entries, depth_remap, frame_uniform,
-    invalid, write_waves,
+    FrameUniform, MeshGrid, OceanRenderer, depth_remap, frame_uniform, invalid, write_waves,
 };
+use crate::light_targets::{RADIANCE_FORMAT, radiance_targets};
 use crate::readback::read_texture;
 use crate::{GpuContext, GpuError};
-
-/// Format of the mesh pass's two radiance targets (`mesh_fs`'s direct and ambient light):
-/// WebGPU's downlevel limits cannot render to `rgba32float`, and `f16`'s 3 significant digits
-/// are below what the 8-bit tone-mapped result shows, while radiances beyond its 65504 limit
-/// (the Sun's glitter) saturate the tone map anyway at the exposures
-/// [`super::OceanOptions::exposure`] is meant for (at the default 8, from a radiance of 1).
-const RADIANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-
-/// Bindings of `compose_fs`'s inputs (ocean.wgsl).
-const DIRECT_BINDING: u32 = 9;
-const AMBIENT_BINDING: u32 = 10;
-const OBSCURANCE_BINDING: u32 = 11;
 
 /// A water mesh: its grid and, per grid point `(i, j)` at element `j·nx + i`, the position
 /// relative to the grid's point (0, 0) at rest and the unit normal (what
@@ -258,26 +247,17 @@ impl OceanRenderer {
             let (direct_view, ambient_view, ao_view) = (view(&direct), view(&ambient), view(&ao));
             let (depth_view, color_view) = (view(&depth), view(&color));
 
-            let (mesh_pipeline, compose_pipeline, compose_layout) =
-                self.mesh_pipelines(device, depth_format, direction);
-            let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
-            let tex = wgpu::BindingResource::TextureView;
-            let compose_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("ocean compose bind group"),
-                layout: &compose_layout,
-                entries: &[
-                    entry(0, self.uniform.as_entire_binding()),
-                    entry(1, tex(&self.wave_view)),
-                    entry(2, tex(&self.sky_view)),
-                    entry(3, wgpu::BindingResource::Sampler(&self.sampler)),
-                    entry(super::FRESNEL_BINDING, tex(&self.fresnel_view)),
-                    entry(super::LOCAL_FIELDS_BINDING, tex(&self.local.fields_view)),
-                    entry(super::LOCAL_TRAINS_BINDING, tex(&self.local.trains_view)),
-                    entry(DIRECT_BINDING, tex(&direct_view)),
-                    entry(AMBIENT_BINDING, tex(&ambient_view)),
-                    entry(OBSCURANCE_BINDING, tex(&ao_view)),
-                ],
-            });
+            let mesh_pipeline = self.mesh_pipeline(device, depth_format, direction);
+            let compose = self.compose_pipeline(device);
+            let compose_group = self.compose_bind_group(
+                device,
+                &compose.layout,
+                &ComposeInputs {
+                    direct: &direct_view,
+                    ambient: &ambient_view,
+                    obscurance: &ao_view,
+                },
+            );
 
             let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("ocean mesh image"),
@@ -325,7 +305,7 @@ impl OceanRenderer {
                     occlusion_query_set: None,
                     multiview_mask: None,
                 });
-                pass.set_pipeline(&compose_pipeline);
+                pass.set_pipeline(&compose.pipeline);
                 pass.set_bind_group(0, &compose_group, &[]);
                 pass.draw(0..3, 0..1);
             }
@@ -341,46 +321,14 @@ impl OceanRenderer {
         Ok(data)
     }
 
-    /// The mesh pipeline (the renderer's layout, depth tested in the camera's direction and
-    /// written, two radiance targets) and the compose pipeline (bindings 9–11 added, no depth)
-    /// with its bind group layout.
-    fn mesh_pipelines(
+    /// The mesh pipeline: the renderer's layout, depth tested in the camera's direction and
+    /// written, two radiance targets.
+    fn mesh_pipeline(
         &self,
         device: &wgpu::Device,
         depth_format: wgpu::TextureFormat,
         direction: DepthDirection,
-    ) -> (
-        wgpu::RenderPipeline,
-        wgpu::RenderPipeline,
-        wgpu::BindGroupLayout,
-    ) {
-        let stages = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
-        let input = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: stages,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
-        let mut entries = common_layout_entries(stages).to_vec();
-        entries.extend([
-            input(DIRECT_BINDING),
-            input(AMBIENT_BINDING),
-            input(OBSCURANCE_BINDING),
-        ]);
-        let compose_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("ocean compose bind group layout"),
-            entries: &entries,
-        });
-        let compose_pipeline_layout =
-            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("ocean compose pipeline layout"),
-                bind_group_layouts: &[Some(&compose_layout)],
-                immediate_size: 0,
-            });
+    ) -> wgpu::RenderPipeline {
         let attribute = |location| {
             [wgpu::VertexAttribute {
                 format: wgpu::VertexFormat::Float32x3,
@@ -401,12 +349,7 @@ impl OceanRenderer {
                 attributes: &normal,
             }),
         ];
-        let radiance = Some(wgpu::ColorTargetState::from(RADIANCE_FORMAT));
-        let compare = match direction {
-            DepthDirection::Forward => wgpu::CompareFunction::Less,
-            DepthDirection::Reversed => wgpu::CompareFunction::Greater,
-        };
-        let mesh = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("ocean mesh pipeline"),
             layout: Some(&self.pipeline_layout),
             vertex: wgpu::VertexState {
@@ -421,44 +364,16 @@ impl OceanRenderer {
                 cull_mode: None,
                 ..Default::default()
             },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: depth_format,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(compare),
-                stencil: wgpu::StencilState::default(),
-                bias: wgpu::DepthBiasState::default(),
-            }),
+            depth_stencil: Some(depth_state(depth_format, direction)),
             multisample: wgpu::MultisampleState::default(),
             fragment: Some(wgpu::FragmentState {
                 module: &self.module,
                 entry_point: Some("mesh_fs"),
                 compilation_options: wgpu::PipelineCompilationOptions::default(),
-                targets: &[radiance.clone(), radiance],
+                targets: &radiance_targets(),
             }),
             multiview_mask: None,
             cache: None,
-        });
-        let compose = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("ocean compose pipeline"),
-            layout: Some(&compose_pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &self.module,
-                entry_point: Some("sky_vs"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &self.module,
-                entry_point: Some("compose_fs"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                targets: &[Some(self.options.color_format.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        (mesh, compose, compose_layout)
+        })
     }
 }

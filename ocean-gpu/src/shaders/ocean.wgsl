@@ -18,6 +18,9 @@
 //   triangles with depth. It writes linear radiance to two targets, the direct (Sun) part at
 //   location 0 and the ambient (sky and sea) part at location 1, alpha 1, for an ambient
 //   obscurance pass to darken the ambient part alone.
+// - `ocean_vs`/`ocean_layers_fs`: the projected grid with the light split as `mesh_fs` splits
+//   it (direct and ambient targets), for a frame that other renderers share and an ambient
+//   obscurance darkens (`OceanRenderer::render_layers`).
 // - `sky_vs`/`compose_fs`: after the mesh pass (and the obscurance), the full-screen triangle
 //   that writes each pixel's final colour: display(direct + A · ambient) where the mesh drew
 //   (ambient alpha 1), the sky (as `sky_fs`) elsewhere. No depth test.
@@ -55,6 +58,21 @@ fn ocean_fs(in: OceanVertex) -> @location(0) vec4<f32> {
     let v = normalize(-in.position);
     let light = sea_color(v, s.normal, frame.sea.xy, s.variance);
     return display(light.sun + light.sky + light.sea);
+}
+
+// `ocean_fs` with its light split for an ambient obscurance pass (`MeshOutput`): the Sun's
+// reflection (Eq. 15) at location 0, the sky's reflection and the refracted light (Eq. 21, 28)
+// at location 1, linear, alpha 1. `compose_fs` composes the frame from them.
+@fragment
+fn ocean_layers_fs(in: OceanVertex) -> MeshOutput {
+    let l = pixel_footprint(in.clip.xy);
+    let s = pixel_surface(in.rest, l);
+    let v = normalize(-in.position);
+    let light = sea_color(v, s.normal, frame.sea.xy, s.variance);
+    var out: MeshOutput;
+    out.direct = vec4<f32>(light.sun, 1.0);
+    out.ambient = vec4<f32>(light.sky + light.sea, 1.0);
+    return out;
 }
 
 struct SkyVertex {

@@ -45,8 +45,16 @@ fn relief_srgb(c: vec3<f32>) -> vec3<f32> {
     return select(hi, lo, x <= vec3<f32>(0.0031308));
 }
 
-@fragment
-fn relief_fs(in: VsOut) -> FsOut {
+// The shading of one fragment: the hit's depth and its light, split into the directional
+// light (self-shadowed) and the ambient term, linear.
+struct ReliefShade {
+    depth: f32,
+    direct: vec3<f32>,
+    ambient: vec3<f32>,
+}
+
+// Traces the fragment's viewing ray and shades the hit (discards the back of the quad).
+fn relief_shade(in: VsOut) -> ReliefShade {
     let t = relief.tangent.xyz;
     let b = relief.bitangent.xyz;
     let n = relief.normal.xyz;
@@ -68,7 +76,7 @@ fn relief_fs(in: VsOut) -> FsOut {
     let distance = hit.pos.z * relief.bitangent.w / cos_theta;
     let p = in.rel + dir * distance;
     let clip = relief.view_proj * vec4<f32>(p, 1.0);
-    var out: FsOut;
+    var out: ReliefShade;
     out.depth = clamp(clip.z / clip.w, 0.0, 1.0);
 
     let l = relief.light.xyz;
@@ -79,10 +87,39 @@ fn relief_fs(in: VsOut) -> FsOut {
         shadow = relief_shadow(hit.pos, light, depth_scale, relief.shading.y).x;
     }
     let diffuse = max(dot(normal, light), 0.0) * relief.light.w * (1.0 - shadow);
-    var color = relief.albedo.rgb * (relief.albedo.a + diffuse);
+    out.direct = relief.albedo.rgb * diffuse;
+    out.ambient = relief.albedo.rgb * relief.albedo.a;
+    return out;
+}
+
+@fragment
+fn relief_fs(in: VsOut) -> FsOut {
+    let shade = relief_shade(in);
+    var color = shade.direct + shade.ambient;
     if (relief.steps.z & FLAG_SRGB_ENCODE) != 0u {
         color = relief_srgb(color);
     }
+    var out: FsOut;
+    out.depth = shade.depth;
     out.color = vec4<f32>(color, 1.0);
+    return out;
+}
+
+struct LayersOut {
+    // The directional light's radiance, alpha 1.
+    @location(0) direct: vec4<f32>,
+    // The ambient term, alpha 1: what an ambient obscurance darkens.
+    @location(1) ambient: vec4<f32>,
+    @builtin(frag_depth) depth: f32,
+}
+
+// `relief_fs` into split light targets (`ocean_gpu::LightTargets`), linear, never encoded.
+@fragment
+fn relief_layers_fs(in: VsOut) -> LayersOut {
+    let shade = relief_shade(in);
+    var out: LayersOut;
+    out.direct = vec4<f32>(shade.direct, 1.0);
+    out.ambient = vec4<f32>(shade.ambient, 1.0);
+    out.depth = shade.depth;
     return out;
 }
