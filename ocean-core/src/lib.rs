@@ -78,6 +78,7 @@ pub mod phase;
 pub mod rng;
 pub mod rows;
 pub mod sincos;
+pub mod timed;
 pub mod trochoid;
 pub mod wave;
 
@@ -94,6 +95,7 @@ pub use layers::{GridRect, Layer, evaluate_layers, evaluate_layers_region};
 pub use layers::{evaluate_layers_par, evaluate_layers_region_par};
 pub use modulation::Modulation;
 pub use rng::Pcg32;
+pub use timed::TimedWaves;
 pub use trochoid::{PointSums, Sample, SampleF64, WaveSet};
 pub use wave::{Wave, WaveDesc};
 

@@ -242,6 +242,11 @@ impl WaveSet {
         &self.waves
     }
 
+    /// The per-wave `f64` constants of the point paths (see the field).
+    pub(crate) fn coeffs_f64(&self) -> &[[f64; 8]] {
+        &self.coeffs64
+    }
+
     /// The per-wave `f32` kernel constants, as the GPU pass uploads them.
     pub fn coeffs(&self) -> &[WaveCoeffs] {
         &self.coeffs

@@ -29,7 +29,7 @@ use alloc::vec::Vec;
 use glam::{DVec2, DVec3, Vec3};
 use ocean_core::frustum::{Containment, Frustum};
 use ocean_core::layers::{GridRect, Layer, evaluate_layers};
-use ocean_core::{Modulation, PointSums, Wave, WaveDesc, WaveSet};
+use ocean_core::{Modulation, PointSums, TimedWaves, Wave, WaveDesc, WaveSet};
 
 use crate::budget::{BoxLoad, Budget, CostModel, Selection, select, train_order};
 use crate::effects::{self, Effects, Refraction};
@@ -409,8 +409,10 @@ impl Scene {
                 &selection.effects,
                 t,
             )?;
+            let timed = waves.at_time(t).map_err(WtbError::Eval)?;
             layers.push(FrameLayer {
                 waves,
+                timed,
                 mu,
                 cache: static_mu,
             });
@@ -419,6 +421,9 @@ impl Scene {
         Ok(Frame {
             grid: &self.grid,
             inv_spacing: 1.0 / self.grid.spacing(),
+            last_point: DVec2::new((self.grid.nx() - 1) as f64, (self.grid.nz() - 1) as f64),
+            // The grid's cap (MAX_SIDE) keeps these in u32.
+            last_cell: ((self.grid.nx() - 2) as u32, (self.grid.nz() - 2) as u32),
             t,
             layers,
             height,
@@ -743,6 +748,8 @@ fn height_field(grid: &WaterGrid, terrain: &Terrain, e: &Effects, t: f64) -> Opt
 #[derive(Clone, Debug)]
 struct FrameLayer<'a> {
     waves: WaveSet,
+    /// `waves` at the frame's time, for the height queries.
+    timed: TimedWaves,
     /// This frame's modulation, when time-dependent effects change the cached one.
     mu: Option<Modulation>,
     cache: &'a Modulation,
@@ -762,10 +769,11 @@ impl FrameLayer<'_> {
         let r = self.rect();
         let m = self.modulation().values();
         let at = |q: usize| [f64::from(m[q][0]), f64::from(m[q][1])];
-        // The common case: the whole cell inside the rectangle, corners at fixed offsets.
-        if cell.i >= r.i0 && cell.j >= r.j0 && cell.i + 1 < r.i0 + r.nx && cell.j + 1 < r.j0 + r.nz
-        {
-            let q = (cell.j - r.j0) * r.nx + (cell.i - r.i0);
+        // The common case: the whole cell inside the rectangle, corners at fixed offsets. A
+        // cell left of or above the rectangle wraps to a huge offset and fails the test too.
+        let (di, dj) = (cell.i.wrapping_sub(r.i0), cell.j.wrapping_sub(r.j0));
+        if di.wrapping_add(1) < r.nx && dj.wrapping_add(1) < r.nz {
+            let q = dj * r.nx + di;
             return lerp2(cell, at(q), at(q + 1), at(q + r.nx), at(q + r.nx + 1));
         }
         bilinear(cell, |i, j| r.index(i, j).map_or([0.0, 0.0], at))
@@ -828,9 +836,23 @@ pub struct HeightSample {
     pub residual: f64,
 }
 
+impl HeightSample {
+    /// The sea at rest at the origin: the placeholder a batch starts from.
+    const REST: Self = Self {
+        height: 0.0,
+        normal: DVec3::Y,
+        rest: DVec2::ZERO,
+        residual: 0.0,
+    };
+}
+
 /// Horizontal residual at which a height query stops, metres: half a millimetre, so the
 /// answer is within 1 mm horizontally of the surface the grid shows, with margin.
 pub const QUERY_TOLERANCE: f64 = 5e-4;
+
+/// Batches of at least this many height queries are answered in grid order (see
+/// [`Frame::heights`]); smaller ones in the caller's order.
+const QUERY_SORT_MIN: usize = 256;
 
 /// Newton steps a height query may take.
 pub const QUERY_MAX_ITERATIONS: usize = 16;
@@ -840,6 +862,10 @@ pub const QUERY_MAX_ITERATIONS: usize = 16;
 pub struct Frame<'a> {
     grid: &'a WaterGrid,
     inv_spacing: f64,
+    /// The grid's last point in grid units, (nx − 1, nz − 1).
+    last_point: DVec2,
+    /// The last cell's first point, (nx − 2, nz − 2).
+    last_cell: (u32, u32),
     t: f64,
     layers: Vec<FrameLayer<'a>>,
     height: Option<Vec<f32>>,
@@ -1029,7 +1055,11 @@ impl Frame<'_> {
         })
     }
 
-    /// [`Frame::height_at`] for many points.
+    /// [`Frame::height_at`] for many points, each answer bit-identical to its own
+    /// [`Frame::height_at`]. A batch of 256 or more is answered in the order of the grid
+    /// points nearest the queries rather than the caller's (the answers still land at the
+    /// queries' indices): random queries then read the modulation row by row, not one cache
+    /// miss at a time. This costs one `u64` per query of scratch memory.
     ///
     /// # Errors
     ///
@@ -1046,10 +1076,41 @@ impl Frame<'_> {
         if !at.iter().all(|p| p.is_finite()) {
             return Err(WtbError::NotFinite("query position"));
         }
-        for (p, o) in at.iter().zip(out.iter_mut()) {
-            *o = self.height_at(*p)?;
+        if !(QUERY_SORT_MIN..=u32::MAX as usize).contains(&at.len()) {
+            for (p, o) in at.iter().zip(out.iter_mut()) {
+                *o = self.height_at(*p)?;
+            }
+            return Ok(());
+        }
+        let mut order = self.query_order(at);
+        order.sort_unstable();
+        for key in order {
+            let n = key as u32 as usize;
+            out[n] = self.height_at(at[n])?;
         }
         Ok(())
+    }
+
+    /// The queries as sort keys: the grid point nearest each (row-major, points outside the
+    /// grid last) above its index. Visited in key order, a batch reads the modulation and the
+    /// height field row by row instead of at random; each answer depends on its own position
+    /// only, so the order changes no bit of it.
+    fn query_order(&self, at: &[DVec2]) -> Vec<u64> {
+        let (nx, nz) = (self.grid.nx(), self.grid.nz());
+        let origin = self.grid.origin();
+        at.iter()
+            .enumerate()
+            .map(|(n, p)| {
+                let l = (*p - origin) * self.inv_spacing + DVec2::splat(0.5);
+                // Validated finite; the comparison is false for NaN, which cannot occur here.
+                let cell = if l.x >= 0.0 && l.y >= 0.0 && l.x < nx as f64 && l.y < nz as f64 {
+                    (l.y as u64) * nx as u64 + l.x as u64
+                } else {
+                    u64::from(u32::MAX)
+                };
+                (cell << 32) | n as u64
+            })
+            .collect()
     }
 
     /// [`Frame::heights`] on the current rayon thread pool.
@@ -1070,9 +1131,29 @@ impl Frame<'_> {
         if !at.iter().all(|p| p.is_finite()) {
             return Err(WtbError::NotFinite("query position"));
         }
-        at.par_iter().zip(out.par_iter_mut()).for_each(|(p, o)| {
-            *o = self.height_at(*p).expect("finite positions checked above");
-        });
+        if !(QUERY_SORT_MIN..=u32::MAX as usize).contains(&at.len()) {
+            at.par_iter().zip(out.par_iter_mut()).for_each(|(p, o)| {
+                *o = self.height_at(*p).expect("finite positions checked above");
+            });
+            return Ok(());
+        }
+        let mut order = self.query_order(at);
+        order.par_sort_unstable();
+        // Answers in key order, then scattered back: each task reads a band of grid rows.
+        let mut sorted = vec![HeightSample::REST; order.len()];
+        sorted
+            .par_chunks_mut(QUERY_SORT_MIN)
+            .zip(order.par_chunks(QUERY_SORT_MIN))
+            .for_each(|(o, keys)| {
+                for (o, key) in o.iter_mut().zip(keys) {
+                    *o = self
+                        .height_at(at[*key as u32 as usize])
+                        .expect("finite positions checked above");
+                }
+            });
+        for (s, key) in sorted.into_iter().zip(order) {
+            out[key as u32 as usize] = s;
+        }
         Ok(())
     }
 
@@ -1086,9 +1167,9 @@ impl Frame<'_> {
         for l in &self.layers {
             let mu = l.modulation_at(&cell);
             if mu != [0.0, 0.0] {
-                l.waves
-                    .add_sums(p0, self.t, mu, &mut sums)
-                    .expect("finite position, time and modulation");
+                // p0 is finite (the query was checked, and a Newton step from a finite point
+                // with a finite Jacobian stays finite), and so is every modulation value.
+                l.timed.add_sums(p0, mu, &mut sums);
             }
         }
         sums
@@ -1105,13 +1186,14 @@ impl Frame<'_> {
     /// The grid cell holding `p` and the fractions across it; `None` outside the grid.
     fn cell(&self, p: DVec2) -> Option<Cell> {
         let l = (p - self.grid.origin()) * self.inv_spacing;
-        let (nx, nz) = (self.grid.nx(), self.grid.nz());
-        if !(l.x >= 0.0 && l.y >= 0.0 && l.x <= (nx - 1) as f64 && l.y <= (nz - 1) as f64) {
+        let last = self.last_point;
+        if !(l.x >= 0.0 && l.y >= 0.0 && l.x <= last.x && l.y <= last.y) {
             return None;
         }
-        // 0 ≤ l < n here, so truncation is the floor.
-        let i = (l.x as usize).min(nx - 2);
-        let j = (l.y as usize).min(nz - 2);
+        // 0 ≤ l ≤ n − 1 < 4096 (the grid's cap, [`crate::grid::MAX_SIDE`]) here, so truncation through u32 is the floor,
+        // one instruction where a conversion to usize takes a branchy sequence.
+        let i = (l.x as u32).min(self.last_cell.0) as usize;
+        let j = (l.y as u32).min(self.last_cell.1) as usize;
         Some(Cell {
             i,
             j,

@@ -274,6 +274,42 @@ fn queries_agree_with_the_grid_within_1_mm() {
 }
 
 #[test]
+fn batched_queries_equal_single_queries_bit_for_bit() {
+    // Batches of 256 or more are answered in grid order, not the caller's: every answer must
+    // still be the one `height_at` gives that point, at its own index, on any thread count.
+    // The points are scattered at random over and around the 64 m grid (some outside it, where
+    // the sea is at rest), so their grid order differs from the caller's.
+    let mut s = island();
+    let f = s.frame(6.5, None).unwrap();
+    let mut rng = ocean_core::Pcg32::new(17, 5);
+    let at: Vec<DVec2> = (0..1000)
+        .map(|_| DVec2::new(rng.next_f64() * 80.0 - 8.0, rng.next_f64() * 80.0 - 8.0))
+        .collect();
+    let want: Vec<_> = at.iter().map(|p| f.height_at(*p).unwrap()).collect();
+    assert!(want.iter().any(|w| w.height != 0.0) && want.iter().any(|w| w.height == 0.0));
+    let blank = ocean_wtb::scene::HeightSample {
+        height: f64::NAN,
+        normal: DVec3::ZERO,
+        rest: DVec2::ZERO,
+        residual: f64::NAN,
+    };
+    for n in [255, 256, 1000] {
+        let mut out = vec![blank; n];
+        f.heights(&at[..n], &mut out).unwrap();
+        assert!(out == want[..n], "{n} queries, one thread");
+        for threads in [1, 2, 8] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mut out = vec![blank; n];
+            pool.install(|| f.heights_par(&at[..n], &mut out)).unwrap();
+            assert!(out == want[..n], "{n} queries, {threads} threads");
+        }
+    }
+}
+
+#[test]
 fn threads_give_identical_bits() {
     let mut s = island();
     let (p1, q1) = evaluate(&mut s, 4.0);
