@@ -21,6 +21,7 @@ use ocean_core::rng::Pcg32;
 
 use crate::cone::{ConeMap, ConeParams};
 use crate::map::HeightMap;
+use crate::quad::{QuadConeMap, QuadReliefTexture};
 use crate::relief::ReliefTexture;
 use crate::trace::{Method, Ray};
 use crate::{ReliefError, check_range, for_rows, truth};
@@ -34,6 +35,14 @@ pub enum Cones {
     RelaxedPlain,
     /// Conservative cones, plain (Dummer's map).
     Conservative,
+    /// Relaxed quadrant cones with their clearances ([`crate::quad`]: a 4-layer texture array,
+    /// one RGBA fetch per step).
+    Quad,
+    /// Relaxed quadrant cones, plain channel only (the book's four-ratio RGBA texel, Fig. 18-8b,
+    /// with the depth in a second texture: two texture reads per fetch position).
+    QuadPlain,
+    /// Conservative quadrant cones, plain: QDCSM (§18.1).
+    QuadConservative,
 }
 
 /// A method as the table lists it: a name, the tracer, its cone map, and an optional
@@ -118,7 +127,9 @@ impl Config {
 
     /// The comparison at 21 fetches: linear 15 + 6, cone step mapping 21, relaxed 15 + 6 with
     /// banded cones, with the plain (book) cone channel, and with the book's bisection, and
-    /// banded relaxed with an angle-adaptive budget.
+    /// banded relaxed with an angle-adaptive budget; then the quadrant maps ([`crate::quad`]):
+    /// QDCSM 21 (§18.1), relaxed quadrant cones with a shared budget of 21, with the plain
+    /// channel alone, and with the angle-adaptive budget.
     pub fn standard_entries() -> Vec<Entry> {
         use crate::trace::BinarySearch::{Book, LastStep, Shared};
         let relaxed = |search| Method::Relaxed {
@@ -148,6 +159,19 @@ impl Config {
                 name: "relaxed adaptive".into(),
                 method: relaxed(Shared),
                 cones: Cones::Relaxed,
+                adaptive: true,
+            },
+            Entry::new(
+                "quad cone step 21",
+                Method::ConeStep { steps: 21 },
+                Cones::QuadConservative,
+            ),
+            Entry::new("quad 21 shared", relaxed(Shared), Cones::Quad),
+            Entry::new("quad 21 plain", relaxed(Shared), Cones::QuadPlain),
+            Entry {
+                name: "quad adaptive".into(),
+                method: relaxed(Shared),
+                cones: Cones::Quad,
                 adaptive: true,
             },
         ]
@@ -257,6 +281,28 @@ pub fn table(config: &Config) -> Result<Table, ReliefError> {
                     .to_vec(),
             )?,
         )?;
+        let uses = |c: Cones| config.entries.iter().any(|e| e.cones == c);
+        let relaxed_quad = match (uses(Cones::Quad), uses(Cones::QuadPlain)) {
+            (false, false) => None,
+            _ => Some(QuadConeMap::generate(
+                map,
+                ConeParams::relaxed(config.max_ratio),
+            )?),
+        };
+        let quad_relaxed = match &relaxed_quad {
+            Some(c) if uses(Cones::Quad) => Some(QuadReliefTexture::new(map, c)?),
+            _ => None,
+        };
+        let quad_plain = match &relaxed_quad {
+            Some(c) if uses(Cones::QuadPlain) => Some(QuadReliefTexture::new(map, &c.plain()?)?),
+            _ => None,
+        };
+        let quad_conservative = if uses(Cones::QuadConservative) {
+            let cones = QuadConeMap::generate(map, ConeParams::conservative(config.max_ratio))?;
+            Some(QuadReliefTexture::new(map, &cones.plain()?)?)
+        } else {
+            None
+        };
         let n = map.size() as f64;
         for &depth in &config.depths {
             for &angle in &config.angles {
@@ -276,19 +322,22 @@ pub fn table(config: &Config) -> Result<Table, ReliefError> {
                         }
                     }
                     let texture = match entry.cones {
-                        Cones::Relaxed => &relaxed,
-                        Cones::RelaxedPlain => &relaxed_plain,
-                        Cones::Conservative => &conservative,
+                        Cones::Relaxed => Texture::One(&relaxed),
+                        Cones::RelaxedPlain => Texture::One(&relaxed_plain),
+                        Cones::Conservative => Texture::One(&conservative),
+                        Cones::Quad => Texture::Quad(quad_relaxed.as_ref()),
+                        Cones::QuadPlain => Texture::Quad(quad_plain.as_ref()),
+                        Cones::QuadConservative => Texture::Quad(quad_conservative.as_ref()),
                     };
                     // Step counts are checked once; the rays are valid by construction.
-                    method.trace(texture, &rays[0])?;
+                    texture.trace(&method, &rays[0])?;
                     // Per-ray (error, overshoot) in parallel; summed in ray order.
                     let mut errs = vec![(0.0f64, false); rays.len()];
                     const CHUNK: usize = 256;
                     for_rows(&mut errs, CHUNK, |c, part| {
                         for (k, e) in part.iter_mut().enumerate() {
                             let i = c * CHUNK + k;
-                            *e = match method.trace(texture, &rays[i]) {
+                            *e = match texture.trace(&method, &rays[i]) {
                                 Ok(hit) => error(hit.pos, truth[i].0, truth[i].1, n, depth),
                                 Err(_) => (f64::INFINITY, false),
                             };
@@ -311,6 +360,24 @@ pub fn table(config: &Config) -> Result<Table, ReliefError> {
         }
     }
     Ok(table)
+}
+
+/// The texture an entry traces: one relief texture, or a quadrant texture array.
+#[derive(Clone, Copy)]
+enum Texture<'a> {
+    One(&'a ReliefTexture),
+    /// Built whenever an entry uses it, so never `None` when traced.
+    Quad(Option<&'a QuadReliefTexture>),
+}
+
+impl Texture<'_> {
+    fn trace(&self, method: &Method, ray: &Ray) -> Result<crate::trace::Hit, ReliefError> {
+        match *self {
+            Texture::One(t) => method.trace(t, ray),
+            Texture::Quad(Some(t)) => t.trace(method, ray),
+            Texture::Quad(None) => Err(ReliefError::Mismatch("quadrant cones")),
+        }
+    }
 }
 
 /// `count` rays at `angle` degrees from the normal for a relief `depth` texture widths deep.
