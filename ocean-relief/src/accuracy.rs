@@ -8,6 +8,10 @@
 //! relief depth in texels (`depth·N`). Rays start at uniformly random points of the tile with
 //! uniformly random azimuths (PCG32, fixed seed); every method traces the same rays.
 //!
+//! Quadrant cone maps ([`crate::quad`]) are traced through the layer of each ray's quadrant
+//! ([`Textures`]); the book's four-ratio layout (`Cones::QuadPlain`) reads the depth from a second
+//! texture, so its fetch count counts sample positions, two texture reads each.
+//!
 //! [`table`] is what the tests print and the benchmark will print; [`Table`]'s `Display` is the
 //! text table.
 
@@ -267,42 +271,7 @@ pub fn table(config: &Config) -> Result<Table, ReliefError> {
     }
     let mut table = Table::default();
     for (name, map) in &config.maps {
-        let banded = ConeMap::generate(map, ConeParams::relaxed(config.max_ratio))?;
-        let plain = ConeMap::from_ratios(map.size(), map.edge(), banded.ratios().to_vec())?;
-        let relaxed = ReliefTexture::new(map, &banded)?;
-        let relaxed_plain = ReliefTexture::new(map, &plain)?;
-        let conservative = ReliefTexture::new(
-            map,
-            &ConeMap::from_ratios(
-                map.size(),
-                map.edge(),
-                ConeMap::generate(map, ConeParams::conservative(config.max_ratio))?
-                    .ratios()
-                    .to_vec(),
-            )?,
-        )?;
-        let uses = |c: Cones| config.entries.iter().any(|e| e.cones == c);
-        let relaxed_quad = match (uses(Cones::Quad), uses(Cones::QuadPlain)) {
-            (false, false) => None,
-            _ => Some(QuadConeMap::generate(
-                map,
-                ConeParams::relaxed(config.max_ratio),
-            )?),
-        };
-        let quad_relaxed = match &relaxed_quad {
-            Some(c) if uses(Cones::Quad) => Some(QuadReliefTexture::new(map, c)?),
-            _ => None,
-        };
-        let quad_plain = match &relaxed_quad {
-            Some(c) if uses(Cones::QuadPlain) => Some(QuadReliefTexture::new(map, &c.plain()?)?),
-            _ => None,
-        };
-        let quad_conservative = if uses(Cones::QuadConservative) {
-            let cones = QuadConeMap::generate(map, ConeParams::conservative(config.max_ratio))?;
-            Some(QuadReliefTexture::new(map, &cones.plain()?)?)
-        } else {
-            None
-        };
+        let textures = Textures::new(map, config.max_ratio, &config.entries)?;
         let n = map.size() as f64;
         for &depth in &config.depths {
             for &angle in &config.angles {
@@ -321,23 +290,15 @@ pub fn table(config: &Config) -> Result<Table, ReliefError> {
                             *cone = adaptive_cone_steps(*cone, angle);
                         }
                     }
-                    let texture = match entry.cones {
-                        Cones::Relaxed => Texture::One(&relaxed),
-                        Cones::RelaxedPlain => Texture::One(&relaxed_plain),
-                        Cones::Conservative => Texture::One(&conservative),
-                        Cones::Quad => Texture::Quad(quad_relaxed.as_ref()),
-                        Cones::QuadPlain => Texture::Quad(quad_plain.as_ref()),
-                        Cones::QuadConservative => Texture::Quad(quad_conservative.as_ref()),
-                    };
                     // Step counts are checked once; the rays are valid by construction.
-                    texture.trace(&method, &rays[0])?;
+                    textures.trace(entry.cones, &method, &rays[0])?;
                     // Per-ray (error, overshoot) in parallel; summed in ray order.
                     let mut errs = vec![(0.0f64, false); rays.len()];
                     const CHUNK: usize = 256;
                     for_rows(&mut errs, CHUNK, |c, part| {
                         for (k, e) in part.iter_mut().enumerate() {
                             let i = c * CHUNK + k;
-                            *e = match texture.trace(&method, &rays[i]) {
+                            *e = match textures.trace(entry.cones, &method, &rays[i]) {
                                 Ok(hit) => error(hit.pos, truth[i].0, truth[i].1, n, depth),
                                 Err(_) => (f64::INFINITY, false),
                             };
@@ -362,21 +323,81 @@ pub fn table(config: &Config) -> Result<Table, ReliefError> {
     Ok(table)
 }
 
-/// The texture an entry traces: one relief texture, or a quadrant texture array.
-#[derive(Clone, Copy)]
-enum Texture<'a> {
-    One(&'a ReliefTexture),
-    /// Built whenever an entry uses it, so never `None` when traced.
-    Quad(Option<&'a QuadReliefTexture>),
+/// The textures the entries of a table read on one map, each built only if some entry uses it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Textures {
+    relaxed: ReliefTexture,
+    relaxed_plain: ReliefTexture,
+    conservative: ReliefTexture,
+    quad: Option<QuadReliefTexture>,
+    quad_plain: Option<QuadReliefTexture>,
+    quad_conservative: Option<QuadReliefTexture>,
 }
 
-impl Texture<'_> {
-    fn trace(&self, method: &Method, ray: &Ray) -> Result<crate::trace::Hit, ReliefError> {
-        match *self {
-            Texture::One(t) => method.trace(t, ray),
-            Texture::Quad(Some(t)) => t.trace(method, ray),
-            Texture::Quad(None) => Err(ReliefError::Mismatch("quadrant cones")),
-        }
+impl Textures {
+    /// The cone maps of `map` capped at `max_ratio` that `entries` read: the isotropic relaxed
+    /// (banded and plain) and conservative (plain) maps always, the quadrant maps
+    /// ([`crate::quad`]) when an entry uses them.
+    ///
+    /// # Errors
+    ///
+    /// The cone generator's errors for `max_ratio`.
+    pub fn new(map: &HeightMap, max_ratio: f32, entries: &[Entry]) -> Result<Self, ReliefError> {
+        let uses = |c: Cones| entries.iter().any(|e| e.cones == c);
+        let plain = |c: &ConeMap| ConeMap::from_ratios(c.size(), c.edge(), c.ratios().to_vec());
+        let banded = ConeMap::generate(map, ConeParams::relaxed(max_ratio))?;
+        let conservative = ConeMap::generate(map, ConeParams::conservative(max_ratio))?;
+        let quad = if uses(Cones::Quad) || uses(Cones::QuadPlain) {
+            Some(QuadConeMap::generate(map, ConeParams::relaxed(max_ratio))?)
+        } else {
+            None
+        };
+        let quad_texture = |c: Option<&QuadConeMap>, plain: bool| match c {
+            Some(c) if plain => QuadReliefTexture::new(map, &c.plain()?).map(Some),
+            Some(c) => QuadReliefTexture::new(map, c).map(Some),
+            None => Ok(None),
+        };
+        let quad_conservative = if uses(Cones::QuadConservative) {
+            Some(QuadConeMap::generate(
+                map,
+                ConeParams::conservative(max_ratio),
+            )?)
+        } else {
+            None
+        };
+        Ok(Self {
+            relaxed: ReliefTexture::new(map, &banded)?,
+            relaxed_plain: ReliefTexture::new(map, &plain(&banded)?)?,
+            conservative: ReliefTexture::new(map, &plain(&conservative)?)?,
+            quad: quad_texture(quad.as_ref().filter(|_| uses(Cones::Quad)), false)?,
+            quad_plain: quad_texture(quad.as_ref().filter(|_| uses(Cones::QuadPlain)), true)?,
+            quad_conservative: quad_texture(quad_conservative.as_ref(), true)?,
+        })
+    }
+
+    /// Traces `ray` with `method` on the texture of `cones`.
+    ///
+    /// # Errors
+    ///
+    /// The tracer's errors; [`ReliefError::Mismatch`] for quadrant cones that no entry given to
+    /// [`Textures::new`] used (they were not built).
+    pub fn trace(
+        &self,
+        cones: Cones,
+        method: &Method,
+        ray: &Ray,
+    ) -> Result<crate::trace::Hit, ReliefError> {
+        let quad = match cones {
+            Cones::Relaxed => return method.trace(&self.relaxed, ray),
+            Cones::RelaxedPlain => return method.trace(&self.relaxed_plain, ray),
+            Cones::Conservative => return method.trace(&self.conservative, ray),
+            Cones::Quad => &self.quad,
+            Cones::QuadPlain => &self.quad_plain,
+            Cones::QuadConservative => &self.quad_conservative,
+        };
+        quad.as_ref()
+            .ok_or(ReliefError::Mismatch("quadrant cones not built"))?
+            .trace(method, ray)
     }
 }
 

@@ -17,7 +17,8 @@
 //! clamp-mode border strips), reads the cone map exactly as the tracer does (bilinear, `f32`, at
 //! the cone map's own resolution, so coarse mip levels are checked against the full-resolution
 //! surface) and compares, along many directions and for several heights `h`, the cone the tracer
-//! would use, `max(c, min(D/h, E))`, with the limit.
+//! would use, `max(c, min(D/h, E))`, with the limit. [`check_quadrant`] does the same for one
+//! layer of a quadrant cone map ([`crate::quad`]) over the sampled directions of its quadrant.
 
 use alloc::vec;
 use alloc::vec::Vec;
