@@ -20,7 +20,7 @@
 //! [`crate::bound`]'s theorem takes, for one `(u, s)`, the exit point `b = p + s_e·u`; with
 //! `u ∈ Q`, the vector `b − p` lies in `Q`. So only the vectors of `W ∩ Q` matter (`W = C − q` the
 //! box of vectors from the apex cell to the candidate), and because quadrants are axis-aligned
-//! `W ∩ Q` is again a box ([`Apex::vectors`](crate::bound)): a cell is a candidate only if it is
+//! `W ∩ Q` is again a box (`Apex::vectors` in `bound.rs`): a cell is a candidate only if it is
 //! non-empty, `A` uses its shortest vector instead of `dist(q, C)`, the falling test (condition 2,
 //! the twist included) takes its vectors, and the near-cell rise takes its directions (the
 //! quadrant's closed arc when it holds the origin). `B`'s path argument is unchanged. Each step of
