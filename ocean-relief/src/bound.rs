@@ -84,6 +84,10 @@
 //! way with every cell that has `m_C < Smax(q)` as a candidate, flat or not, no falling test
 //! and `B = 1/L`.
 //!
+//! **Quadrant cones** ([`crate::quad`]) run the same bound with the vectors `W` clipped to one
+//! closed quadrant (`Apex::within`, `Apex::vectors`): the proof's `b − p` points along the ray's
+//! horizontal direction, so for rays of that quadrant only `W ∩ Q` can hold it.
+//!
 //! [`Edge::Clamp`] extends the surface beyond the texel centres by constant strips; the cells
 //! there are the grid's border cells (`i = −1` and `i = N − 1`), whose extrusion to infinity
 //! repeats the same values. An apex cell on the border stands for its whole strip (an apex
