@@ -28,9 +28,9 @@ use std::time::Instant;
 
 use glam::{Vec2, Vec3};
 use ocean_core::rng::Pcg32;
-use ocean_relief::accuracy::{Cones, Config, adaptive_cone_steps, table};
+use ocean_relief::accuracy::{Config, Textures, adaptive_cone_steps, table};
 use ocean_relief::maps::{bumps, to_map, value_noise};
-use ocean_relief::{ConeMap, ConeParams, Edge, HeightMap, Method, Ray, ReliefTexture};
+use ocean_relief::{ConeMap, ConeParams, Edge, HeightMap, Method, Ray};
 use rayon::prelude::*;
 use serde_json::{Value, json};
 
@@ -235,41 +235,23 @@ fn rays(count: usize, angle: f32, depth: f32) -> Result<Vec<Ray>, String> {
 fn tracers(runs: u32) -> Result<Value, String> {
     let n = 256;
     let map = to_map(n, &value_noise(n, 8, 6, 1), Edge::Wrap).map_err(err)?;
-    let relaxed = ConeMap::generate(&map, ConeParams::relaxed(4.0)).map_err(err)?;
-    let plain = ConeMap::from_ratios(n, Edge::Wrap, relaxed.ratios().to_vec()).map_err(err)?;
-    let conservative = ConeMap::from_ratios(
-        n,
-        Edge::Wrap,
-        ConeMap::generate(&map, ConeParams::conservative(4.0))
-            .map_err(err)?
-            .ratios()
-            .to_vec(),
-    )
-    .map_err(err)?;
-    let textures = [
-        ReliefTexture::new(&map, &relaxed).map_err(err)?,
-        ReliefTexture::new(&map, &plain).map_err(err)?,
-        ReliefTexture::new(&map, &conservative).map_err(err)?,
-    ];
+    let entries = Config::standard_entries();
+    let textures = Textures::new(&map, 4.0, &entries).map_err(err)?;
     let rays = rays(TRACE_RAYS, TRACE_ANGLE, TRACE_DEPTH)?;
     let mut rows = Vec::new();
-    for entry in Config::standard_entries() {
+    for entry in entries {
         let mut method = entry.method;
         if entry.adaptive {
             if let Method::Relaxed { cone, .. } = &mut method {
                 *cone = adaptive_cone_steps(*cone, TRACE_ANGLE);
             }
         }
-        let texture = match entry.cones {
-            Cones::Relaxed => &textures[0],
-            Cones::RelaxedPlain => &textures[1],
-            Cones::Conservative => &textures[2],
-        };
-        method.trace(texture, &rays[0]).map_err(err)?;
+        let trace = |r: &Ray| textures.trace(entry.cones, &method, r);
+        trace(&rays[0]).map_err(err)?;
         let single = || {
             let mut sum = 0.0f32;
             for r in &rays {
-                sum += method.trace(texture, r).map_or(0.0, |h| h.pos.z);
+                sum += trace(r).map_or(0.0, |h| h.pos.z);
             }
             std::hint::black_box(sum);
         };
@@ -278,7 +260,7 @@ fn tracers(runs: u32) -> Result<Value, String> {
                 .par_chunks(1024)
                 .map(|c| {
                     c.iter()
-                        .map(|r| method.trace(texture, r).map_or(0.0, |h| h.pos.z))
+                        .map(|r| trace(r).map_or(0.0, |h| h.pos.z))
                         .sum::<f32>()
                 })
                 .sum();

@@ -8,6 +8,10 @@
 //! relief depth in texels (`depth·N`). Rays start at uniformly random points of the tile with
 //! uniformly random azimuths (PCG32, fixed seed); every method traces the same rays.
 //!
+//! Quadrant cone maps ([`crate::quad`]) are traced through the layer of each ray's quadrant
+//! ([`Textures`]); the book's four-ratio layout (`Cones::QuadPlain`) reads the depth from a second
+//! texture, so its fetch count counts sample positions, two texture reads each.
+//!
 //! [`table`] is what the tests print and the benchmark will print; [`Table`]'s `Display` is the
 //! text table.
 
@@ -21,6 +25,7 @@ use ocean_core::rng::Pcg32;
 
 use crate::cone::{ConeMap, ConeParams};
 use crate::map::HeightMap;
+use crate::quad::{QuadConeMap, QuadReliefTexture};
 use crate::relief::ReliefTexture;
 use crate::trace::{Method, Ray};
 use crate::{ReliefError, check_range, for_rows, truth};
@@ -34,6 +39,14 @@ pub enum Cones {
     RelaxedPlain,
     /// Conservative cones, plain (Dummer's map).
     Conservative,
+    /// Relaxed quadrant cones with their clearances ([`crate::quad`]: a 4-layer texture array,
+    /// one RGBA fetch per step).
+    Quad,
+    /// Relaxed quadrant cones, plain channel only (the book's four-ratio RGBA texel, Fig. 18-8b,
+    /// with the depth in a second texture: two texture reads per fetch position).
+    QuadPlain,
+    /// Conservative quadrant cones, plain: QDCSM (§18.1).
+    QuadConservative,
 }
 
 /// A method as the table lists it: a name, the tracer, its cone map, and an optional
@@ -118,7 +131,9 @@ impl Config {
 
     /// The comparison at 21 fetches: linear 15 + 6, cone step mapping 21, relaxed 15 + 6 with
     /// banded cones, with the plain (book) cone channel, and with the book's bisection, and
-    /// banded relaxed with an angle-adaptive budget.
+    /// banded relaxed with an angle-adaptive budget; then the quadrant maps ([`crate::quad`]):
+    /// QDCSM 21 (§18.1), relaxed quadrant cones with a shared budget of 21, with the plain
+    /// channel alone, and with the angle-adaptive budget.
     pub fn standard_entries() -> Vec<Entry> {
         use crate::trace::BinarySearch::{Book, LastStep, Shared};
         let relaxed = |search| Method::Relaxed {
@@ -148,6 +163,19 @@ impl Config {
                 name: "relaxed adaptive".into(),
                 method: relaxed(Shared),
                 cones: Cones::Relaxed,
+                adaptive: true,
+            },
+            Entry::new(
+                "quad cone step 21",
+                Method::ConeStep { steps: 21 },
+                Cones::QuadConservative,
+            ),
+            Entry::new("quad 21 shared", relaxed(Shared), Cones::Quad),
+            Entry::new("quad 21 plain", relaxed(Shared), Cones::QuadPlain),
+            Entry {
+                name: "quad adaptive".into(),
+                method: relaxed(Shared),
+                cones: Cones::Quad,
                 adaptive: true,
             },
         ]
@@ -243,20 +271,7 @@ pub fn table(config: &Config) -> Result<Table, ReliefError> {
     }
     let mut table = Table::default();
     for (name, map) in &config.maps {
-        let banded = ConeMap::generate(map, ConeParams::relaxed(config.max_ratio))?;
-        let plain = ConeMap::from_ratios(map.size(), map.edge(), banded.ratios().to_vec())?;
-        let relaxed = ReliefTexture::new(map, &banded)?;
-        let relaxed_plain = ReliefTexture::new(map, &plain)?;
-        let conservative = ReliefTexture::new(
-            map,
-            &ConeMap::from_ratios(
-                map.size(),
-                map.edge(),
-                ConeMap::generate(map, ConeParams::conservative(config.max_ratio))?
-                    .ratios()
-                    .to_vec(),
-            )?,
-        )?;
+        let textures = Textures::new(map, config.max_ratio, &config.entries)?;
         let n = map.size() as f64;
         for &depth in &config.depths {
             for &angle in &config.angles {
@@ -275,20 +290,15 @@ pub fn table(config: &Config) -> Result<Table, ReliefError> {
                             *cone = adaptive_cone_steps(*cone, angle);
                         }
                     }
-                    let texture = match entry.cones {
-                        Cones::Relaxed => &relaxed,
-                        Cones::RelaxedPlain => &relaxed_plain,
-                        Cones::Conservative => &conservative,
-                    };
                     // Step counts are checked once; the rays are valid by construction.
-                    method.trace(texture, &rays[0])?;
+                    textures.trace(entry.cones, &method, &rays[0])?;
                     // Per-ray (error, overshoot) in parallel; summed in ray order.
                     let mut errs = vec![(0.0f64, false); rays.len()];
                     const CHUNK: usize = 256;
                     for_rows(&mut errs, CHUNK, |c, part| {
                         for (k, e) in part.iter_mut().enumerate() {
                             let i = c * CHUNK + k;
-                            *e = match method.trace(texture, &rays[i]) {
+                            *e = match textures.trace(entry.cones, &method, &rays[i]) {
                                 Ok(hit) => error(hit.pos, truth[i].0, truth[i].1, n, depth),
                                 Err(_) => (f64::INFINITY, false),
                             };
@@ -311,6 +321,84 @@ pub fn table(config: &Config) -> Result<Table, ReliefError> {
         }
     }
     Ok(table)
+}
+
+/// The textures the entries of a table read on one map, each built only if some entry uses it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Textures {
+    relaxed: ReliefTexture,
+    relaxed_plain: ReliefTexture,
+    conservative: ReliefTexture,
+    quad: Option<QuadReliefTexture>,
+    quad_plain: Option<QuadReliefTexture>,
+    quad_conservative: Option<QuadReliefTexture>,
+}
+
+impl Textures {
+    /// The cone maps of `map` capped at `max_ratio` that `entries` read: the isotropic relaxed
+    /// (banded and plain) and conservative (plain) maps always, the quadrant maps
+    /// ([`crate::quad`]) when an entry uses them.
+    ///
+    /// # Errors
+    ///
+    /// The cone generator's errors for `max_ratio`.
+    pub fn new(map: &HeightMap, max_ratio: f32, entries: &[Entry]) -> Result<Self, ReliefError> {
+        let uses = |c: Cones| entries.iter().any(|e| e.cones == c);
+        let plain = |c: &ConeMap| ConeMap::from_ratios(c.size(), c.edge(), c.ratios().to_vec());
+        let banded = ConeMap::generate(map, ConeParams::relaxed(max_ratio))?;
+        let conservative = ConeMap::generate(map, ConeParams::conservative(max_ratio))?;
+        let quad = if uses(Cones::Quad) || uses(Cones::QuadPlain) {
+            Some(QuadConeMap::generate(map, ConeParams::relaxed(max_ratio))?)
+        } else {
+            None
+        };
+        let quad_texture = |c: Option<&QuadConeMap>, plain: bool| match c {
+            Some(c) if plain => QuadReliefTexture::new(map, &c.plain()?).map(Some),
+            Some(c) => QuadReliefTexture::new(map, c).map(Some),
+            None => Ok(None),
+        };
+        let quad_conservative = if uses(Cones::QuadConservative) {
+            Some(QuadConeMap::generate(
+                map,
+                ConeParams::conservative(max_ratio),
+            )?)
+        } else {
+            None
+        };
+        Ok(Self {
+            relaxed: ReliefTexture::new(map, &banded)?,
+            relaxed_plain: ReliefTexture::new(map, &plain(&banded)?)?,
+            conservative: ReliefTexture::new(map, &plain(&conservative)?)?,
+            quad: quad_texture(quad.as_ref().filter(|_| uses(Cones::Quad)), false)?,
+            quad_plain: quad_texture(quad.as_ref().filter(|_| uses(Cones::QuadPlain)), true)?,
+            quad_conservative: quad_texture(quad_conservative.as_ref(), true)?,
+        })
+    }
+
+    /// Traces `ray` with `method` on the texture of `cones`.
+    ///
+    /// # Errors
+    ///
+    /// The tracer's errors; [`ReliefError::Mismatch`] for quadrant cones that no entry given to
+    /// [`Textures::new`] used (they were not built).
+    pub fn trace(
+        &self,
+        cones: Cones,
+        method: &Method,
+        ray: &Ray,
+    ) -> Result<crate::trace::Hit, ReliefError> {
+        let quad = match cones {
+            Cones::Relaxed => return method.trace(&self.relaxed, ray),
+            Cones::RelaxedPlain => return method.trace(&self.relaxed_plain, ray),
+            Cones::Conservative => return method.trace(&self.conservative, ray),
+            Cones::Quad => &self.quad,
+            Cones::QuadPlain => &self.quad_plain,
+            Cones::QuadConservative => &self.quad_conservative,
+        };
+        quad.as_ref()
+            .ok_or(ReliefError::Mismatch("quadrant cones not built"))?
+            .trace(method, ray)
+    }
 }
 
 /// `count` rays at `angle` degrees from the normal for a relief `depth` texture widths deep.

@@ -8,6 +8,7 @@
 //! angles themselves. Arcs are closed and carry their end vectors.
 
 use crate::bound::up32;
+use crate::quad::Quadrant;
 
 /// Pseudo-angle of a non-zero vector, in `[0, 4)`.
 #[inline]
@@ -92,6 +93,20 @@ pub(crate) fn box_directions(b: [f64; 4]) -> Option<Arc> {
     Some(Arc::new(start, end, ahead(pseudo(end.0, end.1), p0)))
 }
 
+/// The closed quarter turn of the directions of quadrant `q`, counter-clockwise from its first
+/// axis to its second.
+pub(crate) fn quadrant_arc(q: Quadrant) -> Arc {
+    let (sx, sy) = q.signs();
+    // Counter-clockwise, the quadrant (sx, sy) starts on the x axis when sx·sy > 0, else on the
+    // y axis.
+    let (start, end) = if sx * sy > 0.0 {
+        ((sx, 0.0), (0.0, sy))
+    } else {
+        ((0.0, sy), (sx, 0.0))
+    };
+    Arc::new(start, end, 1.0)
+}
+
 /// The closed arc of directions `u` with `g·u ≤ 0` for every `g` in the gradient box `g`; `None`
 /// when it is empty (the box contains the origin, so some gradient is 0 and nothing is excluded).
 fn non_growing(g: [f64; 4]) -> Option<Arc> {
@@ -145,9 +160,11 @@ fn subtract(d: Option<Arc>, x: Option<Arc>) -> ([Option<Arc>; 2], bool) {
 /// that points from the apex box into the candidate (`w`, a box of vectors) and along which the
 /// candidate's gradient box `gc` allows growth (`max_{g ∈ gc} g·u ≥ 0`), given the box `gp` of
 /// gradients over the path. `sup` over those `u` of `max_{g ∈ gp} (−g·u)`; 0 when no direction
-/// qualifies or none rises. Rounded up.
-pub(crate) fn max_rise(w: [f64; 4], gc: [f64; 4], gp: [f64; 4]) -> f64 {
-    let (arcs, full) = subtract(box_directions(w), non_growing(gc));
+/// qualifies or none rises. Rounded up. With a quadrant (`w` then lies in it), a box that holds
+/// the origin has its directions in the quadrant's closed arc, not on the whole circle.
+pub(crate) fn max_rise(w: [f64; 4], gc: [f64; 4], gp: [f64; 4], sector: Option<Quadrant>) -> f64 {
+    let directions = box_directions(w).or_else(|| sector.map(quadrant_arc));
+    let (arcs, full) = subtract(directions, non_growing(gc));
     // Support of −gp: its corners e.
     let e = corners([-gp[1], -gp[0], -gp[3], -gp[2]]);
     let mut best = 0.0f64;
@@ -207,7 +224,7 @@ mod tests {
             [1.0, 3.0, 2.0, 4.0],
             [-3.0, -1.0, 0.0, 2.0],
         ] {
-            assert_eq!(max_rise(w, g, g), 0.0, "{w:?}");
+            assert_eq!(max_rise(w, g, g, None), 0.0, "{w:?}");
         }
     }
 
@@ -218,8 +235,38 @@ mod tests {
     fn ridge_rate() {
         let gc = [0.2, 0.2, 0.0, 0.0];
         let gp = [-0.5, 0.2, 0.0, 0.0];
-        let r = max_rise([1.0, 3.0, -1.0, 1.0], gc, gp);
+        let r = max_rise([1.0, 3.0, -1.0, 1.0], gc, gp, None);
         assert!((r - 0.5).abs() < 1e-6, "{r}");
-        assert_eq!(max_rise([-3.0, -1.0, -1.0, 1.0], gc, gp), 0.0);
+        assert_eq!(max_rise([-3.0, -1.0, -1.0, 1.0], gc, gp, None), 0.0);
+    }
+
+    /// A quadrant's arc is its closed quarter turn: both axes on it, the other quadrants' interior
+    /// directions off it.
+    #[test]
+    fn quadrant_arcs() {
+        for q in Quadrant::ALL {
+            let (sx, sy) = q.signs();
+            let arc = quadrant_arc(q);
+            assert!(arc.contains(sx, 0.0) && arc.contains(0.0, sy), "{q:?}");
+            assert!(arc.contains(sx, 0.5 * sy), "{q:?}");
+            for (x, y) in [(-sx, sy), (sx, -sy), (-sx, -sy)] {
+                assert!(!arc.contains(x, 0.5 * y), "{q:?} ({x}, {y})");
+            }
+        }
+    }
+
+    /// A ridge seen from inside the apex cell: the path rises along +x at 0.5 and along −x at
+    /// 0.25; the box of vectors holds the origin. Over every direction the rise is 0.5; restricted
+    /// to the quadrants of −x it is 0.25.
+    #[test]
+    fn quadrant_limits_the_rise() {
+        let gc = [-0.2, 0.2, 0.0, 0.0];
+        let gp = [-0.5, 0.25, 0.0, 0.0];
+        let r = max_rise([-1.0, 1.0, -1.0, 1.0], gc, gp, None);
+        assert!((r - 0.5).abs() < 1e-6, "{r}");
+        let q = Quadrant::of(-1.0, 1.0);
+        let w = [-1.0, 0.0, 0.0, 1.0];
+        let r = max_rise(w, gc, gp, Some(q));
+        assert!((r - 0.25).abs() < 1e-6, "{r}");
     }
 }

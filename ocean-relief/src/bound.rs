@@ -84,6 +84,10 @@
 //! way with every cell that has `m_C < Smax(q)` as a candidate, flat or not, no falling test
 //! and `B = 1/L`.
 //!
+//! **Quadrant cones** ([`crate::quad`]) run the same bound with the vectors `W` clipped to one
+//! closed quadrant (`Apex::within`, `Apex::vectors`): the proof's `b − p` points along the ray's
+//! horizontal direction, so for rays of that quadrant only `W ∩ Q` can hold it.
+//!
 //! [`Edge::Clamp`] extends the surface beyond the texel centres by constant strips; the cells
 //! there are the grid's border cells (`i = −1` and `i = N − 1`), whose extrusion to infinity
 //! repeats the same values. An apex cell on the border stands for its whole strip (an apex
@@ -101,6 +105,7 @@
 use alloc::vec::Vec;
 
 use crate::map::{Edge, HeightMap};
+use crate::quad::Quadrant;
 
 /// "Infinite" extent of a clamp-mode border strip, in texels: larger than any reach a cone can
 /// have (`MAX_RATIO_LIMIT·MAX_SIDE`), exact in `f64` and in products with `f32` values.
@@ -344,6 +349,8 @@ impl Grid {
             qi,
             qj,
             rect: [x0, x1, y0, y1],
+            clip: ALL_VECTORS,
+            sector: None,
             smax: f64::from(cell.smax),
             lring,
             path,
@@ -358,6 +365,11 @@ pub(crate) struct Apex {
     pub qj: i64,
     /// `[x0, x1, y0, y1]`, ±BIG for clamp-mode border strips.
     pub rect: [f64; 4],
+    /// The closed box `[wx0, wx1, wy0, wy1]` of vectors `b − p` the cone serves: every vector
+    /// ([`ALL_VECTORS`]) or one closed quadrant ([`crate::quad`]).
+    pub clip: [f64; 4],
+    /// The quadrant the cone serves, if any (`clip` is its box).
+    pub sector: Option<Quadrant>,
     /// Deepest corner.
     pub smax: f64,
     /// Largest `lip` within Chebyshev distance `r` of the apex cell.
@@ -371,6 +383,41 @@ pub(crate) struct Apex {
 /// Side of the near neighbourhood.
 const NEAR: usize = 2 * K_LIP + 1;
 
+/// The clip box of a cone that serves every direction.
+pub(crate) const ALL_VECTORS: [f64; 4] = [
+    f64::NEG_INFINITY,
+    f64::INFINITY,
+    f64::NEG_INFINITY,
+    f64::INFINITY,
+];
+
+impl Apex {
+    /// The same apex for a cone that serves only the rays whose horizontal direction lies in the
+    /// closed quadrant `q` ([`crate::quad`]).
+    pub fn within(mut self, q: Quadrant) -> Self {
+        self.clip = q.vectors();
+        self.sector = Some(q);
+        self
+    }
+
+    /// The box of vectors `b − p` from the apex box to `rect` that the cone serves (the plain
+    /// difference box clipped to [`Apex::clip`]); `None` when it is empty. Without a quadrant the
+    /// clip is `±∞` and the box is the difference box bit for bit.
+    #[inline(always)]
+    pub fn vectors(&self, rect: [f64; 4]) -> Option<[f64; 4]> {
+        let [qx0, qx1, qy0, qy1] = self.rect;
+        let [x0, x1, y0, y1] = rect;
+        let [cx0, cx1, cy0, cy1] = self.clip;
+        let w = [
+            (x0 - qx1).max(cx0),
+            (x1 - qx0).min(cx1),
+            (y0 - qy1).max(cy0),
+            (y1 - qy0).min(cy1),
+        ];
+        (w[0] <= w[1] && w[2] <= w[3]).then_some(w)
+    }
+}
+
 /// Largest product `g·w` over `g ∈ [g0, g1]`, `w ∈ [w0, w1]`.
 #[inline(always)]
 fn max_product(g: [f32; 2], w0: f64, w1: f64) -> f64 {
@@ -378,22 +425,18 @@ fn max_product(g: [f32; 2], w0: f64, w1: f64) -> f64 {
     (g0 * w0).max(g0 * w1).max(g1 * w0).max(g1 * w1)
 }
 
-/// The largest `g·w` over gradients `gx × gy` and vectors `w` from the apex box into the
-/// rectangle `[x0, x1] × [y0, y1]`, and the box of those vectors.
+/// The largest `g·w` over gradients `gx × gy` and the vectors `w` of the box `w`.
 #[inline(always)]
-fn growth(q: &Apex, rect: [f64; 4], gx: [f32; 2], gy: [f32; 2]) -> (f64, [f64; 4]) {
-    let [qx0, qx1, qy0, qy1] = q.rect;
-    let [x0, x1, y0, y1] = rect;
-    let w = [x0 - qx1, x1 - qx0, y0 - qy1, y1 - qy0];
-    (max_product(gx, w[0], w[1]) + max_product(gy, w[2], w[3]), w)
+fn growth(w: [f64; 4], gx: [f32; 2], gy: [f32; 2]) -> f64 {
+    max_product(gx, w[0], w[1]) + max_product(gy, w[2], w[3])
 }
 
 /// Condition 2 for a block of cells (a pyramid node): can the depth grow, or stay level, along
-/// some direction from the apex box into `rect` with gradients in `gx × gy`? A node that fails
-/// holds no cell that passes [`falling_cell`].
+/// some vector of `w` ([`Apex::vectors`] of the node) with gradients in `gx × gy`? A node that
+/// fails holds no cell that passes [`falling_cell`] (its box contains theirs).
 #[inline(always)]
-pub(crate) fn falling(q: &Apex, rect: [f64; 4], gx: [f32; 2], gy: [f32; 2]) -> bool {
-    growth(q, rect, gx, gy).0 >= 0.0
+pub(crate) fn falling(w: [f64; 4], gx: [f32; 2], gy: [f32; 2]) -> bool {
+    growth(w, gx, gy) >= 0.0
 }
 
 /// Condition 2 for one cell: the depth can grow right after the exit point `b` along
@@ -402,8 +445,9 @@ pub(crate) fn falling(q: &Apex, rect: [f64; 4], gx: [f32; 2], gy: [f32; 2]) -> b
 /// along its level direction), only a twisted cell whose box of directions allows
 /// `D·wₓ·w_y > 0` can still have an exit.
 #[inline(always)]
-fn falling_cell(q: &Apex, rect: [f64; 4], cell: &Cell) -> bool {
-    let (f, [wx0, wx1, wy0, wy1]) = growth(q, rect, cell.gx, cell.gy);
+fn falling_cell(w: [f64; 4], cell: &Cell) -> bool {
+    let f = growth(w, cell.gx, cell.gy);
+    let [wx0, wx1, wy0, wy1] = w;
     if f > 0.0 {
         return true;
     }
@@ -417,13 +461,14 @@ fn falling_cell(q: &Apex, rect: [f64; 4], cell: &Cell) -> bool {
     }
 }
 
-/// Euclidean distance between the apex box and a rectangle.
+/// The shortest vector of the box `w`: the Euclidean distance from the apex box to a rectangle
+/// along the directions the cone serves (`w` from [`Apex::vectors`]). Without a quadrant it is
+/// the plain distance between the boxes (`−(a − b)` and `b − a` are the same `f64`).
 #[inline(always)]
-pub(crate) fn distance(q: &Apex, rect: [f64; 4]) -> f64 {
-    let [qx0, qx1, qy0, qy1] = q.rect;
-    let [x0, x1, y0, y1] = rect;
-    let gx = (x0 - qx1).max(qx0 - x1).max(0.0);
-    let gy = (y0 - qy1).max(qy0 - y1).max(0.0);
+pub(crate) fn distance(w: [f64; 4]) -> f64 {
+    let [wx0, wx1, wy0, wy1] = w;
+    let gx = wx0.max(-wx1).max(0.0);
+    let gy = wy0.max(-wy1).max(0.0);
     libm::sqrt(gx * gx + gy * gy)
 }
 
@@ -462,7 +507,8 @@ pub(crate) fn candidate(
         return None;
     }
     let rect = [ci as f64, ci as f64 + 1.0, cj as f64, cj as f64 + 1.0];
-    if kind == ConeKind::Relaxed && !falling_cell(q, rect, cell) {
+    let w = q.vectors(rect)?;
+    if kind == ConeKind::Relaxed && !falling_cell(w, cell) {
         return None;
     }
     let (dx, dy) = (ci - q.qi, cj - q.qj);
@@ -475,8 +521,6 @@ pub(crate) fn candidate(
     let mut b = if l > 0.0 { 1.0 / l } else { f64::INFINITY };
     if kind == ConeKind::Relaxed && cheb <= K_LIP {
         // Direction-consistent bound (module documentation, "near cells").
-        let [qx0, qx1, qy0, qy1] = q.rect;
-        let w = [rect[0] - qx1, rect[1] - qx0, rect[2] - qy1, rect[3] - qy0];
         let gc = [
             f64::from(cell.gx[0]),
             f64::from(cell.gx[1]),
@@ -485,14 +529,14 @@ pub(crate) fn candidate(
         ];
         let k = K_LIP as i64;
         let path = q.path[((dy + k) as usize) * NEAR + (dx + k) as usize];
-        let rise = crate::arc::max_rise(w, gc, path);
+        let rise = crate::arc::max_rise(w, gc, path, q.sector);
         if rise <= 0.0 {
             return None;
         }
         b = b.max(1.0 / rise);
     }
     Some(Candidate {
-        dist: distance(q, rect),
+        dist: distance(w),
         depth: q.smax - m,
         b,
     })

@@ -7,19 +7,25 @@
 
 use crate::bound::{ConeKind, Grid, candidate};
 use crate::map::Edge;
+use crate::quad::Quadrant;
 use crate::search::{CHANNELS, NEAR_DISTANCE};
 
-/// `w(q)`, `D(q)` and `E(q)` of apex cell `(qi, qj)` (spatial position), by visiting every
-/// candidate.
+/// `w(q)`, `D(q)` and `E(q)` of apex cell `(qi, qj)` (spatial position), for every direction
+/// or one quadrant's ([`crate::quad`]), by visiting every candidate.
 pub(crate) fn cell_cone(
     grid: &Grid,
     qi: i64,
     qj: i64,
+    sector: Option<Quadrant>,
     kind: ConeKind,
     cap: f64,
     max_ratio: f32,
 ) -> [f64; CHANNELS] {
     let q = grid.apex(qi, qj);
+    let q = match sector {
+        Some(s) => q.within(s),
+        None => q,
+    };
     let mut best = [cap; CHANNELS];
     let reach = match grid.edge {
         Edge::Wrap => libm::ceil(f64::from(max_ratio)) as i64,

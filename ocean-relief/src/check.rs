@@ -17,7 +17,8 @@
 //! clamp-mode border strips), reads the cone map exactly as the tracer does (bilinear, `f32`, at
 //! the cone map's own resolution, so coarse mip levels are checked against the full-resolution
 //! surface) and compares, along many directions and for several heights `h`, the cone the tracer
-//! would use, `max(c, min(D/h, E))`, with the limit.
+//! would use, `max(c, min(D/h, E))`, with the limit. [`check_quadrant`] does the same for one
+//! layer of a quadrant cone map ([`crate::quad`]) over the sampled directions of its quadrant.
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -26,6 +27,7 @@ use core::f64::consts::TAU;
 use crate::bound::ConeKind;
 use crate::line::{Piece, walk};
 use crate::map::{Edge, HeightMap};
+use crate::quad::Quadrant;
 use crate::sample::Taps;
 use crate::{ReliefError, for_rows};
 
@@ -321,6 +323,34 @@ pub fn check(
     kind: ConeKind,
     params: CheckParams,
 ) -> Result<CheckReport, ReliefError> {
+    check_in(map, cones, kind, params, None)
+}
+
+/// [`check`] for one layer of a quadrant cone map ([`crate::quad`]): the cones serve only the
+/// rays whose horizontal direction lies in the closed quadrant `quadrant`, so only the sampled
+/// directions in it are checked (both of its axes included when `directions` is a multiple of
+/// 4: `directions/4 + 1` of them).
+///
+/// # Errors
+///
+/// As [`check`].
+pub fn check_quadrant(
+    map: &HeightMap,
+    cones: Channels<'_>,
+    kind: ConeKind,
+    params: CheckParams,
+    quadrant: Quadrant,
+) -> Result<CheckReport, ReliefError> {
+    check_in(map, cones, kind, params, Some(quadrant))
+}
+
+fn check_in(
+    map: &HeightMap,
+    cones: Channels<'_>,
+    kind: ConeKind,
+    params: CheckParams,
+    sector: Option<Quadrant>,
+) -> Result<CheckReport, ReliefError> {
     let size = cones.size;
     crate::map::check_len("ratios", size * size, cones.ratios.len())?;
     crate::map::check_len("clearance", size * size, cones.clearance.len())?;
@@ -345,6 +375,16 @@ pub fn check(
         .map(|k| {
             let a = TAU * k as f64 / params.directions as f64;
             (a, libm::cos(a), libm::sin(a))
+        })
+        .filter_map(|(a, ux, uy)| match sector {
+            None => Some((a, ux, uy)),
+            Some(q) => {
+                // cos(π/2) is 6e-17, not 0: the axes are snapped so that both quadrants that
+                // share an axis check it.
+                let snap = |c: f64| if c.abs() < 1.0e-12 { 0.0 } else { c };
+                let (ux, uy) = (snap(ux), snap(uy));
+                q.contains(ux, uy).then_some((a, ux, uy))
+            }
         })
         .collect();
     let s = params.apexes;

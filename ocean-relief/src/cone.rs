@@ -40,6 +40,7 @@ use alloc::vec::Vec;
 use crate::bound::{ConeKind, Grid, down32};
 use crate::map::{Edge, HeightMap};
 use crate::progress::{NoProgress, Progress, band_rows};
+use crate::quad::Quadrant;
 use crate::search::{CHANNELS, Pyramid, Scratch, Search};
 use crate::{ReliefError, brute, check_range, for_rows};
 
@@ -140,6 +141,17 @@ impl ConeMap {
     fn generate_in_bands<P: Progress + ?Sized>(
         map: &HeightMap,
         params: ConeParams,
+        progress: Option<&mut P>,
+    ) -> Result<Self, ReliefError> {
+        Self::generate_sector(map, params, None, progress)
+    }
+
+    /// The generator for the cones that serve every direction (`sector = None`) or only the
+    /// rays whose horizontal direction lies in one closed quadrant ([`crate::quad`]).
+    pub(crate) fn generate_sector<P: Progress + ?Sized>(
+        map: &HeightMap,
+        params: ConeParams,
+        sector: Option<Quadrant>,
         mut progress: Option<&mut P>,
     ) -> Result<Self, ReliefError> {
         params.validate()?;
@@ -176,6 +188,10 @@ impl ConeMap {
                 let qj = grid.origin + (first + y) as i64;
                 for (x, out) in row.iter_mut().enumerate() {
                     let q = grid.apex(grid.origin + x as i64, qj);
+                    let q = match sector {
+                        Some(s) => q.within(s),
+                        None => q,
+                    };
                     let best = search.cell_cone(&q, &seeds, &mut scratch);
                     *out = best.value;
                     for (s, c) in seeds.iter_mut().zip(best.cell) {
@@ -195,6 +211,15 @@ impl ConeMap {
     ///
     /// [`ReliefError::MapSize`] above [`MAX_BRUTE_SIDE`]; the parameters as in `generate`.
     pub fn brute_force(map: &HeightMap, params: ConeParams) -> Result<Self, ReliefError> {
+        Self::brute_force_sector(map, params, None)
+    }
+
+    /// [`ConeMap::brute_force`] for the cones of one quadrant, or of every direction.
+    pub(crate) fn brute_force_sector(
+        map: &HeightMap,
+        params: ConeParams,
+        sector: Option<Quadrant>,
+    ) -> Result<Self, ReliefError> {
         params.validate()?;
         crate::map::check_size(map.size(), map.size(), 2, MAX_BRUTE_SIDE)?;
         let grid = Grid::new(map);
@@ -203,7 +228,7 @@ impl ConeMap {
         for_rows(&mut cells, grid.nc, |y, row| {
             for (x, out) in row.iter_mut().enumerate() {
                 let (qi, qj) = (grid.origin + x as i64, grid.origin + y as i64);
-                *out = brute::cell_cone(&grid, qi, qj, params.kind, cap, params.max_ratio);
+                *out = brute::cell_cone(&grid, qi, qj, sector, params.kind, cap, params.max_ratio);
             }
         });
         Ok(Self::from_cells(&grid, &cells))

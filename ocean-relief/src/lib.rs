@@ -15,6 +15,9 @@
 //! - [`check`]: the exact validity check (no ray through a cone's axis crosses the surface twice
 //!   inside it); [`mip`]: the 4×4-window mip rule and its proof; [`storage`]: 8-bit, 8-bit
 //!   square-root, `f16` and `f32` encodings, all rounding down.
+//! - [`quad`]: quad-directional cone maps (§18.1, Fig. 18-8b), relaxed or conservative: one cone
+//!   per closed quadrant of the ray's direction, by the same bound and generators, and the
+//!   tracer that picks the ray's layer.
 //! - [`relief`]: the texture the tracers read and the normal map; [`trace`]: linear + binary,
 //!   cone step mapping, relaxed cone stepping + binary; [`shadow`]: self-shadowing;
 //!   [`occlusion`]: the hit's depth for the z-buffer; [`truth`]: the exact first hit.
@@ -83,6 +86,7 @@ pub mod maps;
 pub mod mip;
 pub mod occlusion;
 pub mod progress;
+pub mod quad;
 pub mod relief;
 pub mod sample;
 pub(crate) mod search;
@@ -96,6 +100,7 @@ pub use cone::{ConeMap, ConeParams, MAX_BRUTE_SIDE, MAX_RATIO_LIMIT};
 pub use error::ReliefError;
 pub(crate) use error::check_range;
 pub use map::{Edge, HeightMap, HeightRange, MAX_SIDE};
+pub use quad::{QuadConeMap, QuadReliefTexture, Quadrant};
 pub use relief::ReliefTexture;
 pub use trace::{BinarySearch, Hit, Method, Ray};
 

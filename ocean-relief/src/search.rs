@@ -9,7 +9,10 @@
 //!   found so far: every cell's `A` has a larger distance and a smaller denominator, and every
 //!   `B` is at least `1/L_global`;
 //! - (relaxed) the falling test fails for the node's box and gradient union, which contain each
-//!   cell's.
+//!   cell's;
+//! - (quadrant cones, [`crate::quad`]) no vector from the apex box into the node lies in the
+//!   quadrant: no cell of it can be reached by a ray the cone serves. The clipped box of a node
+//!   contains its cells' clipped boxes, so its distance and growth bound theirs as before.
 //!
 //! None of these skips can drop a cell whose value is below the current best (`bound`'s
 //! floating-point note: the node bounds are evaluated with the same monotone operations), so the
@@ -254,12 +257,14 @@ impl Search<'_> {
                 (oy + y0) as f64,
                 (oy + y1) as f64,
             ];
-            let dist = distance(q, rect);
+            // No direction the cone serves reaches the node: none of its cells is a candidate.
+            let w = q.vectors(rect)?;
+            let dist = distance(w);
             let depth = q.smax - f64::from(node.m);
             if !self.open(dist, depth, floor, best) {
                 return None;
             }
-            if self.kind == ConeKind::Relaxed && !falling(q, rect, node.gx, node.gy) {
+            if self.kind == ConeKind::Relaxed && !falling(w, node.gx, node.gy) {
                 return None;
             }
             Some((dist, depth))
