@@ -121,6 +121,13 @@ impl FilteredSurface {
         self.variance.unresolved(&self.filter, pixel)
     }
 
+    /// The slope variances of the waves that the normal of a pixel of `pixel` metres resolves
+    /// (Eq. 3) and the geometry of a grid cell of `cell` metres does not (Eq. 2), see
+    /// [`VarianceTable::normal_only`].
+    pub fn normal_only_variance(&self, pixel: f64, cell: f64) -> SlopeVariance {
+        self.variance.normal_only(&self.filter, pixel, cell)
+    }
+
     /// §6, local waves: adds this surface's Eq. 3 terms (waves weighted by `w_n` for the
     /// footprint `pixel`, times `scale`, for instance a wave train box's `|μ|` at the point) to
     /// `sums`. Surfaces add: the normal of the open sea with local waves on it is

@@ -165,6 +165,23 @@ impl VarianceTable {
         }
     }
 
+    /// The slope variances of the waves that a pixel of `pixel` metres resolves in its normal
+    /// (Eq. 3) but a grid cell of `cell` metres does not resolve in its geometry (Eq. 2): each
+    /// wave with the weight `w_n − w_p` by which the pixel's normal differs from the normal of
+    /// the displaced grid. These are the slopes of Eq. 3's normal relative to the geometry's,
+    /// which the geometry does not mask (§3.2, "the apparent normals become wrong"); see
+    /// [`crate::sea::visible_normal`]. Only the waves with `w_n > 0` are visited (the weights
+    /// are zero elsewhere), so the cost follows the resolved waves as Eq. 4's does (§7.1).
+    pub fn normal_only(&self, filter: &Filter, pixel: f64, cell: f64) -> SlopeVariance {
+        self.terms[filter.resolved(&self.wavelengths, pixel)]
+            .iter()
+            .fold(SlopeVariance::default(), |s, t| {
+                let w = filter.normal_weight(t.wavelength, pixel)
+                    - filter.position_weight(t.wavelength, cell);
+                s.plus(t.variance(w.max(0.0)))
+            })
+    }
+
     /// Eq. 4 for the waves with their amplitudes scaled by `scale` ∈ [0, 1], summed directly:
     /// for local waves (§6) whose amplitude varies over the sea, such as wave trains modulated
     /// by a wave train box's `|μ|`. `scale = 1` is [`VarianceTable::unresolved_direct`].

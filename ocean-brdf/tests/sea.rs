@@ -275,3 +275,79 @@ fn sea_color_table_snapshot() {
     }
     insta::assert_snapshot!(out);
 }
+
+/// `visible_normal` gives the slopes that only the normals resolve the first two moments of
+/// their visible density (Eq. 10 for the sum of those slopes and the BRDF's), computed here by
+/// brute force: a 2D midpoint rule over (ζ_n, ζ_r) along the view's azimuth of
+/// `p_n p_r (v_z − (ζ_n + ζ_r) v_x)⁺`; and leaves the normal alone where nothing is unmasked.
+#[test]
+fn visible_normal_moves_the_normal_only_slopes_to_their_visible_moments() {
+    use ocean_brdf::ross::facet_normal;
+    use ocean_brdf::sea::visible_normal;
+    let wind = DVec2::X;
+    let n_geo = DVec3::Y;
+    let (tx, ty) = tangent_frame(n_geo, wind);
+    let world = |f: DVec3| tx * f.x + ty * f.y + n_geo * f.z;
+    let (sn2, sr2) = (0.012, 0.008);
+    let (normal_only, brdf) = (
+        SlopeVariance {
+            x: sn2,
+            y: 0.5 * sn2,
+        },
+        SlopeVariance {
+            x: sr2,
+            y: 0.5 * sr2,
+        },
+    );
+    for elevation in [3.0f64, 10.0, 30.0] {
+        // The viewer along the wind (t_x), `elevation` above the geometry's plane.
+        let e = elevation.to_radians();
+        let v = world(DVec3::new(libm::cos(e), 0.0, libm::sin(e)));
+        let (vx, vz) = (libm::cos(e), libm::sin(e));
+        // Brute force: visible mean and variance of ζ_n along x.
+        let (sn, sr) = (libm::sqrt(sn2), libm::sqrt(sr2));
+        let (mut m0, mut m1, mut m2) = (0.0, 0.0, 0.0);
+        let k = 1200;
+        for i in 0..k {
+            let a = -8.0 + 16.0 * (i as f64 + 0.5) / k as f64;
+            for j in 0..k {
+                let b = -8.0 + 16.0 * (j as f64 + 0.5) / k as f64;
+                let w = libm::exp(-0.5 * (a * a + b * b)) * (vz - (sn * a + sr * b) * vx).max(0.0);
+                m0 += w;
+                m1 += w * sn * a;
+                m2 += w * sn * a * sn * a;
+            }
+        }
+        let (mean, var) = (m1 / m0, m2 / m0 - (m1 / m0) * (m1 / m0));
+        // The map over Gauss–Hermite-like nodes of ζ_n along x: its weighted moments.
+        let (mut w0, mut w1, mut w2) = (0.0, 0.0, 0.0);
+        for i in 0..400 {
+            let a = -8.0 + 16.0 * (i as f64 + 0.5) / 400.0;
+            let w = libm::exp(-0.5 * a * a);
+            let n = world(facet_normal(DVec2::new(sn * a, 0.0)));
+            let m = visible_normal(v, n, n_geo, wind, normal_only, brdf);
+            let zeta = -m.dot(tx) / m.dot(n_geo);
+            assert!(m.dot(ty).abs() < 1e-12, "no slope appears across the view");
+            w0 += w;
+            w1 += w * zeta;
+            w2 += w * zeta * zeta;
+        }
+        let (got_mean, got_var) = (w1 / w0, w2 / w0 - (w1 / w0) * (w1 / w0));
+        assert!(
+            (got_mean - mean).abs() < 1e-4 * sn && (got_var / var - 1.0).abs() < 1e-3,
+            "elevation {elevation}: mean {got_mean} vs {mean}, variance {got_var} vs {var}"
+        );
+        // Facets turn towards the viewer (−ζ·v_xy > 0), the more so the more grazing the view.
+        assert!(mean < 0.0, "{mean}");
+    }
+    // Nothing to unmask: the normal is returned as it is.
+    let n = world(facet_normal(DVec2::new(0.1, -0.05)));
+    let v = world(DVec3::new(0.9, 0.0, libm::sqrt(1.0 - 0.81)));
+    assert_eq!(
+        visible_normal(v, n, n_geo, wind, SlopeVariance::default(), brdf),
+        n
+    );
+    // A normal view has no masking either.
+    let m = visible_normal(n_geo, n, n_geo, wind, normal_only, brdf);
+    assert!((m - n).length() < 1e-12);
+}

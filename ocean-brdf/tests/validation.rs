@@ -1,30 +1,42 @@
 //! The paper's validation (§7.2, Fig. 10): per-row mean radiance of the filtered model against
-//! detailed geometry with a perfect mirror (`ocean_brdf::validation`), for a calm and an
-//! agitated sea, with a constant-BRDF model alongside.
+//! detailed geometry with a perfect mirror (`ocean_brdf::validation`), for a calm (5 m/s) and an
+//! agitated (15 m/s) sea, with a constant-BRDF model alongside.
+//!
+//! The reference holds **every** wave of the spectrum (2 cm to 30 m) in its geometry, profiles
+//! sampled every 5 mm. An earlier reference kept only the waves longer than 10 cm in the
+//! geometry (5 cm steps, the paper's triangle size) and the shorter ones in the normals only:
+//! those carry 22–24 % of the slope variance and were not masked, so 3 % of its hits showed a
+//! facet turned away from the viewer (0.02 % with every wave in the geometry), and its
+//! refracted light was 10–13 % too low (sky light a few % high) at every distance. 2.5 and
+//! 1.25 mm steps change the near rows' means by less than 0.5 %.
 //!
 //! Measured here (the default sampling: 32 reference planes × 32 rays per pixel row, 256 model
-//! planes; 256² image 4 m above the sea; rows from 46 m to 5.9 km), over both seas:
-//! - sky: mean error 8.4 %, worst row 26.5 % (a near row); beyond 300 m
-//!   the model is 0–12 % above the reference. The paper's own form of Eq. 22, before this
-//!   crate's visible-slope footprint, was 20–35 % *below* it on every row;
-//! - refracted light: mean error 4.1 %, worst row 18 %; beyond 300 m 8 % below to 1 % above;
-//! - beyond 300 m the constant-BRDF model is off by 25–45 %, at least twice the model's error.
+//! planes; 256² image 4 m above the sea; 108 rows from 46 to 300 m, 19 from 300 m to 3.9 km;
+//! about 2.5 minutes on two shared cores), model error (model − reference)/reference:
 //!
-//! The issue's target is 5 % per row and component and is **not met yet**. Beyond 300 m the
-//! calm sea's rows are within 7 % (sky) and 5 % (refracted), the agitated sea's within 12 % and
-//! 8 %, 4.5 % on average. The effective Fresnel is not the cause there any more: the table of
-//! Eq. 24 (`fresnel_table`) is within 0.008 of the anisotropic integral at these grazing views
-//! (measured for σ from 0.1 to 0.25 and anisotropy up to 2:1); what remains is the model's
-//! other approximations (Smith's masking for trochoids, the product of averages of Eq. 21) and
-//! the reference's sampling. The near rows (46–200 m) are biased too, sky about +9 % and
-//! refracted light about −2 to −4 % on average, and this is the paper's own approximation
-//! rather than noise: 4× more reference planes left the worst rows unchanged, and shrinking
-//! the pixel footprint by 10 (more waves in the normals, fewer in the BRDF) *raised* the bias
-//! to +16 % / −12 %. Waves resolved in the normals but not in the filtered geometry lose their
-//! masking (§3.2: "the apparent normals become wrong"), so facets the detailed surface hides
-//! are seen, at grazing Fresnel. The reference resolves masking only for waves longer than
-//! 10 cm, as the paper's did. The Sun's term is not compared: a perfect mirror reflects the
-//! Sun's disc (7e-5 sr) into a handful of the reference's rays per row, too few for a row mean.
+//! | sea, rows        | sky: bias, mean abs, worst | refracted: bias, mean abs, worst |
+//! |------------------|----------------------------|----------------------------------|
+//! | calm, near       | +6.0 %, 6.3 %, 16.8 %      | −6.5 %, 6.9 %, 16.3 %            |
+//! | calm, far        | +12.0 %, 12.0 %, 14.3 %    | −13.2 %, 13.2 %, 15.1 %          |
+//! | agitated, near   | +6.1 %, 7.4 %, 37.1 %      | −6.0 %, 6.7 %, 24.8 %            |
+//! | agitated, far    | +13.0 %, 13.0 %, 19.1 %    | −13.5 %, 13.5 %, 17.0 %          |
+//!
+//! The constant-BRDF model is 32–49 % off beyond 300 m, 2.3–3.7 times the model's error on
+//! every such row. The issue's 5 % per row is **not met** for either component:
+//! - near rows: the model's masking-aware normal (`sea::visible_normal`) halves the bias of the
+//!   waves resolved in the normals but not in the geometry (without it, rows 46–213 m: sky
+//!   +9.7 %, refracted −12 %; with it +5.7 %, −6.2 %); with the geometry holding every wave the normals hold (a 1-pixel
+//!   grid), the bias is +3.5 % / −4 %, the floor of the BRDF part below;
+//! - far rows, where every wave is in the BRDF: the model there is Ross's BRDF on a flat normal,
+//!   and it is within 0.2 % (F̄) and 2.5 % (I_sky) of Ross's exact integral
+//!   `∬ q^e_vn F L d²ζ` at these grazing views; the 12–13 % left are Ross's model against the
+//!   trochoid sea: Eq. 5–11 assume uncorrelated heights and slopes (§4), while on the trochoid
+//!   sum the slope variance grows with height (the top 1 % of heights have 13–23 % more
+//!   across-wind and 27–37 % more along-wind slope variance than the mean), and a grazing
+//!   view sees only crests, whose facets turn more towards the viewer than Smith's masking
+//!   predicts (lower Fresnel: more refracted light, less sky).
+//! - The Sun's term is not compared: a perfect mirror reflects the Sun's disc (7e-5 sr) into a
+//!   handful of the reference's rays per row, too few for a row mean.
 
 use glam::DVec3;
 use ocean_brdf::SpectrumParams;
@@ -46,14 +58,36 @@ fn run(wind_speed: f64) -> Vec<RowMeans> {
 }
 
 fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b
+    (a - b) / b
+}
+
+/// Bias, mean absolute and worst relative error of `model` against `reference` over `rows`.
+fn stats(rows: &[&RowMeans], pick: impl Fn(&RowMeans) -> (f64, f64)) -> (f64, f64, f64) {
+    let n = rows.len() as f64;
+    let e: Vec<f64> = rows
+        .iter()
+        .map(|r| {
+            let (m, reference) = pick(r);
+            rel(m, reference)
+        })
+        .collect();
+    (
+        e.iter().sum::<f64>() / n,
+        e.iter().map(|x| x.abs()).sum::<f64>() / n,
+        e.iter().fold(0.0f64, |w, x| w.max(x.abs())),
+    )
 }
 
 #[test]
 fn filtered_model_follows_the_reference_and_the_constant_brdf_diverges() {
-    let mut worst_sky: f64 = 0.0;
-    let mut worst_sea: f64 = 0.0;
-    for wind in [5.0, 15.0] {
+    // The measured envelopes (see the module documentation), each about one point above the
+    // measured value so that a regression shows: (sky mean abs, sky worst, sea mean abs, sea
+    // worst) for the near rows, then for the far rows.
+    let bounds = [
+        (5.0, [0.07, 0.18, 0.075, 0.17], [0.13, 0.155, 0.14, 0.16]),
+        (15.0, [0.08, 0.38, 0.075, 0.26], [0.14, 0.20, 0.145, 0.18]),
+    ];
+    for (wind, near_bounds, far_bounds) in bounds {
         let rows = run(wind);
         // Rows from the bottom (centre at 46 m) to the row whose centre is at 3.9 km and upper
         // edge at 5.9 km.
@@ -67,13 +101,14 @@ fn filtered_model_follows_the_reference_and_the_constant_brdf_diverges() {
                 "{:3} {:7.0} m  sky {rs:.4} {ms:.4} {cs:.4}  sea {rw:.5} {mw:.5} {cw:.5}",
                 r.row, r.distance
             );
-            worst_sky = worst_sky.max(rel(ms, rs));
-            worst_sea = worst_sea.max(rel(mw, rw));
             if r.distance > 300.0 {
-                let (model, constant) =
-                    (rel(ms, rs).max(rel(mw, rw)), rel(cs, rs).max(rel(cw, rw)));
+                let (model, constant) = (
+                    rel(ms, rs).abs().max(rel(mw, rw).abs()),
+                    rel(cs, rs).abs().max(rel(cw, rw).abs()),
+                );
+                // Measured: at least 0.32, and 2.3 times the model's error.
                 assert!(
-                    constant > 0.2,
+                    constant > 0.25,
                     "row {}: constant BRDF off by only {constant}",
                     r.row
                 );
@@ -84,15 +119,39 @@ fn filtered_model_follows_the_reference_and_the_constant_brdf_diverges() {
                 );
             }
         }
+        for (name, near, b) in [("near", true, near_bounds), ("far", false, far_bounds)] {
+            let part: Vec<&RowMeans> = rows
+                .iter()
+                .filter(|r| (r.distance < 300.0) == near)
+                .collect();
+            let sky = stats(&part, |r| (sum(r.model.sky), sum(r.reference.sky)));
+            let sea = stats(&part, |r| (sum(r.model.sea), sum(r.reference.sea)));
+            println!(
+                "wind {wind}, {name} rows: sky bias {:+.1} %, mean {:.1} %, worst {:.1} %; \
+                 refracted bias {:+.1} %, mean {:.1} %, worst {:.1} %",
+                sky.0 * 100.0,
+                sky.1 * 100.0,
+                sky.2 * 100.0,
+                sea.0 * 100.0,
+                sea.1 * 100.0,
+                sea.2 * 100.0
+            );
+            assert!(
+                sky.1 < b[0] && sky.2 < b[1],
+                "wind {wind} {name}: sky {sky:?}"
+            );
+            assert!(
+                sea.1 < b[2] && sea.2 < b[3],
+                "wind {wind} {name}: sea {sea:?}"
+            );
+            // The model's known sign (see the module documentation): too much sky, too little
+            // refracted light, the effective Fresnel too high at grazing views.
+            assert!(
+                sky.0 > 0.0 && sea.0 < 0.0,
+                "wind {wind} {name}: {sky:?} {sea:?}"
+            );
+        }
     }
-    println!(
-        "worst row: sky {:.1} %, sea {:.1} %",
-        worst_sky * 100.0,
-        worst_sea * 100.0
-    );
-    // The measured envelope (see the module documentation), so a regression shows.
-    assert!(worst_sky < 0.28, "{worst_sky}");
-    assert!(worst_sea < 0.19, "{worst_sea}");
 }
 
 /// The same inputs give the same bits, whatever rayon's thread count.
