@@ -95,7 +95,7 @@ pub use layers::{GridRect, Layer, evaluate_layers, evaluate_layers_region};
 pub use layers::{evaluate_layers_par, evaluate_layers_region_par};
 pub use modulation::Modulation;
 pub use rng::Pcg32;
-pub use timed::TimedWaves;
+pub use timed::{LaneSums, TimedWaves};
 pub use trochoid::{PointSums, Sample, SampleF64, WaveSet};
 pub use wave::{Wave, WaveDesc};
 

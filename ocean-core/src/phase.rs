@@ -30,14 +30,25 @@ pub fn reduce_turns(turns: f64) -> f64 {
 /// Non-finite input gives NaN; the public entry points reject such input before it gets here.
 #[inline]
 pub fn reduce_angle(theta: f64) -> f64 {
+    match reduce_angle_fast(theta) {
+        (r, true) => r,
+        _ => fold(theta % TAU),
+    }
+}
+
+/// [`reduce_angle`]'s fast path alone, without a branch: `(r, true)` with r exactly
+/// [`reduce_angle`]'s value when |θ| is below 10¹⁵ turns, `(unspecified, false)` otherwise.
+/// For lane loops that vectorise it and redo the rare slow lanes.
+#[inline(always)]
+pub fn reduce_angle_fast(theta: f64) -> (f64, bool) {
     let turns = theta * (1.0 / TAU);
-    let r = if turns.abs() < FAST_TURNS {
-        let n = (turns + ROUND_MAGIC) - ROUND_MAGIC;
-        theta - n * TAU
-    } else {
-        theta % TAU
-    };
-    // The rounding above can leave r a hair outside [-π, π]; fold it back.
+    let n = (turns + ROUND_MAGIC) - ROUND_MAGIC;
+    (fold(theta - n * TAU), turns.abs() < FAST_TURNS)
+}
+
+/// The rounding of a reduction can leave r a hair outside [-π, π]; this folds it back.
+#[inline(always)]
+fn fold(r: f64) -> f64 {
     if r > PI {
         r - TAU
     } else if r < -PI {

@@ -1,4 +1,7 @@
 //! A wave set frozen at one instant, for many point evaluations (height queries).
+
+// Lane loops index several arrays in step; that indexed shape is what LLVM vectorises.
+#![allow(clippy::needless_range_loop)]
 //!
 //! [`WaveSet::add_sums`] forms each phase θ = k·p₀ − ωt + Φ (Eq. 6, 7) and checks its
 //! arguments on every call. A height query calls it a few times per Newton step for every
@@ -13,7 +16,7 @@ use alloc::vec::Vec;
 use glam::DVec2;
 
 use crate::error::EvalError;
-use crate::phase::{reduce_angle, reduce_angle_f32};
+use crate::phase::{reduce_angle, reduce_angle_f32, reduce_angle_fast};
 use crate::sincos::sincos;
 use crate::trochoid::{PointSums, WaveSet, check_time};
 
@@ -60,25 +63,151 @@ impl TimedWaves {
     /// Adds the set's contribution at world rest position `rest`, multiplied by the complex
     /// amplitude `mu` = [m cos φ, m sin φ], to `sums`: [`WaveSet::add_sums`] at this set's
     /// time. The caller passes finite values (a non-finite one gives NaN sums, not an
-    /// error: this is the inner loop of queries whose inputs were checked once).
+    /// error: this is the inner loop of queries whose inputs were checked once). Nothing is
+    /// added where `mu` is zero.
     #[inline]
     pub fn add_sums(&self, rest: DVec2, mu: [f64; 2], sums: &mut PointSums) {
-        for w in &self.waves {
-            let (sin, cos) = sincos(reduce_angle_f32(w.k.dot(rest) + w.offset));
-            let (sin, cos) = (f64::from(sin), f64::from(cos));
-            // m sin(θ + φ) and m cos(θ + φ), as in the layers kernel.
-            let s = sin * mu[0] + cos * mu[1];
-            let c = cos * mu[0] - sin * mu[1];
-            let [a, ahx, ahz, cxx, cxz, czz, gx, gz] = w.c;
-            sums.dx -= ahx * s;
-            sums.dz -= ahz * s;
-            sums.y += a * c;
-            sums.jxx -= cxx * c;
-            sums.jxz -= cxz * c;
-            sums.jzz -= czz * c;
-            sums.sx -= gx * s;
-            sums.sz -= gz * s;
+        let mut lanes = LaneSums::<1>::REST;
+        lanes.set(0, sums);
+        self.add_sums_lanes(&[rest.x], &[rest.y], &[mu[0]], &[mu[1]], &mut lanes);
+        *sums = lanes.get(0);
+    }
+
+    /// [`TimedWaves::add_sums`] for `Q` points at once, lane `l` at rest position
+    /// (`x[l]`, `z[l]`) with amplitude (`mu_re[l]`, `mu_im[l]`). Each lane performs exactly
+    /// the operations of [`TimedWaves::add_sums`] (which is this with one lane), so its bits
+    /// do not depend on `Q` or on its neighbours; the lanes are written element-wise for
+    /// LLVM to vectorise. Lanes whose `mu` is zero are left as they are.
+    #[inline(always)]
+    pub fn add_sums_lanes<const Q: usize>(
+        &self,
+        x: &[f64; Q],
+        z: &[f64; Q],
+        mu_re: &[f64; Q],
+        mu_im: &[f64; Q],
+        sums: &mut LaneSums<Q>,
+    ) {
+        let mut live = [false; Q];
+        for l in 0..Q {
+            live[l] = mu_re[l] != 0.0 || mu_im[l] != 0.0;
         }
+        if !live.iter().any(|&b| b) {
+            return;
+        }
+        for w in &self.waves {
+            let mut theta = [0.0f64; Q];
+            for l in 0..Q {
+                theta[l] = w.k.x * x[l] + w.k.y * z[l] + w.offset;
+            }
+            let phase = reduce_lanes(&theta);
+            let mut sin = [0.0f64; Q];
+            let mut cos = [0.0f64; Q];
+            for l in 0..Q {
+                let (s, c) = sincos(phase[l]);
+                (sin[l], cos[l]) = (f64::from(s), f64::from(c));
+            }
+            let [a, ahx, ahz, cxx, cxz, czz, gx, gz] = w.c;
+            for l in 0..Q {
+                // m sin(θ + φ) and m cos(θ + φ), as in the layers kernel.
+                let s = sin[l] * mu_re[l] + cos[l] * mu_im[l];
+                let c = cos[l] * mu_re[l] - sin[l] * mu_im[l];
+                let on = live[l];
+                let pick = |new: f64, old: f64| if on { new } else { old };
+                sums.dx[l] = pick(sums.dx[l] - ahx * s, sums.dx[l]);
+                sums.dz[l] = pick(sums.dz[l] - ahz * s, sums.dz[l]);
+                sums.y[l] = pick(sums.y[l] + a * c, sums.y[l]);
+                sums.jxx[l] = pick(sums.jxx[l] - cxx * c, sums.jxx[l]);
+                sums.jxz[l] = pick(sums.jxz[l] - cxz * c, sums.jxz[l]);
+                sums.jzz[l] = pick(sums.jzz[l] - czz * c, sums.jzz[l]);
+                sums.sx[l] = pick(sums.sx[l] - gx * s, sums.sx[l]);
+                sums.sz[l] = pick(sums.sz[l] - gz * s, sums.sz[l]);
+            }
+        }
+    }
+}
+
+/// [`reduce_angle_f32`] of every lane: its fast path element-wise, and the lanes beyond that
+/// path's range (phases of over 10¹⁵ turns, which a query meets only at absurd times far from
+/// the grid's phase origin) redone by [`reduce_angle_f32`] itself, so each lane's bits are
+/// those of [`reduce_angle_f32`].
+#[inline(always)]
+fn reduce_lanes<const Q: usize>(theta: &[f64; Q]) -> [f32; Q] {
+    let mut out = [0.0f32; Q];
+    let mut slow = false;
+    for l in 0..Q {
+        let (r, fast) = reduce_angle_fast(theta[l]);
+        out[l] = r as f32;
+        slow |= !fast;
+    }
+    if slow {
+        for l in 0..Q {
+            out[l] = reduce_angle_f32(theta[l]);
+        }
+    }
+    out
+}
+
+/// Sums for `Q` points, lane by lane: [`PointSums`] as a structure of arrays, for
+/// [`TimedWaves::add_sums_lanes`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LaneSums<const Q: usize> {
+    /// [`PointSums::dx`] per lane.
+    pub dx: [f64; Q],
+    /// [`PointSums::y`] per lane.
+    pub y: [f64; Q],
+    /// [`PointSums::dz`] per lane.
+    pub dz: [f64; Q],
+    /// [`PointSums::jxx`] per lane.
+    pub jxx: [f64; Q],
+    /// [`PointSums::jxz`] per lane.
+    pub jxz: [f64; Q],
+    /// [`PointSums::jzz`] per lane.
+    pub jzz: [f64; Q],
+    /// [`PointSums::sx`] per lane.
+    pub sx: [f64; Q],
+    /// [`PointSums::sz`] per lane.
+    pub sz: [f64; Q],
+}
+
+impl<const Q: usize> LaneSums<Q> {
+    /// Every lane at rest ([`PointSums::REST`]).
+    pub const REST: Self = Self {
+        dx: [0.0; Q],
+        y: [0.0; Q],
+        dz: [0.0; Q],
+        jxx: [1.0; Q],
+        jxz: [0.0; Q],
+        jzz: [1.0; Q],
+        sx: [0.0; Q],
+        sz: [0.0; Q],
+    };
+
+    /// Lane `l`'s sums.
+    #[inline]
+    pub fn get(&self, l: usize) -> PointSums {
+        PointSums {
+            dx: self.dx[l],
+            y: self.y[l],
+            dz: self.dz[l],
+            jxx: self.jxx[l],
+            jxz: self.jxz[l],
+            jzz: self.jzz[l],
+            sx: self.sx[l],
+            sz: self.sz[l],
+        }
+    }
+
+    /// Sets lane `l` to `s`.
+    #[inline]
+    pub fn set(&mut self, l: usize, s: &PointSums) {
+        self.dx[l] = s.dx;
+        self.y[l] = s.y;
+        self.dz[l] = s.dz;
+        self.jxx[l] = s.jxx;
+        self.jxz[l] = s.jxz;
+        self.jzz[l] = s.jzz;
+        self.sx[l] = s.sx;
+        self.sz[l] = s.sz;
     }
 }
 

@@ -70,6 +70,7 @@ pub mod error;
 pub mod frame;
 pub mod grid;
 pub mod march;
+mod query;
 pub mod scenarios;
 pub mod scene;
 pub mod shore;

@@ -26,10 +26,10 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use glam::{DVec2, DVec3, Vec3};
+use glam::{DVec2, Vec3};
 use ocean_core::frustum::{Containment, Frustum};
 use ocean_core::layers::{GridRect, Layer, evaluate_layers};
-use ocean_core::{Modulation, PointSums, TimedWaves, Wave, WaveDesc, WaveSet};
+use ocean_core::{Modulation, TimedWaves, Wave, WaveDesc, WaveSet};
 
 use crate::budget::{BoxLoad, Budget, CostModel, Selection, select, train_order};
 use crate::effects::{self, Effects, Refraction};
@@ -746,37 +746,22 @@ fn height_field(grid: &WaterGrid, terrain: &Terrain, e: &Effects, t: f64) -> Opt
 
 /// One box's contribution to a frame.
 #[derive(Clone, Debug)]
-struct FrameLayer<'a> {
+pub(crate) struct FrameLayer<'a> {
     waves: WaveSet,
     /// `waves` at the frame's time, for the height queries.
-    timed: TimedWaves,
+    pub(crate) timed: TimedWaves,
     /// This frame's modulation, when time-dependent effects change the cached one.
     mu: Option<Modulation>,
     cache: &'a Modulation,
 }
 
 impl FrameLayer<'_> {
-    fn modulation(&self) -> &Modulation {
+    pub(crate) fn modulation(&self) -> &Modulation {
         self.mu.as_ref().unwrap_or(self.cache)
     }
 
-    fn rect(&self) -> GridRect {
+    pub(crate) fn rect(&self) -> GridRect {
         self.cache.rect()
-    }
-
-    /// The modulation interpolated bilinearly over `cell`; zero outside the rectangle.
-    fn modulation_at(&self, cell: &Cell) -> [f64; 2] {
-        let r = self.rect();
-        let m = self.modulation().values();
-        let at = |q: usize| [f64::from(m[q][0]), f64::from(m[q][1])];
-        // The common case: the whole cell inside the rectangle, corners at fixed offsets. A
-        // cell left of or above the rectangle wraps to a huge offset and fails the test too.
-        let (di, dj) = (cell.i.wrapping_sub(r.i0), cell.j.wrapping_sub(r.j0));
-        if di.wrapping_add(1) < r.nx && dj.wrapping_add(1) < r.nz {
-            let q = dj * r.nx + di;
-            return lerp2(cell, at(q), at(q + 1), at(q + r.nx), at(q + r.nx + 1));
-        }
-        bilinear(cell, |i, j| r.index(i, j).map_or([0.0, 0.0], at))
     }
 }
 
@@ -823,52 +808,20 @@ fn union(a: Option<GridRect>, b: GridRect) -> GridRect {
     }
 }
 
-/// A height query's answer.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HeightSample {
-    /// Water height at the queried (x, z), metres.
-    pub height: f64,
-    /// Unit surface normal there.
-    pub normal: DVec3,
-    /// The rest position whose displaced point lies over the queried (x, z).
-    pub rest: DVec2,
-    /// Horizontal distance between the displaced rest position and the query, metres.
-    pub residual: f64,
-}
-
-impl HeightSample {
-    /// The sea at rest at the origin: the placeholder a batch starts from.
-    const REST: Self = Self {
-        height: 0.0,
-        normal: DVec3::Y,
-        rest: DVec2::ZERO,
-        residual: 0.0,
-    };
-}
-
-/// Horizontal residual at which a height query stops, metres: half a millimetre, so the
-/// answer is within 1 mm horizontally of the surface the grid shows, with margin.
-pub const QUERY_TOLERANCE: f64 = 5e-4;
-
-/// Batches of at least this many height queries are answered in grid order (see
-/// [`Frame::heights`]); smaller ones in the caller's order.
-const QUERY_SORT_MIN: usize = 256;
-
-/// Newton steps a height query may take.
-pub const QUERY_MAX_ITERATIONS: usize = 16;
+pub use crate::query::{HeightSample, QUERY_MAX_ITERATIONS, QUERY_TOLERANCE};
 
 /// One prepared instant of a [`Scene`] (see [`Scene::frame`]).
 #[derive(Clone, Debug)]
 pub struct Frame<'a> {
-    grid: &'a WaterGrid,
-    inv_spacing: f64,
+    pub(crate) grid: &'a WaterGrid,
+    pub(crate) inv_spacing: f64,
     /// The grid's last point in grid units, (nx − 1, nz − 1).
-    last_point: DVec2,
+    pub(crate) last_point: DVec2,
     /// The last cell's first point, (nx − 2, nz − 2).
-    last_cell: (u32, u32),
+    pub(crate) last_cell: (u32, u32),
     t: f64,
-    layers: Vec<FrameLayer<'a>>,
-    height: Option<Vec<f32>>,
+    pub(crate) layers: Vec<FrameLayer<'a>>,
+    pub(crate) height: Option<Vec<f32>>,
     stats: FrameStats,
 }
 
@@ -1010,225 +963,4 @@ impl Frame<'_> {
         };
         Ok(())
     }
-
-    /// The water surface over world (x, z) = `at`, as the grid shows it: Gerstner waves move
-    /// points horizontally, so the rest position p₀ whose displaced point lies over `at` is
-    /// found first by Newton's method on p₀ + D(p₀) = `at` (the Jacobian is ∂p/∂p₀, positive
-    /// definite while no crest folds, so the iteration converges quadratically from p₀ = `at`;
-    /// where it is singular a fixed-point step is taken instead). The modulation and the height
-    /// field are interpolated bilinearly between grid points, so at grid points the answer is
-    /// the grid's own. Outside the grid the water is at rest.
-    ///
-    /// # Errors
-    ///
-    /// [`WtbError::NotFinite`] for a non-finite position.
-    pub fn height_at(&self, at: DVec2) -> Result<HeightSample, WtbError> {
-        if !at.is_finite() {
-            return Err(WtbError::NotFinite("query position"));
-        }
-        let mut p0 = at;
-        let mut sums = self.sums(p0);
-        let mut residual = f64::INFINITY;
-        for _ in 0..QUERY_MAX_ITERATIONS {
-            let f = p0 + DVec2::new(sums.dx, sums.dz) - at;
-            residual = f.length();
-            if residual <= QUERY_TOLERANCE {
-                break;
-            }
-            let det = sums.jacobian_det();
-            let step = if det > 1e-6 {
-                DVec2::new(
-                    sums.jzz * f.x - sums.jxz * f.y,
-                    sums.jxx * f.y - sums.jxz * f.x,
-                ) / det
-            } else {
-                f
-            };
-            p0 -= step;
-            sums = self.sums(p0);
-        }
-        Ok(HeightSample {
-            height: sums.y + self.height_offset(p0),
-            normal: sums.normal(),
-            rest: p0,
-            residual,
-        })
-    }
-
-    /// [`Frame::height_at`] for many points, each answer bit-identical to its own
-    /// [`Frame::height_at`]. A batch of 256 or more is answered in the order of the grid
-    /// points nearest the queries rather than the caller's (the answers still land at the
-    /// queries' indices): random queries then read the modulation row by row, not one cache
-    /// miss at a time. This costs one `u64` per query of scratch memory.
-    ///
-    /// # Errors
-    ///
-    /// [`WtbError::Eval`] when `out` is not as long as `at`; [`WtbError::NotFinite`] for a
-    /// non-finite position. Nothing is written on error.
-    pub fn heights(&self, at: &[DVec2], out: &mut [HeightSample]) -> Result<(), WtbError> {
-        if at.len() != out.len() || at.is_empty() {
-            return Err(WtbError::Eval(ocean_core::EvalError::OutputLength {
-                expected: at.len(),
-                positions: out.len(),
-                normals: out.len(),
-            }));
-        }
-        if !at.iter().all(|p| p.is_finite()) {
-            return Err(WtbError::NotFinite("query position"));
-        }
-        if !(QUERY_SORT_MIN..=u32::MAX as usize).contains(&at.len()) {
-            for (p, o) in at.iter().zip(out.iter_mut()) {
-                *o = self.height_at(*p)?;
-            }
-            return Ok(());
-        }
-        let mut order = self.query_order(at);
-        order.sort_unstable();
-        for key in order {
-            let n = key as u32 as usize;
-            out[n] = self.height_at(at[n])?;
-        }
-        Ok(())
-    }
-
-    /// The queries as sort keys: the grid point nearest each (row-major, points outside the
-    /// grid last) above its index. Visited in key order, a batch reads the modulation and the
-    /// height field row by row instead of at random; each answer depends on its own position
-    /// only, so the order changes no bit of it.
-    fn query_order(&self, at: &[DVec2]) -> Vec<u64> {
-        let (nx, nz) = (self.grid.nx(), self.grid.nz());
-        let origin = self.grid.origin();
-        at.iter()
-            .enumerate()
-            .map(|(n, p)| {
-                let l = (*p - origin) * self.inv_spacing + DVec2::splat(0.5);
-                // Validated finite; the comparison is false for NaN, which cannot occur here.
-                let cell = if l.x >= 0.0 && l.y >= 0.0 && l.x < nx as f64 && l.y < nz as f64 {
-                    (l.y as u64) * nx as u64 + l.x as u64
-                } else {
-                    u64::from(u32::MAX)
-                };
-                (cell << 32) | n as u64
-            })
-            .collect()
-    }
-
-    /// [`Frame::heights`] on the current rayon thread pool.
-    ///
-    /// # Errors
-    ///
-    /// As [`Frame::heights`].
-    #[cfg(feature = "std")]
-    pub fn heights_par(&self, at: &[DVec2], out: &mut [HeightSample]) -> Result<(), WtbError> {
-        use rayon::prelude::*;
-        if at.len() != out.len() || at.is_empty() {
-            return Err(WtbError::Eval(ocean_core::EvalError::OutputLength {
-                expected: at.len(),
-                positions: out.len(),
-                normals: out.len(),
-            }));
-        }
-        if !at.iter().all(|p| p.is_finite()) {
-            return Err(WtbError::NotFinite("query position"));
-        }
-        if !(QUERY_SORT_MIN..=u32::MAX as usize).contains(&at.len()) {
-            at.par_iter().zip(out.par_iter_mut()).for_each(|(p, o)| {
-                *o = self.height_at(*p).expect("finite positions checked above");
-            });
-            return Ok(());
-        }
-        let mut order = self.query_order(at);
-        order.par_sort_unstable();
-        // Answers in key order, then scattered back: each task reads a band of grid rows.
-        let mut sorted = vec![HeightSample::REST; order.len()];
-        sorted
-            .par_chunks_mut(QUERY_SORT_MIN)
-            .zip(order.par_chunks(QUERY_SORT_MIN))
-            .for_each(|(o, keys)| {
-                for (o, key) in o.iter_mut().zip(keys) {
-                    *o = self
-                        .height_at(at[*key as u32 as usize])
-                        .expect("finite positions checked above");
-                }
-            });
-        for (s, key) in sorted.into_iter().zip(order) {
-            out[key as u32 as usize] = s;
-        }
-        Ok(())
-    }
-
-    /// The surface sums of every layer at rest position `p0`, with bilinearly interpolated
-    /// modulation.
-    fn sums(&self, p0: DVec2) -> PointSums {
-        let mut sums = PointSums::REST;
-        let Some(cell) = self.cell(p0) else {
-            return sums;
-        };
-        for l in &self.layers {
-            let mu = l.modulation_at(&cell);
-            if mu != [0.0, 0.0] {
-                // p0 is finite (the query was checked, and a Newton step from a finite point
-                // with a finite Jacobian stays finite), and so is every modulation value.
-                l.timed.add_sums(p0, mu, &mut sums);
-            }
-        }
-        sums
-    }
-
-    fn height_offset(&self, p0: DVec2) -> f64 {
-        let (Some(h), Some(cell)) = (&self.height, self.cell(p0)) else {
-            return 0.0;
-        };
-        let nx = self.grid.nx();
-        bilinear(&cell, |i, j| [f64::from(h[j * nx + i]), 0.0])[0]
-    }
-
-    /// The grid cell holding `p` and the fractions across it; `None` outside the grid.
-    fn cell(&self, p: DVec2) -> Option<Cell> {
-        let l = (p - self.grid.origin()) * self.inv_spacing;
-        let last = self.last_point;
-        if !(l.x >= 0.0 && l.y >= 0.0 && l.x <= last.x && l.y <= last.y) {
-            return None;
-        }
-        // 0 ≤ l ≤ n − 1 < 4096 (the grid's cap, [`crate::grid::MAX_SIDE`]) here, so truncation through u32 is the floor,
-        // one instruction where a conversion to usize takes a branchy sequence.
-        let i = (l.x as u32).min(self.last_cell.0) as usize;
-        let j = (l.y as u32).min(self.last_cell.1) as usize;
-        Some(Cell {
-            i,
-            j,
-            fx: l.x - i as f64,
-            fz: l.y - j as f64,
-        })
-    }
-}
-
-struct Cell {
-    i: usize,
-    j: usize,
-    fx: f64,
-    fz: f64,
-}
-
-fn bilinear(c: &Cell, f: impl Fn(usize, usize) -> [f64; 2]) -> [f64; 2] {
-    lerp2(
-        c,
-        f(c.i, c.j),
-        f(c.i + 1, c.j),
-        f(c.i, c.j + 1),
-        f(c.i + 1, c.j + 1),
-    )
-}
-
-/// Bilinear interpolation across `c` of the values at its corners (i, j), (i+1, j), (i, j+1),
-/// (i+1, j+1).
-#[inline]
-fn lerp2(c: &Cell, a: [f64; 2], b: [f64; 2], d: [f64; 2], e: [f64; 2]) -> [f64; 2] {
-    let mut out = [0.0; 2];
-    for n in 0..2 {
-        let top = a[n] + (b[n] - a[n]) * c.fx;
-        let bottom = d[n] + (e[n] - d[n]) * c.fx;
-        out[n] = top + (bottom - top) * c.fz;
-    }
-    out
 }

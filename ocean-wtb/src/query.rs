@@ -1,0 +1,414 @@
+//! Height queries: the water surface over a world (x, z), exactly as the grid shows it.
+//!
+//! Gerstner waves move points horizontally, so a query first finds the rest position p₀ whose
+//! displaced point lies over (x, z), by Newton's method on p₀ + D(p₀) = (x, z), then reads the
+//! height and normal there. Batches are solved [`LANES`] queries at a time in lock step: every
+//! Newton round evaluates the waves for all the lanes that still iterate with one lane loop
+//! ([`TimedWaves::add_sums_lanes`]), whose lanes do exactly the operations of a single query,
+//! so a batched answer has the bits of [`Frame::height_at`] for the same point.
+
+// Lane loops index several arrays in step; that indexed shape is what LLVM vectorises.
+#![allow(clippy::needless_range_loop)]
+
+use alloc::vec;
+use alloc::vec::Vec;
+
+use glam::{DVec2, DVec3};
+use ocean_core::LaneSums;
+
+use crate::error::WtbError;
+use crate::scene::{Frame, FrameLayer};
+
+/// A height query's answer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeightSample {
+    /// Water height at the queried (x, z), metres.
+    pub height: f64,
+    /// Unit surface normal there.
+    pub normal: DVec3,
+    /// The rest position whose displaced point lies over the queried (x, z).
+    pub rest: DVec2,
+    /// Horizontal distance between the displaced rest position and the query, metres.
+    pub residual: f64,
+}
+
+impl HeightSample {
+    /// The sea at rest at the origin: the placeholder a batch starts from.
+    const REST: Self = Self {
+        height: 0.0,
+        normal: DVec3::Y,
+        rest: DVec2::ZERO,
+        residual: 0.0,
+    };
+}
+
+/// Horizontal residual at which a height query stops, metres: half a millimetre, so the
+/// answer is within 1 mm horizontally of the surface the grid shows, with margin.
+pub const QUERY_TOLERANCE: f64 = 5e-4;
+
+/// Newton steps a height query may take.
+pub const QUERY_MAX_ITERATIONS: usize = 16;
+
+/// Batches of at least this many height queries are answered in grid order (see
+/// [`Frame::heights`]); smaller ones in the caller's order.
+const QUERY_SORT_MIN: usize = 256;
+
+/// Queries solved together: four `f64` lanes, one AVX2 register or two SSE2 ones.
+const LANES: usize = 4;
+
+impl Frame<'_> {
+    /// The water surface over world (x, z) = `at`, as the grid shows it: Gerstner waves move
+    /// points horizontally, so the rest position p₀ whose displaced point lies over `at` is
+    /// found first by Newton's method on p₀ + D(p₀) = `at` (the Jacobian is ∂p/∂p₀, positive
+    /// definite while no crest folds, so the iteration converges quadratically from p₀ = `at`;
+    /// where it is singular a fixed-point step is taken instead). The modulation and the height
+    /// field are interpolated bilinearly between grid points, so at grid points the answer is
+    /// the grid's own. Outside the grid the water is at rest.
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::NotFinite`] for a non-finite position.
+    pub fn height_at(&self, at: DVec2) -> Result<HeightSample, WtbError> {
+        if !at.is_finite() {
+            return Err(WtbError::NotFinite("query position"));
+        }
+        let mut out = [HeightSample::REST];
+        self.solve_all(&[at], &mut out);
+        Ok(out[0])
+    }
+
+    /// [`Frame::height_at`] for many points, each answer bit-identical to its own
+    /// [`Frame::height_at`]. A batch of 256 or more is answered in the order of the grid
+    /// points nearest the queries rather than the caller's (the answers still land at the
+    /// queries' indices): random queries then read the modulation row by row, not one cache
+    /// miss at a time. This costs one `u64` per query of scratch memory.
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::Eval`] when `out` is not as long as `at`; [`WtbError::NotFinite`] for a
+    /// non-finite position. Nothing is written on error.
+    pub fn heights(&self, at: &[DVec2], out: &mut [HeightSample]) -> Result<(), WtbError> {
+        check_batch(at, out)?;
+        if !sorted_batch(at.len()) {
+            self.solve_all(at, out);
+            return Ok(());
+        }
+        let mut order = self.query_order(at);
+        order.sort_unstable();
+        let mut sorted = vec![HeightSample::REST; order.len()];
+        self.solve_keys(at, &order, &mut sorted);
+        scatter(&order, sorted, out);
+        Ok(())
+    }
+
+    /// [`Frame::heights`] on the current rayon thread pool; the same bits on any number of
+    /// threads.
+    ///
+    /// # Errors
+    ///
+    /// As [`Frame::heights`].
+    #[cfg(feature = "std")]
+    pub fn heights_par(&self, at: &[DVec2], out: &mut [HeightSample]) -> Result<(), WtbError> {
+        use rayon::prelude::*;
+        check_batch(at, out)?;
+        if !sorted_batch(at.len()) {
+            at.par_chunks(QUERY_SORT_MIN)
+                .zip(out.par_chunks_mut(QUERY_SORT_MIN))
+                .for_each(|(at, out)| self.solve_all(at, out));
+            return Ok(());
+        }
+        let mut order: Vec<u64> = at
+            .par_chunks(QUERY_SORT_MIN)
+            .enumerate()
+            .flat_map_iter(|(c, at)| {
+                at.iter()
+                    .enumerate()
+                    .map(move |(n, p)| self.query_key(c * QUERY_SORT_MIN + n, *p))
+            })
+            .collect();
+        order.par_sort_unstable();
+        // Answers in key order (each task reads a band of grid rows), then gathered back to
+        // the queries' indices through the inverse permutation.
+        let mut sorted = vec![HeightSample::REST; order.len()];
+        sorted
+            .par_chunks_mut(QUERY_SORT_MIN)
+            .zip(order.par_chunks(QUERY_SORT_MIN))
+            .for_each(|(out, keys)| self.solve_keys(at, keys, out));
+        let mut rank = vec![0u32; order.len()];
+        for (r, key) in order.iter().enumerate() {
+            rank[*key as u32 as usize] = r as u32;
+        }
+        out.par_iter_mut()
+            .zip(rank.par_iter())
+            .for_each(|(o, r)| *o = sorted[*r as usize]);
+        Ok(())
+    }
+
+    /// Solves `at` in the caller's order, [`LANES`] at a time.
+    fn solve_all(&self, at: &[DVec2], out: &mut [HeightSample]) {
+        pulp::Arch::new().dispatch(Batch {
+            frame: self,
+            at,
+            keys: None,
+            out,
+        });
+    }
+
+    /// Solves the queries `keys` name (see [`Frame::query_order`]) into `out`, in key order.
+    fn solve_keys(&self, at: &[DVec2], keys: &[u64], out: &mut [HeightSample]) {
+        pulp::Arch::new().dispatch(Batch {
+            frame: self,
+            at,
+            keys: Some(keys),
+            out,
+        });
+    }
+
+    /// The queries as sort keys: the grid point nearest each (row-major, points outside the
+    /// grid last) above its index. Visited in key order, a batch reads the modulation and the
+    /// height field row by row instead of at random; each answer depends on its own position
+    /// only, so the order changes no bit of it.
+    fn query_order(&self, at: &[DVec2]) -> Vec<u64> {
+        at.iter()
+            .enumerate()
+            .map(|(n, p)| self.query_key(n, *p))
+            .collect()
+    }
+
+    /// Query `n`'s sort key (see [`Frame::query_order`]).
+    fn query_key(&self, n: usize, p: DVec2) -> u64 {
+        let l = (p - self.grid.origin()) * self.inv_spacing + DVec2::splat(0.5);
+        let (nx, nz) = (self.grid.nx(), self.grid.nz());
+        let cell = if l.x >= 0.0 && l.y >= 0.0 && l.x < nx as f64 && l.y < nz as f64 {
+            (l.y as u64) * nx as u64 + l.x as u64
+        } else {
+            u64::from(u32::MAX)
+        };
+        (cell << 32) | n as u64
+    }
+
+    /// Solves up to [`LANES`] finite queries in lock step into `out` (as long as `at`).
+    ///
+    /// Each lane follows [`Frame::height_at`]'s iteration: evaluate at p₀ = `at`; then, until
+    /// the residual is within [`QUERY_TOLERANCE`] or [`QUERY_MAX_ITERATIONS`] rounds have
+    /// run, take a Newton step and evaluate again. A lane that has stopped is carried along
+    /// unchanged.
+    #[inline(always)]
+    fn solve(&self, at: &[DVec2], out: &mut [HeightSample]) {
+        let n = at.len();
+        debug_assert!(n <= LANES && out.len() == n);
+        let mut p0 = [DVec2::ZERO; LANES];
+        p0[..n].copy_from_slice(at);
+        let mut iterating = [false; LANES];
+        iterating[..n].fill(true);
+        let mut sums = LaneSums::<LANES>::REST;
+        self.sums_lanes(&p0, &iterating, &mut sums);
+        let mut residual = [f64::INFINITY; LANES];
+        for _ in 0..QUERY_MAX_ITERATIONS {
+            for l in 0..n {
+                if !iterating[l] {
+                    continue;
+                }
+                let s = sums.get(l);
+                let f = p0[l] + DVec2::new(s.dx, s.dz) - at[l];
+                residual[l] = f.length();
+                if residual[l] <= QUERY_TOLERANCE {
+                    iterating[l] = false;
+                    continue;
+                }
+                let det = s.jacobian_det();
+                let step = if det > 1e-6 {
+                    DVec2::new(s.jzz * f.x - s.jxz * f.y, s.jxx * f.y - s.jxz * f.x) / det
+                } else {
+                    f
+                };
+                p0[l] -= step;
+            }
+            if !iterating.iter().any(|&b| b) {
+                break;
+            }
+            self.sums_lanes(&p0, &iterating, &mut sums);
+        }
+        for l in 0..n {
+            let s = sums.get(l);
+            out[l] = HeightSample {
+                height: s.y + self.height_offset(p0[l]),
+                normal: s.normal(),
+                rest: p0[l],
+                residual: residual[l],
+            };
+        }
+    }
+
+    /// The surface sums of every layer at the rest positions `p0` of the lanes `on`, with
+    /// bilinearly interpolated modulation; the other lanes are left as they are. A lane
+    /// outside the grid is at rest.
+    #[inline(always)]
+    fn sums_lanes(&self, p0: &[DVec2; LANES], on: &[bool; LANES], sums: &mut LaneSums<LANES>) {
+        let mut cells: [Option<Cell>; LANES] = [None; LANES];
+        let (mut x, mut z) = ([0.0; LANES], [0.0; LANES]);
+        for l in 0..LANES {
+            if on[l] {
+                sums.set(l, &ocean_core::PointSums::REST);
+                cells[l] = self.cell(p0[l]);
+            }
+            (x[l], z[l]) = (p0[l].x, p0[l].y);
+        }
+        for layer in &self.layers {
+            // Zero amplitude where a lane rests or lies outside the grid: the lane loop then
+            // leaves it alone, as a single query skips such a layer.
+            let (mut re, mut im) = ([0.0; LANES], [0.0; LANES]);
+            for l in 0..LANES {
+                if let Some(c) = &cells[l] {
+                    [re[l], im[l]] = modulation_at(layer, c);
+                }
+            }
+            // p0 is finite (the query was checked, and a Newton step from a finite point with
+            // a finite Jacobian stays finite), and so is every modulation value.
+            layer.timed.add_sums_lanes(&x, &z, &re, &im, sums);
+        }
+    }
+
+    fn height_offset(&self, p0: DVec2) -> f64 {
+        let (Some(h), Some(cell)) = (&self.height, self.cell(p0)) else {
+            return 0.0;
+        };
+        let nx = self.grid.nx();
+        bilinear(&cell, |i, j| [f64::from(h[j * nx + i]), 0.0])[0]
+    }
+
+    /// The grid cell holding `p` and the fractions across it; `None` outside the grid.
+    #[inline(always)]
+    fn cell(&self, p: DVec2) -> Option<Cell> {
+        let l = (p - self.grid.origin()) * self.inv_spacing;
+        let last = self.last_point;
+        if !(l.x >= 0.0 && l.y >= 0.0 && l.x <= last.x && l.y <= last.y) {
+            return None;
+        }
+        // 0 ≤ l ≤ n − 1 < 4096 (the grid's cap, [`crate::grid::MAX_SIDE`]) here, so
+        // truncation through u32 is the floor, one instruction where a conversion to usize
+        // takes a branchy sequence.
+        let i = (l.x as u32).min(self.last_cell.0) as usize;
+        let j = (l.y as u32).min(self.last_cell.1) as usize;
+        Some(Cell {
+            i,
+            j,
+            fx: l.x - i as f64,
+            fz: l.y - j as f64,
+        })
+    }
+}
+
+/// A batch of queries, solved [`LANES`] at a time with the widest vector instructions the CPU
+/// has (pulp's run-time dispatch; without fused multiply-adds, so every path gives the same
+/// bits): `at` in the caller's order, or the queries `keys` name in key order.
+struct Batch<'f, 'a, 'q> {
+    frame: &'f Frame<'a>,
+    at: &'q [DVec2],
+    keys: Option<&'q [u64]>,
+    out: &'q mut [HeightSample],
+}
+
+impl pulp::WithSimd for Batch<'_, '_, '_> {
+    type Output = ();
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        let Batch {
+            frame,
+            at,
+            keys,
+            out,
+        } = self;
+        match keys {
+            None => {
+                for (at, out) in at.chunks(LANES).zip(out.chunks_mut(LANES)) {
+                    frame.solve(at, out);
+                }
+            }
+            Some(keys) => {
+                for (keys, out) in keys.chunks(LANES).zip(out.chunks_mut(LANES)) {
+                    let mut lanes = [DVec2::ZERO; LANES];
+                    for (p, key) in lanes.iter_mut().zip(keys) {
+                        *p = at[*key as u32 as usize];
+                    }
+                    frame.solve(&lanes[..keys.len()], out);
+                }
+            }
+        }
+    }
+}
+
+/// The length and finiteness checks of a batch.
+fn check_batch(at: &[DVec2], out: &[HeightSample]) -> Result<(), WtbError> {
+    if at.len() != out.len() || at.is_empty() {
+        return Err(WtbError::Eval(ocean_core::EvalError::OutputLength {
+            expected: at.len(),
+            positions: out.len(),
+            normals: out.len(),
+        }));
+    }
+    if !at.iter().all(|p| p.is_finite()) {
+        return Err(WtbError::NotFinite("query position"));
+    }
+    Ok(())
+}
+
+/// Whether a batch of `n` is answered in grid order (its indices must fit a key's low half).
+fn sorted_batch(n: usize) -> bool {
+    (QUERY_SORT_MIN..=u32::MAX as usize).contains(&n)
+}
+
+/// Writes the answers `sorted`, in the order of `keys`, to their queries' indices in `out`.
+fn scatter(keys: &[u64], sorted: Vec<HeightSample>, out: &mut [HeightSample]) {
+    for (s, key) in sorted.into_iter().zip(keys) {
+        out[*key as u32 as usize] = s;
+    }
+}
+
+/// A layer's modulation interpolated bilinearly over `cell`; zero outside its rectangle.
+#[inline(always)]
+fn modulation_at(layer: &FrameLayer<'_>, cell: &Cell) -> [f64; 2] {
+    let r = layer.rect();
+    let m = layer.modulation().values();
+    let at = |q: usize| [f64::from(m[q][0]), f64::from(m[q][1])];
+    // The common case: the whole cell inside the rectangle, corners at fixed offsets. A cell
+    // left of or above the rectangle wraps to a huge offset and fails the test too.
+    let (di, dj) = (cell.i.wrapping_sub(r.i0), cell.j.wrapping_sub(r.j0));
+    if di.wrapping_add(1) < r.nx && dj.wrapping_add(1) < r.nz {
+        let q = dj * r.nx + di;
+        return lerp2(cell, at(q), at(q + 1), at(q + r.nx), at(q + r.nx + 1));
+    }
+    bilinear(cell, |i, j| r.index(i, j).map_or([0.0, 0.0], at))
+}
+
+/// A grid cell: its first point (i, j) and a position's fractions across it.
+#[derive(Clone, Copy)]
+struct Cell {
+    i: usize,
+    j: usize,
+    fx: f64,
+    fz: f64,
+}
+
+fn bilinear(c: &Cell, f: impl Fn(usize, usize) -> [f64; 2]) -> [f64; 2] {
+    lerp2(
+        c,
+        f(c.i, c.j),
+        f(c.i + 1, c.j),
+        f(c.i, c.j + 1),
+        f(c.i + 1, c.j + 1),
+    )
+}
+
+/// Bilinear interpolation across `c` of the values at its corners (i, j), (i+1, j), (i, j+1),
+/// (i+1, j+1).
+#[inline(always)]
+fn lerp2(c: &Cell, a: [f64; 2], b: [f64; 2], d: [f64; 2], e: [f64; 2]) -> [f64; 2] {
+    let mut out = [0.0; 2];
+    for n in 0..2 {
+        let top = a[n] + (b[n] - a[n]) * c.fx;
+        let bottom = d[n] + (e[n] - d[n]) * c.fx;
+        out[n] = top + (bottom - top) * c.fz;
+    }
+    out
+}
