@@ -143,16 +143,18 @@ impl ConeMap {
         params: ConeParams,
         progress: Option<&mut P>,
     ) -> Result<Self, ReliefError> {
-        Self::generate_sector(map, params, None, progress)
+        Self::generate_sector(map, params, None, progress, crate::progress::BANDS)
     }
 
     /// The generator for the cones that serve every direction (`sector = None`) or only the
-    /// rays whose horizontal direction lies in one closed quadrant ([`crate::quad`]).
+    /// rays whose horizontal direction lies in one closed quadrant ([`crate::quad`]); with
+    /// `progress`, the rows in at most `bands` bands.
     pub(crate) fn generate_sector<P: Progress + ?Sized>(
         map: &HeightMap,
         params: ConeParams,
         sector: Option<Quadrant>,
         mut progress: Option<&mut P>,
+        bands: usize,
     ) -> Result<Self, ReliefError> {
         params.validate()?;
         let grid = Grid::new(map);
@@ -166,7 +168,7 @@ impl ConeMap {
         let rows = grid.nc;
         let mut cells = vec![[0.0f64; CHANNELS]; grid.nc * grid.nc];
         let band = match progress {
-            Some(_) => band_rows(rows),
+            Some(_) => band_rows(rows, bands),
             None => rows,
         };
         let mut report = |done: usize| match progress.as_mut() {

@@ -43,9 +43,10 @@ impl Progress for NoProgress {
 /// when its slowest row does (about half a row's time idle per band and thread).
 pub const BANDS: usize = 64;
 
-/// Rows per band for `rows` rows of work: `⌈rows / BANDS⌉`, at least 1.
-pub(crate) fn band_rows(rows: usize) -> usize {
-    rows.div_ceil(BANDS).max(1)
+/// Rows per band for `rows` rows of work split into at most `bands` bands (`≥ 1`):
+/// `⌈rows / bands⌉`, at least 1.
+pub(crate) fn band_rows(rows: usize, bands: usize) -> usize {
+    rows.div_ceil(bands.max(1)).max(1)
 }
 
 #[cfg(test)]
@@ -81,7 +82,7 @@ mod tests {
             assert!(calls.iter().all(|&(_, t)| t == total));
             assert!(calls.windows(2).all(|w| w[0].0 < w[1].0), "{calls:?}");
             // 40 rows: one row a band, 41 calls; 200 rows: ⌈200/64⌉ = 4 rows a band, 50 bands.
-            let bands = total.div_ceil(band_rows(total));
+            let bands = total.div_ceil(band_rows(total, BANDS));
             assert_eq!(calls.len(), bands + 1);
             assert!(calls.len() <= BANDS + 1);
         }
@@ -145,8 +146,8 @@ mod tests {
         );
         assert_eq!(r, Err(ReliefError::NotFinite("max_ratio")));
         assert!(!called);
-        assert_eq!(band_rows(0), 1);
-        assert_eq!(band_rows(64), 1);
-        assert_eq!(band_rows(65), 2);
+        assert_eq!(band_rows(0, BANDS), 1);
+        assert_eq!(band_rows(64, BANDS), 1);
+        assert_eq!(band_rows(65, BANDS), 2);
     }
 }

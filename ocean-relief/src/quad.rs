@@ -52,11 +52,12 @@ use alloc::vec::Vec;
 
 use crate::cone::{ConeMap, ConeParams};
 use crate::map::HeightMap;
-use crate::progress::NoProgress;
+use crate::progress::{BANDS, NoProgress, Progress};
 use crate::relief::ReliefTexture;
 use crate::storage::Encoding;
 use crate::trace::{Hit, Method, Ray};
 use crate::{ReliefError, check_range};
+use glam::Vec3;
 
 /// A closed quadrant of horizontal directions (module documentation): `x_neg` for `uₓ ≤ 0`
 /// (else `uₓ ≥ 0`), `y_neg` for `u_y ≤ 0` (else `u_y ≥ 0`). Layer index
@@ -131,7 +132,42 @@ impl QuadConeMap {
     ///
     /// As [`ConeMap::generate`].
     pub fn generate(map: &HeightMap, params: ConeParams) -> Result<Self, ReliefError> {
-        Self::each(|q| ConeMap::generate_sector(map, params, Some(q), None::<&mut NoProgress>))
+        Self::each(|q| {
+            ConeMap::generate_sector(map, params, Some(q), None::<&mut NoProgress>, BANDS)
+        })
+    }
+
+    /// [`QuadConeMap::generate`] with progress reports and cancellation ([`crate::progress`]),
+    /// under [`ConeMap::generate_with`]'s contract over the whole job: the unit of work is a
+    /// row of bilinear cells of one layer, so `total` is `4 R` (`R = N` in wrap mode, `N + 1` in
+    /// clamp mode); `progress` is called once with `done = 0`, then after each band (each layer
+    /// in at most [`BANDS`]` / 4` bands, so at most `BANDS + 1` calls in all), the last call
+    /// with `done = total`. The result is bit-identical to [`QuadConeMap::generate`]'s.
+    ///
+    /// # Errors
+    ///
+    /// As [`ConeMap::generate_with`].
+    pub fn generate_with<P: Progress + ?Sized>(
+        map: &HeightMap,
+        params: ConeParams,
+        progress: &mut P,
+    ) -> Result<Self, ReliefError> {
+        let mut layer = 0;
+        Self::each(|q| {
+            // Layer `k`'s reports shifted by `k R` of `4 R`; its opening `done = 0` repeats
+            // the previous layer's last report and is not passed on.
+            let first = layer == 0;
+            let mut shifted = |done: usize, rows: usize| {
+                if done == 0 && !first {
+                    return true;
+                }
+                progress.report(layer * rows + done, 4 * rows)
+            };
+            let cones =
+                ConeMap::generate_sector(map, params, Some(q), Some(&mut shifted), BANDS / 4);
+            layer += 1;
+            cones
+        })
     }
 
     /// The same cones by visiting every pair of cells: the oracle of
@@ -263,6 +299,30 @@ impl QuadReliefTexture {
         &self.layers[q.index()]
     }
 
+    /// The layers in [`Quadrant::index`] order: layer `k` of the GPU's texture array.
+    pub fn layers(&self) -> &[ReliefTexture; 4] {
+        &self.layers
+    }
+
+    /// Side `N` of every layer, texels.
+    pub fn size(&self) -> usize {
+        self.layers[0].size()
+    }
+
+    /// The edge mode of every layer.
+    pub fn edge(&self) -> crate::Edge {
+        self.layers[0].edge()
+    }
+
+    /// The texture array's texels: layer 0's `N²` texels row-major, then layer 1's, 2's and
+    /// 3's (the upload order of a 4-layer `rgba32float` array).
+    pub fn texels(&self) -> Vec<[f32; 4]> {
+        self.layers
+            .iter()
+            .flat_map(|l| l.texels().iter().copied())
+            .collect()
+    }
+
     /// The quadrant the tracer picks for `ray`: [`Quadrant::of`] its direction scaled to
     /// `z = 1`, in the tracer's `f32` arithmetic.
     ///
@@ -287,5 +347,26 @@ impl QuadReliefTexture {
     pub fn trace(&self, method: &Method, ray: &Ray) -> Result<Hit, ReliefError> {
         let q = Self::quadrant(ray)?;
         method.trace(self.layer(q), ray)
+    }
+
+    /// Self-shadowing through the quadrant layers ([`crate::shadow::in_shadow`], §18.2): the
+    /// light ray towards `point` is traced by [`QuadReliefTexture::trace`], so it reads the
+    /// layer of its own quadrant, not the viewing ray's.
+    ///
+    /// # Errors
+    ///
+    /// As [`crate::shadow::in_shadow`].
+    pub fn in_shadow(
+        &self,
+        method: &Method,
+        point: Vec3,
+        light: Vec3,
+        depth_scale: f32,
+        bias: f32,
+    ) -> Result<bool, ReliefError> {
+        match crate::shadow::light_ray(point, light, depth_scale, bias)? {
+            None => Ok(true),
+            Some(ray) => Ok(self.trace(method, &ray)?.pos.z < point.z - bias),
+        }
     }
 }

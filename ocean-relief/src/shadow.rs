@@ -29,18 +29,32 @@ pub fn in_shadow(
     depth_scale: f32,
     bias: f32,
 ) -> Result<bool, ReliefError> {
+    match light_ray(point, light, depth_scale, bias)? {
+        None => Ok(true),
+        Some(ray) => Ok(method.trace(texture, &ray)?.pos.z < point.z - bias),
+    }
+}
+
+/// The checks of [`in_shadow`] and its light ray: `None` for a light at or below the polygon's
+/// plane (every point in shadow), else the ray that enters the relief at depth 0 and runs
+/// towards `point` (shared by [`crate::QuadReliefTexture::in_shadow`], whose layer is the light
+/// ray's quadrant).
+pub(crate) fn light_ray(
+    point: Vec3,
+    light: Vec3,
+    depth_scale: f32,
+    bias: f32,
+) -> Result<Option<Ray>, ReliefError> {
     if !point.is_finite() || !light.is_finite() || !depth_scale.is_finite() {
         return Err(ReliefError::RayDirection);
     }
     crate::check_range("bias", f64::from(bias), 0.0, 1.0)?;
     if light.z <= 0.0 {
-        return Ok(true);
+        return Ok(None);
     }
     // The ray towards the point, scaled like a viewing ray: per unit depth it moves
     // depth_scale·(−light.xy)/light.z; it enters the relief where it is at depth 0.
     let per_depth = Vec2::new(-light.x, -light.y) * (depth_scale / light.z);
     let start = Vec2::new(point.x, point.y) - per_depth * point.z;
-    let ray = Ray::from_view(start, -light, depth_scale)?;
-    let hit = method.trace(texture, &ray)?;
-    Ok(hit.pos.z < point.z - bias)
+    Ray::from_view(start, -light, depth_scale).map(Some)
 }

@@ -382,3 +382,98 @@ fn mismatched_layers_are_refused() {
         Err(ReliefError::Mismatch(_))
     ));
 }
+
+/// `generate_with` under the isotropic progress contract over the whole job: the first call is
+/// `(0, 4R)` and the last `(4R, 4R)` with `R` the rows of cells (`N` wrap, `N + 1` clamp),
+/// reports never decrease, there are at most `BANDS + 1` calls (each layer in at most
+/// `BANDS / 4` bands), and the cones are `generate`'s bit for bit. Returning `false` at the
+/// first call, or at a report inside the second layer, cancels.
+#[test]
+fn progress_covers_the_four_layers_and_cancels() {
+    use ocean_relief::progress::BANDS;
+    for (n, edge, rows) in [
+        (40, Edge::Wrap, 40),
+        (40, Edge::Clamp, 41),
+        (130, Edge::Wrap, 130),
+    ] {
+        let map = maps(n, edge).swap_remove(1).1;
+        let params = ConeParams::relaxed(1.0);
+        let mut calls: Vec<(usize, usize)> = Vec::new();
+        let mut record = |done: usize, total: usize| {
+            calls.push((done, total));
+            true
+        };
+        let cones = QuadConeMap::generate_with(&map, params, &mut record).unwrap();
+        assert!(
+            cones == QuadConeMap::generate(&map, params).unwrap(),
+            "{n} {edge:?}"
+        );
+        assert_eq!(calls.first(), Some(&(0, 4 * rows)), "{n} {edge:?}");
+        assert_eq!(calls.last(), Some(&(4 * rows, 4 * rows)), "{n} {edge:?}");
+        assert!(calls.windows(2).all(|w| w[0].0 <= w[1].0), "{calls:?}");
+        assert!(calls.iter().all(|&(_, t)| t == 4 * rows));
+        assert!(calls.len() <= BANDS + 1, "{} calls", calls.len());
+        // 130 rows in bands of ceil(130 / 16) = 9: 15 bands a layer, 60 + 1 calls.
+        if n == 130 {
+            assert_eq!(calls.len(), 61);
+        }
+        let mut first = |_: usize, _: usize| false;
+        assert_eq!(
+            QuadConeMap::generate_with(&map, params, &mut first),
+            Err(ReliefError::Cancelled)
+        );
+        let mut in_second = |done: usize, _: usize| done <= rows;
+        assert_eq!(
+            QuadConeMap::generate_with(&map, params, &mut in_second),
+            Err(ReliefError::Cancelled)
+        );
+    }
+}
+
+/// Self-shadowing through quadrant cones traces the light ray through the layer of the light
+/// ray's own direction, `-light.xy` (the ray runs from the light towards the point): so it
+/// equals the isotropic `in_shadow` on that one layer, for every point and light; and a light
+/// at or below the polygon shadows every point, as `in_shadow` says.
+#[test]
+fn shadow_rays_read_their_own_quadrant() {
+    use glam::Vec3;
+    use ocean_relief::shadow::in_shadow;
+    let map = maps(32, Edge::Wrap).swap_remove(2).1;
+    let cones = QuadConeMap::generate(&map, ConeParams::relaxed(1.0)).unwrap();
+    let tex = QuadReliefTexture::new(&map, &cones).unwrap();
+    let method = Method::Relaxed {
+        cone: 15,
+        binary: 6,
+        search: BinarySearch::LastStep,
+    };
+    let (mut shadowed, mut total) = (0, 0);
+    for (k, r) in rays(400, 5.0, 80.0, 0.2, 9).into_iter().enumerate() {
+        let hit = tex.trace(&method, &r).unwrap();
+        // Lights from every azimuth: the view rays' directions turned by 90° k.
+        let (x, y) = (r.dir.x, r.dir.y);
+        let (lx, ly) = [(x, y), (-y, x), (-x, -y), (y, -x)][k % 4];
+        let light = Vec3::new(lx, ly, 0.6);
+        let q = Quadrant::of(-lx, -ly);
+        let quad = tex.in_shadow(&method, hit.pos, light, 0.2, 0.01).unwrap();
+        let layer = in_shadow(tex.layer(q), &method, hit.pos, light, 0.2, 0.01).unwrap();
+        assert_eq!(quad, layer, "{r:?} {light}");
+        shadowed += usize::from(quad);
+        total += 1;
+    }
+    // The boxes cast shadows on some points and leave others lit.
+    assert!(shadowed > 0 && shadowed < total, "{shadowed} of {total}");
+    let below = Vec3::new(0.3, 0.1, -0.2);
+    assert!(
+        tex.in_shadow(&method, Vec3::new(0.5, 0.5, 0.9), below, 0.2, 0.01)
+            .unwrap()
+    );
+    assert_eq!(
+        tex.in_shadow(&method, Vec3::ZERO, Vec3::Z, 0.2, 2.0),
+        Err(ReliefError::OutOfRange {
+            name: "bias",
+            value: 2.0,
+            min: 0.0,
+            max: 1.0
+        })
+    );
+}
