@@ -72,8 +72,8 @@ pub use ocean::{
 };
 pub use readback::{GpuDuration, GpuTimer, TextureData};
 pub use relief::{
-    ConeGenTimes, ConeMapGenerator, ReliefImage, ReliefOptions, ReliefProbe, ReliefRay,
-    ReliefRenderer, ReliefScene, TangentFrame, scene_uniforms,
+    ConeGenTimes, ConeMapGenerator, ReliefImage, ReliefLayout, ReliefOptions, ReliefProbe,
+    ReliefRay, ReliefRenderer, ReliefScene, TangentFrame, scene_uniforms,
 };
 pub use sao::{GpuZLevel, SaoPass, SaoStage, SaoStages, SaoTimer, SaoTimes};
 pub use shaders::{Code, Export, ExportFile, Language, ShaderError};

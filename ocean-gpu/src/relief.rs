@@ -27,6 +27,19 @@
 //! its direction (the depth test becomes `Greater`). The fragment stage writes
 //! `@builtin(frag_depth)`: the window depth of the hit point, not of the polygon.
 //!
+//! ## Quadrant cones
+//!
+//! [`ReliefRenderer::set_quad_texture`] takes a [`QuadReliefTexture`] (§18.1's four cones per
+//! texel, relaxed or conservative, `ocean_relief::quad`) as a 4-layer texture array. The tracer
+//! is the same WGSL (`relief_common.wgsl`); only the texture declaration differs
+//! (`relief_texture.wgsl` or `relief_texture_quad.wgsl`, [`ReliefLayout`]): `relief_trace` picks
+//! the layer once per ray, `select(0, 1, dx < 0) + select(0, 2, dy < 0)` on the direction
+//! scaled to `z = 1` ([`ocean_relief::Quadrant::of`]), and every fetch of that ray, shadow
+//! rays included (each with its own quadrant), reads that layer. Two declarations rather than
+//! one array type for both because wgpu's GL backend creates a one-layer texture as
+//! `TEXTURE_2D`, which no `texture_2d_array` binding accepts, and because an engine drawing
+//! the isotropic GLSL export should not have to bind a second sampler type.
+//!
 //! ## Parity
 //!
 //! The tracer rounds every operation as the CPU does (`relief_common.wgsl`: products kept out
@@ -48,7 +61,7 @@ use glam::{DMat4, DVec2, DVec3, DVec4, Vec2, Vec3};
 use ocean_core::{Camera, DepthDirection, DepthRange, Projection};
 use ocean_relief::gpu_params::{FLAG_SHADOWS, FLAG_SRGB_ENCODE, ReliefUniforms};
 use ocean_relief::trace::BinarySearch;
-use ocean_relief::{Edge, Hit, Method, ReliefTexture};
+use ocean_relief::{Edge, Hit, Method, QuadReliefTexture, ReliefTexture};
 
 use crate::readback::{read_buffer_as, read_texture};
 use crate::{GpuContext, GpuError, shaders};
@@ -430,8 +443,66 @@ pub struct ReliefImage {
 
 #[derive(Debug)]
 struct Pipelines {
-    key: (DepthDirection, Output),
+    key: (DepthDirection, Output, ReliefLayout),
     pipeline: wgpu::RenderPipeline,
+}
+
+/// The relief texture a [`ReliefRenderer`] reads, and so which shader it draws with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ReliefLayout {
+    /// One `rgba32float` texture of isotropic cones ([`ReliefTexture`];
+    /// shaders `relief` and `relief_probe`).
+    Isotropic,
+    /// A 4-layer `rgba32float` texture array of quadrant cones ([`QuadReliefTexture`], §18.1;
+    /// shaders `relief_quad` and `relief_quad_probe`): each ray reads the layer of its
+    /// direction's quadrant.
+    Quad,
+}
+
+impl ReliefLayout {
+    /// Both layouts, in the order of [`ReliefLayout::index`].
+    const ALL: [ReliefLayout; 2] = [ReliefLayout::Isotropic, ReliefLayout::Quad];
+
+    fn index(self) -> usize {
+        match self {
+            ReliefLayout::Isotropic => 0,
+            ReliefLayout::Quad => 1,
+        }
+    }
+
+    /// Array layers of the texture.
+    pub fn layers(self) -> u32 {
+        match self {
+            ReliefLayout::Isotropic => 1,
+            ReliefLayout::Quad => 4,
+        }
+    }
+
+    /// The draw shader's name in [`crate::shaders`].
+    pub fn draw_shader(self) -> &'static str {
+        match self {
+            ReliefLayout::Isotropic => "relief",
+            ReliefLayout::Quad => "relief_quad",
+        }
+    }
+
+    /// The probe shader's name in [`crate::shaders`].
+    pub fn probe_shader(self) -> &'static str {
+        match self {
+            ReliefLayout::Isotropic => "relief_probe",
+            ReliefLayout::Quad => "relief_quad_probe",
+        }
+    }
+
+    /// The view dimension of binding 1: `texture_2d` or `texture_2d_array`. (Not one array
+    /// type for both: wgpu's GL backend makes a one-layer texture a `TEXTURE_2D`, which a
+    /// `D2Array` view cannot bind.)
+    fn view_dimension(self) -> wgpu::TextureViewDimension {
+        match self {
+            ReliefLayout::Isotropic => wgpu::TextureViewDimension::D2,
+            ReliefLayout::Quad => wgpu::TextureViewDimension::D2Array,
+        }
+    }
 }
 
 /// The targets of one draw.
@@ -465,19 +536,26 @@ struct ProbePipelines {
 struct TextureState {
     size: usize,
     edge: Edge,
+    layout: ReliefLayout,
     view: wgpu::TextureView,
 }
 
-/// Draws relief-mapped quads (module documentation); the GPU twin of `ocean_relief`'s tracers,
-/// self-shadowing and occlusion depth.
+/// The draw shader of one [`ReliefLayout`] and its bind group layout.
 #[derive(Debug)]
-pub struct ReliefRenderer {
-    options: ReliefOptions,
+struct Variant {
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
     pipeline_layout: wgpu::PipelineLayout,
+}
+
+/// Draws relief-mapped quads (module documentation); the GPU twin of `ocean_relief`'s tracers,
+/// self-shadowing and occlusion depth, through isotropic or quadrant cones ([`ReliefLayout`]).
+#[derive(Debug)]
+pub struct ReliefRenderer {
+    options: ReliefOptions,
+    variants: [Variant; 2],
     pipelines: Mutex<Vec<Pipelines>>,
-    probes: Mutex<Option<ProbePipelines>>,
+    probes: Mutex<[Option<ProbePipelines>; 2]>,
     texture: Option<TextureState>,
 }
 
@@ -494,13 +572,16 @@ fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGrou
     }
 }
 
-fn relief_texture_entry(visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+fn relief_texture_entry(
+    visibility: wgpu::ShaderStages,
+    layout: ReliefLayout,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding: 1,
         visibility,
         ty: wgpu::BindingType::Texture {
             sample_type: wgpu::TextureSampleType::Float { filterable: false },
-            view_dimension: wgpu::TextureViewDimension::D2,
+            view_dimension: layout.view_dimension(),
             multisampled: false,
         },
         count: None,
@@ -530,8 +611,9 @@ fn shader_source(name: &str) -> Result<&'static shaders::ShaderEntry, GpuError> 
 }
 
 impl ReliefRenderer {
-    /// Compiles the draw pass on `ctx`'s device. Nothing is drawn until a texture is set
-    /// ([`set_texture`](Self::set_texture)).
+    /// Compiles the draw pass on `ctx`'s device, for both [`ReliefLayout`]s. Nothing is drawn
+    /// until a texture is set ([`set_texture`](Self::set_texture),
+    /// [`set_quad_texture`](Self::set_quad_texture)).
     ///
     /// # Errors
     ///
@@ -553,35 +635,42 @@ impl ReliefRenderer {
                 format!("{:?} has no depth aspect", options.depth_format),
             ));
         }
-        let entry = shader_source("relief")?;
         let device = ctx.device();
-        crate::scoped(device, || {
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("ocean relief shader"),
-                source: wgpu::ShaderSource::Wgsl(entry.source.into()),
-            });
-            let stages = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
-            let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("ocean relief bind group layout"),
-                entries: &[
-                    uniform_entry(0, stages),
-                    relief_texture_entry(wgpu::ShaderStages::FRAGMENT),
-                ],
-            });
-            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("ocean relief pipeline layout"),
-                bind_group_layouts: &[Some(&layout)],
-                immediate_size: 0,
-            });
-            Ok(Self {
-                options,
-                module,
-                layout,
-                pipeline_layout,
-                pipelines: Mutex::new(Vec::new()),
-                probes: Mutex::new(None),
-                texture: None,
+        let variant = |kind: ReliefLayout| -> Result<Variant, GpuError> {
+            let entry = shader_source(kind.draw_shader())?;
+            crate::scoped(device, || {
+                let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(entry.name),
+                    source: wgpu::ShaderSource::Wgsl(entry.source.into()),
+                });
+                let stages = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
+                let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                    label: Some("ocean relief bind group layout"),
+                    entries: &[
+                        uniform_entry(0, stages),
+                        relief_texture_entry(wgpu::ShaderStages::FRAGMENT, kind),
+                    ],
+                });
+                let pipeline_layout =
+                    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                        label: Some("ocean relief pipeline layout"),
+                        bind_group_layouts: &[Some(&layout)],
+                        immediate_size: 0,
+                    });
+                Ok(Variant {
+                    module,
+                    layout,
+                    pipeline_layout,
+                })
             })
+        };
+        let [iso, quad] = ReliefLayout::ALL;
+        Ok(Self {
+            options,
+            variants: [variant(iso)?, variant(quad)?],
+            pipelines: Mutex::new(Vec::new()),
+            probes: Mutex::new([None, None]),
+            texture: None,
         })
     }
 
@@ -602,7 +691,52 @@ impl ReliefRenderer {
         ctx: &GpuContext,
         texture: &ReliefTexture,
     ) -> Result<(), GpuError> {
-        let n = texture.size();
+        self.upload(
+            ctx,
+            texture.size(),
+            texture.edge(),
+            ReliefLayout::Isotropic,
+            texture.texels(),
+        )
+    }
+
+    /// Uploads a quad-directional relief texture ([`QuadReliefTexture`], §18.1): a 4-layer
+    /// `rgba32float` array, layer `k` the `[depth, c_k, D_k, E_k]` texels of quadrant `k`
+    /// ([`ocean_relief::Quadrant::index`]). Later draws and probes use the `relief_quad`
+    /// shaders: each viewing and light ray reads the layer of its direction's quadrant, as
+    /// [`QuadReliefTexture::trace`] and [`QuadReliefTexture::in_shadow`] do. Replaces the
+    /// texture of [`set_texture`](Self::set_texture) (and the other way round).
+    ///
+    /// # Errors
+    ///
+    /// As [`set_texture`](Self::set_texture).
+    pub fn set_quad_texture(
+        &mut self,
+        ctx: &GpuContext,
+        texture: &QuadReliefTexture,
+    ) -> Result<(), GpuError> {
+        self.upload(
+            ctx,
+            texture.size(),
+            texture.edge(),
+            ReliefLayout::Quad,
+            &texture.texels(),
+        )
+    }
+
+    /// The layout of the texture set last, if any.
+    pub fn layout(&self) -> Option<ReliefLayout> {
+        self.texture.as_ref().map(|t| t.layout)
+    }
+
+    fn upload(
+        &mut self,
+        ctx: &GpuContext,
+        n: usize,
+        edge: Edge,
+        layout: ReliefLayout,
+        texels: &[[f32; 4]],
+    ) -> Result<(), GpuError> {
         let max = ctx.device().limits().max_texture_dimension_2d;
         if n as u64 > u64::from(max) {
             return Err(GpuError::TooLarge {
@@ -616,7 +750,7 @@ impl ReliefRenderer {
             let extent = wgpu::Extent3d {
                 width: n as u32,
                 height: n as u32,
-                depth_or_array_layers: 1,
+                depth_or_array_layers: layout.layers(),
             };
             let t = device.create_texture(&wgpu::TextureDescriptor {
                 label: Some("ocean relief texture"),
@@ -635,7 +769,7 @@ impl ReliefRenderer {
                     origin: wgpu::Origin3d::ZERO,
                     aspect: wgpu::TextureAspect::All,
                 },
-                bytemuck::cast_slice(texture.texels()),
+                bytemuck::cast_slice(texels),
                 wgpu::TexelCopyBufferLayout {
                     offset: 0,
                     bytes_per_row: Some(n as u32 * 16),
@@ -643,11 +777,15 @@ impl ReliefRenderer {
                 },
                 extent,
             );
-            Ok(t.create_view(&wgpu::TextureViewDescriptor::default()))
+            Ok(t.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(layout.view_dimension()),
+                ..Default::default()
+            }))
         })?;
         self.texture = Some(TextureState {
             size: n,
-            edge: texture.edge(),
+            edge,
+            layout,
             view,
         });
         Ok(())
@@ -685,9 +823,10 @@ impl ReliefRenderer {
     fn pipeline(
         &self,
         device: &wgpu::Device,
-        key: (DepthDirection, Output),
+        key: (DepthDirection, Output, ReliefLayout),
     ) -> Result<wgpu::RenderPipeline, GpuError> {
-        let (direction, output) = key;
+        let (direction, output, layout) = key;
+        let variant = &self.variants[layout.index()];
         let color_targets = [Some(self.options.color_format.into())];
         let layer_targets = crate::light_targets::radiance_targets();
         let (entry_point, targets): (_, &[Option<wgpu::ColorTargetState>]) = match output {
@@ -702,9 +841,9 @@ impl ReliefRenderer {
             Ok(
                 device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                     label: Some("ocean relief pipeline"),
-                    layout: Some(&self.pipeline_layout),
+                    layout: Some(&variant.pipeline_layout),
                     vertex: wgpu::VertexState {
-                        module: &self.module,
+                        module: &variant.module,
                         entry_point: Some("relief_vs"),
                         compilation_options: wgpu::PipelineCompilationOptions::default(),
                         buffers: &[],
@@ -727,7 +866,7 @@ impl ReliefRenderer {
                     }),
                     multisample: wgpu::MultisampleState::default(),
                     fragment: Some(wgpu::FragmentState {
-                        module: &self.module,
+                        module: &variant.module,
                         entry_point: Some(entry_point),
                         compilation_options: wgpu::PipelineCompilationOptions::default(),
                         targets,
@@ -841,7 +980,7 @@ impl ReliefRenderer {
             return Ok(());
         }
         let device = ctx.device();
-        let pipeline = self.pipeline(device, (camera.depth().direction(), output))?;
+        let pipeline = self.pipeline(device, (camera.depth().direction(), output, tex.layout))?;
         // One buffer for every draw's block, each at an offset the device can bind.
         let align = u64::from(device.limits().min_uniform_buffer_offset_alignment);
         let block = std::mem::size_of::<ReliefUniforms>() as u64;
@@ -863,7 +1002,7 @@ impl ReliefRenderer {
                 .map(|k| {
                     device.create_bind_group(&wgpu::BindGroupDescriptor {
                         label: Some("ocean relief bind group"),
-                        layout: &self.layout,
+                        layout: &self.variants[tex.layout.index()].layout,
                         entries: &[
                             wgpu::BindGroupEntry {
                                 binding: 0,
@@ -1032,10 +1171,12 @@ impl ReliefRenderer {
     fn probe_pipelines<'a>(
         &self,
         device: &wgpu::Device,
-        probes: &'a mut Option<ProbePipelines>,
+        probes: &'a mut [Option<ProbePipelines>; 2],
+        layout: ReliefLayout,
     ) -> Result<&'a ProbePipelines, GpuError> {
+        let probes = &mut probes[layout.index()];
         if probes.is_none() {
-            let entry = shader_source("relief_probe")?;
+            let entry = shader_source(layout.probe_shader())?;
             *probes = Some(crate::scoped(device, || {
                 let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some("ocean relief probe shader"),
@@ -1047,7 +1188,7 @@ impl ReliefRenderer {
                         label: Some("ocean relief probe layout"),
                         entries: &[
                             uniform_entry(0, compute),
-                            relief_texture_entry(compute),
+                            relief_texture_entry(compute, layout),
                             storage_entry(2, true),
                             storage_entry(3, false),
                         ],
@@ -1110,7 +1251,8 @@ impl ReliefRenderer {
     ) -> Result<Vec<f32>, GpuError> {
         let device = ctx.device();
         let mut probes = lock(&self.probes);
-        let p = self.probe_pipelines(device, &mut probes)?;
+        // copy_depth reads no relief texture: either module's serves.
+        let p = self.probe_pipelines(device, &mut probes, ReliefLayout::Isotropic)?;
         let texels = u64::from(width) * u64::from(height);
         let limits = device.limits();
         let limit = limits
@@ -1176,7 +1318,9 @@ impl ReliefRenderer {
     /// Runs the draw pass's tracer ([`Method::trace`] with `method`) and shadow test
     /// ([`ocean_relief::shadow::in_shadow`] with the same method) on the texture set by
     /// [`set_texture`](Self::set_texture), for each ray, and reads the results back: the GPU
-    /// side of the tracers' parity tests.
+    /// side of the tracers' parity tests. After
+    /// [`set_quad_texture`](Self::set_quad_texture) its twins are
+    /// [`QuadReliefTexture::trace`] and [`QuadReliefTexture::in_shadow`].
     ///
     /// # Errors
     ///
@@ -1225,7 +1369,7 @@ impl ReliefRenderer {
         u.steps[3] = rays.len() as u32;
         let device = ctx.device();
         let mut probes = lock(&self.probes);
-        let p = self.probe_pipelines(device, &mut probes)?;
+        let p = self.probe_pipelines(device, &mut probes, tex.layout)?;
         let out_size = rays.len() as u64 * 32;
         let limits = device.limits();
         let limit = limits
@@ -1340,9 +1484,19 @@ mod tests {
                 ("shading", o(offset_of!(ReliefUniforms, shading))),
             ]
         );
-        // The probe declares the same block.
-        let p = shaders::get("relief_probe").unwrap().bindings().unwrap();
-        assert_eq!(p[0].members, b[0].members);
+        // The probe and the quadrant variants declare the same block; the quadrant variants'
+        // texture is the 4-layer array (`relief_texture_quad.wgsl`).
+        for name in ["relief_probe", "relief_quad", "relief_quad_probe"] {
+            let p = shaders::get(name).unwrap().bindings().unwrap();
+            assert_eq!(p[0].members, b[0].members, "{name}");
+            let expected = if name.starts_with("relief_quad") {
+                "texture_2d_array<f32>"
+            } else {
+                "texture_2d<f32>"
+            };
+            assert_eq!(p[1].name, "relief_map", "{name}");
+            assert_eq!(p[1].ty, expected, "{name}");
+        }
 
         let g = shaders::get("relief_cone").unwrap().bindings().unwrap();
         assert_eq!((g[0].name.as_str(), g[0].size as usize), ("gen", 112));

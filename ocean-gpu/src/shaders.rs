@@ -171,9 +171,20 @@ pub const SAO_BLUR_WGSL: &str = concat!(
 
 /// Source of the relief-mapping draw pass (Policarpo & Oliveira, GPU Gems 3 ch. 18): the quad's
 /// vertex stage and the fragment stage that traces, shades, self-shadows and writes the hit's
-/// depth; after the shared tracer `relief_common.wgsl`.
+/// depth; after the shared tracer `relief_common.wgsl` and the isotropic texture
+/// `relief_texture.wgsl`.
 pub const RELIEF_WGSL: &str = concat!(
     include_str!("shaders/relief_common.wgsl"),
+    include_str!("shaders/relief_texture.wgsl"),
+    include_str!("shaders/relief_draw.wgsl")
+);
+
+/// [`RELIEF_WGSL`] reading a quad-directional cone map (§18.1, `ocean_relief::quad`): the same
+/// tracer and draw pass, the texture a 4-layer array (`relief_texture_quad.wgsl`) whose layer
+/// each ray picks once from its direction's quadrant.
+pub const RELIEF_QUAD_WGSL: &str = concat!(
+    include_str!("shaders/relief_common.wgsl"),
+    include_str!("shaders/relief_texture_quad.wgsl"),
     include_str!("shaders/relief_draw.wgsl")
 );
 
@@ -181,6 +192,14 @@ pub const RELIEF_WGSL: &str = concat!(
 /// rays (parity tests), and a depth-texture copy for headless readback.
 pub const RELIEF_PROBE_WGSL: &str = concat!(
     include_str!("shaders/relief_common.wgsl"),
+    include_str!("shaders/relief_texture.wgsl"),
+    include_str!("shaders/relief_probe.wgsl")
+);
+
+/// [`RELIEF_PROBE_WGSL`] on a quad-directional cone map (`relief_texture_quad.wgsl`).
+pub const RELIEF_QUAD_PROBE_WGSL: &str = concat!(
+    include_str!("shaders/relief_common.wgsl"),
+    include_str!("shaders/relief_texture_quad.wgsl"),
     include_str!("shaders/relief_probe.wgsl")
 );
 
@@ -188,7 +207,7 @@ pub const RELIEF_PROBE_WGSL: &str = concat!(
 /// over a min-depth pyramid of `ocean_relief::ConeMap::generate`, in double-`f32` arithmetic.
 pub const RELIEF_CONE_WGSL: &str = include_str!("shaders/relief_cone.wgsl");
 
-static SHADERS: [ShaderEntry; 13] = [
+static SHADERS: [ShaderEntry; 15] = [
     ShaderEntry {
         name: "trochoid",
         files: &["surface.wgsl", "trochoid.wgsl"],
@@ -399,7 +418,11 @@ static SHADERS: [ShaderEntry; 13] = [
     },
     ShaderEntry {
         name: "relief",
-        files: &["relief_common.wgsl", "relief_draw.wgsl"],
+        files: &[
+            "relief_common.wgsl",
+            "relief_texture.wgsl",
+            "relief_draw.wgsl",
+        ],
         source: RELIEF_WGSL,
         kind: ShaderKind::Draw,
         entry_points: &[
@@ -424,7 +447,11 @@ static SHADERS: [ShaderEntry; 13] = [
     },
     ShaderEntry {
         name: "relief_probe",
-        files: &["relief_common.wgsl", "relief_probe.wgsl"],
+        files: &[
+            "relief_common.wgsl",
+            "relief_texture.wgsl",
+            "relief_probe.wgsl",
+        ],
         source: RELIEF_PROBE_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[
@@ -439,6 +466,56 @@ static SHADERS: [ShaderEntry; 13] = [
         ],
         description: "probes of the relief tracer: the draw pass's tracer and shadow test on \
                       lists of rays (parity tests), and a depth-texture copy",
+    },
+    ShaderEntry {
+        name: "relief_quad",
+        files: &[
+            "relief_common.wgsl",
+            "relief_texture_quad.wgsl",
+            "relief_draw.wgsl",
+        ],
+        source: RELIEF_QUAD_WGSL,
+        kind: ShaderKind::Draw,
+        entry_points: &[
+            EntryPoint {
+                name: "relief_vs",
+                stage: Stage::Vertex,
+            },
+            EntryPoint {
+                name: "relief_fs",
+                stage: Stage::Fragment,
+            },
+            EntryPoint {
+                name: "relief_layers_fs",
+                stage: Stage::Fragment,
+            },
+        ],
+        description: "relief mapping through a quad-directional cone map: the `relief` draw \
+                      pass reading a 4-layer texture array, one layer per quadrant of the ray's \
+                      direction, picked once per ray (GPU Gems 3 section 18.1)",
+    },
+    ShaderEntry {
+        name: "relief_quad_probe",
+        files: &[
+            "relief_common.wgsl",
+            "relief_texture_quad.wgsl",
+            "relief_probe.wgsl",
+        ],
+        source: RELIEF_QUAD_PROBE_WGSL,
+        kind: ShaderKind::Compute,
+        entry_points: &[
+            EntryPoint {
+                name: "probe_trace",
+                stage: Stage::Compute,
+            },
+            EntryPoint {
+                name: "copy_depth",
+                stage: Stage::Compute,
+            },
+        ],
+        description: "probes of the quad-directional relief tracer: the `relief_quad` draw \
+                      pass's tracer and shadow test on lists of rays (parity tests), and a \
+                      depth-texture copy",
     },
     ShaderEntry {
         name: "relief_cone",

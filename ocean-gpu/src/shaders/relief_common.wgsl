@@ -9,7 +9,11 @@
 // see), and textureLoad() needs no implicit level of detail, so the marching loops may branch.
 //
 // Texture: rgba32float, N x N, texel (i, j) = [depth, cone ratio, clearance, near cap]
-// (ocean_relief::ReliefTexture).
+// (ocean_relief::ReliefTexture), declared by relief_texture.wgsl; or a
+// 4-layer array of such texels, one layer per quadrant of the ray's direction
+// (relief_texture_quad.wgsl, ocean_relief::QuadReliefTexture, section 18.1). relief_trace()
+// picks the layer once per ray with relief_layer() before its loop; every fetch of the ray then
+// reads that layer through relief_texel(), so the loops are the isotropic ones.
 //
 // Bit parity. The CPU rounds every + - * / to nearest, once. Shader compilers may fuse a
 // product into a following addition (an fma rounds once where the CPU rounds twice) and may
@@ -43,7 +47,6 @@ struct Relief {
 }
 
 @group(0) @binding(0) var<uniform> relief: Relief;
-@group(0) @binding(1) var relief_map: texture_2d<f32>;
 
 const METHOD_LINEAR: u32 = 0u;
 const METHOD_CONE_STEP: u32 = 1u;
@@ -155,9 +158,9 @@ fn relief_mix(a: vec4<f32>, b: vec4<f32>, t: f32) -> vec4<f32> {
     return relief_opq4(a * (1.0 - t)) + relief_opq4(b * t);
 }
 
-// The bilinear fetch of [depth, cone, clearance, near cap] at texture coordinates (u, v):
-// ocean_relief::sample::Taps::new + blend4.
-fn relief_fetch(u: f32, v: f32) -> vec4<f32> {
+// The bilinear fetch of [depth, cone, clearance, near cap] of `layer` at texture coordinates
+// (u, v): ocean_relief::sample::Taps::new + blend4.
+fn relief_fetch(layer: i32, u: f32, v: f32) -> vec4<f32> {
     let n = i32(relief.trace.x);
     let nf = f32(n);
     let x = relief_mul(u, nf) - 0.5;
@@ -174,10 +177,10 @@ fn relief_fetch(u: f32, v: f32) -> vec4<f32> {
     let i1 = relief_resolve(i + 1, n);
     let j0 = relief_resolve(j, n);
     let j1 = relief_resolve(j + 1, n);
-    let a = textureLoad(relief_map, vec2<i32>(i0, j0), 0);
-    let b = textureLoad(relief_map, vec2<i32>(i1, j0), 0);
-    let c = textureLoad(relief_map, vec2<i32>(i0, j1), 0);
-    let d = textureLoad(relief_map, vec2<i32>(i1, j1), 0);
+    let a = relief_texel(layer, i0, j0);
+    let b = relief_texel(layer, i1, j0);
+    let c = relief_texel(layer, i0, j1);
+    let d = relief_texel(layer, i1, j1);
     return relief_mix(relief_mix(a, b, fx), relief_mix(c, d, fx), fy);
 }
 
@@ -202,12 +205,12 @@ fn relief_midpoint(lo: vec3<f32>, hi: vec3<f32>) -> vec3<f32> {
 }
 
 // Bisects [lo, hi] `steps` times; the midpoint of the final bracket (trace::bisect).
-fn relief_bisect(lo_in: vec3<f32>, hi_in: vec3<f32>, steps: u32) -> vec3<f32> {
+fn relief_bisect(layer: i32, lo_in: vec3<f32>, hi_in: vec3<f32>, steps: u32) -> vec3<f32> {
     var lo = lo_in;
     var hi = hi_in;
     for (var k = 0u; k < steps; k++) {
         let mid = relief_midpoint(lo, hi);
-        let depth = relief_fetch(mid.x, mid.y).x;
+        let depth = relief_fetch(layer, mid.x, mid.y).x;
         let outside = mid.z < depth;
         lo = select(lo, mid, outside);
         hi = select(mid, hi, outside);
@@ -216,13 +219,13 @@ fn relief_bisect(lo_in: vec3<f32>, hi_in: vec3<f32>, steps: u32) -> vec3<f32> {
 }
 
 // Policarpo et al. 2005: linear steps, then bisections of the step that went inside.
-fn relief_linear(s: vec2<f32>, dx: f32, dy: f32, linear: u32, binary: u32) -> Hit {
+fn relief_linear(layer: i32, s: vec2<f32>, dx: f32, dy: f32, linear: u32, binary: u32) -> Hit {
     let size = relief_div(1.0, f32(linear));
     var depth = 0.0;
     var fetches = 0u;
     for (var i = 0u; i < linear; i++) {
         depth = relief_mul(f32(i + 1u), size);
-        let d = relief_fetch(s.x + relief_mul(dx, depth), s.y + relief_mul(dy, depth)).x;
+        let d = relief_fetch(layer, s.x + relief_mul(dx, depth), s.y + relief_mul(dy, depth)).x;
         fetches += 1u;
         if depth >= d {
             break;
@@ -231,12 +234,12 @@ fn relief_linear(s: vec2<f32>, dx: f32, dy: f32, linear: u32, binary: u32) -> Hi
     let z0 = depth - size;
     let lo = vec3<f32>(s.x + relief_mul(dx, z0), s.y + relief_mul(dy, z0), z0);
     let hi = vec3<f32>(s.x + relief_mul(dx, depth), s.y + relief_mul(dy, depth), depth);
-    return Hit(relief_bisect(lo, hi, binary), fetches + binary);
+    return Hit(relief_bisect(layer, lo, hi, binary), fetches + binary);
 }
 
 // One cone step from p: (new position, height above the surface before the step).
-fn relief_advance(p: vec3<f32>, dx: f32, dy: f32, ratio: f32) -> vec4<f32> {
-    let texel = relief_fetch(p.x, p.y);
+fn relief_advance(layer: i32, p: vec3<f32>, dx: f32, dy: f32, ratio: f32) -> vec4<f32> {
+    let texel = relief_fetch(layer, p.x, p.y);
     // saturate(): 0 once the ray is inside, so it stays there (section 18.4.2).
     let height = clamp(texel.x - p.z, 0.0, 1.0);
     let d = relief_step(texel, height, ratio);
@@ -244,16 +247,16 @@ fn relief_advance(p: vec3<f32>, dx: f32, dy: f32, ratio: f32) -> vec4<f32> {
 }
 
 // Dummer 2006: conservative cone steps, no refinement.
-fn relief_cone_stepping(s: vec2<f32>, dx: f32, dy: f32, ratio: f32, steps: u32) -> Hit {
+fn relief_cone_stepping(layer: i32, s: vec2<f32>, dx: f32, dy: f32, ratio: f32, steps: u32) -> Hit {
     var p = vec3<f32>(s, 0.0);
     for (var k = 0u; k < steps; k++) {
-        p = relief_advance(p, dx, dy, ratio).xyz;
+        p = relief_advance(layer, p, dx, dy, ratio).xyz;
     }
     return Hit(p, steps);
 }
 
 // Binary search over a shared budget of fetches (BinarySearch::Shared).
-fn relief_shared(s: vec2<f32>, dx: f32, dy: f32, ratio: f32, total: u32) -> Hit {
+fn relief_shared(layer: i32, s: vec2<f32>, dx: f32, dy: f32, ratio: f32, total: u32) -> Hit {
     var p = vec3<f32>(s, 0.0);
     var lo = p;
     var hi = p;
@@ -261,12 +264,12 @@ fn relief_shared(s: vec2<f32>, dx: f32, dy: f32, ratio: f32, total: u32) -> Hit 
     for (var k = 0u; k < total; k++) {
         if bracketed {
             let mid = relief_midpoint(lo, hi);
-            let depth = relief_fetch(mid.x, mid.y).x;
+            let depth = relief_fetch(layer, mid.x, mid.y).x;
             let outside = mid.z < depth;
             lo = select(lo, mid, outside);
             hi = select(mid, hi, outside);
         } else {
-            let texel = relief_fetch(p.x, p.y);
+            let texel = relief_fetch(layer, p.x, p.y);
             let height = clamp(texel.x - p.z, 0.0, 1.0);
             if height > 0.0 {
                 lo = p;
@@ -288,16 +291,16 @@ fn relief_shared(s: vec2<f32>, dx: f32, dy: f32, ratio: f32, total: u32) -> Hit 
 }
 
 // Listing 18-3: relaxed cone steps, then the binary search of trace::BinarySearch.
-fn relief_relaxed(s: vec2<f32>, dx: f32, dy: f32, ratio: f32, cone: u32, binary: u32,
+fn relief_relaxed(layer: i32, s: vec2<f32>, dx: f32, dy: f32, ratio: f32, cone: u32, binary: u32,
                   search: u32) -> Hit {
     if search == SEARCH_SHARED {
-        return relief_shared(s, dx, dy, ratio, cone + binary);
+        return relief_shared(layer, s, dx, dy, ratio, cone + binary);
     }
     var p = vec3<f32>(s, 0.0);
     // The last position above the surface (J in Fig. 18-10).
     var last_out = p;
     for (var k = 0u; k < cone; k++) {
-        let next = relief_advance(p, dx, dy, ratio);
+        let next = relief_advance(layer, p, dx, dy, ratio);
         last_out = select(last_out, p, next.w > 0.0);
         p = next.xyz;
     }
@@ -306,7 +309,7 @@ fn relief_relaxed(s: vec2<f32>, dx: f32, dy: f32, ratio: f32, cone: u32, binary:
         var range = vec3<f32>(0.5 * dx * p.z, 0.5 * dy * p.z, 0.5 * p.z);
         var b = vec3<f32>(s.x + range.x, s.y + range.y, range.z);
         for (var k = 0u; k < binary; k++) {
-            let depth = relief_fetch(b.x, b.y).x;
+            let depth = relief_fetch(layer, b.x, b.y).x;
             range = range * 0.5;
             let sign = select(-1.0, 1.0, b.z < depth);
             b = vec3<f32>(
@@ -317,25 +320,28 @@ fn relief_relaxed(s: vec2<f32>, dx: f32, dy: f32, ratio: f32, cone: u32, binary:
         }
         return Hit(b, cone + binary);
     }
-    return Hit(relief_bisect(last_out, p, binary), cone + binary);
+    return Hit(relief_bisect(layer, last_out, p, binary), cone + binary);
 }
 
 // Traces the ray entering at `start` with direction `dir` (any positive z; the book's
-// ray_dir /= ray_dir.z is applied here) with the uniform's method (Method::trace).
+// ray_dir /= ray_dir.z is applied here) with the uniform's method (Method::trace; through a
+// quadrant texture QuadReliefTexture::trace: the layer of the scaled direction's quadrant).
 fn relief_trace(start: vec2<f32>, dir: vec3<f32>) -> Hit {
     let dx = relief_div(dir.x, dir.z);
     let dy = relief_div(dir.y, dir.z);
+    // Once per ray, before any loop (Quadrant::of).
+    let layer = relief_layer(dx, dy);
     let ratio = sqrt(relief_mul(dx, dx) + relief_mul(dy, dy));
     let method = relief.trace.z;
     let steps = relief.steps.x;
     let binary = relief.steps.y;
     if method == METHOD_LINEAR {
-        return relief_linear(start, dx, dy, steps, binary);
+        return relief_linear(layer, start, dx, dy, steps, binary);
     }
     if method == METHOD_CONE_STEP {
-        return relief_cone_stepping(start, dx, dy, ratio, steps);
+        return relief_cone_stepping(layer, start, dx, dy, ratio, steps);
     }
-    return relief_relaxed(start, dx, dy, ratio, steps, binary, relief.trace.w);
+    return relief_relaxed(layer, start, dx, dy, ratio, steps, binary, relief.trace.w);
 }
 
 // The ray of a tangent-space view vector (z < 0 looking at the surface) entering at `start`,
@@ -344,7 +350,8 @@ fn relief_view_ray(view: vec3<f32>, depth: f32) -> vec3<f32> {
     return vec3<f32>(relief_div(depth * view.x, -view.z), relief_div(depth * view.y, -view.z), 1.0);
 }
 
-// Self-shadowing (shadow::in_shadow): whether the light from tangent-space direction `light`
+// Self-shadowing (shadow::in_shadow; QuadReliefTexture::in_shadow, the light ray tracing
+// through the layer of its own quadrant): whether the light from tangent-space direction `light`
 // is blocked before it reaches `point` = (u, v, depth). x: 1 in shadow, 0 lit; y: the light
 // ray's hit depth; z: its fetches.
 fn relief_shadow(point: vec3<f32>, light: vec3<f32>, depth_scale: f32, bias: f32) -> vec3<f32> {
@@ -360,12 +367,13 @@ fn relief_shadow(point: vec3<f32>, light: vec3<f32>, depth_scale: f32, bias: f32
     return vec3<f32>(select(0.0, 1.0, hit.pos.z < point.z - bias), hit.pos.z, f32(hit.fetches));
 }
 
-// The depth gradient (per texel) at texel (i, j) by central differences (relief::normals).
+// The depth gradient (per texel) at texel (i, j) by central differences (relief::normals);
+// every layer holds the same depths, layer 0's are read.
 fn relief_gradient(i: i32, j: i32, n: i32) -> vec2<f32> {
-    let l = textureLoad(relief_map, vec2<i32>(relief_resolve(i - 1, n), j), 0).x;
-    let r = textureLoad(relief_map, vec2<i32>(relief_resolve(i + 1, n), j), 0).x;
-    let t = textureLoad(relief_map, vec2<i32>(i, relief_resolve(j - 1, n)), 0).x;
-    let b = textureLoad(relief_map, vec2<i32>(i, relief_resolve(j + 1, n)), 0).x;
+    let l = relief_texel(0, relief_resolve(i - 1, n), j).x;
+    let r = relief_texel(0, relief_resolve(i + 1, n), j).x;
+    let t = relief_texel(0, i, relief_resolve(j - 1, n)).x;
+    let b = relief_texel(0, i, relief_resolve(j + 1, n)).x;
     return vec2<f32>((r - l) * 0.5, (b - t) * 0.5);
 }
 

@@ -1,0 +1,16 @@
+// The relief texture of the isotropic cone map (with relief_common.wgsl): one rgba32float
+// N x N texture, texel (i, j) = [depth, cone ratio, clearance, near cap]
+// (ocean_relief::ReliefTexture). Its twin relief_texture_quad.wgsl declares the quadrant
+// layers; relief_common.wgsl reads the texture only through these two functions.
+
+@group(0) @binding(1) var relief_map: texture_2d<f32>;
+
+// The cones serve every direction: one layer.
+fn relief_layer(dx: f32, dy: f32) -> i32 {
+    return 0;
+}
+
+// Texel (i, j) (resolved indices) of the layer.
+fn relief_texel(layer: i32, i: i32, j: i32) -> vec4<f32> {
+    return textureLoad(relief_map, vec2<i32>(i, j), 0);
+}
