@@ -182,6 +182,22 @@
 #define OCEAN_RELIEF_UNIFORMS_SIZE 256
 
 /**
+ * Array layers of a quad-directional cone map: one per closed quadrant of the ray's horizontal
+ * direction, layer k = x_neg + 2 y_neg (`OCEAN_RELIEF_QUAD_X_NEG`, `_Y_NEG`).
+ */
+#define OCEAN_RELIEF_QUAD_LAYERS 4
+
+/**
+ * Layer bit of the quadrant of rays with dir_x < 0 (dir_x = 0 uses the other side).
+ */
+#define OCEAN_RELIEF_QUAD_X_NEG 1
+
+/**
+ * Layer bit of the quadrant of rays with dir_y < 0 (dir_y = 0 uses the other side).
+ */
+#define OCEAN_RELIEF_QUAD_Y_NEG 2
+
+/**
  * `OceanReliefMethod::method`: linear search (Policarpo et al. 2005): `steps` equal depth
  * steps, then `binary` bisections of the step that first went inside. Reads only the depth.
  */
@@ -630,6 +646,13 @@ typedef struct OceanReliefMap OceanReliefMap;
  * `ocean_relief_mips_create`, free with `ocean_relief_mips_destroy`. Immutable and shareable.
  */
 typedef struct OceanReliefMips OceanReliefMips;
+
+/**
+ * A quad-directional cone map together with the height map it was made for: what the CPU
+ * quadrant tracer reads (opaque). Create with `ocean_relief_quad_cones_create`, free with
+ * `ocean_relief_quad_cones_destroy`. Immutable and shareable between threads.
+ */
+typedef struct OceanReliefQuadCones OceanReliefQuadCones;
 
 /**
  * The GPU ocean renderer (opaque): a projected screen-space grid displaced by the filtered
@@ -3361,6 +3384,10 @@ OceanStatus ocean_relief_scene_default(struct OceanReliefScene *out);
  *   `ocean_relief_cones_texels` (`[depth, c, D, E]`, row v = 0 first). The shader reads it with
  *   `texelFetch` and filters by hand (bilinear, with the edge mode), so no sampler state
  *   matters;
+ * - for a quad-directional cone map (`ocean_relief_quad_cones_create`), export `relief_quad`
+ *   instead: the same block (this function, unchanged), and binding 1 is a
+ *   `GL_TEXTURE_2D_ARRAY`, `GL_RGBA32F`, `size` x `size` x 4 layers, the texels of
+ *   `ocean_relief_quad_cones_texels`; each ray reads the layer of its direction's quadrant;
  * - draw 6 vertices as `GL_TRIANGLES` with no vertex buffer (an empty vertex array object);
  * - depth test `GL_LESS` (`GL_GREATER` for a reversed-Z camera) with depth writes: the fragment
  *   stage writes the hit point's depth to `gl_FragDepth`, so the relief occludes and is
@@ -3388,6 +3415,149 @@ OceanStatus ocean_relief_uniforms(const struct OceanCameraDesc *camera,
                                   uint8_t srgb_encode,
                                   uint8_t *out,
                                   size_t len);
+
+/**
+ * Generates the quad-directional cone map of `map` (one relaxed or conservative cone map per
+ * quadrant of the ray's direction, see `OceanReliefConeParams`) and stores a handle that holds
+ * it and a copy of the map in `*out`: what `ocean_relief_quad_trace` and
+ * `ocean_relief_quad_shadow` read.
+ *
+ * Each layer has the three channels of `ocean_relief_cones_create` (c, D, E, rounded down to
+ * float, capped at `params->max_ratio`), valid for the rays of its quadrant through the
+ * bilinear surface; every layer's cone is at least the isotropic one. The result is
+ * bit-identical to `ocean_relief::QuadConeMap::generate` on every thread count, with or
+ * without `progress`. It costs about four isotropic generations.
+ *
+ * `progress` (may be NULL) is called as `OceanReliefProgress` describes, with `user`, except
+ * that the work is four layers of rows: `total` is 4 N in wrap mode and 4 (N + 1) in clamp
+ * mode, and there are still at most `OCEAN_RELIEF_PROGRESS_BANDS + 1` calls (each layer in
+ * at most a quarter of the bands). A nonzero return cancels.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `max_ratio`, `OCEAN_STATUS_INVALID_ARGUMENT`
+ * for an unknown kind or a `max_ratio` outside (0, `OCEAN_RELIEF_MAX_RATIO_LIMIT`],
+ * `OCEAN_STATUS_CANCELLED` when the callback returned nonzero (the arguments are checked before
+ * the first call). `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `map` must be a live handle, `params` readable, `out` writable; `progress`, if not NULL,
+ * must be safe to call with `user` from this thread.
+ */
+OceanStatus ocean_relief_quad_cones_create(const struct OceanReliefMap *map,
+                                           const struct OceanReliefConeParams *params,
+                                           OceanReliefProgress progress,
+                                           void *user,
+                                           struct OceanReliefQuadCones **out);
+
+/**
+ * Frees a quad-directional cone map. NULL is ignored, and so is a pointer that is not even
+ * aligned. Never fails; leaves the last-error message alone.
+ *
+ * # Safety
+ *
+ * `cones` must be NULL or a handle from `ocean_relief_quad_cones_create` not yet destroyed,
+ * and no other thread may be using it.
+ */
+void ocean_relief_quad_cones_destroy(struct OceanReliefQuadCones *cones);
+
+/**
+ * Stores the side N of the quad-directional cone map (that of its height map), texels, in
+ * `*out_size`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out_size`
+ * is written only on success.
+ *
+ * # Safety
+ *
+ * `cones` must be a live handle and `out_size` writable.
+ */
+OceanStatus ocean_relief_quad_cones_size(const struct OceanReliefQuadCones *cones,
+                                         uint32_t *out_size);
+
+/**
+ * Copies the quadrant relief texture into `rgba`: `len` = 16 N * N floats, the 4 layers of an
+ * `RGBA32F` 2D texture array one after the other (layer k = x_neg + 2 y_neg, its N * N texels
+ * row-major, `[depth, c_k, D_k, E_k]` per texel): upload with one `glTexSubImage3D` of depth
+ * 4 into a `GL_TEXTURE_2D_ARRAY` and draw with the `relief_quad` shader. Exactly what the CPU
+ * quadrant tracer reads.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `len` is not 16 N * N. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `cones` must be a live handle and `rgba` point to `len` writable floats that no other thread
+ * touches during the call.
+ */
+OceanStatus ocean_relief_quad_cones_texels(const struct OceanReliefQuadCones *cones,
+                                           float *rgba,
+                                           size_t len);
+
+/**
+ * Generates the quad-directional cone map of `map` straight into `rgba` (no handle): `len` =
+ * 16 N * N floats, as `ocean_relief_quad_cones_texels` writes them. Arguments, callback and
+ * statuses as `ocean_relief_quad_cones_create`, with `OCEAN_STATUS_INVALID_ARGUMENT` for a
+ * `len` that is not 16 N * N (checked before any work). `rgba` is written only on success,
+ * and then wholly.
+ *
+ * # Safety
+ *
+ * `map` must be a live handle, `params` readable, `rgba` point to `len` writable floats that
+ * no other thread touches during the call; `progress`, if not NULL, must be safe to call with
+ * `user` from this thread.
+ */
+OceanStatus ocean_relief_quad_generate_texels(const struct OceanReliefMap *map,
+                                              const struct OceanReliefConeParams *params,
+                                              OceanReliefProgress progress,
+                                              void *user,
+                                              float *rgba,
+                                              size_t len);
+
+/**
+ * Traces `count` rays through the quad-directional cone map `cones` with `method` and stores
+ * where each stopped in `hits[i]`: each ray reads the layer of its direction's quadrant (the
+ * module documentation), chosen once, then runs `ocean_relief_trace`'s tracer on it (with
+ * conservative quadrant cones, cone step mapping is QDCSM, section 18.1). Each result is
+ * bit-identical to `ocean_relief::QuadReliefTexture::trace` and to the `relief_quad` shader's
+ * tracer on the texels of `ocean_relief_quad_cones_texels`.
+ *
+ * Arguments, checks and statuses as `ocean_relief_trace`. `hits` is written only on success,
+ * and then wholly.
+ *
+ * # Safety
+ *
+ * `cones` must be a live handle, `method` readable, `rays` point to `count` readable rays and
+ * `hits` to `count` writable hits, neither touched by another thread during the call.
+ */
+OceanStatus ocean_relief_quad_trace(const struct OceanReliefQuadCones *cones,
+                                    const struct OceanReliefMethod *method,
+                                    const struct OceanReliefRay *rays,
+                                    size_t count,
+                                    struct OceanReliefHit *hits);
+
+/**
+ * `ocean_relief_shadow` through the quad-directional cone map `cones`: the light ray towards
+ * each point reads the layer of its own direction's quadrant. Arguments, checks and statuses
+ * as `ocean_relief_shadow`; each answer equals `ocean_relief::QuadReliefTexture::in_shadow`'s.
+ * `in_shadow` is written only on success, and then wholly.
+ *
+ * # Safety
+ *
+ * `cones` must be a live handle, `method` readable, `points` point to `count` readable points
+ * and `in_shadow` to `count` writable bytes, neither touched by another thread during the
+ * call.
+ */
+OceanStatus ocean_relief_quad_shadow(const struct OceanReliefQuadCones *cones,
+                                     const struct OceanReliefMethod *method,
+                                     const struct OceanReliefPoint *points,
+                                     size_t count,
+                                     float light_x,
+                                     float light_y,
+                                     float light_z,
+                                     float depth_scale,
+                                     float bias,
+                                     uint8_t *in_shadow);
 
 /**
  * Stores in `*out` the ray of the tangent-space view vector (view_x, view_y, view_z) (x along

@@ -30,6 +30,7 @@ mod lighting_spectrum;
 mod ocean_draw;
 mod relief;
 mod relief_draw;
+mod relief_quad;
 mod relief_trace;
 mod sao;
 mod sao_camera;
@@ -92,6 +93,12 @@ pub use relief::{
 };
 pub use relief_draw::{
     OCEAN_RELIEF_UNIFORMS_SIZE, OceanReliefScene, ocean_relief_scene_default, ocean_relief_uniforms,
+};
+pub use relief_quad::{
+    OCEAN_RELIEF_QUAD_LAYERS, OCEAN_RELIEF_QUAD_X_NEG, OCEAN_RELIEF_QUAD_Y_NEG,
+    OceanReliefQuadCones, ocean_relief_quad_cones_create, ocean_relief_quad_cones_destroy,
+    ocean_relief_quad_cones_size, ocean_relief_quad_cones_texels,
+    ocean_relief_quad_generate_texels, ocean_relief_quad_shadow, ocean_relief_quad_trace,
 };
 pub use relief_trace::{
     OCEAN_RELIEF_MAX_STEPS, OCEAN_RELIEF_METHOD_CONE_STEP, OCEAN_RELIEF_METHOD_LINEAR,

@@ -105,7 +105,7 @@ pub struct OceanReliefConeParams {
 /// `ocean_relief_map_create_f32` / `_u8` / `_u16`, free with `ocean_relief_map_destroy`.
 /// Immutable: a `const OceanReliefMap *` may be used by any number of threads at once.
 pub struct OceanReliefMap {
-    map: HeightMap,
+    pub(crate) map: HeightMap,
 }
 
 /// A cone map together with the height map it was made for: what the CPU tracers read
@@ -197,7 +197,7 @@ pub(crate) fn encoding_from(encoding: u32) -> Result<Encoding, Error> {
     }
 }
 
-fn params_from(p: &OceanReliefConeParams) -> Result<ConeParams, Error> {
+pub(crate) fn params_from(p: &OceanReliefConeParams) -> Result<ConeParams, Error> {
     let kind = match p.kind {
         OCEAN_RELIEF_CONES_RELAXED => ConeKind::Relaxed,
         OCEAN_RELIEF_CONES_CONSERVATIVE => ConeKind::Conservative,
@@ -581,15 +581,27 @@ fn generate(
     progress: OceanReliefProgress,
     user: *mut c_void,
 ) -> Result<ConeMap, Error> {
-    let result = match progress {
+    with_progress(progress, user, |report| match report {
         None => ConeMap::generate(map, params),
+        Some(r) => ConeMap::generate_with(map, params, r),
+    })
+}
+
+/// Runs `run` with the caller's callback as a `Progress` (`None` for NULL: no reports).
+pub(crate) fn with_progress<T>(
+    progress: OceanReliefProgress,
+    user: *mut c_void,
+    run: impl FnOnce(Option<&mut dyn ocean_relief::progress::Progress>) -> Result<T, ReliefError>,
+) -> Result<T, Error> {
+    let result = match progress {
+        None => run(None),
         Some(callback) => {
             let mut report = |done: usize, total: usize| {
                 // SAFETY: the caller guarantees that `callback` may be called with `user` (this
                 // function's callers' contracts); it runs on this thread.
                 unsafe { callback(user, done, total) == 0 }
             };
-            ConeMap::generate_with(map, params, &mut report)
+            run(Some(&mut report))
         }
     };
     result.map_err(|e| relief_error("", e))
@@ -677,7 +689,7 @@ pub unsafe extern "C" fn ocean_relief_cones_size(
 }
 
 /// `[depth, c, D, E]` per texel, flattened.
-fn texels(map: &HeightMap, cones: &ConeMap) -> Vec<f32> {
+pub(crate) fn texels(map: &HeightMap, cones: &ConeMap) -> Vec<f32> {
     let (d, c0, c1, c2) = (
         map.depths(),
         cones.ratios(),

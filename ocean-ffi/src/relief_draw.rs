@@ -169,6 +169,10 @@ pub unsafe extern "C" fn ocean_relief_scene_default(out: *mut OceanReliefScene) 
 ///   `ocean_relief_cones_texels` (`[depth, c, D, E]`, row v = 0 first). The shader reads it with
 ///   `texelFetch` and filters by hand (bilinear, with the edge mode), so no sampler state
 ///   matters;
+/// - for a quad-directional cone map (`ocean_relief_quad_cones_create`), export `relief_quad`
+///   instead: the same block (this function, unchanged), and binding 1 is a
+///   `GL_TEXTURE_2D_ARRAY`, `GL_RGBA32F`, `size` x `size` x 4 layers, the texels of
+///   `ocean_relief_quad_cones_texels`; each ray reads the layer of its direction's quadrant;
 /// - draw 6 vertices as `GL_TRIANGLES` with no vertex buffer (an empty vertex array object);
 /// - depth test `GL_LESS` (`GL_GREATER` for a reversed-Z camera) with depth writes: the fragment
 ///   stage writes the hit point's depth to `gl_FragDepth`, so the relief occludes and is

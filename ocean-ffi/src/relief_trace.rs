@@ -8,6 +8,7 @@
 use glam::{Vec2, Vec3};
 use ocean_core::rows::for_rows;
 use ocean_relief::trace::{BinarySearch, MAX_STEPS, Method, Ray};
+use ocean_relief::{Hit, ReliefError};
 
 use crate::lighting::{borrow, read_in};
 use crate::relief::{OceanReliefCones, input, relief_error, write_slice};
@@ -278,44 +279,59 @@ pub unsafe extern "C" fn ocean_relief_trace(
     guard("ocean_relief_trace", || {
         // SAFETY: forwarded from this function's contract.
         let c = unsafe { borrow(cones, "cones") }?;
-        // SAFETY: forwarded from this function's contract.
-        let method = unsafe { read_in(method, "method") }?;
-        check_ptr(rays, "rays")?;
-        check_ptr(hits.cast_const(), "hits")?;
-        if count == 0 {
-            return Err(Error::new(OceanStatus::Empty, "`count` is 0: no rays"));
-        }
-        let in_bytes = byte_len::<OceanReliefRay>(count, "rays")?;
-        let out_bytes = byte_len::<OceanReliefHit>(count, "hits")?;
-        check_disjoint(
-            (rays.cast::<u8>(), in_bytes, "rays"),
-            (hits.cast_const().cast::<u8>(), out_bytes, "hits"),
-        )?;
-        let method = method_from(&method)?;
-        // SAFETY: forwarded from this function's contract (pointer, size and overlap checked).
-        let rays = unsafe { input(rays, count, "rays") }?;
-        let rays = rays
-            .iter()
-            .enumerate()
-            .map(|(i, r)| ray_from(i, r))
-            .collect::<Result<Vec<_>, _>>()?;
         let texture = c.texture();
-        let mut results = vec![Ok(OceanReliefHit::default()); count];
-        for_rows(&mut results, CHUNK, |j, part| {
-            for (k, out) in part.iter_mut().enumerate() {
-                *out = method
-                    .trace(texture, &rays[j * CHUNK + k])
-                    .map(|h| hit_out(&h));
-            }
-        });
-        let out = results
-            .into_iter()
-            .enumerate()
-            .map(|(i, r)| r.map_err(|e| relief_error(&format!("rays[{i}]: "), e)))
-            .collect::<Result<Vec<_>, _>>()?;
-        // SAFETY: forwarded from this function's contract (checked above).
-        unsafe { write_slice(hits, "hits", &out) }
+        // SAFETY: forwarded from this function's contract.
+        unsafe { trace_batch(method, rays, count, hits, |m, r| m.trace(texture, r)) }
     })
+}
+
+/// The body of `ocean_relief_trace` after the handle: every check, then `trace` on each ray in
+/// parallel, then the hits written.
+///
+/// # Safety
+///
+/// As `ocean_relief_trace`'s `method`, `rays`, `count` and `hits`.
+pub(crate) unsafe fn trace_batch(
+    method: *const OceanReliefMethod,
+    rays: *const OceanReliefRay,
+    count: usize,
+    hits: *mut OceanReliefHit,
+    trace: impl Fn(&Method, &Ray) -> Result<Hit, ReliefError> + Sync,
+) -> Result<(), Error> {
+    // SAFETY: forwarded from this function's contract.
+    let method = unsafe { read_in(method, "method") }?;
+    check_ptr(rays, "rays")?;
+    check_ptr(hits.cast_const(), "hits")?;
+    if count == 0 {
+        return Err(Error::new(OceanStatus::Empty, "`count` is 0: no rays"));
+    }
+    let in_bytes = byte_len::<OceanReliefRay>(count, "rays")?;
+    let out_bytes = byte_len::<OceanReliefHit>(count, "hits")?;
+    check_disjoint(
+        (rays.cast::<u8>(), in_bytes, "rays"),
+        (hits.cast_const().cast::<u8>(), out_bytes, "hits"),
+    )?;
+    let method = method_from(&method)?;
+    // SAFETY: forwarded from this function's contract (pointer, size and overlap checked).
+    let rays = unsafe { input(rays, count, "rays") }?;
+    let rays = rays
+        .iter()
+        .enumerate()
+        .map(|(i, r)| ray_from(i, r))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut results = vec![Ok(OceanReliefHit::default()); count];
+    for_rows(&mut results, CHUNK, |j, part| {
+        for (k, out) in part.iter_mut().enumerate() {
+            *out = trace(&method, &rays[j * CHUNK + k]).map(|h| hit_out(&h));
+        }
+    });
+    let out = results
+        .into_iter()
+        .enumerate()
+        .map(|(i, r)| r.map_err(|e| relief_error(&format!("rays[{i}]: "), e)))
+        .collect::<Result<Vec<_>, _>>()?;
+    // SAFETY: forwarded from this function's contract (checked above).
+    unsafe { write_slice(hits, "hits", &out) }
 }
 
 /// For each of `count` surface points, whether the light from the tangent-space direction
@@ -357,77 +373,102 @@ pub unsafe extern "C" fn ocean_relief_shadow(
     guard("ocean_relief_shadow", || {
         // SAFETY: forwarded from this function's contract.
         let c = unsafe { borrow(cones, "cones") }?;
+        let texture = c.texture();
+        let light = [light_x, light_y, light_z];
         // SAFETY: forwarded from this function's contract.
-        let method = unsafe { read_in(method, "method") }?;
-        check_ptr(points, "points")?;
-        check_ptr(in_shadow.cast_const(), "in_shadow")?;
-        if count == 0 {
-            return Err(Error::new(OceanStatus::Empty, "`count` is 0: no points"));
+        unsafe {
+            shadow_batch(
+                method,
+                points,
+                count,
+                light,
+                depth_scale,
+                bias,
+                in_shadow,
+                |m, p, l| ocean_relief::shadow::in_shadow(texture, m, p, l, depth_scale, bias),
+            )
         }
-        let in_bytes = byte_len::<OceanReliefPoint>(count, "points")?;
-        let out_bytes = byte_len::<u8>(count, "in_shadow")?;
-        check_disjoint(
-            (points.cast::<u8>(), in_bytes, "points"),
-            (in_shadow.cast_const(), out_bytes, "in_shadow"),
-        )?;
-        let method = method_from(&method)?;
+    })
+}
+
+/// The body of `ocean_relief_shadow` after the handle: every check, then `shadow` (method,
+/// point, light) on each point in parallel, then the answers written.
+///
+/// # Safety
+///
+/// As `ocean_relief_shadow`'s `method`, `points`, `count` and `in_shadow`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) unsafe fn shadow_batch(
+    method: *const OceanReliefMethod,
+    points: *const OceanReliefPoint,
+    count: usize,
+    [light_x, light_y, light_z]: [f32; 3],
+    depth_scale: f32,
+    bias: f32,
+    in_shadow: *mut u8,
+    shadow: impl Fn(&Method, Vec3, Vec3) -> Result<bool, ReliefError> + Sync,
+) -> Result<(), Error> {
+    // SAFETY: forwarded from this function's contract.
+    let method = unsafe { read_in(method, "method") }?;
+    check_ptr(points, "points")?;
+    check_ptr(in_shadow.cast_const(), "in_shadow")?;
+    if count == 0 {
+        return Err(Error::new(OceanStatus::Empty, "`count` is 0: no points"));
+    }
+    let in_bytes = byte_len::<OceanReliefPoint>(count, "points")?;
+    let out_bytes = byte_len::<u8>(count, "in_shadow")?;
+    check_disjoint(
+        (points.cast::<u8>(), in_bytes, "points"),
+        (in_shadow.cast_const(), out_bytes, "in_shadow"),
+    )?;
+    let method = method_from(&method)?;
+    check_finite(
+        "",
+        &[
+            ("light_x", f64::from(light_x)),
+            ("light_y", f64::from(light_y)),
+            ("light_z", f64::from(light_z)),
+            ("depth_scale", f64::from(depth_scale)),
+            ("bias", f64::from(bias)),
+        ],
+    )?;
+    if depth_scale < 0.0 {
+        return Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("depth_scale = {depth_scale} must be >= 0"),
+        ));
+    }
+    if !(0.0..=1.0).contains(&bias) {
+        return Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("bias = {bias} is outside [0, 1]"),
+        ));
+    }
+    // SAFETY: forwarded from this function's contract (pointer, size and overlap checked).
+    let points = unsafe { input(points, count, "points") }?;
+    for (i, p) in points.iter().enumerate() {
         check_finite(
-            "",
+            &format!("points[{i}]."),
             &[
-                ("light_x", f64::from(light_x)),
-                ("light_y", f64::from(light_y)),
-                ("light_z", f64::from(light_z)),
-                ("depth_scale", f64::from(depth_scale)),
-                ("bias", f64::from(bias)),
+                ("u", f64::from(p.u)),
+                ("v", f64::from(p.v)),
+                ("depth", f64::from(p.depth)),
             ],
         )?;
-        if depth_scale < 0.0 {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!("depth_scale = {depth_scale} must be >= 0"),
-            ));
+    }
+    let light = Vec3::new(light_x, light_y, light_z);
+    let mut results = vec![Ok(0u8); count];
+    for_rows(&mut results, CHUNK, |j, part| {
+        for (k, out) in part.iter_mut().enumerate() {
+            let p = points[j * CHUNK + k];
+            *out = shadow(&method, Vec3::new(p.u, p.v, p.depth), light).map(u8::from);
         }
-        if !(0.0..=1.0).contains(&bias) {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!("bias = {bias} is outside [0, 1]"),
-            ));
-        }
-        // SAFETY: forwarded from this function's contract (pointer, size and overlap checked).
-        let points = unsafe { input(points, count, "points") }?;
-        for (i, p) in points.iter().enumerate() {
-            check_finite(
-                &format!("points[{i}]."),
-                &[
-                    ("u", f64::from(p.u)),
-                    ("v", f64::from(p.v)),
-                    ("depth", f64::from(p.depth)),
-                ],
-            )?;
-        }
-        let light = Vec3::new(light_x, light_y, light_z);
-        let texture = c.texture();
-        let mut results = vec![Ok(0u8); count];
-        for_rows(&mut results, CHUNK, |j, part| {
-            for (k, out) in part.iter_mut().enumerate() {
-                let p = points[j * CHUNK + k];
-                *out = ocean_relief::shadow::in_shadow(
-                    texture,
-                    &method,
-                    Vec3::new(p.u, p.v, p.depth),
-                    light,
-                    depth_scale,
-                    bias,
-                )
-                .map(u8::from);
-            }
-        });
-        let out = results
-            .into_iter()
-            .enumerate()
-            .map(|(i, r)| r.map_err(|e| relief_error(&format!("points[{i}]: "), e)))
-            .collect::<Result<Vec<_>, _>>()?;
-        // SAFETY: forwarded from this function's contract (checked above).
-        unsafe { write_slice(in_shadow, "in_shadow", &out) }
-    })
+    });
+    let out = results
+        .into_iter()
+        .enumerate()
+        .map(|(i, r)| r.map_err(|e| relief_error(&format!("points[{i}]: "), e)))
+        .collect::<Result<Vec<_>, _>>()?;
+    // SAFETY: forwarded from this function's contract (checked above).
+    unsafe { write_slice(in_shadow, "in_shadow", &out) }
 }

@@ -23,6 +23,9 @@
  * - The uniform block of the exported relief shader: for the default scene seen from an eye at
  *   (0.5, 2, -0.5) looking down -z, the corner (0, 0, 0) is stored relative to the eye,
  *   (-0.5, -2, 0.5), and the texture, method and flag words are the ones asked for.
+ * - Quad-directional cones (section 18.1) on the box map: the 4-layer texture against the map
+ *   and the isotropic cones, the cap where a quadrant sees only floor, hits and shadows as
+ *   above, progress over the four layers (test_quad derives the counts).
  * - Cancellation from a C callback, progress to completion, and every error path with the
  *   outputs untouched.
  *
@@ -409,6 +412,227 @@ static void test_progress_and_cancel(void)
     ocean_relief_map_destroy(map);
 }
 
+/* Quad-directional cones (section 18.1), on the box map with a cap of 4:
+ * - the texture array: 4 layers of [depth, c_k, D_k, E_k]; every layer holds the map's depths,
+ *   every quadrant cone is at least the isotropic one (fewer rays to serve), and at texel
+ *   (10, 32), 14 texels on the -u side of the box, the layers of rays heading -u (1 and 3) see
+ *   nothing but the flat floor, so their cone is the cap 4.0, while layer 0 (+u, +v) and the
+ *   isotropic cone are limited by the box: a ray of ratio 4 from the top of that texel would
+ *   enter the box 13.5 texels on at depth 0.05 and leave it above the floor;
+ * - the tracer: a vertical ray on the floor reads layer 0 and hits at 1 - 1/128 as the
+ *   isotropic one does, the 45-degree ray at the -u wall hits the analytic point within a
+ *   hundredth of a texel with the same shared budget;
+ * - shadows: the light ray reads its own quadrant (light from +u: rays heading -u, layer 1) and
+ *   the box shadows the same points as with isotropic cones;
+ * - progress: 65 rows of cells a layer in bands of ceil(65 / 16) = 5 rows, 13 bands a layer, so
+ *   1 + 4 x 13 = 53 calls from 0 to 4 x 65 = 260; cancellation leaves handle and buffer alone;
+ * - every error path with its outputs untouched. */
+static void test_quad(void)
+{
+    static float quad[16 * BOX_TEXELS], iso[4 * BOX_TEXELS], depths[BOX_TEXELS];
+    OceanReliefMap *map = NULL;
+    OceanReliefQuadCones *cones = NULL, *sentinel = (OceanReliefQuadCones *)&map;
+    OceanReliefCones *isotropic = NULL;
+    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONES_RELAXED, 4.0f);
+    OceanReliefMethod relaxed = method(OCEAN_RELIEF_METHOD_RELAXED, 15, 6,
+                                       OCEAN_RELIEF_SEARCH_LAST_STEP);
+    OceanReliefMethod shared = method(OCEAN_RELIEF_METHOD_RELAXED, 58, 6,
+                                      OCEAN_RELIEF_SEARCH_SHARED);
+    OceanReliefRay rays[2];
+    OceanReliefHit hits[2];
+    OceanReliefPoint points[4];
+    uint8_t shadow[4];
+    Progress prog;
+    uint32_t side = 0;
+    size_t i, k, narrower = 0, depth_mismatch = 0;
+    int untouched;
+    double z_wall = 4.5 / 7.4, u_wall = (20.0 + 6.4 * z_wall) / 64.0;
+    const size_t at = 32 * BOX + 10;
+
+    CHECK(OCEAN_RELIEF_QUAD_LAYERS == 4 && OCEAN_RELIEF_QUAD_X_NEG == 1 &&
+              OCEAN_RELIEF_QUAD_Y_NEG == 2,
+          "layer constants");
+    make_box();
+    if (!OK(ocean_relief_map_create_f32(box_heights, BOX_TEXELS, BOX, BOX,
+                                        OCEAN_RELIEF_EDGE_CLAMP, OCEAN_RELIEF_RANGE_REFUSE,
+                                        &map)))
+        return;
+    memset(&prog, 0, sizeof prog);
+    prog.monotonic = 1;
+    if (!OK(ocean_relief_quad_cones_create(map, &p, on_progress, &prog, &cones)) ||
+        !OK(ocean_relief_cones_create(map, &p, NULL, NULL, &isotropic))) {
+        ocean_relief_quad_cones_destroy(cones);
+        ocean_relief_map_destroy(map);
+        return;
+    }
+    CHECK(prog.calls == 53, "%d progress calls, expected 53", prog.calls);
+    CHECK(prog.first_done == 0 && prog.last_done == 260 && prog.total == 260,
+          "progress from %zu to %zu of %zu, expected 0 to 260 of 260", prog.first_done,
+          prog.last_done, prog.total);
+    CHECK(prog.monotonic, "progress went backwards");
+    if (OK(ocean_relief_quad_cones_size(cones, &side)))
+        CHECK(side == BOX, "side %u", side);
+
+    /* The texture array against the map and the isotropic cones. */
+    if (OK(ocean_relief_quad_cones_texels(cones, quad, 16 * BOX_TEXELS)) &&
+        OK(ocean_relief_cones_texels(isotropic, iso, 4 * BOX_TEXELS)) &&
+        OK(ocean_relief_map_depths(map, depths, BOX_TEXELS))) {
+        for (k = 0; k < 4; k++)
+            for (i = 0; i < BOX_TEXELS; i++) {
+                const float *t = &quad[4 * (k * BOX_TEXELS + i)];
+                depth_mismatch += t[0] != depths[i];
+                narrower += t[1] < iso[4 * i + 1] || t[2] < iso[4 * i + 2] ||
+                            t[3] < iso[4 * i + 3];
+            }
+        CHECK(depth_mismatch == 0, "%zu layer depths differ from the map's", depth_mismatch);
+        CHECK(narrower == 0, "%zu quadrant texels narrower than the isotropic ones", narrower);
+        CHECK(quad[4 * (1 * BOX_TEXELS + at) + 1] == 4.0f &&
+                  quad[4 * (3 * BOX_TEXELS + at) + 1] == 4.0f,
+              "texel (10, 32), layers 1 and 3: cones %g and %g, expected the cap 4",
+              quad[4 * (1 * BOX_TEXELS + at) + 1], quad[4 * (3 * BOX_TEXELS + at) + 1]);
+        CHECK(quad[4 * at + 1] < 4.0f && iso[4 * at + 1] < 4.0f,
+              "texel (10, 32): layer 0 cone %g, isotropic %g, expected below the cap",
+              quad[4 * at + 1], iso[4 * at + 1]);
+    }
+
+    /* Tracing. */
+    rays[0] = ray(0.1f, 0.1f, 0.0f, 0.0f, 1.0f);
+    rays[1] = ray(20.0f / 64.0f, 0.5f, 0.1f, 0.0f, 1.0f);
+    if (OK(ocean_relief_quad_trace(cones, &relaxed, rays, 1, hits)))
+        CHECK(hits[0].pos.u == 0.1f && hits[0].pos.v == 0.1f &&
+                  hits[0].pos.depth == 1.0f - 1.0f / 128.0f,
+              "quad floor: (%g, %g, %.9g), expected (0.1, 0.1, %.9g)", hits[0].pos.u,
+              hits[0].pos.v, hits[0].pos.depth, 1.0 - 1.0 / 128.0);
+    if (OK(ocean_relief_quad_trace(cones, &shared, &rays[1], 1, &hits[1]))) {
+        printf("quad wall hit: u %.6f (analytic %.6f), depth %.6f (analytic %.6f), %u fetches\n",
+               64.0 * hits[1].pos.u, 64.0 * u_wall, hits[1].pos.depth, z_wall,
+               hits[1].fetches);
+        CHECK(fabs(64.0 * (hits[1].pos.u - u_wall)) < 0.01 && hits[1].pos.v == 0.5f,
+              "quad wall hit at 64 u = %.5f, expected %.5f", 64.0 * hits[1].pos.u,
+              64.0 * u_wall);
+        CHECK(fabs(hits[1].pos.depth - z_wall) < 0.01 / 6.4,
+              "quad wall hit at depth %.5f, expected %.5f", hits[1].pos.depth, z_wall);
+    }
+
+    /* Shadows, as in test_box. */
+    points[0].u = 21.0f / 64.0f;
+    points[1].u = 14.0f / 64.0f;
+    points[2].u = 48.0f / 64.0f;
+    points[3].u = 0.5f;
+    points[0].v = points[1].v = points[2].v = points[3].v = 0.5f;
+    points[0].depth = points[1].depth = points[2].depth = 1.0f;
+    points[3].depth = 0.0f;
+    memset(shadow, 7, sizeof shadow);
+    if (OK(ocean_relief_quad_shadow(cones, &relaxed, points, 4, 1.0f, 0.0f, 1.0f, 0.1f, 0.05f,
+                                    shadow)))
+        CHECK(shadow[0] == 1 && shadow[1] == 0 && shadow[2] == 0 && shadow[3] == 0,
+              "quad shadows %u %u %u %u, expected 1 0 0 0", shadow[0], shadow[1], shadow[2],
+              shadow[3]);
+    points[0].u = 43.0f / 64.0f;
+    points[1].u = 50.0f / 64.0f;
+    points[2].u = 16.0f / 64.0f;
+    if (OK(ocean_relief_quad_shadow(cones, &relaxed, points, 4, -1.0f, 0.0f, 1.0f, 0.1f, 0.05f,
+                                    shadow)))
+        CHECK(shadow[0] == 1 && shadow[1] == 0 && shadow[2] == 0 && shadow[3] == 0,
+              "mirrored quad shadows %u %u %u %u, expected 1 0 0 0", shadow[0], shadow[1],
+              shadow[2], shadow[3]);
+
+    /* Errors: every output untouched. */
+    for (i = 0; i < 16 * BOX_TEXELS; i++)
+        quad[i] = 7.0f;
+    EXPECT_MSG(ocean_relief_quad_cones_texels(cones, quad, 4 * BOX_TEXELS),
+               OCEAN_STATUS_INVALID_ARGUMENT, "len");
+    EXPECT(ocean_relief_quad_cones_texels(cones, NULL, 16 * BOX_TEXELS),
+           OCEAN_STATUS_NULL_POINTER);
+    EXPECT(ocean_relief_quad_cones_texels(cones, (float *)((char *)quad + 2), 16 * BOX_TEXELS),
+           OCEAN_STATUS_MISALIGNED_POINTER);
+    EXPECT(ocean_relief_quad_cones_texels(NULL, quad, 16 * BOX_TEXELS),
+           OCEAN_STATUS_NULL_POINTER);
+    EXPECT_MSG(ocean_relief_quad_generate_texels(map, &p, NULL, NULL, quad, 16 * BOX_TEXELS - 1),
+               OCEAN_STATUS_INVALID_ARGUMENT, "len");
+    p.kind = 7;
+    EXPECT_MSG(ocean_relief_quad_generate_texels(map, &p, NULL, NULL, quad, 16 * BOX_TEXELS),
+               OCEAN_STATUS_INVALID_ARGUMENT, "kind");
+    p.kind = OCEAN_RELIEF_CONES_RELAXED;
+    memset(&prog, 0, sizeof prog);
+    prog.cancel_at = 5;
+    EXPECT(ocean_relief_quad_generate_texels(map, &p, on_progress, &prog, quad, 16 * BOX_TEXELS),
+           OCEAN_STATUS_CANCELLED);
+    CHECK(prog.calls == 5, "%d calls after cancelling on the fifth", prog.calls);
+    untouched = 1;
+    for (i = 0; i < 16 * BOX_TEXELS; i++)
+        untouched &= quad[i] == 7.0f;
+    CHECK(untouched, "quad texels written on failure");
+
+    {
+        OceanReliefQuadCones *out = sentinel;
+        memset(&prog, 0, sizeof prog);
+        prog.cancel_at = 2;
+        EXPECT_MSG(ocean_relief_quad_cones_create(map, &p, on_progress, &prog, &out),
+                   OCEAN_STATUS_CANCELLED, "cancelled");
+        CHECK(prog.calls == 2, "%d calls after cancelling on the second", prog.calls);
+        p.max_ratio = NAN;
+        EXPECT(ocean_relief_quad_cones_create(map, &p, NULL, NULL, &out),
+               OCEAN_STATUS_NON_FINITE);
+        p.max_ratio = 4.0f;
+        EXPECT(ocean_relief_quad_cones_create(NULL, &p, NULL, NULL, &out),
+               OCEAN_STATUS_NULL_POINTER);
+        EXPECT(ocean_relief_quad_cones_create(map, NULL, NULL, NULL, &out),
+               OCEAN_STATUS_NULL_POINTER);
+        EXPECT(ocean_relief_quad_cones_create(map, &p, NULL, NULL, NULL),
+               OCEAN_STATUS_NULL_POINTER);
+        CHECK(out == sentinel, "quad handle written on failure");
+    }
+    side = 99;
+    EXPECT(ocean_relief_quad_cones_size(NULL, &side), OCEAN_STATUS_NULL_POINTER);
+    EXPECT(ocean_relief_quad_cones_size(cones, NULL), OCEAN_STATUS_NULL_POINTER);
+    CHECK(side == 99, "size written on failure");
+
+    rays[1] = ray(0.2f, 0.2f, 0.1f, 0.0f, 0.0f);
+    memset(hits, 0x7f, sizeof hits);
+    EXPECT_MSG(ocean_relief_quad_trace(cones, &relaxed, rays, 2, hits),
+               OCEAN_STATUS_INVALID_ARGUMENT, "rays[1].dir_z");
+    rays[1].dir_x = NAN;
+    EXPECT_MSG(ocean_relief_quad_trace(cones, &relaxed, rays, 2, hits), OCEAN_STATUS_NON_FINITE,
+               "rays[1].dir_x");
+    EXPECT(ocean_relief_quad_trace(cones, &relaxed, rays, 0, hits), OCEAN_STATUS_EMPTY);
+    EXPECT(ocean_relief_quad_trace(NULL, &relaxed, rays, 1, hits), OCEAN_STATUS_NULL_POINTER);
+    EXPECT_MSG(ocean_relief_quad_trace(cones, &relaxed, rays, 2, (OceanReliefHit *)&rays[1]),
+               OCEAN_STATUS_INVALID_ARGUMENT, "overlap");
+    {
+        OceanReliefMethod m = relaxed;
+        m.search = 5;
+        EXPECT_MSG(ocean_relief_quad_trace(cones, &m, rays, 1, hits),
+                   OCEAN_STATUS_INVALID_ARGUMENT, "search");
+    }
+    CHECK(hits[0].fetches == 0x7f7f7f7fu && hits[1].fetches == 0x7f7f7f7fu,
+          "quad hits written on failure");
+
+    memset(shadow, 7, sizeof shadow);
+    EXPECT_MSG(ocean_relief_quad_shadow(cones, &relaxed, points, 4, 1.0f, 0.0f, 1.0f, 0.1f, 2.0f,
+                                        shadow),
+               OCEAN_STATUS_INVALID_ARGUMENT, "bias");
+    EXPECT_MSG(ocean_relief_quad_shadow(cones, &relaxed, points, 4, 1.0f, 0.0f, 1.0f, -0.1f,
+                                        0.05f, shadow),
+               OCEAN_STATUS_INVALID_ARGUMENT, "depth_scale");
+    EXPECT(ocean_relief_quad_shadow(cones, &relaxed, points, 4, NAN, 0.0f, 1.0f, 0.1f, 0.05f,
+                                    shadow),
+           OCEAN_STATUS_NON_FINITE);
+    EXPECT(ocean_relief_quad_shadow(cones, &relaxed, points, 0, 1.0f, 0.0f, 1.0f, 0.1f, 0.05f,
+                                    shadow),
+           OCEAN_STATUS_EMPTY);
+    EXPECT(ocean_relief_quad_shadow(cones, &relaxed, NULL, 4, 1.0f, 0.0f, 1.0f, 0.1f, 0.05f,
+                                    shadow),
+           OCEAN_STATUS_NULL_POINTER);
+    CHECK(shadow[0] == 7 && shadow[1] == 7 && shadow[2] == 7 && shadow[3] == 7,
+          "quad shadows written on failure");
+
+    ocean_relief_quad_cones_destroy(cones);
+    ocean_relief_quad_cones_destroy(NULL);
+    ocean_relief_cones_destroy(isotropic);
+    ocean_relief_map_destroy(map);
+}
+
 static void test_errors(void)
 {
     static float h[FLAT_TEXELS], out[4 * FLAT_TEXELS];
@@ -576,6 +800,7 @@ int main(void)
     test_box();
     test_uniforms();
     test_progress_and_cancel();
+    test_quad();
     test_errors();
     printf("test_relief.c: library %s, %d checks, %d failures\n", ocean_version(), checks,
            failures);
