@@ -233,7 +233,9 @@ fn trochoid_slope_variance(ka: f32) -> f32 {
 // minus an f32 sum, that difference would cancel near the camera, where nearly every wave is
 // resolved; so the host stores, per wave, the f64 variance S of that wave and all shorter ones,
 // and the shader adds S at the first unresolved wave to what the partly resolved waves leave,
-// Σ_{w_n > 0} var(k A w_r): the same sum, visiting the same waves, without cancellation.
+// Σ_{w_n > 0} var(k A w_r): the same sum, visiting the same waves, without cancellation. (§7.1
+// evaluates Eq. 4 this way, so what it subtracts per wave is var(k A) − var(k A w_r), as
+// `VarianceTable::unresolved` explains.)
 fn pixel_surface(rest: vec2<f32>, l: f32, cell: f32) -> PixelSurface {
     var jxx = 1.0;
     var jxz = 0.0;
