@@ -65,5 +65,5 @@ pub use sea::{Lighting, SeaLight, SeaParams};
 pub use sky::{Sky, SkyParams};
 pub use sky_map::SkyMap;
 pub use spectrum::{Spectrum, SpectrumParams};
-pub use surface::FilteredSurface;
+pub use surface::{FilteredSurface, PixelSurface};
 pub use variance::{SlopeVariance, VarianceTable};

@@ -31,7 +31,7 @@ use ocean_core::{Modulation, PointSums, WaveSet};
 
 use crate::error::{BrdfError, check};
 use crate::filter::Filter;
-use crate::surface::FilteredSurface;
+use crate::surface::{FilteredSurface, PixelSurface};
 use crate::variance::{SlopeVariance, trochoid_slope_variance, wave_variance_term};
 
 /// Most wave sets (boxes) one [`LocalWaves`] holds: the GPU keeps one texture layer per set
@@ -75,6 +75,26 @@ pub struct LocalPoint {
     /// Eq. 4: the slope variances of what the pixel footprint does not resolve, along the
     /// open sea's wind and across it.
     pub variance: SlopeVariance,
+    /// The unit normal of the displaced geometry of `position` (Eq. 2's waves, open sea and
+    /// trains, weighted by `w_p` for the grid-cell footprint).
+    pub geometry_normal: DVec3,
+    /// The slope variances of what the normal resolves and the geometry does not (weights
+    /// `w_n − w_p`): s² times the open sea's
+    /// ([`FilteredSurface::normal_only_variance`]) plus each train's, of steepness
+    /// k·A·|μ|·(w_n − w_p).
+    pub normal_only: SlopeVariance,
+}
+
+impl LocalPoint {
+    /// What Algorithm 5.1 takes of this point (see [`PixelSurface::visible_normal`]).
+    pub fn pixel(&self) -> PixelSurface {
+        PixelSurface {
+            normal: self.normal,
+            geometry_normal: self.geometry_normal,
+            variance: self.variance,
+            normal_only: self.normal_only,
+        }
+    }
 }
 
 impl LocalWaves {
@@ -316,6 +336,28 @@ impl LocalWaves {
         v
     }
 
+    /// The slope variances of the trains at rest point `p` that the pixel footprint `pixel`
+    /// resolves in the normal and the grid-cell footprint `cell` does not resolve in the
+    /// geometry: each train's trochoid of steepness k·A·|μ|·(w_n − w_p), as
+    /// [`crate::VarianceTable::normal_only`] for the open sea (§3.2).
+    pub fn normal_only_at(&self, p: DVec2, pixel: f64, cell: f64) -> SlopeVariance {
+        let mut v = SlopeVariance::default();
+        for (k, s) in self.sets.iter().enumerate() {
+            let [re, im] = self.modulation_at(k, p);
+            let m = libm::sqrt(re * re + im * im);
+            for (w, &(ka, cos2)) in s.waves.waves().iter().zip(&s.terms) {
+                let l = w.wavelength();
+                let weight = (self.filter.weight(l, pixel) - self.filter.weight(l, cell)).max(0.0);
+                let only = trochoid_slope_variance((ka * m * weight).min(1.0));
+                v = v.plus(SlopeVariance {
+                    x: only * cos2,
+                    y: only * (1.0 - cos2),
+                });
+            }
+        }
+        v
+    }
+
     /// The open sea `open` with these local waves at rest point `p` and time `t`: the
     /// position for the grid-cell footprint `cell`, the normal and the variances for the pixel
     /// footprint `pixel` (what the GPU renderer's vertex and fragment stages compute).
@@ -345,10 +387,18 @@ impl LocalWaves {
             y: s * s * v.y,
         }
         .plus(self.variance_at(p, pixel));
+        let only = open.normal_only_variance(pixel, cell);
+        let normal_only = SlopeVariance {
+            x: s * s * only.x,
+            y: s * s * only.y,
+        }
+        .plus(self.normal_only_at(p, pixel, cell));
         Ok(LocalPoint {
             position: DVec3::new(p.x, 0.0, p.y) + geometry.displacement(),
             normal: normal.normal(),
             variance,
+            geometry_normal: geometry.normal(),
+            normal_only,
         })
     }
 }
@@ -419,6 +469,7 @@ mod tests {
             assert_eq!(got.position, sea.position(p, 3.0, cell).unwrap());
             assert_eq!(got.normal, sea.normal(p, 3.0, pixel).unwrap());
             assert_eq!(got.variance, sea.variance(pixel));
+            assert_eq!(got.pixel(), sea.pixel(p, 3.0, pixel, cell).unwrap());
         }
     }
 

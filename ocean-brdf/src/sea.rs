@@ -21,6 +21,7 @@ use crate::fresnel_table::effective_fresnel_table_unchecked;
 use crate::ross::{check_direction, sun_radiance_unchecked};
 use crate::sky::{Sky, SkyParams, check_rgb, stereographic};
 use crate::sky_map::SkyMap;
+use crate::surface::PixelSurface;
 use crate::variance::SlopeVariance;
 
 /// The finite-difference step of Algorithm 5.1's slope derivatives of `U` (Fig. 9: "precise
@@ -236,6 +237,22 @@ pub fn sea_color_unchecked(
         sky: l_bar * f_bar,
         sea: lighting.sea_radiance() * (1.0 - f_bar),
     }
+}
+
+/// Algorithm 5.1 for one pixel of the filtered surface seen along `v` (unit, towards the
+/// viewer): [`sea_color_unchecked`] with the masking-aware normal of §3.2
+/// ([`PixelSurface::visible_normal`], Eq. 10 for the slopes only the normal resolves) and the
+/// BRDF's variance of Eq. 4. What the renderer's fragment stage draws (`ocean_fs`), and what the
+/// validation (§7.2) measures as the model. `wind` is the surface's wind.
+pub fn pixel_color(
+    lighting: &Lighting,
+    sky_map: &SkyMap,
+    v: DVec3,
+    pixel: &PixelSurface,
+    wind: DVec2,
+) -> SeaLight {
+    let n = pixel.visible_normal(v, wind);
+    sea_color_unchecked(lighting, sky_map, v, n, wind, pixel.variance)
 }
 
 /// Where the sky map is read for one pixel (Eq. 27): the centre `u0 = U(0)` and the axes

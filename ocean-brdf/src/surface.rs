@@ -128,6 +128,30 @@ impl FilteredSurface {
         self.variance.normal_only(&self.filter, pixel, cell)
     }
 
+    /// What Algorithm 5.1 needs of the surface at one pixel (§3.2): Eq. 3's normal and Eq. 4's
+    /// variance for the pixel footprint `pixel` (l, metres), the normal of Eq. 2's geometry for
+    /// the grid-cell footprint `cell` (L, metres) and the slope variance of the waves resolved
+    /// in the former and not in the latter. The CPU twin of the fragment stage's
+    /// `pixel_surface` (ocean_common.wgsl), which the renderer calls with `cell = cell_px · l`.
+    ///
+    /// # Errors
+    ///
+    /// As [`FilteredSurface::normal`], for either footprint.
+    pub fn pixel(
+        &self,
+        rest: DVec2,
+        t: f64,
+        pixel: f64,
+        cell: f64,
+    ) -> Result<PixelSurface, BrdfError> {
+        Ok(PixelSurface {
+            normal: self.normal(rest, t, pixel)?,
+            geometry_normal: self.normal(rest, t, cell)?,
+            variance: self.variance(pixel),
+            normal_only: self.normal_only_variance(pixel, cell),
+        })
+    }
+
     /// §6, local waves: adds this surface's Eq. 3 terms (waves weighted by `w_n` for the
     /// footprint `pixel`, times `scale`, for instance a wave train box's `|μ|` at the point) to
     /// `sums`. Surfaces add: the normal of the open sea with local waves on it is
@@ -190,6 +214,40 @@ impl FilteredSurface {
             .add_weighted_sums_f64(rest, t, weights, &mut sums)
             .map_err(|_| BrdfError::NotFinite("rest position or time"))?;
         Ok(sums)
+    }
+}
+
+/// The filtered surface at one pixel, as Algorithm 5.1 takes it (see [`FilteredSurface::pixel`]
+/// and, with local waves, [`crate::LocalPoint::pixel`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PixelSurface {
+    /// Eq. 3: the unit normal, each wave weighted by `w_n` for the pixel footprint `l`.
+    pub normal: DVec3,
+    /// The unit normal of the displaced geometry (Eq. 2's waves, each weighted by `w_p` for the
+    /// grid-cell footprint `L`): the surface that masks what lies below it (§3.2).
+    pub geometry_normal: DVec3,
+    /// Eq. 4: σ_x², σ_y² of what the normal does not resolve (`w_r = 1 − w_n`), along the wind
+    /// and across it: the BRDF's slopes.
+    pub variance: SlopeVariance,
+    /// The slope variances of the waves resolved in the normal but not in the geometry
+    /// (weights `w_n − w_p`, [`VarianceTable::normal_only`]): the slopes of `normal` relative to
+    /// `geometry_normal`, which the geometry does not mask.
+    pub normal_only: SlopeVariance,
+}
+
+impl PixelSurface {
+    /// The normal Algorithm 5.1 is evaluated with for a viewer along `v` (unit, towards the
+    /// viewer): Eq. 3's normal made masking-aware for the waves the geometry lacks (§3.2, Eq. 10,
+    /// [`crate::sea::visible_normal`]), with `wind` the variances' axis (the surface's wind).
+    pub fn visible_normal(&self, v: DVec3, wind: DVec2) -> DVec3 {
+        crate::sea::visible_normal(
+            v,
+            self.normal,
+            self.geometry_normal,
+            wind,
+            self.normal_only,
+            self.variance,
+        )
     }
 }
 

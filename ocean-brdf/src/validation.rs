@@ -22,10 +22,12 @@
 //!
 //! **Model.** One ray per pixel row and plane, through the pixel centre, against the profile of
 //! the *filtered* surface (Eq. 2 with w_p for a grid cell of `cell_px` pixels); at the hit, the
-//! normal of Eq. 3 made masking-aware for the waves the geometry lacks
-//! ([`crate::sea::visible_normal`]) and the variance of Eq. 4 for the pixel's footprint, then
-//! Algorithm 5.1 ([`sea_color_unchecked`]) with the sky map. The constant-BRDF model differs
-//! only in its variance: the foreground's (bottom row's), everywhere.
+//! pixel as the renderer's fragment stage has it ([`FilteredSurface::pixel`]: Eq. 3's normal,
+//! Eq. 4's variance for the pixel's footprint, the geometry's normal and the normal-only
+//! variance for the cell) lit as the renderer lights it ([`pixel_color`]: Eq. 3's normal made
+//! masking-aware for the waves the geometry lacks, [`crate::sea::visible_normal`], then
+//! Algorithm 5.1 with the sky map). The constant-BRDF model differs only in its variance: the
+//! foreground's (bottom row's), everywhere.
 
 use alloc::vec::Vec;
 
@@ -37,7 +39,7 @@ use rayon::prelude::*;
 use crate::error::{BrdfError, check};
 use crate::filter::Filter;
 use crate::fresnel::schlick;
-use crate::sea::{Lighting, SeaLight, SeaParams, sea_color_unchecked, visible_normal};
+use crate::sea::{Lighting, SeaLight, SeaParams, pixel_color, sea_color_unchecked};
 use crate::sky::SkyParams;
 use crate::sky_map::SkyMap;
 use crate::spectrum::{Spectrum, SpectrumParams};
@@ -336,25 +338,15 @@ impl Ctx<'_> {
                 else {
                     return [SeaLight::default(); 2];
                 };
-                let normal = self.surface.normal(rest, p.time, l).unwrap_or(DVec3::Y);
-                let var = self.surface.variance(l);
-                // The geometry's own normal (Eq. 2's waves, w_p for the cell at the hit), for the
-                // masking of the waves only the normal resolves (§3.2, `visible_normal`).
-                let cell_m = cell(s);
-                let geo = self
-                    .surface
-                    .normal(rest, p.time, cell_m)
-                    .unwrap_or(DVec3::Y);
-                let normal = visible_normal(
-                    v,
-                    normal,
-                    geo,
-                    wind,
-                    self.surface.normal_only_variance(l, cell_m),
-                    var,
-                );
+                // The pixel as the renderer's fragment stage has it (`FilteredSurface::pixel`),
+                // with the geometry's w_p for the grid cell at the hit, and Algorithm 5.1 as it
+                // draws it (`pixel_color`: the masking-aware normal of §3.2).
+                let Ok(surface) = self.surface.pixel(rest, p.time, l, cell(s)) else {
+                    return [SeaLight::default(); 2];
+                };
+                let normal = surface.visible_normal(v, wind);
                 [
-                    sea_color_unchecked(self.lighting, self.map, v, normal, wind, var),
+                    pixel_color(self.lighting, self.map, v, &surface, wind),
                     sea_color_unchecked(self.lighting, self.map, v, normal, wind, constant_var),
                 ]
             })

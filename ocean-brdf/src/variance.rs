@@ -149,6 +149,15 @@ impl VarianceTable {
     /// weighted by w_r = 1 − w_n. Computed as the total minus the resolved part (§7.1): only the
     /// waves with w_n > 0 are visited. Rounding can leave the difference a few ulps below zero
     /// when everything is resolved; it is clamped at 0.
+    ///
+    /// §7.1 is a way of evaluating Eq. 4, not another model: "we also evaluate Eq. 4 by
+    /// subtracting from the total variance ... the variance of the resolved waves". So the part
+    /// subtracted for a wave is what Eq. 4 takes away from it, var(A) − var(w_r A), and the
+    /// result is Eq. 4's Σ var(w_r A) to rounding ([`VarianceTable::unresolved_direct`]). A
+    /// partly resolved wave then appears as var(w_n A) in the normals and var(w_r A) in the
+    /// BRDF, less than its var(A) (the two parts are one wave, fully correlated); subtracting
+    /// var(w_n A) instead would keep the total but is not Eq. 4 (for small slopes it amounts to
+    /// w_r = √(1 − w_n²) instead of 1 − w_n), so it is not done.
     pub fn unresolved(&self, filter: &Filter, pixel: f64) -> SlopeVariance {
         let mut v = self.total;
         for t in &self.terms[filter.resolved(&self.wavelengths, pixel)] {

@@ -196,3 +196,52 @@ fn local_waves_add_their_normals_and_variances() {
     let mut sums = ocean_core::PointSums::REST;
     assert!(local.add_normal_sums(rest, t, 1.0, 1.5, &mut sums).is_err());
 }
+
+/// `FilteredSurface::pixel` (the fragment stage's twin) is its parts: Eq. 3 and 4 for the pixel
+/// footprint, the geometry normal for the cell (Eq. 2's waves), the normal-only variance of
+/// both; `sea::pixel_color` lights its masking-aware normal with Eq. 4's variance. Where the
+/// cell resolves every wave the pixel does, nothing is unmasked and the normal is kept; with a
+/// cell that resolves none the normal-only slopes are every resolved wave's.
+#[test]
+fn a_pixel_is_its_normal_geometry_and_variances() {
+    use ocean_brdf::sea::{pixel_color, sea_color_unchecked, visible_normal};
+    use ocean_brdf::{Lighting, SeaParams, SkyParams};
+    let s = surface();
+    let rest = DVec2::new(-3.0, 11.0);
+    let t = 7.5;
+    let (pixel, cell) = (0.05, 0.4);
+    let px = s.pixel(rest, t, pixel, cell).unwrap();
+    assert_eq!(px.normal, s.normal(rest, t, pixel).unwrap());
+    assert_eq!(px.geometry_normal, s.normal(rest, t, cell).unwrap());
+    assert_eq!(px.variance, s.variance(pixel));
+    assert_eq!(px.normal_only, s.normal_only_variance(pixel, cell));
+    assert!(px.normal_only.x > 0.0 && px.normal_only.y > 0.0);
+    let lighting = Lighting::new(SkyParams::default(), SeaParams::default()).unwrap();
+    let map = lighting.sky_map(64).unwrap();
+    let v = DVec3::new(0.0, 0.05, 1.0).normalize();
+    let n = visible_normal(
+        v,
+        px.normal,
+        px.geometry_normal,
+        s.wind(),
+        px.normal_only,
+        px.variance,
+    );
+    assert_eq!(px.visible_normal(v, s.wind()), n);
+    assert!(n.angle_between(px.normal) > 1e-3, "a grazing view moves it");
+    assert_eq!(
+        pixel_color(&lighting, &map, v, &px, s.wind()),
+        sea_color_unchecked(&lighting, &map, v, n, s.wind(), px.variance)
+    );
+    // The same footprint for both: no normal-only slopes, the normal as it is.
+    let same = s.pixel(rest, t, pixel, pixel).unwrap();
+    assert_eq!(same.normal_only, ocean_brdf::SlopeVariance::default());
+    assert_eq!(same.visible_normal(v, s.wind()), same.normal);
+    // No geometry at all: every resolved wave's variance.
+    let none = s.pixel(rest, t, pixel, 1e6).unwrap();
+    assert_eq!(none.geometry_normal, DVec3::Y);
+    let resolved = s.variance_table().total();
+    let left = s.variance(pixel);
+    assert!(none.normal_only.x > 0.0 && none.normal_only.x < resolved.x - left.x + 1e-12);
+    assert!(s.pixel(rest, f64::NAN, pixel, cell).is_err());
+}

@@ -22,7 +22,9 @@
 //! | agitated, far    | +13.0 %, 13.0 %, 19.1 %    | −13.5 %, 13.5 %, 17.0 %          |
 //!
 //! The constant-BRDF model is 32–49 % off beyond 300 m, 2.3–3.7 times the model's error on
-//! every such row. The 5 % per row is **not met** for either component:
+//! every such row. The model is the renderer's (`FilteredSurface::pixel` lit by
+//! `sea::pixel_color`, the CPU twin of `ocean_fs`), so these are the figures of what the GPU
+//! draws. The 5 % per row is **not met** for either component:
 //! - near rows: the model's masking-aware normal (`sea::visible_normal`) halves the bias of the
 //!   waves resolved in the normals but not in the geometry (without it, rows 46–213 m: sky
 //!   +9.7 %, refracted −12 %; with it +5.7 %, −6.2 %); with the geometry holding every wave the normals hold (a 1-pixel

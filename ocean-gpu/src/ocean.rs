@@ -25,7 +25,9 @@
 //! [`fresnel_table_texels`]).
 //!
 //! Every stage has a CPU twin in `ocean_brdf`: [`ocean_brdf::surface`] (rays, sea-plane hits,
-//! footprints, Eq. 2–4), [`ocean_brdf::sea::sea_color_unchecked`] (Algorithm 5.1) and
+//! footprints, Eq. 2–4; a fragment's whole surface is [`ocean_brdf::FilteredSurface::pixel`]
+//! with the footprints `l` and `cell_px · l`), [`ocean_brdf::sea::pixel_color`] (Algorithm 5.1
+//! with the masking-aware normal of §3.2, [`ocean_brdf::sea::visible_normal`]) and
 //! [`ocean_brdf::tonemap`]. The probes ([`OceanRenderer::probe_surface`],
 //! [`OceanRenderer::probe_sea_color`]) run the shaders' own functions on lists of inputs so the
 //! parity tests compare what the GPU draws with them.
@@ -173,10 +175,18 @@ pub struct SurfaceProbe {
     pub variance: SlopeVariance,
     /// How many waves the fragment stage summed (those with `w_n > 0`).
     pub normal_waves: u32,
+    /// The fragment stage's geometry normal: Eq. 2's waves weighted by `w_p` for the grid-cell
+    /// footprint `cell_px · l` at the pixel ([`ocean_brdf::PixelSurface::geometry_normal`]).
+    pub geometry_normal: DVec3,
+    /// The fragment stage's normal-only slope variances, weights `w_n − w_p` for `l` and
+    /// `cell_px · l` ([`ocean_brdf::PixelSurface::normal_only`]).
+    pub normal_only: SlopeVariance,
 }
 
-/// One input of [`OceanRenderer::probe_sea_color`]: the arguments of
-/// [`ocean_brdf::sea::sea_color_unchecked`] besides the lighting.
+/// One input of [`OceanRenderer::probe_sea_color`]: what the fragment stages light, the
+/// arguments of [`ocean_brdf::sea::sea_color_unchecked`] besides the lighting with the normal
+/// made masking-aware first ([`ocean_brdf::sea::visible_normal`]), as
+/// [`ocean_brdf::sea::pixel_color`] does.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SeaColorInput {
     /// Unit vector from the surface towards the viewer.
@@ -187,6 +197,25 @@ pub struct SeaColorInput {
     pub wind: DVec2,
     /// σ_x², σ_y² of the unresolved waves, ≥ 0.
     pub variance: SlopeVariance,
+    /// Unit normal of the geometry (`n` itself, with `normal_only` zero, to light `n` as it is).
+    pub geometry_normal: DVec3,
+    /// σ_x², σ_y² of the waves in `n` and not in the geometry, ≥ 0.
+    pub normal_only: SlopeVariance,
+}
+
+impl SeaColorInput {
+    /// The input that lights the normal `n` as it is: geometry normal `n`, no normal-only
+    /// slopes.
+    pub fn plain(v: DVec3, n: DVec3, wind: DVec2, variance: SlopeVariance) -> Self {
+        Self {
+            v,
+            n,
+            wind,
+            variance,
+            geometry_normal: n,
+            normal_only: SlopeVariance::default(),
+        }
+    }
 }
 
 /// The render pipelines of one depth configuration.
@@ -1346,11 +1375,12 @@ impl OceanRenderer {
             &u,
             Some((&phases, &local_phases)),
             &inputs,
-            4 * items,
+            5 * items,
             true,
         )?;
+        let v3 = |c: [f32; 4]| DVec3::new(c[0].into(), c[1].into(), c[2].into());
         Ok(out
-            .chunks_exact(4)
+            .chunks_exact(5)
             .take(pixels.len())
             .map(|c| {
                 let p = DVec3::new(c[0][0].into(), c[0][1].into(), c[0][2].into());
@@ -1366,14 +1396,21 @@ impl OceanRenderer {
                         y: c[3][1].into(),
                     },
                     normal_waves: c[2][3] as u32,
+                    geometry_normal: v3(c[4]),
+                    normal_only: SlopeVariance {
+                        x: c[3][2].into(),
+                        y: c[3][3].into(),
+                    },
                 }
             })
             .collect())
     }
 
     /// Runs the fragment stage's Algorithm 5.1 on each input with the current lighting and its
-    /// sky map, and reads the three terms back: the GPU side of the lighting parity with
-    /// [`ocean_brdf::sea::sea_color_unchecked`]. Inputs are rounded to `f32`.
+    /// sky map, the normal made masking-aware first (`visible_normal`), and reads the three
+    /// terms back: the GPU side of the lighting parity with
+    /// [`ocean_brdf::sea::sea_color_unchecked`] of [`ocean_brdf::sea::visible_normal`]. Inputs
+    /// are rounded to `f32`.
     ///
     /// # Errors
     ///
@@ -1390,19 +1427,20 @@ impl OceanRenderer {
         let items = probe_items(inputs.len())?;
         let unit = |d: DVec3| d.is_finite() && (d.length() - 1.0).abs() <= 1e-4;
         for (i, s) in inputs.iter().enumerate() {
+            let variance =
+                |v: SlopeVariance| v.x.is_finite() && v.y.is_finite() && v.x >= 0.0 && v.y >= 0.0;
             let ok = unit(s.v)
                 && unit(s.n)
+                && unit(s.geometry_normal)
                 && s.wind.is_finite()
                 && s.wind != DVec2::ZERO
-                && s.variance.x.is_finite()
-                && s.variance.y.is_finite()
-                && s.variance.x >= 0.0
-                && s.variance.y >= 0.0;
+                && variance(s.variance)
+                && variance(s.normal_only);
             if !ok {
                 return Err(invalid(
                     "sea colour input",
                     format!(
-                        "input {i} ({s:?}): v and n must be unit vectors, the wind non-zero, the variances finite and >= 0"
+                        "input {i} ({s:?}): v and the normals must be unit vectors, the wind non-zero, the variances finite and >= 0"
                     ),
                 ));
             }
@@ -1421,7 +1459,7 @@ impl OceanRenderer {
             self.lighting.as_ref(),
         );
         u.probe[0] = items;
-        let mut data = Vec::with_capacity(3 * inputs.len());
+        let mut data = Vec::with_capacity(5 * inputs.len());
         for s in inputs {
             data.push(rgb(s.v, 0.0));
             data.push(rgb(s.n, 0.0));
@@ -1431,6 +1469,8 @@ impl OceanRenderer {
                 s.variance.x as f32,
                 s.variance.y as f32,
             ]);
+            data.push(rgb(s.geometry_normal, 0.0));
+            data.push([s.normal_only.x as f32, s.normal_only.y as f32, 0.0, 0.0]);
         }
         let out = self.run_probe(ctx, &u, None, &data, 3 * items, false)?;
         let v = |c: [f32; 4]| DVec3::new(c[0].into(), c[1].into(), c[2].into());

@@ -13,7 +13,7 @@
 use std::path::PathBuf;
 
 use glam::{DVec2, DVec3};
-use ocean_brdf::sea::sea_color_unchecked;
+use ocean_brdf::sea::{sea_color_unchecked, visible_normal};
 use ocean_brdf::surface::{pixel_footprint, pixel_ray, sea_plane_hit};
 use ocean_brdf::{
     Filter, FilteredSurface, Lighting, SeaLight, SeaParams, SkyParams, SlopeVariance, Spectrum,
@@ -94,7 +94,10 @@ fn f32_round(v: DVec3) -> DVec3 {
 /// three terms apart, Fig. 10), over a table covering grazing (0.5°) to vertical views, vertical,
 /// tilted (up to 35°) and back-facing normals, calm (no unresolved variance: the Sun's disc
 /// only) to rough (σ² = 0.2) seas, two winds, and the Sun's glint in (views at the mirror
-/// direction of the Sun, and 1 to 4 slope deviations off it) and out.
+/// direction of the Sun, and 1 to 4 slope deviations off it) and out; and, as the fragment
+/// stages light a pixel, with the normal made masking-aware first (`visible_normal`, §3.2):
+/// normals off level and tilted geometry with normal-only variances, on the CPU
+/// `sea_color_unchecked` of `sea::visible_normal`.
 ///
 /// Tolerance: each channel of each term within 1 % of the CPU's value, or within an absolute
 /// floor of [`FLOOR`] times that term's largest value over the table (f32 cannot promise 1 % of
@@ -153,12 +156,12 @@ fn sea_color_matches_the_cpu_twin() {
                 }
             }
             for v in views {
-                inputs.push(SeaColorInput {
-                    v: f32_round(v),
-                    n: f32_round(n),
+                inputs.push(SeaColorInput::plain(
+                    f32_round(v),
+                    f32_round(n),
                     wind,
                     variance,
-                });
+                ));
             }
         }
     }
@@ -171,12 +174,47 @@ fn sea_color_matches_the_cpu_twin() {
             (dir(10.0, 0.0), unit(DVec3::new(-1.0, 0.15, 0.0))),
         ] {
             assert!(v.dot(n) < 0.0, "back-facing case");
-            inputs.push(SeaColorInput {
-                v: f32_round(v),
-                n: f32_round(n),
-                wind: DVec2::X,
-                variance: SlopeVariance { x: vx, y: vy },
-            });
+            inputs.push(SeaColorInput::plain(
+                f32_round(v),
+                f32_round(n),
+                DVec2::X,
+                SlopeVariance { x: vx, y: vy },
+            ));
+        }
+    }
+    // The masking-aware normal (§3.2, `visible_normal`): normals tilted off the geometry's by
+    // the waves only they resolve, over level and tilted geometry, grazing to steep views,
+    // small to large normal-only variances (up to a quarter of the slope variance of the
+    // default sea) against small to large BRDF variances, two winds.
+    let normal_only = [(0.004, 0.002), (0.02, 0.012)];
+    let geometry = [DVec3::Y, unit(DVec3::new(0.06, 1.0, -0.03))];
+    let tilted = [
+        unit(DVec3::new(0.1, 1.0, 0.05)),
+        unit(DVec3::new(-0.2, 1.0, 0.3)),
+    ];
+    for &(vx, vy) in &variances[2..5] {
+        for &(nx, ny) in &normal_only {
+            for (gi, &g) in geometry.iter().enumerate() {
+                for &n in &tilted {
+                    for v in [
+                        dir(1.0, 90.0),
+                        dir(3.0, -80.0),
+                        dir(10.0, 30.0),
+                        dir(40.0, 200.0),
+                    ] {
+                        inputs.push(SeaColorInput {
+                            geometry_normal: f32_round(g),
+                            normal_only: SlopeVariance { x: nx, y: ny },
+                            ..SeaColorInput::plain(
+                                f32_round(v),
+                                f32_round(n),
+                                winds[gi],
+                                SlopeVariance { x: vx, y: vy },
+                            )
+                        });
+                    }
+                }
+            }
         }
     }
 
@@ -184,12 +222,21 @@ fn sea_color_matches_the_cpu_twin() {
     let cpu: Vec<SeaLight> = inputs
         .iter()
         .map(|s| {
-            let variance = SlopeVariance {
-                x: f64::from(s.variance.x as f32),
-                y: f64::from(s.variance.y as f32),
+            let f32_var = |v: SlopeVariance| SlopeVariance {
+                x: f64::from(v.x as f32),
+                y: f64::from(v.y as f32),
             };
+            let variance = f32_var(s.variance);
             let wind = s.wind.as_vec2().as_dvec2();
-            sea_color_unchecked(&light, &sky_map, s.v, s.n, wind, variance)
+            let n = visible_normal(
+                s.v,
+                s.n,
+                s.geometry_normal,
+                wind,
+                f32_var(s.normal_only),
+                variance,
+            );
+            sea_color_unchecked(&light, &sky_map, s.v, n, wind, variance)
         })
         .collect();
     assert_eq!(gpu.len(), inputs.len());
@@ -270,6 +317,11 @@ struct GeometryDiff {
     normal_deg: f64,
     /// Eq. 4 at the GPU's own l, relative to max(σ², 10⁻⁶).
     variance_rel: f64,
+    /// The fragment stage's geometry normal at the GPU's rest position and its cell footprint
+    /// (cell_px · l, the vertex stage's L at the same pixel), degrees.
+    geometry_normal_deg: f64,
+    /// Its normal-only variance for l and cell_px · l, relative to max(σ_n², 10⁻⁶).
+    normal_only_rel: f64,
     /// Rest position against `sea_plane_hit(pixel_ray(..))`, over its tolerance.
     rest_ratio: f64,
     /// Rest position against the CPU's, metres (for the report).
@@ -286,6 +338,8 @@ struct GeometryDiff {
     waves_summed: (u64, u64),
     /// Points compared.
     points: usize,
+    /// Points with a normal-only variance above 10⁻⁴ (so the comparison is not vacuous).
+    normal_only_points: usize,
 }
 
 /// The number of waves a footprint resolves on the CPU, and whether a count `gpu` is
@@ -339,6 +393,21 @@ fn geometry_diff(
         let var_rel =
             (g.variance.x - v.x).abs().max((g.variance.y - v.y).abs()) / v.x.max(v.y).max(1e-6);
         d.variance_rel = d.variance_rel.max(var_rel);
+        let px = s
+            .pixel(g.rest, t, g.pixel_footprint, g.cell_footprint)
+            .expect("cpu pixel");
+        assert_eq!(px.normal, n);
+        let geo = g
+            .geometry_normal
+            .angle_between(px.geometry_normal)
+            .to_degrees();
+        d.geometry_normal_deg = d.geometry_normal_deg.max(geo);
+        let (gn, cn) = (g.normal_only, px.normal_only);
+        let only_rel = (gn.x - cn.x).abs().max((gn.y - cn.y).abs()) / cn.x.max(cn.y).max(1e-6);
+        d.normal_only_rel = d.normal_only_rel.max(only_rel);
+        if cn.x.max(cn.y) > 1e-4 {
+            d.normal_only_points += 1;
+        }
         if !count_ok(&s, g.cell_footprint, g.position_waves)
             || !count_ok(&s, g.pixel_footprint, g.normal_waves)
         {
@@ -387,6 +456,9 @@ fn geometry_diff(
 ///   on the host, f32 sums);
 /// - Eq. 3 at the GPU's rest position and pixel footprint l: 0.1°;
 /// - Eq. 4 at the GPU's l: 10⁻⁴ relative to max(σ², 10⁻⁶);
+/// - the fragment stage's geometry normal and normal-only variance (`FilteredSurface::pixel`
+///   for l and cell_px · l, at the GPU's rest position): 0.1° and 10⁻⁴ relative to
+///   max(σ_n², 10⁻⁶), as Eq. 3 and 4;
 /// - waves summed: `FilteredSurface::resolved_count` of the same footprint (off by one only at
 ///   a weight below 10⁻⁴);
 /// - rest positions against `sea_plane_hit(pixel_ray(..))`: 1 mm + 4·10⁻⁷ s·max(1, s/h), the
@@ -449,6 +521,16 @@ fn geometry_matches_the_cpu_twin() {
             "{label}: Eq. 4 differs by {} (relative)",
             d.variance_rel
         );
+        assert!(
+            d.geometry_normal_deg <= 0.1,
+            "{label}: the geometry normal differs by {}°",
+            d.geometry_normal_deg
+        );
+        assert!(
+            d.normal_only_rel <= 1e-4,
+            "{label}: the normal-only variance differs by {} (relative)",
+            d.normal_only_rel
+        );
         assert_eq!(d.count_mismatches, 0, "{label}: waves summed");
         assert!(
             d.rest_ratio <= 1.0,
@@ -467,6 +549,7 @@ fn geometry_matches_the_cpu_twin() {
         );
         // Not a vacuous comparison: the waves are there.
         assert!(d.points > 300 && d.waves_summed.0 > 0 && d.waves_summed.1 > d.waves_summed.0);
+        assert!(d.normal_only_points > 100, "{label}: {d:?}");
     }
 }
 
@@ -928,12 +1011,12 @@ fn bad_inputs_are_errors() {
         .render_image(&ctx, &cam, 0.0, w, h)
         .expect_err("no lighting");
     assert!(e.to_string().contains("set_lighting"), "{e}");
-    let one = [SeaColorInput {
-        v: DVec3::Y,
-        n: DVec3::Y,
-        wind: DVec2::X,
-        variance: SlopeVariance::default(),
-    }];
+    let one = [SeaColorInput::plain(
+        DVec3::Y,
+        DVec3::Y,
+        DVec2::X,
+        SlopeVariance::default(),
+    )];
     assert!(matches!(
         r.probe_sea_color(&ctx, &one),
         Err(GpuError::NotConfigured { .. })
@@ -1004,6 +1087,17 @@ fn bad_inputs_are_errors() {
         },
         SeaColorInput {
             variance: SlopeVariance { x: -1.0, y: 0.0 },
+            ..one[0]
+        },
+        SeaColorInput {
+            geometry_normal: DVec3::new(0.0, 0.5, 0.0),
+            ..one[0]
+        },
+        SeaColorInput {
+            normal_only: SlopeVariance {
+                x: 0.0,
+                y: f64::NAN,
+            },
             ..one[0]
         },
     ] {

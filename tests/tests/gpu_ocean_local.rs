@@ -84,7 +84,10 @@ fn renderer(ctx: &GpuContext, local: Option<&LocalWaves>) -> OceanRenderer {
 /// - Eq. 2 (open sea × s plus the trains × w_p × μ): 1 mm;
 /// - Eq. 3: 0.1°;
 /// - Eq. 4 (s² times the open sea's plus each train's k·A·|μ|·w_r): 10⁻⁴ relative to
-///   max(σ², 10⁻⁶) plus 10⁻⁶ (μ read from f32 texels by f32 bilinear weights).
+///   max(σ², 10⁻⁶) plus 10⁻⁶ (μ read from f32 texels by f32 bilinear weights);
+/// - the fragment stage's geometry normal (w_p for its cell_px · l) and normal-only variance
+///   (weights w_n − w_p): 0.1° and the tolerance of Eq. 4, as Eq. 3 and 4. The probe's fragment
+///   cell is the vertex stage's L at the same pixel, so `LocalWaves::point` is given L.
 ///
 /// Not vacuous: the points cover the island's shallows (s < 1) and the box's trains (|μ| > 0.2),
 /// where the surface differs from the open sea's by more than 5 cm or 2°.
@@ -109,6 +112,7 @@ fn local_waves_match_the_cpu_twin() {
         .probe_surface(&ctx, &cam, t, width, height, &pixels)
         .expect("probe");
     let (mut pos, mut normal, mut var) = (0.0f64, 0.0f64, 0.0f64);
+    let (mut geometry, mut only) = (0.0f64, 0.0f64);
     let (mut shallow, mut trains, mut changed) = (0, 0, 0);
     for g in &gpu {
         let cpu = local
@@ -116,6 +120,19 @@ fn local_waves_match_the_cpu_twin() {
             .expect("cpu point");
         pos = pos.max((g.position - cpu.position).length());
         normal = normal.max(g.normal.angle_between(cpu.normal).to_degrees());
+        geometry = geometry.max(
+            g.geometry_normal
+                .angle_between(cpu.geometry_normal)
+                .to_degrees(),
+        );
+        let o = cpu.normal_only;
+        let tol = 1e-4 * o.x.max(o.y).max(1e-6) + 1e-6;
+        only = only.max(
+            (g.normal_only.x - o.x)
+                .abs()
+                .max((g.normal_only.y - o.y).abs())
+                / tol,
+        );
         let v = cpu.variance;
         let tol = 1e-4 * v.x.max(v.y).max(1e-6) + 1e-6;
         var = var.max((g.variance.x - v.x).abs().max((g.variance.y - v.y).abs()) / tol);
@@ -141,6 +158,15 @@ fn local_waves_match_the_cpu_twin() {
     assert!(pos <= 1e-3, "Eq. 2 differs by {pos} m");
     assert!(normal <= 0.1, "Eq. 3 differs by {normal}°");
     assert!(var <= 1.0, "Eq. 4 differs by {var} times its tolerance");
+    println!("geometry normal {geometry}°, normal-only variance {only} (of its tolerance)");
+    assert!(
+        geometry <= 0.1,
+        "the geometry normal differs by {geometry}°"
+    );
+    assert!(
+        only <= 1.0,
+        "the normal-only variance differs by {only} times its tolerance"
+    );
     assert!(shallow > 50 && trains > 50 && changed > 50);
 }
 

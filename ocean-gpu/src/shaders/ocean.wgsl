@@ -49,14 +49,24 @@ fn ocean_vs(@builtin(vertex_index) index: u32) -> OceanVertex {
     return out;
 }
 
+// Algorithm 5.1 for the projected grid's fragment at pixel `pixel` (`sea::pixel_color` of
+// `FilteredSurface::pixel(rest, t, l, cell_px · l)`): the normal (Eq. 3) and the variance
+// (Eq. 4) for the pixel's own footprint l (not the grid cell's: normals stay exact farther than
+// the geometry, §3.2), the geometry's normal and the normal-only variance for the grid cell's
+// footprint L = cell_px · l at the same pixel (what the vertex stage's w_p is made of, evaluated
+// where the fragment is), and the masking-aware normal of the two (`visible_normal`).
+fn grid_light(pixel: vec2<f32>, rest: vec2<f32>, position: vec3<f32>) -> SeaLight {
+    let l = pixel_footprint(pixel);
+    let s = pixel_surface(rest, l, frame.grid.x * l);
+    let v = normalize(-position);
+    let wind = frame.sea.xy;
+    let n = visible_normal(v, s.normal, s.geometry_normal, wind, s.normal_only, s.variance);
+    return sea_color(v, n, wind, s.variance);
+}
+
 @fragment
 fn ocean_fs(in: OceanVertex) -> @location(0) vec4<f32> {
-    // The pixel's own footprint l (not the grid cell's): normals stay exact farther than the
-    // geometry (§3.2).
-    let l = pixel_footprint(in.clip.xy);
-    let s = pixel_surface(in.rest, l);
-    let v = normalize(-in.position);
-    let light = sea_color(v, s.normal, frame.sea.xy, s.variance);
+    let light = grid_light(in.clip.xy, in.rest, in.position);
     return display(light.sun + light.sky + light.sea);
 }
 
@@ -65,10 +75,7 @@ fn ocean_fs(in: OceanVertex) -> @location(0) vec4<f32> {
 // at location 1, linear, alpha 1. `compose_fs` composes the frame from them.
 @fragment
 fn ocean_layers_fs(in: OceanVertex) -> MeshOutput {
-    let l = pixel_footprint(in.clip.xy);
-    let s = pixel_surface(in.rest, l);
-    let v = normalize(-in.position);
-    let light = sea_color(v, s.normal, frame.sea.xy, s.variance);
+    let light = grid_light(in.clip.xy, in.rest, in.position);
     var out: MeshOutput;
     out.direct = vec4<f32>(light.sun, 1.0);
     out.ambient = vec4<f32>(light.sky + light.sea, 1.0);
@@ -165,6 +172,10 @@ struct MeshOutput {
     @location(1) ambient: vec4<f32>,
 }
 
+// A grid-cell footprint (metres) for which no wave has a weight w_p > 0: `mesh_fs`'s open sea
+// is in no geometry.
+const NO_GEOMETRY_CELL: f32 = 1e30;
+
 // The least y of a unit normal whose slope is taken (a slope of 10³): the mesh's normals and
 // the filtered ones point up, and a grazing one must not divide by zero.
 const MIN_NORMAL_Y: f32 = 1e-3;
@@ -199,14 +210,20 @@ fn mesh_fs(in: MeshVertex) -> MeshOutput {
     // `ocean_fs` does; the mesh carries the geometry, these waves only the normal and the
     // BRDF. Without a spectrum (no waves) the normal is +y and the variance 0.
     let l = pixel_footprint(in.clip.xy);
-    let s = pixel_surface(in.rest, l);
+    let s = pixel_surface(in.rest, l, NO_GEOMETRY_CELL);
     // The two surfaces superposed as height fields: slopes add (the spectrum's waves ride on
     // the mesh, their horizontal displacement neglected), and so do the independent slope
     // variances.
     let slope = mesh_slope + normal_slope(s.normal);
     let n = normalize(vec3<f32>(-slope.x, 1.0, -slope.y));
     let v = normalize(-in.position);
-    let light = sea_color(v, n, wind, s.variance + mesh_variance);
+    let variance = s.variance + mesh_variance;
+    // Masking (§3.2, `visible_normal`): here the geometry is the mesh's own, so its normal is the
+    // geometry's normal, and none of the open sea's waves is in it: every slope they add to the
+    // normal is unmasked, with the variances of w_n (w_p = 0 for all, `NO_GEOMETRY_CELL`), while
+    // the BRDF's slopes are the open sea's unresolved ones and the mesh's own.
+    let n_visible = visible_normal(v, n, normalize(in.normal), wind, s.normal_only, variance);
+    let light = sea_color(v, n_visible, wind, variance);
     var out: MeshOutput;
     out.direct = vec4<f32>(light.sun, 1.0);
     out.ambient = vec4<f32>(light.sky + light.sea, 1.0);

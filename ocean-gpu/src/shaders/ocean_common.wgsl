@@ -198,13 +198,20 @@ fn local_sin_cos(a: vec4<f32>, rest: vec2<f32>, mu: vec2<f32>, w: f32) -> vec2<f
     return w * vec2<f32>(s * mu.x + c * mu.y, c * mu.x - s * mu.y);
 }
 
-// What the fragment stage needs of the surface at one pixel.
+// What the fragment stage needs of the surface at one pixel (`ocean_brdf::PixelSurface`).
 struct PixelSurface {
     // Eq. 3: the unit normal, each wave weighted by w_n.
     normal: vec3<f32>,
+    // The unit normal of the displaced geometry (Eq. 2's waves, each weighted by w_p for the
+    // grid-cell footprint L): the surface that masks (§3.2).
+    geometry_normal: vec3<f32>,
     // Eq. 4: σ_x², σ_y² of what the normal does not resolve (w_r = 1 − w_n), along the wind
     // and across it.
     variance: vec2<f32>,
+    // The slope variances of the waves the normal resolves and the geometry does not (weights
+    // w_n − w_p, `VarianceTable::normal_only`): the slopes of `normal` relative to
+    // `geometry_normal`, which the geometry does not mask (see `visible_normal`).
+    normal_only: vec2<f32>,
     // Waves summed (those with w_n > 0).
     count: u32,
 }
@@ -216,21 +223,33 @@ fn trochoid_slope_variance(ka: f32) -> f32 {
     return s / (1.0 + sqrt(max(1.0 - s, 0.0)));
 }
 
-// Eq. 3 and Eq. 4 at `rest` for a pixel footprint of `l` metres, in one loop over the waves
-// with w_n > 0 (longest first, stopping at the first zero weight, §7.1).
+// Eq. 3 and Eq. 4 at `rest` for a pixel footprint of `l` metres, and the geometry's normal
+// and the normal-only variance for a grid-cell footprint of `cell` metres
+// (`FilteredSurface::pixel`, `LocalWaves::point`), in one loop over the waves with w_n > 0
+// (longest first, stopping at the first zero weight, §7.1; with cell ≥ l, as cell_px ≥ 1
+// gives, every wave with w_p > 0 has w_n > 0 too).
 //
 // Eq. 4 is the total variance minus the resolved waves' share (§7.1). Formed as the total
 // minus an f32 sum, that difference would cancel near the camera, where nearly every wave is
 // resolved; so the host stores, per wave, the f64 variance S of that wave and all shorter ones,
 // and the shader adds S at the first unresolved wave to what the partly resolved waves leave,
-// Σ_{w_n > 0} var(k A w_r): the same sum, visiting the same waves, without cancellation.
-fn pixel_surface(rest: vec2<f32>, l: f32) -> PixelSurface {
+// Σ_{w_n > 0} var(k A w_r): the same sum, visiting the same waves, without cancellation. (§7.1
+// evaluates Eq. 4 this way, so what it subtracts per wave is var(k A) − var(k A w_r), as
+// `VarianceTable::unresolved` explains.)
+fn pixel_surface(rest: vec2<f32>, l: f32, cell: f32) -> PixelSurface {
     var jxx = 1.0;
     var jxz = 0.0;
     var jzz = 1.0;
     var sx = 0.0;
     var sz = 0.0;
+    // The geometry's sums, as the above with w_p.
+    var gxx = 1.0;
+    var gxz = 0.0;
+    var gzz = 1.0;
+    var gsx = 0.0;
+    var gsz = 0.0;
     var variance = vec2<f32>(0.0);
+    var normal_only = vec2<f32>(0.0);
     let n = frame.counts.z;
     let open = open_scale(rest);
     var i = 0u;
@@ -243,16 +262,27 @@ fn pixel_surface(rest: vec2<f32>, l: f32) -> PixelSurface {
         let b = textureLoad(waves, vec2<u32>(i, 1u), 0);
         let v = textureLoad(waves, vec2<u32>(i, 2u), 0);
         let theta = wave_phase(a, rest);
-        let s = w * open * sin(theta);
-        let c = w * open * cos(theta);
+        let sin_theta = sin(theta);
+        let cos_theta = cos(theta);
+        let s = w * open * sin_theta;
+        let c = w * open * cos_theta;
         // ∂/∂x₀ and ∂/∂z₀ of Eq. 2's trochoid, as ocean-core's PointSums.
         jxx -= b.y * a.y * c;
         jxz -= b.y * a.z * c;
         jzz -= b.z * a.z * c;
         sx -= b.x * a.y * s;
         sz -= b.x * a.z * s;
-        let left = trochoid_slope_variance(v.x * (1.0 - w));
-        variance += left * vec2<f32>(v.y, 1.0 - v.y);
+        let wp = wave_weight(a.x, cell);
+        let gs = wp * open * sin_theta;
+        let gc = wp * open * cos_theta;
+        gxx -= b.y * a.y * gc;
+        gxz -= b.y * a.z * gc;
+        gzz -= b.z * a.z * gc;
+        gsx -= b.x * a.y * gs;
+        gsz -= b.x * a.z * gs;
+        let axes = vec2<f32>(v.y, 1.0 - v.y);
+        variance += trochoid_slope_variance(v.x * (1.0 - w)) * axes;
+        normal_only += trochoid_slope_variance(v.x * max(w - wp, 0.0)) * axes;
     }
     if i < n {
         variance += textureLoad(waves, vec2<u32>(i, 2u), 0).zw;
@@ -260,6 +290,7 @@ fn pixel_surface(rest: vec2<f32>, l: f32) -> PixelSurface {
     // The open sea's factor s scales its slopes by s and its variances by s² (small-slope
     // form, `ocean_brdf::local`).
     variance *= open * open;
+    normal_only *= open * open;
     // The local trains (§6): their derivatives weighted by w_n and μ join the sums; what w_n
     // leaves, a trochoid of steepness k·A·|μ|·w_r, joins the variances.
     var last = LocalSet(0xffffffffu, vec2<f32>(0.0));
@@ -269,20 +300,32 @@ fn pixel_surface(rest: vec2<f32>, l: f32) -> PixelSurface {
         let v = textureLoad(local_trains, vec2<u32>(j, 2u), 0);
         last = local_set(last, u32(b.w), rest);
         let w = wave_weight(a.x, l);
+        let wp = wave_weight(a.x, cell);
         if w > 0.0 {
-            let sc = local_sin_cos(a, rest, last.mu, w);
+            let sc_unit = local_sin_cos(a, rest, last.mu, 1.0);
+            let sc = w * sc_unit;
             jxx -= b.y * a.y * sc.y;
             jxz -= b.y * a.z * sc.y;
             jzz -= b.z * a.z * sc.y;
             sx -= b.x * a.y * sc.x;
             sz -= b.x * a.z * sc.x;
+            let gc = wp * sc_unit;
+            gxx -= b.y * a.y * gc.y;
+            gxz -= b.y * a.z * gc.y;
+            gzz -= b.z * a.z * gc.y;
+            gsx -= b.x * a.y * gc.x;
+            gsz -= b.x * a.z * gc.x;
         }
-        let left = trochoid_slope_variance(min(v.x * length(last.mu) * (1.0 - w), 1.0));
-        variance += left * vec2<f32>(v.y, 1.0 - v.y);
+        let m = length(last.mu);
+        let axes = vec2<f32>(v.y, 1.0 - v.y);
+        variance += trochoid_slope_variance(min(v.x * m * (1.0 - w), 1.0)) * axes;
+        normal_only += trochoid_slope_variance(min(v.x * m * max(w - wp, 0.0), 1.0)) * axes;
     }
     var out: PixelSurface;
     out.normal = unit_normal(jxx, jxz, jzz, sx, sz);
+    out.geometry_normal = unit_normal(gxx, gxz, gzz, gsx, gsz);
     out.variance = variance;
+    out.normal_only = normal_only;
     out.count = i;
     return out;
 }

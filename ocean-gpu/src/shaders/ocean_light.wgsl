@@ -275,6 +275,60 @@ fn tangent_x(n: vec3<f32>, wind: vec2<f32>) -> vec3<f32> {
     return vec3<f32>(b, sign + n.y * n.y * a, -n.y);
 }
 
+// `ross::facet_normal`: the unit normal (−ζ_x, −ζ_y, 1)/|·| of the facet of slopes ζ in its
+// tangent frame, scaled by the largest of |ζ_x|, |ζ_y|, 1 first so steep slopes cannot overflow.
+fn facet_normal(zeta: vec2<f32>) -> vec3<f32> {
+    let m = max(max(abs(zeta.x), abs(zeta.y)), 1.0);
+    let f = vec3<f32>(-zeta.x / m, -zeta.y / m, 1.0 / m);
+    return f / sqrt(dot(f, f));
+}
+
+// The masking-aware normal of a pixel (§3.2, Eq. 10; `sea::visible_normal`, whose documentation
+// derives it): Eq. 3's normal n, whose slopes relative to the geometry's normal n_geo come from
+// the waves the normal resolves and the geometry does not (variances `normal_only`), with those
+// slopes moved to the first two moments of their visible density, summed with the BRDF's slopes
+// (variances `brdf`, Eq. 4). In the tangent frame of n_geo, whitened, along the axis e of
+// (σ_nx v_x, σ_ny v_y) (length c_n; c_r likewise for the BRDF's, c² = c_n² + c_r²), the visible
+// density of the combined coordinate is a Gaussian times the ramp (a − t)⁺, a = v_z/c, of mean
+// μ = −Φ(a)/Z and second moment (a Φ(a) + 2 φ(a))/Z, Z = a Φ(a) + φ(a); the normal-only
+// coordinate gets the mean (c_n/c) μ and the variance (c_n/c)² Var t + (c_r/c)², an affine map
+// of the pixel's own coordinate along e; across e nothing changes. n is returned as it is where
+// nothing is unmasked (c_n = 0, either variance axis 0) or v or n is below the geometry's plane.
+// Vectors unit, in world space; `wind` the variances' axis.
+fn visible_normal(v: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, wind: vec2<f32>, normal_only: vec2<f32>, brdf: vec2<f32>) -> vec3<f32> {
+    let tx = tangent_x(n_geo, wind);
+    let ty = cross(n_geo, tx);
+    let v_t = vec3<f32>(dot(v, tx), dot(v, ty), dot(v, n_geo));
+    let n_t = vec3<f32>(dot(n, tx), dot(n, ty), dot(n, n_geo));
+    let sn = sqrt(normal_only);
+    let sr = sqrt(brdf);
+    let axis = sn * v_t.xy;
+    let c_n = length(axis);
+    let c_r = length(sr * v_t.xy);
+    if !(c_n > 0.0 && v_t.z > 0.0 && n_t.z > 0.0 && min(sn.x, sn.y) > 0.0) {
+        return n;
+    }
+    let c = length(vec2<f32>(c_n, c_r));
+    let e = axis / c_n;
+    let a = v_t.z / c;
+    // Φ(a) = 1 − erfc(a/√2)/2 for a > 0.
+    let cdf = 1.0 - 0.5 * erfc_pos(a / SQRT_2);
+    let pdf = exp(-0.5 * a * a) * FRAC_1_SQRT_2PI;
+    let z = a * cdf + pdf;
+    let mean_t = -cdf / z;
+    let var_t = max((a * cdf + 2.0 * pdf) / z - mean_t * mean_t, 0.0);
+    let kn = c_n / c;
+    let kr = c_r / c;
+    let mean = kn * mean_t;
+    let dev = sqrt(kn * kn * var_t + kr * kr);
+    // The pixel's slopes relative to the geometry, whitened, moved along e.
+    let u = (-n_t.xy / n_t.z) / sn;
+    let along = dot(u, e);
+    let moved = u + e * (mean + dev * along - along);
+    let f = facet_normal(moved * sn);
+    return normalize(tx * f.x + ty * f.y + n_geo * f.z);
+}
+
 // The three terms of the sea's radiance towards the viewer (linear RGB).
 struct SeaLight {
     sun: vec3<f32>,
