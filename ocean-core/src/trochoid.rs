@@ -385,7 +385,9 @@ impl WaveSet {
 
     /// [`WaveSet::add_sums_f64`] with each phase reduced in `f64` and its sine and cosine from
     /// the kernel's deterministic [`sincos`] (absolute error ≤ 1.5·10⁻⁷), several times faster:
-    /// for height queries, where micrometres do not matter and throughput does.
+    /// for point queries, where micrometres do not matter and throughput does. Many evaluations
+    /// at one time (a frame's height queries) go faster still through
+    /// [`WaveSet::at_time`] and [`crate::TimedWaves`], which reduce Φ − ωt once per wave.
     pub fn add_sums(
         &self,
         rest: DVec2,
