@@ -79,9 +79,10 @@ impl Frame<'_> {
 
     /// [`Frame::height_at`] for many points, each answer bit-identical to its own
     /// [`Frame::height_at`]. A batch of 256 or more is answered in the order of the grid
-    /// points nearest the queries rather than the caller's (the answers still land at the
-    /// queries' indices): random queries then read the modulation row by row, not one cache
-    /// miss at a time. This costs one `u64` per query of scratch memory.
+    /// points nearest the queries (row-major, by a radix sort) rather than in the caller's
+    /// order (the answers still land at the queries' indices): random queries then read the
+    /// modulation row by row, not one cache miss at a time. This costs four `u32` per query
+    /// of scratch memory.
     ///
     /// # Errors
     ///
@@ -93,8 +94,8 @@ impl Frame<'_> {
             self.solve_all(at, out);
             return Ok(());
         }
-        let mut order = self.query_order(at);
-        order.sort_unstable();
+        let cells: Vec<[u32; 2]> = at.iter().map(|p| self.query_cell(*p)).collect();
+        let order = grid_order(&cells, self.grid.nx(), self.grid.nz());
         let mut sorted = vec![HeightSample::REST; order.len()];
         self.solve_keys(at, &order, &mut sorted);
         scatter(&order, sorted, out);
@@ -117,17 +118,10 @@ impl Frame<'_> {
                 .for_each(|(at, out)| self.solve_all(at, out));
             return Ok(());
         }
-        let mut order: Vec<u64> = at
-            .par_chunks(QUERY_SORT_MIN)
-            .enumerate()
-            .flat_map_iter(|(c, at)| {
-                at.iter()
-                    .enumerate()
-                    .map(move |(n, p)| self.query_key(c * QUERY_SORT_MIN + n, *p))
-            })
-            .collect();
-        order.par_sort_unstable();
-        // Answers in key order (each task reads a band of grid rows), then gathered back to
+        let cells: Vec<[u32; 2]> = at.par_iter().map(|p| self.query_cell(*p)).collect();
+        // The radix sort is a few linear passes, a small share of the solving: serial.
+        let order = grid_order(&cells, self.grid.nx(), self.grid.nz());
+        // Answers in row order (each task reads a band of grid rows), then gathered back to
         // the queries' indices through the inverse permutation.
         let mut sorted = vec![HeightSample::REST; order.len()];
         sorted
@@ -135,8 +129,8 @@ impl Frame<'_> {
             .zip(order.par_chunks(QUERY_SORT_MIN))
             .for_each(|(out, keys)| self.solve_keys(at, keys, out));
         let mut rank = vec![0u32; order.len()];
-        for (r, key) in order.iter().enumerate() {
-            rank[*key as u32 as usize] = r as u32;
+        for (r, &q) in order.iter().enumerate() {
+            rank[q as usize] = r as u32;
         }
         out.par_iter_mut()
             .zip(rank.par_iter())
@@ -149,51 +143,42 @@ impl Frame<'_> {
         self.solve_batch(at, None, out);
     }
 
-    /// Solves the queries `keys` name (see [`Frame::query_order`]) into `out`, in key order.
-    fn solve_keys(&self, at: &[DVec2], keys: &[u64], out: &mut [HeightSample]) {
-        self.solve_batch(at, Some(keys), out);
+    /// Solves the queries `order` names (indices into `at`) into `out`, in that order.
+    fn solve_keys(&self, at: &[DVec2], order: &[u32], out: &mut [HeightSample]) {
+        self.solve_batch(at, Some(order), out);
     }
 
-    /// The queries as sort keys: the grid point nearest each (row-major, points outside the
-    /// grid last) above its index. Visited in key order, a batch reads the modulation and the
-    /// height field row by row instead of at random; each answer depends on its own position
-    /// only, so the order changes no bit of it.
-    fn query_order(&self, at: &[DVec2]) -> Vec<u64> {
-        at.iter()
-            .enumerate()
-            .map(|(n, p)| self.query_key(n, *p))
-            .collect()
-    }
-
-    /// Query `n`'s sort key (see [`Frame::query_order`]).
-    fn query_key(&self, n: usize, p: DVec2) -> u64 {
+    /// The grid point nearest `p` as (column, row), or (nx, nz) for a point outside the grid:
+    /// its place in [`grid_order`]. Visited in that order, a batch reads the modulation and
+    /// the height field row by row instead of at random; each answer depends on its own
+    /// position only, so the order changes no bit of it.
+    fn query_cell(&self, p: DVec2) -> [u32; 2] {
         let l = (p - self.grid.origin()) * self.inv_spacing + DVec2::splat(0.5);
         let (nx, nz) = (self.grid.nx(), self.grid.nz());
-        let cell = if l.x >= 0.0 && l.y >= 0.0 && l.x < nx as f64 && l.y < nz as f64 {
-            (l.y as u64) * nx as u64 + l.x as u64
+        if l.x >= 0.0 && l.y >= 0.0 && l.x < nx as f64 && l.y < nz as f64 {
+            [l.x as u32, l.y as u32]
         } else {
-            u64::from(u32::MAX)
-        };
-        (cell << 32) | n as u64
+            [nx as u32, nz as u32]
+        }
     }
 
     /// Solves a batch [`LANES`] queries at a time: `at` in the caller's order, or the queries
-    /// `keys` name in key order. (Compiled for the baseline target: measured here, the lane
+    /// `order` names in that order. (Compiled for the baseline target: measured here, the lane
     /// loops ran about 1.5 times faster with SSE2 than inside an AVX2 dispatch.)
-    fn solve_batch(&self, at: &[DVec2], keys: Option<&[u64]>, out: &mut [HeightSample]) {
-        match keys {
+    fn solve_batch(&self, at: &[DVec2], order: Option<&[u32]>, out: &mut [HeightSample]) {
+        match order {
             None => {
                 for (at, out) in at.chunks(LANES).zip(out.chunks_mut(LANES)) {
                     self.solve(at, out);
                 }
             }
-            Some(keys) => {
-                for (keys, out) in keys.chunks(LANES).zip(out.chunks_mut(LANES)) {
+            Some(order) => {
+                for (order, out) in order.chunks(LANES).zip(out.chunks_mut(LANES)) {
                     let mut lanes = [DVec2::ZERO; LANES];
-                    for (p, key) in lanes.iter_mut().zip(keys) {
-                        *p = at[*key as u32 as usize];
+                    for (p, &q) in lanes.iter_mut().zip(order) {
+                        *p = at[q as usize];
                     }
-                    self.solve(&lanes[..keys.len()], out);
+                    self.solve(&lanes[..order.len()], out);
                 }
             }
         }
@@ -326,15 +311,54 @@ fn check_batch(at: &[DVec2], out: &[HeightSample]) -> Result<(), WtbError> {
     Ok(())
 }
 
-/// Whether a batch of `n` is answered in grid order (its indices must fit a key's low half).
+/// Whether a batch of `n` is answered in grid order (its indices must fit a `u32`).
 fn sorted_batch(n: usize) -> bool {
     (QUERY_SORT_MIN..=u32::MAX as usize).contains(&n)
 }
 
-/// Writes the answers `sorted`, in the order of `keys`, to their queries' indices in `out`.
-fn scatter(keys: &[u64], sorted: Vec<HeightSample>, out: &mut [HeightSample]) {
-    for (s, key) in sorted.into_iter().zip(keys) {
-        out[*key as u32 as usize] = s;
+/// The query indices in grid order: by the nearest grid point's row, then its column, then
+/// index ([`Frame::query_cell`] gives the pair). An LSD radix sort of two stable counting
+/// passes (column, then row), linear where a comparison sort of 32 768 keys took a quarter of
+/// the queries' instructions. Row order keeps the modulation reads in two rows; column order
+/// within a row also keeps neighbouring lanes together, so they leave the Newton loop and
+/// the boxes at the same round (measured: row order alone was 1.4 times slower).
+fn grid_order(cells: &[[u32; 2]], nx: usize, nz: usize) -> Vec<u32> {
+    let by_column = counting_order(cells, 0, nx + 1, None);
+    counting_order(cells, 1, nz + 1, Some(&by_column))
+}
+
+/// The indices `within` (all of `cells`' when `None`) stably sorted by `cells[_][digit]`, each
+/// below `buckets`.
+fn counting_order(
+    cells: &[[u32; 2]],
+    digit: usize,
+    buckets: usize,
+    within: Option<&[u32]>,
+) -> Vec<u32> {
+    let mut start = vec![0u32; buckets + 1];
+    for c in cells {
+        start[c[digit] as usize + 1] += 1;
+    }
+    for b in 1..=buckets {
+        start[b] += start[b - 1];
+    }
+    let mut order = vec![0u32; cells.len()];
+    let mut place = |q: u32| {
+        let slot = &mut start[cells[q as usize][digit] as usize];
+        order[*slot as usize] = q;
+        *slot += 1;
+    };
+    match within {
+        Some(within) => within.iter().for_each(|&q| place(q)),
+        None => (0..cells.len() as u32).for_each(place),
+    }
+    order
+}
+
+/// Writes the answers `sorted`, in the order of `order`, to their queries' indices in `out`.
+fn scatter(order: &[u32], sorted: Vec<HeightSample>, out: &mut [HeightSample]) {
+    for (s, &q) in sorted.into_iter().zip(order) {
+        out[q as usize] = s;
     }
 }
 
@@ -384,4 +408,26 @@ fn lerp2(c: &Cell, a: [f64; 2], b: [f64; 2], d: [f64; 2], e: [f64; 2]) -> [f64; 
         out[n] = top + (bottom - top) * c.fz;
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_order_is_row_major_then_by_index() {
+        // A 3 × 2 grid; (3, 2) marks a point outside it, which goes last. Sorted by (row,
+        // column, index): (0,0)#2, (1,0)#5, (2,0)#0, (0,1)#1, (0,1)#4, (2,1)#6, outside #3, #7.
+        let cells = [
+            [2, 0],
+            [0, 1],
+            [0, 0],
+            [3, 2],
+            [0, 1],
+            [1, 0],
+            [2, 1],
+            [3, 2],
+        ];
+        assert_eq!(grid_order(&cells, 3, 2), [2, 5, 0, 1, 4, 6, 3, 7]);
+    }
 }
