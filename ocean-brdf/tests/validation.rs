@@ -41,8 +41,36 @@
 //!   height alone: the rays hit lower (mean height quantile 0.86 against Smith's 0.91 at wind
 //!   5) and on facets tilted more towards the eye (0.141 against 0.124) than Smith's visible
 //!   facets, so less light is reflected and more refracted.
-//! - The Sun's term is not compared: a perfect mirror reflects the Sun's disc (7e-5 sr) into a
-//!   handful of the reference's rays per row, too few for a row mean.
+//!
+//! **The Sun's term**, with the paper's Sun (1/8000 of the hemisphere, ρ = 0.906°; the default
+//! `ValidationParams`), 1024 reference rays per pixel row and plane for it alone (+6–8 s per
+//! sea). Each reference row comes with its standard error from the spread of its 32 planes
+//! (`RowMeans::reference_sun_error`): 13–84 % (mean 35 %) per row below 300 m, 7–23 % (mean
+//! 12 %) beyond. The planes set it, not the rays: 4–32 times more rays per plane leave it as it
+//! is, because a plane crosses a row's strip of sea in a few glinting facets. The 1–2 % per
+//! row that a per-row comparison needs would take about 1 000 planes beyond 300 m and 10⁴
+//! below (each plane walks the 8 km profile at 5 mm: ~2.4 s), far beyond a test's budget; the
+//! per-row comparison is therefore not made, and the rows are pooled where the errors allow
+//! it. A slope bound does not help either: Σ kA = 1.8 (5 m/s) and 1.9 (15 m/s) exceed every
+//! slope the glints need (≤ 0.25), so no column of the image can be excluded.
+//!
+//! | sea, rows        | Sun, model − reference: pooled (±1 SE), per-row bias, mean abs, worst |
+//! |------------------|-----------------------------------------------------------------------|
+//! | calm, near       | −21.9 ± 2.6 %, +5.2 %, 47 %, 1157 % (reference noise)               |
+//! | calm, far        | −34.8 ± 1.9 %, −33.2 %, 33 %, 53 %                                    |
+//! | agitated, near   | −16.9 ± 2.5 %, −5.6 %, 32 %, 119 % (reference noise)                |
+//! | agitated, far    | −28.9 ± 2.1 %, −27.6 %, 28 %, 44 %                                    |
+//!
+//! (pooled: the model's sum over the rows against the reference's, the error from the rows'
+//! standard errors.) So the model's glitter is **29–35 % too dim** far away and 17–22 % near,
+//! 7–18 standard errors from the reference: the 5 % is not met, and the per-row noise
+//! of the reference (about 12 % far) is smaller than the miss. The likely cause (not measured directly) is the
+//! one of the sky's far rows: the glints need a facet tilted about 12° towards the viewer, a
+//! slope of 0.22 across the wind, 2.3 σ into the tail of Ross's Gaussian, where
+//! `d ln p / d ln σ²` = (ζ²/σ² − 1)/2 ≈ 2.2, and the facets the rays see are tilted further
+//! towards the eye than Smith's visible facets (above): the seen slopes are wider than the
+//! Gaussian of the mean variance, and their tail brighter. The constant
+//! BRDF loses 79–94 % of it on every row beyond 300 m.
 
 use glam::DVec3;
 use ocean_brdf::SpectrumParams;
@@ -84,6 +112,19 @@ fn stats(rows: &[&RowMeans], pick: impl Fn(&RowMeans) -> (f64, f64)) -> (f64, f6
     )
 }
 
+/// The pooled relative error of `model` against `reference` over `rows` (ratio of the sums, less
+/// one) and its standard error from the reference rows' own.
+fn pooled_sun(rows: &[&RowMeans], model: impl Fn(&RowMeans) -> DVec3) -> (f64, f64) {
+    let reference: f64 = rows.iter().map(|r| sum(r.reference.sun)).sum();
+    let m: f64 = rows.iter().map(|r| sum(model(r))).sum();
+    let se = rows
+        .iter()
+        .map(|r| sum(r.reference_sun_error).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    (m / reference - 1.0, se * m / (reference * reference))
+}
+
 #[test]
 fn filtered_model_follows_the_reference_and_the_constant_brdf_diverges() {
     // The measured envelopes (see the module documentation), each about one point above the
@@ -95,6 +136,7 @@ fn filtered_model_follows_the_reference_and_the_constant_brdf_diverges() {
     ];
     for (wind, near_bounds, far_bounds) in bounds {
         let rows = run(wind);
+        check_sun(wind, &rows);
         // Rows from the bottom (centre at 46 m) to the row whose centre is at 3.9 km and upper
         // edge at 5.9 km.
         assert_eq!(rows.len(), 127);
@@ -168,6 +210,7 @@ fn validation_is_deterministic_across_thread_counts() {
         planes: 4,
         model_planes: 8,
         rays_per_pixel: 4,
+        sun_rays_per_pixel: 8,
         max_distance: 1500.0,
         profile_step: 0.2,
         ..ValidationParams::default()
@@ -183,4 +226,78 @@ fn validation_is_deterministic_across_thread_counts() {
         .unwrap()
         .install(|| validate(&params).unwrap());
     assert_eq!(one, three);
+}
+
+/// The Sun's term (see the module documentation): the reference's own error, and the model's
+/// pooled shortfall, which is significant and of the measured size.
+fn check_sun(wind: f64, rows: &[RowMeans]) {
+    println!("wind {wind} m/s: row, distance, Sun reference ± SE, model, constant");
+    for r in rows {
+        let reference = sum(r.reference.sun);
+        let se = sum(r.reference_sun_error) / reference;
+        println!(
+            "{:3} {:7.0} m  sun {reference:.4} ± {:.1} % model {:+.1} % constant {:+.1} %",
+            r.row,
+            r.distance,
+            se * 100.0,
+            rel(sum(r.model.sun), reference) * 100.0,
+            rel(sum(r.constant.sun), reference) * 100.0
+        );
+        // Measured: at most 84 % below 300 m, 23 % beyond. A larger error would mean the
+        // reference lost its glints (a broken Sun test), not a worse model.
+        let bound = if r.distance < 300.0 { 0.9 } else { 0.25 };
+        assert!(se < bound, "row {}: reference Sun error {se}", r.row);
+        if r.distance > 300.0 {
+            // Measured: 79–94 % low on every far row (the model: 13–53 % low, or up to 3 % high
+            // on the agitated sea's 300 m row).
+            let constant = rel(sum(r.constant.sun), reference);
+            assert!(
+                constant < -0.72,
+                "row {}: constant BRDF Sun {constant}",
+                r.row
+            );
+        }
+    }
+    // Measured pooled errors (calm, agitated): near −21.9 ± 2.6 %, −16.9 ± 2.5 %; far
+    // −34.8 ± 1.9 %, −28.9 ± 2.1 %. The bounds hold the measured shortfall (the model's glitter
+    // too dim, at least three standard errors from the reference) and about 8 points either
+    // side of it, so that a change of the model or of the reference shows.
+    let bounds = [
+        (5.0, (-0.30, -0.14), (-0.43, -0.27)),
+        (15.0, (-0.25, -0.09), (-0.37, -0.21)),
+    ];
+    let (_, near_bounds, far_bounds) = bounds.iter().find(|b| b.0 == wind).copied().unwrap();
+    for (name, near, (lo, hi)) in [("near", true, near_bounds), ("far", false, far_bounds)] {
+        let part: Vec<&RowMeans> = rows
+            .iter()
+            .filter(|r| (r.distance < 300.0) == near)
+            .collect();
+        let (model, se) = pooled_sun(&part, |r| r.model.sun);
+        let (constant, _) = pooled_sun(&part, |r| r.constant.sun);
+        println!(
+            "wind {wind}, {name} rows: Sun pooled model {:+.1} ± {:.1} %, constant {:+.1} %",
+            model * 100.0,
+            se * 100.0,
+            constant * 100.0
+        );
+        assert!(
+            model > lo && model < hi,
+            "wind {wind} {name}: Sun pooled {model} ± {se}"
+        );
+        assert!(
+            model < -3.0 * se,
+            "wind {wind} {name}: Sun pooled {model} ± {se}"
+        );
+    }
+}
+
+/// The paper's Sun covers 1/8000 of the hemisphere (§7.2): Ω = 2π(1 − cos ρ) = 2π/8000.
+#[test]
+fn paper_sun_is_one_8000th_of_the_hemisphere() {
+    let rho = ocean_brdf::validation::PAPER_SUN_ANGULAR_RADIUS;
+    let omega = std::f64::consts::TAU * (1.0 - rho.cos());
+    assert!(
+        (omega * 8000.0 / std::f64::consts::TAU - 1.0).abs() < 1e-9,
+        "{omega}"
+    );
 }

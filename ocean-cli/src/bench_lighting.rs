@@ -6,8 +6,8 @@
 //! 2. **Validation** (§7.2, Fig. 10): per-row mean radiance of the filtered model and of a
 //!    constant-BRDF model against the detailed-geometry, perfect-mirror reference, for a calm
 //!    (5 m/s) and an agitated (15 m/s) sea; `--plot FILE.png` draws the per-row curves like
-//!    Fig. 10's right column.
-//!    The Sun's term is compared over bands of rows with the paper's larger Sun.
+//!    Fig. 10's right column. The Sun's term (the paper's Sun, 1/8000 of the hemisphere) is
+//!    compared per row too, with the reference's standard error.
 //! 3. **GPU renderer**: time per frame at 1280×720 and 1920×1080 for views 4 m, 1000 m and
 //!    8000 m above the sea (the paper: 52, 87 and 130 fps at 1024×768 on a GeForce 8800 GTS),
 //!    and the ratio of the 8000 m view to the 4 m view (target ≤ 0.4: the cost follows the
@@ -58,7 +58,10 @@ pub fn lighting(args: &BenchArgs) -> Result<Value, String> {
         seas.push(validation_summary(wind, &rows, t.elapsed().as_secs_f64()));
         curves.push((wind, rows));
     }
-    let sun = sun_figures()?;
+    let sun: Vec<Value> = curves
+        .iter()
+        .map(|(wind, rows)| sun_summary(*wind, rows))
+        .collect();
     if let Some(path) = &args.plot {
         plot(&curves, path)?;
     }
@@ -69,7 +72,7 @@ pub fn lighting(args: &BenchArgs) -> Result<Value, String> {
         "sea_color": cpu,
         "gpu": gpu,
         "validation": seas,
-        "sun_validation": sun,
+        "sun_validation": Value::Array(sun),
     });
     Ok(doc)
 }
@@ -198,60 +201,46 @@ fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b
 }
 
-/// Rows per band of the Sun's comparison.
-const SUN_BAND_ROWS: usize = 16;
-/// Reference rays per pixel row and plane for the Sun's comparison.
-const SUN_RAYS: usize = 256;
-
-/// The Sun's term of the validation, which the per-row figures leave out: with the paper's Sun
-/// (1/8000 of the hemisphere, ρ ≈ 0.91°) and 256 reference rays per pixel row and plane, the
-/// mean over bands of 16 rows (a perfect mirror catches the Sun's disc in too few rays for a
-/// single row), for the filtered model and the constant-BRDF one.
-fn sun_figures() -> Result<Value, String> {
-    let rho = (1.0f64 - 1.0 / 8000.0).acos();
-    let mut out = Vec::new();
-    for wind in SEAS {
-        let params = ValidationParams {
-            spectrum: SpectrumParams {
-                wind_speed: wind,
-                ..SpectrumParams::default()
-            },
-            sky: SkyParams {
-                sun_angular_radius: rho,
-                ..SkyParams::default()
-            },
-            rays_per_pixel: SUN_RAYS,
-            ..ValidationParams::default()
-        };
-        let t = Instant::now();
-        let rows = validate(&params).map_err(|e| e.to_string())?;
-        let bands: Vec<Value> = rows
-            .chunks(SUN_BAND_ROWS)
-            .map(|band| {
-                let mean = |pick: fn(&RowMeans) -> DVec3| {
-                    band.iter().map(|r| sum(pick(r))).sum::<f64>() / band.len() as f64
-                };
-                let reference = mean(|r| r.reference.sun);
-                let model = mean(|r| r.model.sun);
-                let constant = mean(|r| r.constant.sun);
-                json!({
-                    "from_m": band.first().map(|r| r.distance),
-                    "to_m": band.last().map(|r| r.distance),
-                    "reference": reference,
-                    "model_error": rel(model, reference),
-                    "constant_error": rel(constant, reference),
-                })
+/// The Sun's term per row: the reference's mean and relative standard error, the model's and
+/// the constant BRDF's relative errors (signed), and their bias, mean and worst over the rows
+/// nearer and farther than 300 m.
+fn sun_summary(wind: f64, rows: &[RowMeans]) -> Value {
+    let err = |r: &RowMeans, m: DVec3| (sum(m) - sum(r.reference.sun)) / sum(r.reference.sun);
+    let per_row: Vec<Value> = rows
+        .iter()
+        .map(|r| {
+            json!({
+                "row": r.row,
+                "distance_m": r.distance,
+                "reference": sum(r.reference.sun),
+                "reference_error": sum(r.reference_sun_error) / sum(r.reference.sun),
+                "model_error": err(r, r.model.sun),
+                "constant_error": err(r, r.constant.sun),
             })
+        })
+        .collect();
+    let stats = |near: bool, m: fn(&RowMeans) -> DVec3| {
+        let e: Vec<f64> = rows
+            .iter()
+            .filter(|r| (r.distance < 300.0) == near)
+            .map(|r| err(r, m(r)))
             .collect();
-        out.push(json!({
-            "wind_speed": wind,
-            "sun_angular_radius": rho,
-            "rays_per_pixel": SUN_RAYS,
-            "seconds": t.elapsed().as_secs_f64(),
-            "bands": bands,
-        }));
-    }
-    Ok(Value::Array(out))
+        let n = e.len().max(1) as f64;
+        json!({
+            "bias": e.iter().sum::<f64>() / n,
+            "mean": e.iter().map(|x| x.abs()).sum::<f64>() / n,
+            "worst": e.iter().fold(0.0f64, |w, x| w.max(x.abs())),
+        })
+    };
+    json!({
+        "wind_speed": wind,
+        "sun_angular_radius": ocean_brdf::validation::PAPER_SUN_ANGULAR_RADIUS,
+        "model_near": stats(true, |r| r.model.sun),
+        "model_far": stats(false, |r| r.model.sun),
+        "constant_near": stats(true, |r| r.constant.sun),
+        "constant_far": stats(false, |r| r.constant.sun),
+        "rows": per_row,
+    })
 }
 
 /// Worst and mean relative errors per component and model.
@@ -292,25 +281,38 @@ fn validation_summary(wind: f64, rows: &[RowMeans], seconds: f64) -> Value {
 
 fn print_sun(doc: &Value) {
     println!(
-        "Sun's term (the paper's Sun, 1/8000 of the hemisphere), bands of {SUN_BAND_ROWS} rows: \
-         relative error of the model / of the constant BRDF"
+        "Sun's term per row (the paper's Sun, 1/8000 of the hemisphere), relative error \
+         bias / mean / worst, rows nearer and farther than 300 m:"
     );
     for s in doc["sun_validation"].as_array().into_iter().flatten() {
-        let cells: Vec<String> = s["bands"]
-            .as_array()
-            .into_iter()
-            .flatten()
-            .map(|b| {
-                format!(
-                    "{:.0}–{:.0} m {:.0}/{:.0} %",
-                    b["from_m"].as_f64().unwrap_or(0.0),
-                    b["to_m"].as_f64().unwrap_or(0.0),
-                    b["model_error"].as_f64().unwrap_or(f64::NAN) * 100.0,
-                    b["constant_error"].as_f64().unwrap_or(f64::NAN) * 100.0
-                )
-            })
-            .collect();
-        println!("  wind {} m/s: {}", s["wind_speed"], cells.join(", "));
+        let f = |k: &str, w: &str| s[k][w].as_f64().unwrap_or(f64::NAN) * 100.0;
+        let ref_error = |near: bool| {
+            let e: Vec<f64> = s["rows"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .filter(|r| (r["distance_m"].as_f64().unwrap_or(0.0) < 300.0) == near)
+                .filter_map(|r| r["reference_error"].as_f64())
+                .collect();
+            e.iter().sum::<f64>() / e.len().max(1) as f64 * 100.0
+        };
+        println!(
+            "  wind {} m/s: model near {:+.1} / {:.1} / {:.1} %, far {:+.1} / {:.1} / {:.1} %; \
+             constant BRDF far {:+.1} / {:.1} / {:.1} %; reference error per row, mean: near \
+             {:.1} %, far {:.1} %",
+            s["wind_speed"],
+            f("model_near", "bias"),
+            f("model_near", "mean"),
+            f("model_near", "worst"),
+            f("model_far", "bias"),
+            f("model_far", "mean"),
+            f("model_far", "worst"),
+            f("constant_far", "bias"),
+            f("constant_far", "mean"),
+            f("constant_far", "worst"),
+            ref_error(true),
+            ref_error(false),
+        );
     }
 }
 
@@ -386,14 +388,18 @@ fn print_table(doc: &Value) {
 /// The three methods' values of one component for a row: reference, model, constant BRDF.
 type Pick = fn(&RowMeans) -> [f64; 3];
 
-/// Fig. 10's right column: for each sea (one band of panels) and component (sky, refracted
-/// light), the row means against the row, far rows at the top: reference black, model red,
-/// constant BRDF blue; each panel scaled to its largest value.
+/// Fig. 10's right column: for each sea (one band of panels) and component (Sun, sky,
+/// refracted light), the row means against the row, far rows at the top: reference black (for
+/// the Sun, grey lines at ± its standard error), model red, constant BRDF blue; each panel
+/// scaled to its largest value.
 fn plot(curves: &[(f64, Vec<RowMeans>)], path: &Path) -> Result<(), String> {
     const PANEL_W: usize = 320;
     const PANEL_H: usize = 280;
     const MARGIN: f64 = 12.0;
-    let comps: [(&str, Pick); 2] = [
+    let comps: [(&str, Pick); 3] = [
+        ("sun", |r| {
+            [sum(r.reference.sun), sum(r.model.sun), sum(r.constant.sun)]
+        }),
         ("sky", |r| {
             [sum(r.reference.sky), sum(r.model.sky), sum(r.constant.sky)]
         }),
@@ -402,6 +408,8 @@ fn plot(curves: &[(f64, Vec<RowMeans>)], path: &Path) -> Result<(), String> {
         }),
     ];
     let colours = [[0, 0, 0], [200, 30, 30], [30, 60, 200]];
+    let sun_band =
+        |r: &RowMeans, side: f64| sum(r.reference.sun) + side * sum(r.reference_sun_error);
     let mut canvas = Canvas::new(PANEL_W * comps.len(), PANEL_H * curves.len(), [255; 3]);
     for (band, (_, rows)) in curves.iter().enumerate() {
         for (col, (_, pick)) in comps.iter().enumerate() {
@@ -411,8 +419,23 @@ fn plot(curves: &[(f64, Vec<RowMeans>)], path: &Path) -> Result<(), String> {
             );
             let (w, h) = (PANEL_W as f64 - 2.0 * MARGIN, PANEL_H as f64 - 2.0 * MARGIN);
             canvas.rect(x0, y0, x0 + w, y0 + h, [160; 3]);
-            let max = rows.iter().flat_map(pick).fold(f64::MIN_POSITIVE, f64::max);
+            let mut max = rows.iter().flat_map(pick).fold(f64::MIN_POSITIVE, f64::max);
+            if col == 0 {
+                max = rows.iter().map(|r| sun_band(r, 1.0)).fold(max, f64::max);
+            }
             let n = rows.len().max(2) as f64 - 1.0;
+            if col == 0 {
+                for side in [-1.0, 1.0] {
+                    let point = |i: usize| {
+                        let v = sun_band(&rows[i], side).max(0.0) / max;
+                        (x0 + v * w, y0 + h - i as f64 / n * h)
+                    };
+                    for i in 1..rows.len() {
+                        let (a, b) = (point(i - 1), point(i));
+                        canvas.line(a.0, a.1, b.0, b.1, [170; 3]);
+                    }
+                }
+            }
             for (k, colour) in colours.iter().enumerate() {
                 // rows[0] is the nearest: bottom of the panel.
                 let point = |i: usize| {
