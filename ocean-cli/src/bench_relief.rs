@@ -13,8 +13,11 @@
 //!    `ocean cone-map` and the C ABI's callback use) against `generate` on the fBm map at 512².
 //! 4. **GPU generation**: `ocean_gpu::ConeMapGenerator` on the fBm map at each size (after a
 //!    warm-up on a small map, since drivers compile the shader on the first dispatch), its
-//!    output compared with the CPU's; 1024² is skipped on software adapters (over a minute).
-//!    `--no-gpu` or a missing adapter leaves the reason in `gpu_generation`.
+//!    output compared with the CPU's; next to it the quadrant cone map of the same map
+//!    (`generate_quad`, §18.1: four layers, compared with `QuadConeMap::generate`) and the CPU's
+//!    time for that. 1024² is skipped on software adapters (over a minute), and so are quadrant
+//!    maps above 256² (four times the isotropic time). `--no-gpu` or a missing adapter leaves
+//!    the reason in `gpu_generation`.
 //! 5. **Tracers**: rays per second for each method of the accuracy table
 //!    (`accuracy::Config::standard_entries`) on the fBm map at 256² (relief 0.1 texture widths
 //!    deep, view 60° from the normal, 2¹⁸ rays with random starts and azimuths), on one thread
@@ -30,7 +33,7 @@ use glam::{Vec2, Vec3};
 use ocean_core::rng::Pcg32;
 use ocean_relief::accuracy::{Config, Textures, adaptive_cone_steps, table};
 use ocean_relief::maps::{bumps, to_map, value_noise};
-use ocean_relief::{ConeMap, ConeParams, Edge, HeightMap, Method, Ray};
+use ocean_relief::{ConeMap, ConeParams, Edge, HeightMap, Method, QuadConeMap, Ray};
 use rayon::prelude::*;
 use serde_json::{Value, json};
 
@@ -86,6 +89,7 @@ fn gpu_generation(runs: u32) -> Result<Value, String> {
     let params = ConeParams::relaxed(1.0);
     let warm = to_map(64, &value_noise(64, 8, 6, 1), Edge::Wrap).map_err(err)?;
     generator.generate(&ctx, &warm, params).map_err(err)?;
+    generator.generate_quad(&ctx, &warm, params).map_err(err)?;
     let mut sizes = Vec::new();
     for n in SIZES {
         if software && n > 512 {
@@ -102,11 +106,32 @@ fn gpu_generation(runs: u32) -> Result<Value, String> {
             times.push(start.elapsed().as_secs_f64());
             identical &= cones == cpu;
         }
+        let quad = if software && n > 256 {
+            json!({ "skipped": "four times the isotropic time on a software adapter" })
+        } else {
+            let mut cpu_quad = None;
+            let cpu_seconds = seconds(|| cpu_quad = Some(QuadConeMap::generate(&map, params)));
+            let cpu_quad = cpu_quad.expect("timed").map_err(err)?;
+            let mut times = Vec::new();
+            let mut identical = true;
+            for _ in 0..runs.min(3) {
+                let start = Instant::now();
+                let cones = generator.generate_quad(&ctx, &map, params).map_err(err)?;
+                times.push(start.elapsed().as_secs_f64());
+                identical &= cones == cpu_quad;
+            }
+            json!({
+                "seconds": median(times),
+                "identical_to_cpu": identical,
+                "cpu_seconds": cpu_seconds,
+            })
+        };
         sizes.push(json!({
             "side": n,
             "map": "fBm 6 octaves",
             "seconds": median(times),
             "identical_to_cpu": identical,
+            "quad": quad,
         }));
     }
     Ok(json!({
@@ -407,12 +432,24 @@ fn print_table(doc: &Value) {
             for c in g["sizes"].as_array().into_iter().flatten() {
                 match c["skipped"].as_str() {
                     Some(why) => println!("   {}²: skipped ({why})", c["side"]),
-                    None => println!(
-                        "   {}²: {} s, identical to the CPU: {}",
-                        c["side"],
-                        f(&c["seconds"], 3),
-                        c["identical_to_cpu"]
-                    ),
+                    None => {
+                        let q = &c["quad"];
+                        let quad = match q["skipped"].as_str() {
+                            Some(why) => format!("skipped ({why})"),
+                            None => format!(
+                                "{} s (CPU {} s), identical to the CPU: {}",
+                                f(&q["seconds"], 3),
+                                f(&q["cpu_seconds"], 3),
+                                q["identical_to_cpu"]
+                            ),
+                        };
+                        println!(
+                            "   {}²: {} s, identical to the CPU: {}; quadrant map {quad}",
+                            c["side"],
+                            f(&c["seconds"], 3),
+                            c["identical_to_cpu"]
+                        );
+                    }
                 }
             }
         }

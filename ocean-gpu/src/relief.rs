@@ -1499,8 +1499,8 @@ mod tests {
         }
 
         let g = shaders::get("relief_cone").unwrap().bindings().unwrap();
-        assert_eq!((g[0].name.as_str(), g[0].size as usize), ("gen", 112));
-        assert_eq!(size_of::<ConeGenUniforms>(), 112);
+        assert_eq!((g[0].name.as_str(), g[0].size as usize), ("gen", 128));
+        assert_eq!(size_of::<ConeGenUniforms>(), 128);
         let offsets: Vec<(&str, u32)> = g[0]
             .members
             .iter()
@@ -1512,6 +1512,7 @@ mod tests {
                 ("grid", o(offset_of!(ConeGenUniforms, grid))),
                 ("pyramid", o(offset_of!(ConeGenUniforms, pyramid))),
                 ("cap", o(offset_of!(ConeGenUniforms, cap))),
+                ("sector", o(offset_of!(ConeGenUniforms, sector))),
                 (
                     "level_offsets",
                     o(offset_of!(ConeGenUniforms, level_offsets))

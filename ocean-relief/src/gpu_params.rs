@@ -6,7 +6,7 @@
 //!   texture's size and edge mode, depth scale, shadow bias) and the scene of the relief-mapped
 //!   quad (camera, quad, light, material). The tracer fields alone drive ocean-gpu's probe.
 //! - [`ConeGenUniforms`]: what the cone-map generator's passes need ([`crate::ConeMap::generate`]'s
-//!   grid, pyramid and cap).
+//!   grid, pyramid and cap, and the quadrant of a [`crate::QuadConeMap`] layer).
 //!
 //! Both are `#[repr(C)]`, every member 4 bytes, grouped in 16-byte rows with explicit padding:
 //! the same under std140 (uniform buffers) and std430, and with no implicit padding (`Pod`).
@@ -18,6 +18,7 @@ use bytemuck::{Pod, Zeroable};
 use crate::bound::ConeKind;
 use crate::cone::{ConeParams, MAX_RATIO_LIMIT};
 use crate::map::Edge;
+use crate::quad::Quadrant;
 use crate::trace::{BinarySearch, MAX_STEPS, Method};
 use crate::{ReliefError, check_range};
 
@@ -182,12 +183,15 @@ pub const KIND_RELAXED: u32 = 0;
 /// [`ConeGenUniforms::grid`]`[3]` for conservative cones.
 pub const KIND_CONSERVATIVE: u32 = 1;
 
+/// [`ConeGenUniforms::sector`]`[0]` for cones that serve every direction.
+pub const SECTOR_ALL: u32 = 0;
+
 /// Most pyramid levels [`ConeGenUniforms`] describes (a pyramid of `2¹⁴` cells per side).
 pub const MAX_LEVELS: usize = 16;
 
 /// The cone-map generator's parameter block, byte for byte the WGSL `Gen` block of ocean-gpu's
-/// `relief_cone.wgsl` (112 bytes): the grid of cells ([`crate::bound`]), the min-depth pyramid
-/// over it and the cap ([`crate::cone`]).
+/// `relief_cone.wgsl` (128 bytes): the grid of cells ([`crate::bound`]), the min-depth pyramid
+/// over it, the cap ([`crate::cone`]) and the directions the cones serve ([`crate::quad`]).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct ConeGenUniforms {
@@ -201,6 +205,9 @@ pub struct ConeGenUniforms {
     pub pyramid: [u32; 4],
     /// Cap ([`ConeParams::max_ratio`], texture widths per unit depth), 0, 0, 0.
     pub cap: [f32; 4],
+    /// [`SECTOR_ALL`] (isotropic cones) or `1 +` the [`Quadrant::index`] of the one closed
+    /// quadrant the cones serve (a layer of a [`crate::QuadConeMap`]), 0, 0, 0.
+    pub sector: [u32; 4],
     /// Offset (in nodes) of pyramid level `l ≥ 1` in the pyramid buffer, at `[l / 4][l % 4]`
     /// (level 0 is the cell buffer itself).
     pub level_offsets: [[u32; 4]; MAX_LEVELS / 4],
@@ -241,6 +248,7 @@ impl ConeGenUniforms {
             ],
             pyramid: [p as u32, levels as u32, 0, 0],
             cap: [params.max_ratio, 0.0, 0.0, 0.0],
+            sector: [SECTOR_ALL, 0, 0, 0],
             level_offsets: [[0; 4]; MAX_LEVELS / 4],
         };
         let mut offset = 0u64;
@@ -250,6 +258,13 @@ impl ConeGenUniforms {
             offset += side * side;
         }
         Ok((u, offset))
+    }
+
+    /// The same block for the cones of every direction (`None`, [`SECTOR_ALL`]) or of one
+    /// closed quadrant (`1 + q.index()`).
+    pub fn with_sector(mut self, sector: Option<Quadrant>) -> Self {
+        self.sector[0] = sector.map_or(SECTOR_ALL, |q| 1 + q.index() as u32);
+        self
     }
 
     /// Side of pyramid level `level`.
@@ -265,7 +280,7 @@ mod tests {
     #[test]
     fn sizes_are_whole_std140_rows() {
         assert_eq!(core::mem::size_of::<ReliefUniforms>(), 256);
-        assert_eq!(core::mem::size_of::<ConeGenUniforms>(), 112);
+        assert_eq!(core::mem::size_of::<ConeGenUniforms>(), 128);
     }
 
     #[test]
@@ -277,6 +292,11 @@ mod tests {
         assert_eq!(u.pyramid[..2], [8, 4]);
         assert_eq!(u.level_offsets[0], [0, 0, 16, 20]);
         assert_eq!(nodes, 21);
+        assert_eq!(u.sector, [SECTOR_ALL, 0, 0, 0]);
+        // The quadrant codes follow the layer order: 1 + x_neg + 2 y_neg.
+        let codes = Quadrant::ALL.map(|q| u.with_sector(Some(q)).sector[0]);
+        assert_eq!(codes, [1, 2, 3, 4]);
+        assert_eq!(u.with_sector(None), u);
         assert!(ConeGenUniforms::new(6, Edge::Wrap, ConeParams::relaxed(f32::NAN)).is_err());
         assert!(ConeGenUniforms::new(1, Edge::Wrap, ConeParams::relaxed(1.0)).is_err());
     }

@@ -23,6 +23,38 @@
 //! the outer half texel on each side. (With nearest sampling a coarse texel serves
 //! `[2J − ½, 2J + 3/2]` only, and the group's minimum would do; [`MipRule::Group`] is kept to
 //! show the difference.)
+//!
+//! ## Quadrant layers ([`crate::quad`], §18.1)
+//!
+//! **Rule.** The same window, layer by layer ([`quad_chain`]): level `l + 1` of layer `Q` is the
+//! 4×4-window minimum of level `l` of layer `Q`, every channel.
+//!
+//! **Proof.** A layer serves fewer rays, so the covering argument above stays and what has to be
+//! redone is the invariant it carries. Fix a closed quadrant `Q`. The tracer picks the layer once
+//! per ray from the ray's horizontal direction `u`, which is the same at every step, so every
+//! fetch of layer `Q`, at any level, serves a ray with `u ∈ Q`, wherever along it the ray stands.
+//! Let `c_Q(p, h)` be the exact limit of [`crate::check`] with the directions restricted to `Q`
+//! (Lemma 1 of [`crate::bound`] with `u ∈ Q`; `h = ∞` the plain cone). At level 0, the bound of
+//! any cell that contains `p`, run over the clipped vector boxes `W ∩ Q`, is a triple
+//! `T = (c, D, E)` with `max(c, min(D/h, E)) ≤ c_Q(p, h)` for every `h` ([`crate::quad`],
+//! [`crate::cone`]), and every level-0 texel read for the apex `p` (those whose bilinear support
+//! `[K − 1, K + 1]²` contains `p`) took the channel-wise minimum over its four cells, one of
+//! which contains `p`, so it is channel-wise `≤ T`. Suppose every level-`l` texel read for `p`
+//! is `≤ T`. A level-`l + 1` texel `J` read for `p` has `p ∈ [2J − 3/2, 2J + 5/2]²` (per axis,
+//! level-`l` units), which the supports of its window `K = 2J − 1 … 2J + 2` cover, so some `K` of
+//! the window is read for `p` and `J ≤ K ≤ T`. So at every level the four texels the tracer
+//! blends at `p` are each `≤ T`, so is their blend (convex weights), and the cone it uses,
+//! `max(c, min(D/h, E))`, grows with each channel: it is at most `c_Q(p, h)`. ∎ (Clamp mode:
+//! the resolved edge indices cover the border strips as in the isotropic case.)
+//!
+//! What the restriction cannot buy: a layer might seem to need only the window's side ahead of
+//! its rays, since they move along `Q`. But the apex is where the ray stands, anywhere in the
+//! coarse texel's support (it may have entered from behind, across the trailing edge, or start
+//! there), and the cone it needs is `c_Q(p, ·)` of that point, which is not monotone along `Q`
+//! (it depends on the apex depth `S(p)`). The apexes in `[2J − 3/2, 2J − 1)` lie only in the
+//! support of `2J − 1` and those in `(2J + 2, 2J + 5/2]` only in that of `2J + 2`, so both sides
+//! of the ring stay: `tests/mip.rs` shows that dropping either the trailing or the leading ring
+//! column lets rays of the layer cross the surface twice on some map, as does the group alone.
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -30,6 +62,7 @@ use alloc::vec::Vec;
 use crate::ReliefError;
 use crate::cone::ConeMap;
 use crate::map::Edge;
+use crate::quad::QuadConeMap;
 
 /// How a coarse texel combines the finer level.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -91,4 +124,23 @@ pub fn chain(cones: &ConeMap, rule: MipRule) -> Result<Vec<ConeMap>, ReliefError
         size /= 2;
     }
     Ok(levels)
+}
+
+/// The chain of every layer of `cones` (level 0) down to 1×1, with `rule` applied layer by layer
+/// (module documentation, "Quadrant layers"): entry `l` holds level `l` of the four layers in
+/// [`crate::Quadrant::index`] order.
+///
+/// # Errors
+///
+/// [`ReliefError::NotPowerOfTwo`] unless the side is a power of two.
+pub fn quad_chain(cones: &QuadConeMap, rule: MipRule) -> Result<Vec<QuadConeMap>, ReliefError> {
+    let [a, b, c, d] = cones.layers();
+    let levels = chain(a, rule)?
+        .into_iter()
+        .zip(chain(b, rule)?)
+        .zip(chain(c, rule)?)
+        .zip(chain(d, rule)?);
+    levels
+        .map(|(((a, b), c), d)| QuadConeMap::from_layers([a, b, c, d]))
+        .collect()
 }

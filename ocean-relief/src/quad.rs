@@ -33,7 +33,8 @@
 //!
 //! Texel `k` of each layer takes the minimum over its four cells ([`crate::cone`]), so each layer
 //! is valid under the bilinear fetch; values are rounded down to `f32` and quantised rounding
-//! down ([`crate::storage`]), layer by layer.
+//! down ([`crate::storage`]), layer by layer. Mip chains keep the isotropic 4×4-window rule
+//! layer by layer ([`crate::mip::quad_chain`], whose module proves it for quadrant cones).
 //!
 //! ## Storage and the tracer (the GPU's arithmetic)
 //!

@@ -145,9 +145,19 @@ fn relief_rem_euclid(i: i32, n: i32) -> i32 {
     return n - 1 - i32(u32(-(i + 1)) % u32(n));
 }
 
+// A control word of the uniform (edge mode, method, search, step counts, flags) as the shader
+// reads it: OR-ed with relief_side() >> 31, which is 0 (no side reaches 2^31) but not known
+// before the shader runs, so no driver can fold the word into the shader. Lavapipe (Mesa 22.x)
+// otherwise inlines the uniforms that decide branches and loop counts into a new variant of the
+// shader and compiles it with LLVM whenever a draw binds another uniform buffer, which every
+// draw does (a block per draw): seconds per draw where its disk cache has not seen the variant.
+fn relief_ctl(word: u32) -> u32 {
+    return word | (relief_side() >> 31u);
+}
+
 // Texel index i (any integer) resolved into 0 .. n by the edge mode (Edge::resolve).
 fn relief_resolve(i: i32, n: i32) -> i32 {
-    if relief.trace.y == 0u {
+    if relief_ctl(relief.trace.y) == 0u {
         return relief_rem_euclid(i, n);
     }
     return clamp(i, 0, n - 1);
@@ -332,16 +342,16 @@ fn relief_trace(start: vec2<f32>, dir: vec3<f32>) -> Hit {
     // Once per ray, before any loop (Quadrant::of).
     let layer = relief_layer(dx, dy);
     let ratio = sqrt(relief_mul(dx, dx) + relief_mul(dy, dy));
-    let method = relief.trace.z;
-    let steps = relief.steps.x;
-    let binary = relief.steps.y;
+    let method = relief_ctl(relief.trace.z);
+    let steps = relief_ctl(relief.steps.x);
+    let binary = relief_ctl(relief.steps.y);
     if method == METHOD_LINEAR {
         return relief_linear(layer, start, dx, dy, steps, binary);
     }
     if method == METHOD_CONE_STEP {
         return relief_cone_stepping(layer, start, dx, dy, ratio, steps);
     }
-    return relief_relaxed(layer, start, dx, dy, ratio, steps, binary, relief.trace.w);
+    return relief_relaxed(layer, start, dx, dy, ratio, steps, binary, relief_ctl(relief.trace.w));
 }
 
 // The ray of a tangent-space view vector (z < 0 looking at the surface) entering at `start`,

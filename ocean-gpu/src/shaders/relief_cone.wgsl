@@ -25,10 +25,15 @@
 //    with the largest Lipschitz bound of each node (the root's is L over all cells).
 // 3. search: per apex cell, the branch-and-bound of ocean_relief::search::Search::cell_cone with
 //    an explicit stack; writes c, D and E of the cell, each already divided by N and rounded
-//    down to f32 (down32(v / N) of the CPU, which commutes with the minima that follow).
+//    down to f32 (down32(v / N) of the CPU, which commutes with the minima that follow). For a
+//    quadrant cone map (ocean_relief::quad, gen.sector.x = 1 + the quadrant's layer index) the
+//    pass runs once per layer and clips every box of vectors to the quadrant (Apex::within,
+//    Apex::vectors): a node or cell whose clipped box is empty is skipped, distances, falling
+//    tests and the near-cell rise take the clipped box, and a clipped box that holds the origin
+//    has its directions on the quadrant's closed arc (arc::quadrant_arc).
 // 4. texels: each texel takes the smallest value of its four cells (ocean_relief::cone).
 
-// Byte for byte ocean_relief::gpu_params::ConeGenUniforms (112 bytes).
+// Byte for byte ocean_relief::gpu_params::ConeGenUniforms (128 bytes).
 struct Gen {
     // N, cells per side nc, edge (0 wrap, 1 clamp), kind (0 relaxed, 1 conservative)
     grid: vec4<u32>,
@@ -36,6 +41,8 @@ struct Gen {
     pyramid: vec4<u32>,
     // max_ratio, 0, 0, 0
     cap: vec4<f32>,
+    // 0 (every direction) or 1 + the quadrant's layer index (x_neg + 2 y_neg), 0, 0, 0
+    sector: vec4<u32>,
     // offset of pyramid level l >= 1 in `pyramid`, in nodes, at [l / 4][l % 4]
     level_offsets: array<vec4<u32>, 4>,
 }
@@ -440,6 +447,29 @@ struct Apex {
     // [x0, x1, y0, y1], +-BIG for clamp-mode border strips.
     rect: vec4<i32>,
     smax: f32,
+    // The closed box [wx0, wx1, wy0, wy1] of vectors the cone serves (Apex::clip): +-UNBOUNDED
+    // (every vector) or one closed quadrant.
+    clip: vec4<i32>,
+    // The quadrant's layer index, or -1 for every direction (Apex::sector).
+    sector: i32,
+}
+
+// Beyond every vector component (|w| <= BIG + 2 nc < 2^31 - 1): the CPU's infinite clip.
+const UNBOUNDED: i32 = 2147483647;
+
+// The closed quadrant of layer k (ocean_relief::Quadrant::vectors): x_neg = k & 1 clips
+// w_x to <= 0, else >= 0; y_neg = k >> 1 likewise w_y.
+fn quadrant_clip(k: i32) -> vec4<i32> {
+    var c = vec4<i32>(0, UNBOUNDED, 0, UNBOUNDED);
+    if (k & 1) != 0 {
+        c.x = -UNBOUNDED;
+        c.y = 0;
+    }
+    if (k & 2) != 0 {
+        c.z = -UNBOUNDED;
+        c.w = 0;
+    }
+    return c;
 }
 
 var<private> apex: Apex;
@@ -489,7 +519,12 @@ fn make_apex(qi: i32, qj: i32) {
             rect.w = BIG;
         }
     }
-    apex = Apex(qi, qj, rect, cell.smax);
+    var clip = vec4<i32>(-UNBOUNDED, UNBOUNDED, -UNBOUNDED, UNBOUNDED);
+    let sector = i32(gen.sector.x) - 1;
+    if sector >= 0 {
+        clip = quadrant_clip(sector);
+    }
+    apex = Apex(qi, qj, rect, cell.smax, clip, sector);
     for (var r = 0; r <= K_LIP; r++) {
         var m = 0.0;
         for (var dj = -r; dj <= r; dj++) {
@@ -536,33 +571,42 @@ fn max_product(g0: f32, g1: f32, w0: i32, w1: i32) -> vec2<f32> {
     );
 }
 
-// The box of vectors from the apex box into `rect`.
+// The box of vectors from the apex box into `rect` that the cone serves, clipped to the apex's
+// quadrant (Apex::vectors); empty (see `is_empty`) when no such vector exists.
 fn vectors_to(rect: vec4<i32>) -> vec4<i32> {
     let q = apex.rect;
-    return vec4<i32>(rect.x - q.y, rect.y - q.x, rect.z - q.w, rect.w - q.z);
+    let c = apex.clip;
+    return vec4<i32>(
+        max(rect.x - q.y, c.x),
+        min(rect.y - q.x, c.y),
+        max(rect.z - q.w, c.z),
+        min(rect.w - q.z, c.w),
+    );
 }
 
-// The largest g w over gradients in the box g and vectors w from the apex box into `rect`.
-fn growth(rect: vec4<i32>, g: vec4<f32>) -> vec2<f32> {
-    let w = vectors_to(rect);
+fn is_empty(w: vec4<i32>) -> bool {
+    return w.x > w.y || w.z > w.w;
+}
+
+// The largest g w over gradients in the box g and the vectors of the box w.
+fn growth(w: vec4<i32>, g: vec4<f32>) -> vec2<f32> {
     return d_add(max_product(g.x, g.y, w.x, w.y), max_product(g.z, g.w, w.z, w.w));
 }
 
-// Condition 2 for a pyramid node (bound::falling).
-fn falling(rect: vec4<i32>, g: vec4<f32>) -> bool {
-    return growth(rect, g).x >= 0.0;
+// Condition 2 for a pyramid node (bound::falling), w its clipped box of vectors.
+fn falling(w: vec4<i32>, g: vec4<f32>) -> bool {
+    return growth(w, g).x >= 0.0;
 }
 
-// Condition 2 for one cell (bound::falling_cell).
-fn falling_cell(rect: vec4<i32>, cell: Cell) -> bool {
-    let f = growth(rect, cell.g);
+// Condition 2 for one cell (bound::falling_cell), w its clipped box of vectors.
+fn falling_cell(w: vec4<i32>, cell: Cell) -> bool {
+    let f = growth(w, cell.g);
     if f.x > 0.0 {
         return true;
     }
     if f.x < 0.0 {
         return false;
     }
-    let w = vectors_to(rect);
     if cell.twist == 1 {
         return (w.y > 0 && w.w > 0) || (w.x < 0 && w.z < 0);
     }
@@ -572,11 +616,11 @@ fn falling_cell(rect: vec4<i32>, cell: Cell) -> bool {
     return false;
 }
 
-// Euclidean distance between the apex box and a rectangle (bound::distance).
-fn distance(rect: vec4<i32>) -> vec2<f32> {
-    let q = apex.rect;
-    let gx = max(max(rect.x - q.y, q.x - rect.y), 0);
-    let gy = max(max(rect.z - q.w, q.z - rect.w), 0);
+// The shortest vector of the clipped box w (bound::distance): without a quadrant the Euclidean
+// distance between the apex box and the rectangle.
+fn distance(w: vec4<i32>) -> vec2<f32> {
+    let gx = max(max(w.x, -w.y), 0);
+    let gy = max(max(w.z, -w.w), 0);
     if gx == 0 {
         return df_i(gy);
     }
@@ -697,6 +741,19 @@ fn box_directions(x0: vec2<f32>, x1: vec2<f32>, y0: vec2<f32>, y1: vec2<f32>) ->
     return make_arc(s, e, ahead(pseudo(e), pseudo(s)));
 }
 
+// The closed quarter turn of the directions of quadrant k, counter-clockwise from its first
+// axis to its second (arc::quadrant_arc).
+fn quadrant_arc(k: i32) -> Arc {
+    let sx = select(1.0, -1.0, (k & 1) != 0);
+    let sy = select(1.0, -1.0, (k & 2) != 0);
+    let ax = vec4<f32>(sx, 0.0, 0.0, 0.0);
+    let ay = vec4<f32>(0.0, 0.0, sy, 0.0);
+    if sx * sy > 0.0 {
+        return make_arc(ax, ay, df(1.0));
+    }
+    return make_arc(ay, ax, df(1.0));
+}
+
 // The closed arc of directions u with g u <= 0 for every g in the gradient box (arc::non_growing).
 fn non_growing(g: vec4<f32>) -> Arc {
     let span = box_directions(df(g.x), df(g.y), df(g.z), df(g.w));
@@ -711,9 +768,13 @@ fn non_growing(g: vec4<f32>) -> Arc {
 
 // The largest rate at which the path can rise along a direction from the apex box into the
 // candidate (w) along which the candidate may fall (gc), given the path's gradient box gp
-// (arc::max_rise), rounded up.
+// (arc::max_rise), rounded up. With a quadrant, a box that holds the origin has its directions
+// on the quadrant's closed arc, not on the whole circle.
 fn max_rise(w: vec4<i32>, gc: vec4<f32>, gp: vec4<f32>) -> f32 {
-    let d = box_directions(df_i(w.x), df_i(w.y), df_i(w.z), df_i(w.w));
+    var d = box_directions(df_i(w.x), df_i(w.y), df_i(w.z), df_i(w.w));
+    if !d.ok && apex.sector >= 0 {
+        d = quadrant_arc(apex.sector);
+    }
     let x = non_growing(gc);
     // arc::subtract: d (or the whole circle) minus the closed arc x.
     var arcs = array<Arc, 2>(no_arc(), no_arc());
@@ -807,7 +868,11 @@ fn candidate(cell: Cell, ci: i32, cj: i32) -> Candidate {
         return out;
     }
     let rect = vec4<i32>(ci, ci + 1, cj, cj + 1);
-    if relaxed() && !falling_cell(rect, cell) {
+    let w = vectors_to(rect);
+    if is_empty(w) {
+        return out;
+    }
+    if relaxed() && !falling_cell(w, cell) {
         return out;
     }
     let dx = ci - apex.qi;
@@ -819,13 +884,13 @@ fn candidate(cell: Cell, ci: i32, cj: i32) -> Candidate {
     }
     if relaxed() && cheb <= K_LIP {
         // The direction-consistent bound of near cells.
-        let rise = max_rise(vectors_to(rect), cell.g, path[path_at(dx, dy)]);
+        let rise = max_rise(w, cell.g, path[path_at(dx, dy)]);
         if rise <= 0.0 {
             return out;
         }
         b = d_max(b, d_div(df(1.0), df(rise)));
     }
-    out.dist = distance(rect);
+    out.dist = distance(w);
     out.depth = two_sum(apex.smax, -cell.m);
     out.b = b;
     out.ok = true;
@@ -897,12 +962,17 @@ fn measure(level: u32, x: u32, y: u32, ox: i32, oy: i32) -> Measure {
     let x1 = min((x + 1u) << level, nc);
     let y1 = min((y + 1u) << level, nc);
     let rect = vec4<i32>(ox + i32(x0), ox + i32(x1), oy + i32(y0), oy + i32(y1));
-    let dist = distance(rect);
+    // No direction the cone serves reaches the node: none of its cells is a candidate.
+    let w = vectors_to(rect);
+    if is_empty(w) {
+        return out;
+    }
+    let dist = distance(w);
     let plain = plain_bound(dist, two_sum(apex.smax, -node.m));
     if !open(dist, plain) {
         return out;
     }
-    if relaxed() && !falling(rect, node.g) {
+    if relaxed() && !falling(w, node.g) {
         return out;
     }
     out.dist = dist;

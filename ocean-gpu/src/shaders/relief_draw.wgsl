@@ -61,7 +61,7 @@ fn relief_shade(in: VsOut) -> ReliefShade {
     // The unit viewing direction: parallel rays for an orthographic camera, from the eye for a
     // perspective one.
     var dir = relief.view_dir.xyz;
-    if relief.view_dir.w == 0.0 {
+    if bitcast<f32>(relief_ctl(bitcast<u32>(relief.view_dir.w))) == 0.0 {
         dir = normalize(in.rel);
     }
     let view = vec3<f32>(dot(dir, t), dot(dir, b), dot(dir, n));
@@ -83,7 +83,7 @@ fn relief_shade(in: VsOut) -> ReliefShade {
     let light = vec3<f32>(dot(l, t), dot(l, b), dot(l, n));
     let normal = relief_normal(hit.pos.x, hit.pos.y, relief.normal.w);
     var shadow = 0.0;
-    if (relief.steps.z & FLAG_SHADOWS) != 0u {
+    if (relief_ctl(relief.steps.z) & FLAG_SHADOWS) != 0u {
         shadow = relief_shadow(hit.pos, light, depth_scale, relief.shading.y).x;
     }
     let diffuse = max(dot(normal, light), 0.0) * relief.light.w * (1.0 - shadow);
@@ -96,7 +96,7 @@ fn relief_shade(in: VsOut) -> ReliefShade {
 fn relief_fs(in: VsOut) -> FsOut {
     let shade = relief_shade(in);
     var color = shade.direct + shade.ambient;
-    if (relief.steps.z & FLAG_SRGB_ENCODE) != 0u {
+    if (relief_ctl(relief.steps.z) & FLAG_SRGB_ENCODE) != 0u {
         color = relief_srgb(color);
     }
     var out: FsOut;

@@ -17,3 +17,8 @@ fn relief_layer(dx: f32, dy: f32) -> i32 {
 fn relief_texel(layer: i32, i: i32, j: i32) -> vec4<f32> {
     return textureLoad(relief_map, vec2<i32>(i, j), layer, 0);
 }
+
+// The texture's side in texels, known only when the shader runs (relief_ctl).
+fn relief_side() -> u32 {
+    return textureDimensions(relief_map).x;
+}
