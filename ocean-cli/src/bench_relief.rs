@@ -61,6 +61,24 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// Up to three timed GPU generations (`runs`, at most 3): the median time in seconds, and
+/// whether every result equals the CPU's `cpu`.
+fn gpu_runs<T: PartialEq>(
+    runs: u32,
+    cpu: &T,
+    mut generate: impl FnMut() -> Result<T, ocean_gpu::GpuError>,
+) -> Result<(f64, bool), String> {
+    let mut times = Vec::new();
+    let mut identical = true;
+    for _ in 0..runs.min(3) {
+        let start = Instant::now();
+        let cones = generate().map_err(err)?;
+        times.push(start.elapsed().as_secs_f64());
+        identical &= cones == *cpu;
+    }
+    Ok((median(times), identical))
+}
+
 fn seconds(f: impl FnOnce()) -> f64 {
     let start = Instant::now();
     f();
@@ -98,30 +116,19 @@ fn gpu_generation(runs: u32) -> Result<Value, String> {
         }
         let map = to_map(n, &value_noise(n, 8, 6, 1), Edge::Wrap).map_err(err)?;
         let cpu = ConeMap::generate(&map, params).map_err(err)?;
-        let mut times = Vec::new();
-        let mut identical = true;
-        for _ in 0..runs.min(3) {
-            let start = Instant::now();
-            let cones = generator.generate(&ctx, &map, params).map_err(err)?;
-            times.push(start.elapsed().as_secs_f64());
-            identical &= cones == cpu;
-        }
+        let (seconds_gpu, identical) =
+            gpu_runs(runs, &cpu, || generator.generate(&ctx, &map, params))?;
         let quad = if software && n > 256 {
             json!({ "skipped": "four times the isotropic time on a software adapter" })
         } else {
             let mut cpu_quad = None;
             let cpu_seconds = seconds(|| cpu_quad = Some(QuadConeMap::generate(&map, params)));
             let cpu_quad = cpu_quad.expect("timed").map_err(err)?;
-            let mut times = Vec::new();
-            let mut identical = true;
-            for _ in 0..runs.min(3) {
-                let start = Instant::now();
-                let cones = generator.generate_quad(&ctx, &map, params).map_err(err)?;
-                times.push(start.elapsed().as_secs_f64());
-                identical &= cones == cpu_quad;
-            }
+            let (seconds, identical) = gpu_runs(runs, &cpu_quad, || {
+                generator.generate_quad(&ctx, &map, params)
+            })?;
             json!({
-                "seconds": median(times),
+                "seconds": seconds,
                 "identical_to_cpu": identical,
                 "cpu_seconds": cpu_seconds,
             })
@@ -129,7 +136,7 @@ fn gpu_generation(runs: u32) -> Result<Value, String> {
         sizes.push(json!({
             "side": n,
             "map": "fBm 6 octaves",
-            "seconds": median(times),
+            "seconds": seconds_gpu,
             "identical_to_cpu": identical,
             "quad": quad,
         }));

@@ -81,8 +81,8 @@ impl Frame<'_> {
     /// [`Frame::height_at`]. A batch of 256 or more is answered in the order of the grid
     /// points nearest the queries (row-major, by a radix sort) rather than in the caller's
     /// order (the answers still land at the queries' indices): random queries then read the
-    /// modulation row by row, not one cache miss at a time. This costs four `u32` per query
-    /// of scratch memory.
+    /// modulation row by row, not one cache miss at a time. This costs four `u32` and one
+    /// [`HeightSample`] per query of scratch memory.
     ///
     /// # Errors
     ///

@@ -294,31 +294,27 @@ impl ConeMapGenerator {
                     })
                 };
                 let storage = wgpu::BufferUsages::STORAGE;
+                let uniform = |label: &str, u: &ConeGenUniforms| {
+                    let b = buffer(
+                        label,
+                        std::mem::size_of::<ConeGenUniforms>() as u64,
+                        wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                    );
+                    ctx.queue().write_buffer(&b, 0, bytemuck::bytes_of(u));
+                    b
+                };
                 let uniforms: Vec<wgpu::Buffer> = (0..levels)
                     .map(|level| {
                         let mut u = base;
                         u.pyramid[2] = level;
-                        let b = buffer(
-                            "ocean cone map uniform",
-                            std::mem::size_of::<ConeGenUniforms>() as u64,
-                            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                        );
-                        ctx.queue().write_buffer(&b, 0, bytemuck::bytes_of(&u));
-                        b
+                        uniform("ocean cone map uniform", &u)
                     })
                     .collect();
                 // The search and texel passes of each sector read its own block.
                 let sector_uniforms: Vec<wgpu::Buffer> = sectors
                     .iter()
                     .map(|&sector| {
-                        let u = base.with_sector(sector);
-                        let b = buffer(
-                            "ocean cone map sector uniform",
-                            std::mem::size_of::<ConeGenUniforms>() as u64,
-                            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                        );
-                        ctx.queue().write_buffer(&b, 0, bytemuck::bytes_of(&u));
-                        b
+                        uniform("ocean cone map sector uniform", &base.with_sector(sector))
                     })
                     .collect();
                 let depths = buffer(
