@@ -13,8 +13,10 @@
 //!   branch-and-bound over a min-depth pyramid, or by brute force; [`book`]: Listing 18-2 as
 //!   printed, the oracle of the book's semantics.
 //! - [`check`]: the exact validity check (no ray through a cone's axis crosses the surface twice
-//!   inside it); [`mip`]: the 4×4-window mip rule and its proof; [`storage`]: 8-bit, 8-bit
-//!   square-root, `f16` and `f32` encodings, all rounding down.
+//!   inside it); [`mip`]: the 4×4-window mip rule and its proof; [`lod`]: mip levels that each
+//!   carry their own box-filtered surface and its cones ([`ReliefMips`], [`QuadReliefMips`]) and
+//!   the level a fragment reads; [`storage`]: 8-bit, 8-bit square-root, `f16` and `f32`
+//!   encodings, all rounding down.
 //! - [`quad`]: quad-directional cone maps (§18.1, Fig. 18-8b), relaxed or conservative: one cone
 //!   per closed quadrant of the ray's direction, by the same bound and generators, and the
 //!   tracer that picks the ray's layer.
@@ -81,6 +83,7 @@ pub mod cone;
 pub mod error;
 pub mod gpu_params;
 pub mod line;
+pub mod lod;
 pub mod map;
 pub mod maps;
 pub mod mip;
@@ -99,6 +102,7 @@ pub use bound::ConeKind;
 pub use cone::{ConeMap, ConeParams, MAX_BRUTE_SIDE, MAX_RATIO_LIMIT};
 pub use error::ReliefError;
 pub(crate) use error::check_range;
+pub use lod::{QuadReliefMips, ReliefMips};
 pub use map::{Edge, HeightMap, HeightRange, MAX_SIDE};
 pub use quad::{QuadConeMap, QuadReliefTexture, Quadrant};
 pub use relief::ReliefTexture;
