@@ -3369,8 +3369,9 @@ OceanStatus ocean_relief_scene_default(struct OceanReliefScene *out);
  * Writes the uniform block of the exported `relief` draw shader for one draw of `scene` seen
  * by `camera` into `out` (the `OCEAN_RELIEF_UNIFORMS_SIZE` bytes of `Relief`, std140, in the
  * machine's byte order: upload them as they are with `glBufferSubData`), for a relief texture
- * of side `size` (2 to `OCEAN_RELIEF_MAX_SIDE`) and edge mode `edge`
- * (`OCEAN_RELIEF_EDGE_WRAP` or `_CLAMP`, as the cones were generated). With `srgb_encode` = 1
+ * of side `size` (2 to `OCEAN_RELIEF_MAX_SIDE`), edge mode `edge` (`OCEAN_RELIEF_EDGE_WRAP` or
+ * `_CLAMP`, as the cones were generated) and `levels` mip levels (1 to log2 `size` for a
+ * power-of-two side, else 1; see binding 1 below). With `srgb_encode` = 1
  * the shader writes sRGB-encoded colour (for a linear `GL_RGBA8` target); with 0 it writes
  * linear colour (for an sRGB target with `GL_FRAMEBUFFER_SRGB`).
  *
@@ -3380,10 +3381,14 @@ OceanStatus ocean_relief_scene_default(struct OceanReliefScene *out);
  * To draw (`ocean_shader_export` of `relief`, entry points `relief_vs` and `relief_fs`, with
  * its binding table):
  * - binding 0: this block, a uniform buffer;
- * - binding 1: the relief texture, `GL_RGBA32F`, `size` x `size`, one level, the texels of
+ * - binding 1: the relief texture, `GL_RGBA32F`, `size` x `size`, the texels of
  *   `ocean_relief_cones_texels` (`[depth, c, D, E]`, row v = 0 first). The shader reads it with
  *   `texelFetch` and filters by hand (bilinear, with the edge mode), so no sampler state
- *   matters;
+ *   matters. With `levels` = 1 it reads level 0 only. With more, level l (side `size` >> l)
+ *   holds the texels of the map `ocean_relief_map_downsample` made l times from level 0's
+ *   with its own cones (`ocean_relief_cones_create` on that map: cones of level 0 do not fit
+ *   a coarser surface), and each fragment reads the one level `ocean_relief_mip_level` picks
+ *   from its texture coordinates' screen derivatives, chosen once before the tracer's loops;
  * - for a quad-directional cone map (`ocean_relief_quad_cones_create`), export `relief_quad`
  *   instead: the same block (this function, unchanged), and binding 1 is a
  *   `GL_TEXTURE_2D_ARRAY`, `GL_RGBA32F`, `size` x `size` x 4 layers, the texels of
@@ -3412,9 +3417,51 @@ OceanStatus ocean_relief_uniforms(const struct OceanCameraDesc *camera,
                                   const struct OceanReliefScene *scene,
                                   uint32_t size,
                                   uint32_t edge,
+                                  uint32_t levels,
                                   uint8_t srgb_encode,
                                   uint8_t *out,
                                   size_t len);
+
+/**
+ * Makes the next mip level of `map`: side N / 2, each depth the mean ((a + b) + (c + d)) / 4
+ * of its 2x2 group (row above first, left texel first), the same edge mode; stores the handle
+ * in `*out`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if the side is not a power of two or below 4. `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `map` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_relief_map_downsample(const struct OceanReliefMap *map,
+                                        struct OceanReliefMap **out);
+
+/**
+ * Stores in `*out_level` the mip level a fragment of the `relief` shader reads for the screen
+ * derivatives (du_x, du_y) = dFdx(uv) and (dv_x, dv_y) = dFdy(uv) of its texture coordinates
+ * (texture widths per pixel), for a texture of side `size` with `levels` levels: with
+ * rho^2 = max(|du|^2, |dv|^2) size^2, the largest l < `levels` with rho^2 >= 2^(2l - 1) (rho >=
+ * 2^(l - 1/2)), or 0. A NaN footprint reads level 0, an infinite one the last level. The shader
+ * rounds the same operations, so this is its CPU twin.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `size` is outside 2 to `OCEAN_RELIEF_MAX_SIDE` or `levels`
+ * outside 1 to log2 `size` (1 for a side that is not a power of two). `*out_level` is written
+ * only on success.
+ *
+ * # Safety
+ *
+ * `out_level` must be writable.
+ */
+OceanStatus ocean_relief_mip_level(float du_x,
+                                   float du_y,
+                                   float dv_x,
+                                   float dv_y,
+                                   uint32_t size,
+                                   uint32_t levels,
+                                   uint32_t *out_level);
 
 /**
  * Generates the quad-directional cone map of `map` (one relaxed or conservative cone map per

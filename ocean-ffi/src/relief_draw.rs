@@ -154,8 +154,9 @@ pub unsafe extern "C" fn ocean_relief_scene_default(out: *mut OceanReliefScene) 
 /// Writes the uniform block of the exported `relief` draw shader for one draw of `scene` seen
 /// by `camera` into `out` (the `OCEAN_RELIEF_UNIFORMS_SIZE` bytes of `Relief`, std140, in the
 /// machine's byte order: upload them as they are with `glBufferSubData`), for a relief texture
-/// of side `size` (2 to `OCEAN_RELIEF_MAX_SIDE`) and edge mode `edge`
-/// (`OCEAN_RELIEF_EDGE_WRAP` or `_CLAMP`, as the cones were generated). With `srgb_encode` = 1
+/// of side `size` (2 to `OCEAN_RELIEF_MAX_SIDE`), edge mode `edge` (`OCEAN_RELIEF_EDGE_WRAP` or
+/// `_CLAMP`, as the cones were generated) and `levels` mip levels (1 to log2 `size` for a
+/// power-of-two side, else 1; see binding 1 below). With `srgb_encode` = 1
 /// the shader writes sRGB-encoded colour (for a linear `GL_RGBA8` target); with 0 it writes
 /// linear colour (for an sRGB target with `GL_FRAMEBUFFER_SRGB`).
 ///
@@ -165,10 +166,14 @@ pub unsafe extern "C" fn ocean_relief_scene_default(out: *mut OceanReliefScene) 
 /// To draw (`ocean_shader_export` of `relief`, entry points `relief_vs` and `relief_fs`, with
 /// its binding table):
 /// - binding 0: this block, a uniform buffer;
-/// - binding 1: the relief texture, `GL_RGBA32F`, `size` x `size`, one level, the texels of
+/// - binding 1: the relief texture, `GL_RGBA32F`, `size` x `size`, the texels of
 ///   `ocean_relief_cones_texels` (`[depth, c, D, E]`, row v = 0 first). The shader reads it with
 ///   `texelFetch` and filters by hand (bilinear, with the edge mode), so no sampler state
-///   matters;
+///   matters. With `levels` = 1 it reads level 0 only. With more, level l (side `size` >> l)
+///   holds the texels of the map `ocean_relief_map_downsample` made l times from level 0's
+///   with its own cones (`ocean_relief_cones_create` on that map: cones of level 0 do not fit
+///   a coarser surface), and each fragment reads the one level `ocean_relief_mip_level` picks
+///   from its texture coordinates' screen derivatives, chosen once before the tracer's loops;
 /// - for a quad-directional cone map (`ocean_relief_quad_cones_create`), export `relief_quad`
 ///   instead: the same block (this function, unchanged), and binding 1 is a
 ///   `GL_TEXTURE_2D_ARRAY`, `GL_RGBA32F`, `size` x `size` x 4 layers, the texels of
@@ -198,6 +203,7 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
     scene: *const OceanReliefScene,
     size: u32,
     edge: u32,
+    levels: u32,
     srgb_encode: u8,
     out: *mut u8,
     len: usize,
@@ -228,8 +234,15 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
                 ),
             ));
         }
-        let u = ocean_gpu::scene_uniforms(&camera, &scene, size as usize, edge, srgb_encode)
-            .map_err(|e| gpu_error("", e))?;
+        let u = ocean_gpu::scene_uniforms(
+            &camera,
+            &scene,
+            size as usize,
+            edge,
+            levels as usize,
+            srgb_encode,
+        )
+        .map_err(|e| gpu_error("", e))?;
         let bytes = bytemuck::bytes_of(&u);
         // SAFETY: non-NULL (checked), `len` >= the block's size, writable and untouched by
         // others (caller's guarantee); `u8` has alignment 1.
@@ -322,6 +335,7 @@ mod tests {
                 &s,
                 128,
                 crate::relief::OCEAN_RELIEF_EDGE_CLAMP,
+                7,
                 1,
                 out.as_mut_ptr(),
                 out.len(),
@@ -333,6 +347,7 @@ mod tests {
             &scene_from(&s).unwrap(),
             128,
             ocean_relief::Edge::Clamp,
+            7,
             true,
         )
         .unwrap();
@@ -349,26 +364,49 @@ mod tests {
         assert_eq!(u.steps[..3], [20, 5, 3]);
         // One texture width is 0.5 m: the 0.1 m relief is 0.2 texture widths, 25.6 texels.
         assert_eq!((u.tangent[3], u.normal[3]), (0.2, 25.6));
+        // The level count, 128 down to 2: 7 levels.
+        assert_eq!(u.shading[3], 7.0);
     }
 
     #[test]
     fn bad_input_is_refused_and_nothing_is_written() {
         let (desc, _) = camera();
         let good = scene();
+        let call_levels =
+            |desc: &OceanCameraDesc, s: &OceanReliefScene, size, edge, levels, srgb, len| {
+                let mut out = [7u8; 300];
+                // SAFETY: readable inputs, `out` holds at least `len` writable bytes.
+                let status = unsafe {
+                    ocean_relief_uniforms(desc, s, size, edge, levels, srgb, out.as_mut_ptr(), len)
+                };
+                assert!(out.iter().all(|&b| b == 7), "written on failure");
+                (status, last_error())
+            };
         let call = |desc: &OceanCameraDesc, s: &OceanReliefScene, size, edge, srgb, len| {
-            let mut out = [7u8; 300];
-            // SAFETY: readable inputs, `out` holds at least `len` writable bytes.
-            let status =
-                unsafe { ocean_relief_uniforms(desc, s, size, edge, srgb, out.as_mut_ptr(), len) };
-            assert!(out.iter().all(|&b| b == 7), "written on failure");
-            (status, last_error())
+            call_levels(desc, s, size, edge, 1, srgb, len)
         };
         let with = |f: &dyn Fn(&mut OceanReliefScene)| {
             let mut s = good;
             f(&mut s);
             call(&desc, &s, 64, 0, 0, 256)
         };
-        let cases: [(OceanStatus, &str, (OceanStatus, String)); 10] = [
+        let cases: [(OceanStatus, &str, (OceanStatus, String)); 13] = [
+            // 64 texels hold 6 levels (64 down to 2); a side that is not a power of two, one.
+            (
+                OceanStatus::InvalidArgument,
+                "mip levels",
+                call_levels(&desc, &good, 64, 0, 0, 0, 256),
+            ),
+            (
+                OceanStatus::InvalidArgument,
+                "mip levels",
+                call_levels(&desc, &good, 64, 0, 7, 0, 256),
+            ),
+            (
+                OceanStatus::InvalidArgument,
+                "mip levels",
+                call_levels(&desc, &good, 48, 0, 2, 0, 256),
+            ),
             (
                 OceanStatus::BufferTooSmall,
                 "needs 256",
@@ -451,15 +489,15 @@ mod tests {
         // SAFETY: NULL pointers are refused before anything is read or written.
         unsafe {
             assert_eq!(
-                ocean_relief_uniforms(null(), &good, 64, 0, 0, out.as_mut_ptr(), 256),
+                ocean_relief_uniforms(null(), &good, 64, 0, 1, 0, out.as_mut_ptr(), 256),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_relief_uniforms(&desc, null(), 64, 0, 0, out.as_mut_ptr(), 256),
+                ocean_relief_uniforms(&desc, null(), 64, 0, 1, 0, out.as_mut_ptr(), 256),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_relief_uniforms(&desc, &good, 64, 0, 0, null_mut(), 256),
+                ocean_relief_uniforms(&desc, &good, 64, 0, 1, 0, null_mut(), 256),
                 OceanStatus::NullPointer
             );
         }

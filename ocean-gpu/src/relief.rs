@@ -40,6 +40,19 @@
 //! `TEXTURE_2D`, which no `texture_2d_array` binding accepts, and because an engine drawing
 //! the isotropic GLSL export should not have to bind a second sampler type.
 //!
+//! ## Level of detail
+//!
+//! [`ReliefRenderer::set_mips`] and [`ReliefRenderer::set_quad_mips`] upload a texture with mip
+//! levels ([`ReliefMips`], [`QuadReliefMips`]: each level a relief texture of its own
+//! box-filtered surface with its own cones, `ocean_relief::lod`). The fragment stage takes the
+//! level once, first, from `dpdx` and `dpdy` of the polygon's texture coordinates
+//! ([`ocean_relief::lod::mip_level`], the nearest level to `log₂` of the footprint in texels),
+//! and every fetch of its viewing ray, its light ray and its relief normal reads that level with
+//! `textureLoad(…, level)`: the tracer at level `l` is the level-0 tracer on a map of side
+//! `N/2^l`, bit for bit the CPU's on [`ReliefMips::level`]. The loops need no implicit level of
+//! detail, so they may branch (WGSL forbids implicit-LOD sampling in non-uniform control flow).
+//! With [`ReliefRenderer::set_texture`] (one level) every fragment reads level 0.
+//!
 //! ## Parity
 //!
 //! The tracer rounds every operation as the CPU does (`relief_common.wgsl`: products kept out
@@ -61,7 +74,9 @@ use glam::{DMat4, DVec2, DVec3, DVec4, Vec2, Vec3};
 use ocean_core::{Camera, DepthDirection, DepthRange, Projection};
 use ocean_relief::gpu_params::{FLAG_SHADOWS, FLAG_SRGB_ENCODE, ReliefUniforms};
 use ocean_relief::trace::BinarySearch;
-use ocean_relief::{Edge, Hit, Method, QuadReliefTexture, ReliefTexture};
+use ocean_relief::{
+    Edge, Hit, Method, QuadReliefMips, QuadReliefTexture, ReliefMips, ReliefTexture,
+};
 
 use crate::readback::{read_buffer_as, read_texture};
 use crate::{GpuContext, GpuError, shaders};
@@ -72,6 +87,8 @@ pub use cone::{ConeGenTimes, ConeMapGenerator};
 
 /// Invocations per workgroup of `probe_trace` (`@workgroup_size(64)`).
 const PROBE_WORKGROUP: u32 = 64;
+/// `vec4`s of input per probe item (`relief_probe.wgsl`).
+const PROBE_ITEM_VEC4S: usize = 5;
 
 /// Largest number of rays one [`ReliefRenderer::probe`] call takes (64 × 65536 workgroups).
 pub const MAX_PROBE_RAYS: usize = 1 << 22;
@@ -320,8 +337,9 @@ fn f4(v: DVec3, w: f32) -> [f32; 4] {
 }
 
 /// The uniform block (binding 0 of `relief_draw.wgsl`, and of its GLSL export) of one draw of
-/// `scene` seen by `camera`, for a relief texture of side `size` and edge mode `edge`; with
-/// `srgb_encode` the fragment stage sRGB-encodes its colour (for a non-sRGB target).
+/// `scene` seen by `camera`, for a relief texture of side `size`, edge mode `edge` and `levels`
+/// mip levels (1 for level 0 alone; [`ocean_relief::lod`]); with `srgb_encode` the fragment
+/// stage sRGB-encodes its colour (for a non-sRGB target).
 /// [`ReliefRenderer`] draws with exactly this block; an engine that draws the exported shader
 /// in its own pipeline uploads it as it is.
 ///
@@ -329,13 +347,14 @@ fn f4(v: DVec3, w: f32) -> [f32; 4] {
 ///
 /// [`GpuError::InvalidInput`] for a quad, light or shading [`ReliefScene`] refuses, a camera
 /// whose eye-relative view-projection is not representable in `f32` or whose view matrix is
-/// degenerate; the [`ReliefError`](ocean_relief::ReliefError)s of the texture size and the
-/// method's step counts.
+/// degenerate; the [`ReliefError`](ocean_relief::ReliefError)s of the texture size, the level
+/// count ([`ReliefUniforms::set_levels`]) and the method's step counts.
 pub fn scene_uniforms(
     camera: &Camera,
     scene: &ReliefScene,
     size: usize,
     edge: Edge,
+    levels: usize,
     srgb_encode: bool,
 ) -> Result<ReliefUniforms, GpuError> {
     let frame = scene.tangent_frame()?;
@@ -390,6 +409,7 @@ pub fn scene_uniforms(
         ));
     }
     u.set_texture(size, edge)?;
+    u.set_levels(levels)?;
     u.set_method(&scene.method)?;
     u.set_depth(frame.depth_scale as f32, scene.shadow_bias)?;
     u.set_flag(FLAG_SHADOWS, scene.shadows);
@@ -398,9 +418,9 @@ pub fn scene_uniforms(
 }
 
 /// One ray for [`ReliefRenderer::probe`]: the arguments of [`ocean_relief::Ray::from_view`]
-/// and [`Method::trace`] for the viewing ray, and of [`ocean_relief::shadow::in_shadow`] for a
-/// shadow test.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// and [`Method::trace`] for the viewing ray, of [`ocean_relief::shadow::in_shadow`] for a
+/// shadow test, and the footprint the level of detail is chosen from.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ReliefRay {
     /// Texture coordinates where the ray enters the relief.
     pub start: Vec2,
@@ -414,6 +434,10 @@ pub struct ReliefRay {
     pub light: Vec3,
     /// The shadow test's bias, in `[0, 1]`.
     pub bias: f32,
+    /// The texture coordinates' screen derivatives `[du, dv]` (texture widths per pixel, as
+    /// `dpdx(uv)` and `dpdy(uv)` in the draw pass): the probe reads the level
+    /// [`ocean_relief::lod::mip_level`] picks for them, as a fragment does. Zero: level 0.
+    pub footprint: [Vec2; 2],
 }
 
 /// What [`ReliefRenderer::probe`] reads back for one [`ReliefRay`].
@@ -426,6 +450,8 @@ pub struct ReliefProbe {
     /// Where the light ray towards the point stopped: its depth and fetches (0 and 0 when the
     /// light is at or below the polygon's plane: no ray is traced).
     pub light_hit: (f32, u32),
+    /// The mip level both rays read.
+    pub level: u32,
 }
 
 /// A headless render: colour bytes and the depth buffer.
@@ -536,6 +562,7 @@ struct ProbePipelines {
 struct TextureState {
     size: usize,
     edge: Edge,
+    levels: usize,
     layout: ReliefLayout,
     view: wgpu::TextureView,
 }
@@ -680,7 +707,9 @@ impl ReliefRenderer {
     }
 
     /// Uploads the relief texture (`[depth, cone, clearance, near cap]` per texel, an
-    /// `rgba32float` texture read with `textureLoad`) that every later draw and probe reads.
+    /// `rgba32float` texture read with `textureLoad`) that every later draw and probe reads:
+    /// one level, so every fragment reads level 0 whatever its footprint (see
+    /// [`set_mips`](Self::set_mips)).
     ///
     /// # Errors
     ///
@@ -696,8 +725,44 @@ impl ReliefRenderer {
             texture.size(),
             texture.edge(),
             ReliefLayout::Isotropic,
-            texture.texels(),
+            &[texture.texels()],
         )
+    }
+
+    /// Uploads a relief texture with its mip levels ([`ReliefMips`]: each level its own
+    /// box-filtered surface with its own cones, [`ocean_relief::lod`]). Each fragment picks one
+    /// level from its footprint ([`ocean_relief::lod::mip_level`] of the screen derivatives of
+    /// the polygon's texture coordinates), once, before the tracer's loops; the viewing ray,
+    /// the light ray and the relief normal read that level. Replaces any earlier texture.
+    ///
+    /// # Errors
+    ///
+    /// As [`set_texture`](Self::set_texture).
+    pub fn set_mips(&mut self, ctx: &GpuContext, mips: &ReliefMips) -> Result<(), GpuError> {
+        let levels: Vec<&[[f32; 4]]> = mips.levels().iter().map(|t| t.texels()).collect();
+        self.upload(
+            ctx,
+            mips.size(),
+            mips.edge(),
+            ReliefLayout::Isotropic,
+            &levels,
+        )
+    }
+
+    /// [`set_mips`](Self::set_mips) for quad-directional levels ([`QuadReliefMips`]; the
+    /// layers as [`set_quad_texture`](Self::set_quad_texture) uploads them, at every level).
+    ///
+    /// # Errors
+    ///
+    /// As [`set_texture`](Self::set_texture).
+    pub fn set_quad_mips(
+        &mut self,
+        ctx: &GpuContext,
+        mips: &QuadReliefMips,
+    ) -> Result<(), GpuError> {
+        let texels: Vec<Vec<[f32; 4]>> = mips.levels().iter().map(|t| t.texels()).collect();
+        let levels: Vec<&[[f32; 4]]> = texels.iter().map(Vec::as_slice).collect();
+        self.upload(ctx, mips.size(), mips.edge(), ReliefLayout::Quad, &levels)
     }
 
     /// Uploads a quad-directional relief texture ([`QuadReliefTexture`], §18.1): a 4-layer
@@ -720,7 +785,7 @@ impl ReliefRenderer {
             texture.size(),
             texture.edge(),
             ReliefLayout::Quad,
-            &texture.texels(),
+            &[&texture.texels()],
         )
     }
 
@@ -735,7 +800,7 @@ impl ReliefRenderer {
         n: usize,
         edge: Edge,
         layout: ReliefLayout,
-        texels: &[[f32; 4]],
+        levels: &[&[[f32; 4]]],
     ) -> Result<(), GpuError> {
         let max = ctx.device().limits().max_texture_dimension_2d;
         if n as u64 > u64::from(max) {
@@ -747,36 +812,39 @@ impl ReliefRenderer {
         }
         let device = ctx.device();
         let view = crate::scoped(device, || {
-            let extent = wgpu::Extent3d {
-                width: n as u32,
-                height: n as u32,
+            let extent = |side: usize| wgpu::Extent3d {
+                width: side as u32,
+                height: side as u32,
                 depth_or_array_layers: layout.layers(),
             };
             let t = device.create_texture(&wgpu::TextureDescriptor {
                 label: Some("ocean relief texture"),
-                size: extent,
-                mip_level_count: 1,
+                size: extent(n),
+                mip_level_count: levels.len() as u32,
                 sample_count: 1,
                 dimension: wgpu::TextureDimension::D2,
                 format: wgpu::TextureFormat::Rgba32Float,
                 usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
                 view_formats: &[],
             });
-            ctx.queue().write_texture(
-                wgpu::TexelCopyTextureInfo {
-                    texture: &t,
-                    mip_level: 0,
-                    origin: wgpu::Origin3d::ZERO,
-                    aspect: wgpu::TextureAspect::All,
-                },
-                bytemuck::cast_slice(texels),
-                wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(n as u32 * 16),
-                    rows_per_image: Some(n as u32),
-                },
-                extent,
-            );
+            for (l, texels) in levels.iter().enumerate() {
+                let side = n >> l;
+                ctx.queue().write_texture(
+                    wgpu::TexelCopyTextureInfo {
+                        texture: &t,
+                        mip_level: l as u32,
+                        origin: wgpu::Origin3d::ZERO,
+                        aspect: wgpu::TextureAspect::All,
+                    },
+                    bytemuck::cast_slice(texels),
+                    wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(side as u32 * 16),
+                        rows_per_image: Some(side as u32),
+                    },
+                    extent(side),
+                );
+            }
             Ok(t.create_view(&wgpu::TextureViewDescriptor {
                 dimension: Some(layout.view_dimension()),
                 ..Default::default()
@@ -785,6 +853,7 @@ impl ReliefRenderer {
         self.texture = Some(TextureState {
             size: n,
             edge,
+            levels: levels.len(),
             layout,
             view,
         });
@@ -974,7 +1043,7 @@ impl ReliefRenderer {
         let encode = output == Output::Color && !self.options.color_format.is_srgb();
         let blocks = scenes
             .iter()
-            .map(|scene| scene_uniforms(camera, scene, tex.size, tex.edge, encode))
+            .map(|scene| scene_uniforms(camera, scene, tex.size, tex.edge, tex.levels, encode))
             .collect::<Result<Vec<_>, _>>()?;
         if blocks.is_empty() {
             return Ok(());
@@ -1096,7 +1165,7 @@ impl ReliefRenderer {
         let tex = self.texture_state()?;
         self.check_viewport(ctx, width, height)?;
         // Everything that can fail on the inputs fails here, before anything is allocated.
-        scene_uniforms(camera, scene, tex.size, tex.edge, false)?;
+        scene_uniforms(camera, scene, tex.size, tex.edge, tex.levels, false)?;
         let device = ctx.device();
         let extent = wgpu::Extent3d {
             width,
@@ -1341,14 +1410,15 @@ impl ReliefRenderer {
                 format!("{} rays: 1 to {MAX_PROBE_RAYS} are accepted", rays.len()),
             ));
         }
-        let mut inputs = Vec::with_capacity(rays.len() * 4);
+        let mut inputs = Vec::with_capacity(rays.len() * PROBE_ITEM_VEC4S);
         for (k, r) in rays.iter().enumerate() {
             let finite = r.start.is_finite()
                 && r.view.is_finite()
                 && r.depth_scale.is_finite()
                 && r.point.is_finite()
                 && r.light.is_finite()
-                && r.bias.is_finite();
+                && r.bias.is_finite()
+                && r.footprint.iter().all(|d| d.is_finite());
             if !finite || r.view.z >= 0.0 || r.depth_scale < 0.0 || !(0.0..=1.0).contains(&r.bias) {
                 return Err(invalid(
                     "probe ray",
@@ -1362,9 +1432,12 @@ impl ReliefRenderer {
             inputs.push([r.view.x, r.view.y, r.view.z, 0.0]);
             inputs.push([r.point.x, r.point.y, r.point.z, 0.0]);
             inputs.push([r.light.x, r.light.y, r.light.z, 0.0]);
+            let [du, dv] = r.footprint;
+            inputs.push([du.x, du.y, dv.x, dv.y]);
         }
         let mut u = ReliefUniforms::default();
         u.set_texture(tex.size, tex.edge)?;
+        u.set_levels(tex.levels)?;
         u.set_method(method)?;
         u.steps[3] = rays.len() as u32;
         let device = ctx.device();
@@ -1375,10 +1448,11 @@ impl ReliefRenderer {
         let limit = limits
             .max_storage_buffer_binding_size
             .min(limits.max_buffer_size);
-        if (rays.len() as u64) * 64 > limit {
+        let in_size = (rays.len() * PROBE_ITEM_VEC4S) as u64 * 16;
+        if in_size > limit {
             return Err(GpuError::TooLarge {
                 what: "relief probe buffers (bytes)",
-                needed: rays.len() as u64 * 64,
+                needed: in_size,
                 limit,
             });
         }
@@ -1440,6 +1514,7 @@ impl ReliefRenderer {
                 },
                 shadow: c[1][0] != 0.0,
                 light_hit: (c[1][1], c[1][2] as u32),
+                level: c[1][3] as u32,
             })
             .collect())
     }

@@ -118,7 +118,8 @@ pub struct ReliefUniforms {
     /// Depth scale (texture widths, as `tangent.w`), shadow bias (depth units,
     /// [`crate::shadow::in_shadow`]), 0 (must stay 0: the shader xors its bits into
     /// intermediate results, an identity the compiler cannot see through, so it cannot fuse or
-    /// reassociate the tracer's arithmetic), 0.
+    /// reassociate the tracer's arithmetic), the texture's mip levels as a whole number (the
+    /// levels [`crate::lod::mip_level`] chooses among; 0 reads as 1, level 0 only).
     pub shading: [f32; 4],
 }
 
@@ -165,6 +166,25 @@ impl ReliefUniforms {
         self.shading[0] = depth_scale;
         self.shading[1] = shadow_bias;
         self.normal[3] = depth_scale * self.trace[0] as f32;
+        Ok(())
+    }
+
+    /// Sets the number of mip levels the texture holds (`shading[3]`), after
+    /// [`set_texture`](Self::set_texture): 1 ..= `log₂ N` for a power-of-two side `N`, 1
+    /// otherwise ([`crate::lod`]).
+    ///
+    /// # Errors
+    ///
+    /// [`ReliefError::OutOfRange`] for a count outside that range.
+    pub fn set_levels(&mut self, levels: usize) -> Result<(), ReliefError> {
+        let n = self.trace[0] as usize;
+        let most = if n.is_power_of_two() {
+            crate::lod::max_levels(n).max(1)
+        } else {
+            1
+        };
+        check_range("mip levels", levels as f64, 1.0, most as f64)?;
+        self.shading[3] = levels as f32;
         Ok(())
     }
 

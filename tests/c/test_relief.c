@@ -26,6 +26,8 @@
  * - Quad-directional cones (section 18.1) on the box map: the 4-layer texture against the map
  *   and the isotropic cones, the cap where a quadrant sees only floor, hits and shadows as
  *   above, progress over the four layers (test_quad derives the counts).
+ * - Level of detail: the next level's 2 x 2 means on the box map, cones of that map, and the
+ *   level a footprint reads (test_lod derives the values).
  * - Cancellation from a C callback, progress to completion, and every error path with the
  *   outputs untouched.
  *
@@ -763,7 +765,7 @@ static void test_uniforms(void)
     camera.aspect = 16.0 / 9.0;
     camera.z_near = 0.1;
     camera.z_far = 100.0;
-    if (!OK(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, block,
+    if (!OK(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 8, 1, block,
                                   sizeof block)))
         return;
     /* Offsets of the std140 block: quad_origin at 64, trace at 208, steps at 224. */
@@ -778,19 +780,91 @@ static void test_uniforms(void)
     /* 15 cone steps, 6 bisections, shadows (1) and sRGB encoding (2). */
     CHECK(words[4] == 15 && words[5] == 6 && words[6] == 3, "step words %u %u %u", words[4],
           words[5], words[6]);
+    /* shading at 240: depth scale, bias, 0, mip levels (256 down to 2: 8). */
+    memcpy(origin, block + 240, sizeof origin);
+    CHECK(origin[2] == 0.0f && origin[3] == 8.0f, "shading %g %g", origin[2], origin[3]);
+    EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 9, 1, block,
+                                 sizeof block),
+           OCEAN_STATUS_INVALID_ARGUMENT);
 
     memset(small, 0x5A, sizeof small);
-    EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, small,
+    EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, 1, small,
                                  sizeof small),
            OCEAN_STATUS_BUFFER_TOO_SMALL);
     scene.tiles_u = 0.0;
-    EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, small,
+    EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, 1, small,
                                  sizeof block),
            OCEAN_STATUS_INVALID_ARGUMENT);
     for (i = 0; i < sizeof small; i++)
         if (small[i] != 0x5A)
             break;
     CHECK(i == sizeof small, "the block was written on failure");
+}
+
+/*
+ * Level of detail on the box map: the next level's depths are the 2x2 means (at a box corner,
+ * the mean of one box texel and three floor texels is depth 3/4), the coarser map takes its
+ * own cones, and the level a fragment reads grows with its footprint: 3 texels a pixel is
+ * level 2 (2^1.5 <= 3 < 2^2.5), clamped to the levels present.
+ */
+static void test_lod(void)
+{
+    static float h[BOX_TEXELS], depths[BOX_TEXELS / 4];
+    OceanReliefMap *map = NULL, *half = NULL, *none = NULL;
+    OceanReliefCones *cones = NULL;
+    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONES_RELAXED, 1.0f);
+    uint32_t side = 0, level = 99;
+    const float t = 1.0f / BOX;
+    size_t i, bad = 0;
+
+    /* The box over texels 25..40, one texel off the 2 x 2 grid, so groups straddle its edges. */
+    for (i = 0; i < BOX_TEXELS; i++) {
+        size_t x = i % BOX, y = i / BOX;
+        h[i] = (x >= 25 && x < 41 && y >= 25 && y < 41) ? 1.0f : 0.0f;
+    }
+    if (!OK(ocean_relief_map_create_f32(h, BOX_TEXELS, BOX, BOX, OCEAN_RELIEF_EDGE_CLAMP,
+                                        OCEAN_RELIEF_RANGE_REFUSE, &map)))
+        return;
+    if (OK(ocean_relief_map_downsample(map, &half))) {
+        OK(ocean_relief_map_size(half, &side));
+        CHECK(side == BOX / 2, "downsampled side %u", side);
+        if (OK(ocean_relief_map_depths(half, depths, BOX_TEXELS / 4))) {
+            /* Group (12, 12) covers texels 24..25: one box texel (25, 25), three floor. */
+            CHECK(depths[12 * (BOX / 2) + 12] == 0.75f, "corner depth %g",
+                  depths[12 * (BOX / 2) + 12]);
+            /* Group (13, 13) lies inside the box; (0, 0) on the floor. */
+            CHECK(depths[13 * (BOX / 2) + 13] == 0.0f && depths[0] == 1.0f, "depths %g %g",
+                  depths[13 * (BOX / 2) + 13], depths[0]);
+            for (i = 0; i < BOX_TEXELS / 4; i++)
+                bad += depths[i] != 0.0f && depths[i] != 0.5f && depths[i] != 0.75f &&
+                       depths[i] != 1.0f;
+            CHECK(bad == 0, "%zu means are not 0, 1/2, 3/4 or 1", bad);
+        }
+        CHECK(OK(ocean_relief_cones_create(half, &p, NULL, NULL, &cones)),
+              "cones of the coarse map");
+        ocean_relief_cones_destroy(cones);
+        ocean_relief_map_destroy(half);
+    }
+    OK(ocean_relief_mip_level(3.0f * t, 0.0f, 0.0f, t, BOX, 6, &level));
+    CHECK(level == 2, "3 texels a pixel: level %u", level);
+    OK(ocean_relief_mip_level(3.0f * t, 0.0f, 0.0f, t, BOX, 2, &level));
+    CHECK(level == 1, "clamped to 2 levels: level %u", level);
+    OK(ocean_relief_mip_level(0.5f * t, 0.0f, 0.0f, 0.5f * t, BOX, 6, &level));
+    CHECK(level == 0, "magnified: level %u", level);
+    level = 99;
+    EXPECT(ocean_relief_mip_level(t, 0.0f, 0.0f, t, BOX, 7, &level),
+           OCEAN_STATUS_INVALID_ARGUMENT);
+    CHECK(level == 99, "level written on failure");
+    EXPECT(ocean_relief_mip_level(t, 0.0f, 0.0f, t, BOX, 1, NULL), OCEAN_STATUS_NULL_POINTER);
+    EXPECT(ocean_relief_map_downsample(map, NULL), OCEAN_STATUS_NULL_POINTER);
+    ocean_relief_map_destroy(map);
+    /* A 2 x 2 map has no coarser level; nothing is written. */
+    if (OK(ocean_relief_map_create_f32(h, 4, 2, 2, OCEAN_RELIEF_EDGE_WRAP,
+                                       OCEAN_RELIEF_RANGE_REFUSE, &map))) {
+        EXPECT(ocean_relief_map_downsample(map, &none), OCEAN_STATUS_INVALID_ARGUMENT);
+        CHECK(none == NULL, "handle written on failure");
+        ocean_relief_map_destroy(map);
+    }
 }
 
 int main(void)
@@ -801,6 +875,7 @@ int main(void)
     test_uniforms();
     test_progress_and_cancel();
     test_quad();
+    test_lod();
     test_errors();
     printf("test_relief.c: library %s, %d checks, %d failures\n", ocean_version(), checks,
            failures);

@@ -195,6 +195,7 @@ fn probe_matches_the_cpu_tracers() {
                     point: hit.pos,
                     light,
                     bias: 0.01,
+                    ..Default::default()
                 });
             }
             let gpu = renderer.probe(&ctx, &method, &probe).unwrap();
@@ -270,6 +271,7 @@ fn quad_probe_matches_the_cpu_quad_tracer() {
                     point: hit.pos,
                     light,
                     bias: 0.01,
+                    ..Default::default()
                 });
             }
             let gpu = renderer.probe(&ctx, &method, &probe).unwrap();
@@ -332,6 +334,7 @@ fn quad_probe_reads_the_rays_layer() {
             point: Vec3::new(start.x, start.y, 0.5),
             light,
             bias: 0.01,
+            ..Default::default()
         })
         .collect();
     let mut renderer = ReliefRenderer::new(&ctx, Default::default()).unwrap();
@@ -1439,6 +1442,7 @@ fn bad_input_is_refused() {
         point: Vec3::new(0.5, 0.5, 0.2),
         light: Vec3::new(0.0, 0.5, 1.0),
         bias: 0.01,
+        ..Default::default()
     };
     let m = Method::ConeStep { steps: 8 };
     assert_eq!(renderer.probe(&ctx, &m, &[ok]).unwrap().len(), 1);
@@ -1461,6 +1465,10 @@ fn bad_input_is_refused() {
         },
         ReliefRay {
             light: Vec3::new(0.0, f32::INFINITY, 1.0),
+            ..ok
+        },
+        ReliefRay {
+            footprint: [Vec2::new(f32::NAN, 0.0), Vec2::ZERO],
             ..ok
         },
     ] {

@@ -8,6 +8,13 @@
 // hardware filtering, so the surface is bit for bit the one the CPU tracers and the cone maps
 // see), and textureLoad() needs no implicit level of detail, so the marching loops may branch.
 //
+// Level of detail (ocean_relief::lod). The texture may hold mip levels, each a relief texture
+// of its own box-filtered surface with its own cones (ReliefMips, QuadReliefMips). The draw
+// pass picks one level per fragment before any loop (relief_lod(), from the derivatives of the
+// polygon's texture coordinates) and stores it in relief_level; every fetch of the viewing
+// ray, its bisection, the light ray and the relief normal then read that level, whose side is
+// N >> relief_level. The tracers at level l are the level-0 tracers on that smaller map.
+//
 // Texture: rgba32float, N x N, texel (i, j) = [depth, cone ratio, clearance, near cap]
 // (ocean_relief::ReliefTexture), declared by relief_texture.wgsl; or a
 // 4-layer array of such texels, one layer per quadrant of the ray's direction
@@ -42,11 +49,15 @@ struct Relief {
     trace: vec4<u32>,
     // steps, binary steps, flags (1 shadows, 2 sRGB-encode), probe items
     steps: vec4<u32>,
-    // depth scale (texture widths), shadow bias, 0 (the opaque zero of relief_opq), 0
+    // depth scale (texture widths), shadow bias, 0 (the opaque zero of relief_opq), mip
+    // levels (a whole number; 0 reads as 1)
     shading: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> relief: Relief;
+
+// The mip level every fetch reads: set once per fragment (or probe item) before tracing.
+var<private> relief_level: i32 = 0;
 
 const METHOD_LINEAR: u32 = 0u;
 const METHOD_CONE_STEP: u32 = 1u;
@@ -163,6 +174,37 @@ fn relief_resolve(i: i32, n: i32) -> i32 {
     return clamp(i, 0, n - 1);
 }
 
+// The side of the level relief_level reads: N >> level.
+fn relief_level_side() -> i32 {
+    return i32(relief.trace.x) >> u32(relief_level);
+}
+
+// The mip levels the texture holds (at least 1), opaque to the driver (relief_ctl).
+fn relief_levels() -> i32 {
+    let levels = i32(bitcast<f32>(relief_ctl(bitcast<u32>(relief.shading.w))));
+    return max(levels, 1);
+}
+
+// The level for screen derivatives du, dv of the texture coordinates (texture widths per
+// pixel), ocean_relief::lod::mip_level: with rho^2 = max(|du|^2, |dv|^2) N^2, the largest
+// l < levels with rho^2 >= 2^(2l - 1), or 0. Products are rounded once each (relief_mul), as
+// the CPU rounds them, so both pick the same level for the same derivatives.
+fn relief_lod(du: vec2<f32>, dv: vec2<f32>) -> i32 {
+    let sx = relief_mul(du.x, du.x) + relief_mul(du.y, du.y);
+    let sy = relief_mul(dv.x, dv.x) + relief_mul(dv.y, dv.y);
+    let n = f32(relief.trace.x);
+    let s = relief_mul(max(sx, sy), relief_mul(n, n));
+    let levels = relief_levels();
+    var level = 0;
+    var threshold = 2.0;
+    // A NaN footprint fails every comparison and stays at level 0.
+    while level + 1 < levels && s >= threshold {
+        level += 1;
+        threshold *= 4.0;
+    }
+    return level;
+}
+
 // WGSL's mix(a, b, t) as ocean_relief::sample::mix writes it: a(1 - t) + bt.
 fn relief_mix(a: vec4<f32>, b: vec4<f32>, t: f32) -> vec4<f32> {
     return relief_opq4(a * (1.0 - t)) + relief_opq4(b * t);
@@ -171,7 +213,7 @@ fn relief_mix(a: vec4<f32>, b: vec4<f32>, t: f32) -> vec4<f32> {
 // The bilinear fetch of [depth, cone, clearance, near cap] of `layer` at texture coordinates
 // (u, v): ocean_relief::sample::Taps::new + blend4.
 fn relief_fetch(layer: i32, u: f32, v: f32) -> vec4<f32> {
-    let n = i32(relief.trace.x);
+    let n = relief_level_side();
     let nf = f32(n);
     let x = relief_mul(u, nf) - 0.5;
     let y = relief_mul(v, nf) - 0.5;
@@ -389,9 +431,10 @@ fn relief_gradient(i: i32, j: i32, n: i32) -> vec2<f32> {
 
 // The tangent-space relief normal at (u, v): the bilinear blend of the four texels' central
 // differences, normalize(depth du, depth dv, 1) with `depth_texels` the relief depth in texels
-// (relief::normals, blended as a linear sampler would blend a normal map of its gradients).
+// of the level read (relief::normals, blended as a linear sampler would blend a normal map of
+// its gradients).
 fn relief_normal(u: f32, v: f32, depth_texels: f32) -> vec3<f32> {
-    let n = i32(relief.trace.x);
+    let n = relief_level_side();
     let nf = f32(n);
     let x = u * nf - 0.5;
     let y = v * nf - 0.5;

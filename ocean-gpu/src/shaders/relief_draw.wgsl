@@ -55,6 +55,9 @@ struct ReliefShade {
 
 // Traces the fragment's viewing ray and shades the hit (discards the back of the quad).
 fn relief_shade(in: VsOut) -> ReliefShade {
+    // The level of detail, once, before anything branches (derivatives need uniform control
+    // flow) and before the tracer's loops (ocean_relief::lod).
+    relief_level = relief_lod(dpdx(in.uv), dpdy(in.uv));
     let t = relief.tangent.xyz;
     let b = relief.bitangent.xyz;
     let n = relief.normal.xyz;
@@ -81,7 +84,8 @@ fn relief_shade(in: VsOut) -> ReliefShade {
 
     let l = relief.light.xyz;
     let light = vec3<f32>(dot(l, t), dot(l, b), dot(l, n));
-    let normal = relief_normal(hit.pos.x, hit.pos.y, relief.normal.w);
+    // normal.w is the depth in level-0 texels; a level-l texel is 2^l of them.
+    let normal = relief_normal(hit.pos.x, hit.pos.y, ldexp(relief.normal.w, -relief_level));
     var shadow = 0.0;
     if (relief_ctl(relief.steps.z) & FLAG_SHADOWS) != 0u {
         shadow = relief_shadow(hit.pos, light, depth_scale, relief.shading.y).x;

@@ -2,12 +2,13 @@
 // a list of rays, so the parity tests compare them with the CPU tracers directly; and a copy of
 // a depth texture into a buffer (the headless image's depth readback).
 
-// Per item, four vec4s: (start u, start v, depth scale, shadow bias), (tangent-space view
+// Per item, five vec4s: (start u, start v, depth scale, shadow bias), (tangent-space view
 // vector, 0), (the point the shadow test is made for: u, v, depth, 0), (tangent-space light
-// direction, 0).
+// direction, 0), (the texture coordinates' screen derivatives du.xy, dv.xy: the footprint the
+// draw pass would take the level of detail from).
 @group(0) @binding(2) var<storage, read> probe_in: array<vec4<f32>>;
 // Per item, two vec4s: (hit u, v, depth, fetches), (1 in shadow / 0 lit, the light ray's hit
-// depth, its fetches, 0).
+// depth, its fetches, the level read).
 @group(0) @binding(3) var<storage, read_write> probe_out: array<vec4<f32>>;
 
 @compute @workgroup_size(64)
@@ -16,14 +17,17 @@ fn probe_trace(@builtin(global_invocation_id) id: vec3<u32>) {
     if k >= relief.steps.w {
         return;
     }
-    let ray = probe_in[4u * k];
-    let view = probe_in[4u * k + 1u].xyz;
-    let point = probe_in[4u * k + 2u].xyz;
-    let light = probe_in[4u * k + 3u].xyz;
+    let ray = probe_in[5u * k];
+    let view = probe_in[5u * k + 1u].xyz;
+    let point = probe_in[5u * k + 2u].xyz;
+    let light = probe_in[5u * k + 3u].xyz;
+    let footprint = probe_in[5u * k + 4u];
+    // As the draw pass does, once, before the tracers' loops.
+    relief_level = relief_lod(footprint.xy, footprint.zw);
     let hit = relief_trace(ray.xy, relief_view_ray(view, ray.z));
     let shadow = relief_shadow(point, light, ray.z, ray.w);
     probe_out[2u * k] = vec4<f32>(hit.pos, f32(hit.fetches));
-    probe_out[2u * k + 1u] = vec4<f32>(shadow, 0.0);
+    probe_out[2u * k + 1u] = vec4<f32>(shadow, f32(relief_level));
 }
 
 // The depth texture a headless render wrote (its depth aspect, bound as an unfilterable float

@@ -1,6 +1,6 @@
 // The relief texture of the isotropic cone map (with relief_common.wgsl): one rgba32float
 // N x N texture, texel (i, j) = [depth, cone ratio, clearance, near cap]
-// (ocean_relief::ReliefTexture). Its twin relief_texture_quad.wgsl declares the quadrant
+// (ocean_relief::ReliefTexture), and its mip levels (ocean_relief::ReliefMips). Its twin relief_texture_quad.wgsl declares the quadrant
 // layers; relief_common.wgsl reads the texture only through these two functions.
 
 @group(0) @binding(1) var relief_map: texture_2d<f32>;
@@ -10,9 +10,9 @@ fn relief_layer(dx: f32, dy: f32) -> i32 {
     return 0;
 }
 
-// Texel (i, j) (resolved indices) of the layer.
+// Texel (i, j) (resolved indices) of the layer, at the fragment's level.
 fn relief_texel(layer: i32, i: i32, j: i32) -> vec4<f32> {
-    return textureLoad(relief_map, vec2<i32>(i, j), 0);
+    return textureLoad(relief_map, vec2<i32>(i, j), relief_level);
 }
 
 // The texture's side in texels, known only when the shader runs (relief_ctl).

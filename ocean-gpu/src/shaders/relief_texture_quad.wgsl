@@ -1,7 +1,8 @@
 // The relief texture of a quad-directional cone map (with relief_common.wgsl; GPU Gems 3
 // section 18.1's four cones per texel, ocean_relief::quad): an rgba32float N x N texture array
 // of 4 layers, layer k texel (i, j) = [depth, c_k, D_k, E_k], the cones of the closed quadrant
-// k = x_neg + 2 y_neg of the ray's horizontal direction (ocean_relief::QuadReliefTexture).
+// k = x_neg + 2 y_neg of the ray's horizontal direction (ocean_relief::QuadReliefTexture), and
+// its mip levels (ocean_relief::QuadReliefMips).
 // relief_common.wgsl reads the texture only through these two functions.
 
 @group(0) @binding(1) var relief_map: texture_2d_array<f32>;
@@ -13,9 +14,9 @@ fn relief_layer(dx: f32, dy: f32) -> i32 {
     return select(0, 1, dx < 0.0) + select(0, 2, dy < 0.0);
 }
 
-// Texel (i, j) (resolved indices) of the layer.
+// Texel (i, j) (resolved indices) of the layer, at the fragment's level.
 fn relief_texel(layer: i32, i: i32, j: i32) -> vec4<f32> {
-    return textureLoad(relief_map, vec2<i32>(i, j), layer, 0);
+    return textureLoad(relief_map, vec2<i32>(i, j), layer, relief_level);
 }
 
 // The texture's side in texels, known only when the shader runs (relief_ctl).
