@@ -3384,11 +3384,13 @@ OceanStatus ocean_relief_scene_default(struct OceanReliefScene *out);
  * - binding 1: the relief texture, `GL_RGBA32F`, `size` x `size`, the texels of
  *   `ocean_relief_cones_texels` (`[depth, c, D, E]`, row v = 0 first). The shader reads it with
  *   `texelFetch` and filters by hand (bilinear, with the edge mode), so no sampler state
- *   matters. With `levels` = 1 it reads level 0 only. With more, level l (side `size` >> l)
- *   holds the texels of the map `ocean_relief_map_downsample` made l times from level 0's
- *   with its own cones (`ocean_relief_cones_create` on that map: cones of level 0 do not fit
- *   a coarser surface), and each fragment reads the one level `ocean_relief_mip_level` picks
- *   from its texture coordinates' screen derivatives, chosen once before the tracer's loops;
+ *   matters. With `levels` = 1 it reads level 0 only. With more, the texture is the atlas of
+ *   `ocean_relief_mip_atlas_size` (one texture level, (`size` + `size` / 2) x `size`): level l
+ *   (side `size` >> l, placed at `ocean_relief_mip_atlas_origin`) holds the texels of the map
+ *   `ocean_relief_map_downsample` made l times from level 0's, with its own cones
+ *   (`ocean_relief_cones_create` on that map: cones of level 0 do not fit a coarser surface),
+ *   and each fragment reads the one level `ocean_relief_mip_level` picks from its texture
+ *   coordinates' screen derivatives, chosen once before the tracer's loops;
  * - for a quad-directional cone map (`ocean_relief_quad_cones_create`), export `relief_quad`
  *   instead: the same block (this function, unchanged), and binding 1 is a
  *   `GL_TEXTURE_2D_ARRAY`, `GL_RGBA32F`, `size` x `size` x 4 layers, the texels of
@@ -3437,6 +3439,44 @@ OceanStatus ocean_relief_uniforms(const struct OceanCameraDesc *camera,
  */
 OceanStatus ocean_relief_map_downsample(const struct OceanReliefMap *map,
                                         struct OceanReliefMap **out);
+
+/**
+ * Stores the width and height of the relief texture that holds `levels` levels of side `size`
+ * for the `relief` shaders: `size` x `size` for one level, (`size` + `size` / 2) x `size` for
+ * more (level 0 on the left, the others in a column to its right; see
+ * `ocean_relief_mip_atlas_origin`).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for a `size` or `levels` `ocean_relief_mip_level` refuses.
+ * Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `out_width` and `out_height` must be writable.
+ */
+OceanStatus ocean_relief_mip_atlas_size(uint32_t size,
+                                        uint32_t levels,
+                                        uint32_t *out_width,
+                                        uint32_t *out_height);
+
+/**
+ * Stores where level `level` (side `size` >> `level`) starts in the relief texture of
+ * `ocean_relief_mip_atlas_size`, in texels from its first row's first texel: (0, 0) for level
+ * 0, (`size`, `size` - (`size` >> (`level` - 1))) for the others. Copy the level's texels
+ * (`ocean_relief_cones_texels` of its own cones) there, row by row.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for a `size` `ocean_relief_mip_level` refuses or a `level`
+ * at or beyond log2 `size`. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `out_x` and `out_y` must be writable.
+ */
+OceanStatus ocean_relief_mip_atlas_origin(uint32_t size,
+                                          uint32_t level,
+                                          uint32_t *out_x,
+                                          uint32_t *out_y);
 
 /**
  * Stores in `*out_level` the mip level a fragment of the `relief` shader reads for the screen

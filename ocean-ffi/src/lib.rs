@@ -95,7 +95,10 @@ pub use relief::{
 pub use relief_draw::{
     OCEAN_RELIEF_UNIFORMS_SIZE, OceanReliefScene, ocean_relief_scene_default, ocean_relief_uniforms,
 };
-pub use relief_lod::{ocean_relief_map_downsample, ocean_relief_mip_level};
+pub use relief_lod::{
+    ocean_relief_map_downsample, ocean_relief_mip_atlas_origin, ocean_relief_mip_atlas_size,
+    ocean_relief_mip_level,
+};
 pub use relief_quad::{
     OCEAN_RELIEF_QUAD_LAYERS, OCEAN_RELIEF_QUAD_X_NEG, OCEAN_RELIEF_QUAD_Y_NEG,
     OceanReliefQuadCones, ocean_relief_quad_cones_create, ocean_relief_quad_cones_destroy,

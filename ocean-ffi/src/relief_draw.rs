@@ -169,15 +169,18 @@ pub unsafe extern "C" fn ocean_relief_scene_default(out: *mut OceanReliefScene) 
 /// - binding 1: the relief texture, `GL_RGBA32F`, `size` x `size`, the texels of
 ///   `ocean_relief_cones_texels` (`[depth, c, D, E]`, row v = 0 first). The shader reads it with
 ///   `texelFetch` and filters by hand (bilinear, with the edge mode), so no sampler state
-///   matters. With `levels` = 1 it reads level 0 only. With more, level l (side `size` >> l)
-///   holds the texels of the map `ocean_relief_map_downsample` made l times from level 0's
-///   with its own cones (`ocean_relief_cones_create` on that map: cones of level 0 do not fit
-///   a coarser surface), and each fragment reads the one level `ocean_relief_mip_level` picks
-///   from its texture coordinates' screen derivatives, chosen once before the tracer's loops;
+///   matters. With `levels` = 1 it reads level 0 only. With more, the texture is the atlas of
+///   `ocean_relief_mip_atlas_size` (one texture level, (`size` + `size` / 2) x `size`): level l
+///   (side `size` >> l, placed at `ocean_relief_mip_atlas_origin`) holds the texels of the map
+///   `ocean_relief_map_downsample` made l times from level 0's, with its own cones
+///   (`ocean_relief_cones_create` on that map: cones of level 0 do not fit a coarser surface),
+///   and each fragment reads the one level `ocean_relief_mip_level` picks from its texture
+///   coordinates' screen derivatives, chosen once before the tracer's loops;
 /// - for a quad-directional cone map (`ocean_relief_quad_cones_create`), export `relief_quad`
 ///   instead: the same block (this function, unchanged), and binding 1 is a
 ///   `GL_TEXTURE_2D_ARRAY`, `GL_RGBA32F`, `size` x `size` x 4 layers, the texels of
-///   `ocean_relief_quad_cones_texels`; each ray reads the layer of its direction's quadrant;
+///   `ocean_relief_quad_cones_texels`; each ray reads the layer of its direction's quadrant.
+///   With `levels` > 1 every layer is an atlas as above, of that layer's texels at each level;
 /// - draw 6 vertices as `GL_TRIANGLES` with no vertex buffer (an empty vertex array object);
 /// - depth test `GL_LESS` (`GL_GREATER` for a reversed-Z camera) with depth writes: the fragment
 ///   stage writes the hit point's depth to `gl_FragDepth`, so the relief occludes and is

@@ -6,9 +6,15 @@
 //! surface: make them with `ocean_relief_cones_create` (or `ocean_relief_quad_cones_create`)
 //! on the map `ocean_relief_map_downsample` returns. The 4x4-window chain of
 //! `ocean_relief_mips_create` keeps cones valid over level 0's surface only.
+//!
+//! The shader reads the levels from one texture level, side by side (the atlas:
+//! `ocean_relief_mip_atlas_size`, `ocean_relief_mip_atlas_origin`), not from a mip chain: the
+//! relief texture is `GL_RGBA32F`, which is not filterable, and OpenGL defines `texelFetch` of
+//! such a texture's levels above the base only with a mipmapping minification filter that makes
+//! it incomplete.
 
 use glam::Vec2;
-use ocean_relief::lod::{downsample, max_levels, mip_level};
+use ocean_relief::lod::{atlas_origin, atlas_size, downsample, max_levels, mip_level};
 
 use crate::lighting::{borrow, write_handle};
 use crate::relief::{OceanReliefMap, relief_error};
@@ -41,6 +47,98 @@ pub unsafe extern "C" fn ocean_relief_map_downsample(
     })
 }
 
+/// Checks a side and a level count as the shader's uniform block does: `size` in 2 to
+/// `OCEAN_RELIEF_MAX_SIDE`, `levels` in 1 to log2 `size` (1 for a side that is not a power of
+/// two).
+fn check_levels(size: u32, levels: u32) -> Result<usize, Error> {
+    let n = size as usize;
+    if !(2..=ocean_relief::MAX_SIDE).contains(&n) {
+        return Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("`size` = {size} is outside 2 to {}", ocean_relief::MAX_SIDE),
+        ));
+    }
+    let most = if n.is_power_of_two() {
+        max_levels(n)
+    } else {
+        1
+    };
+    if levels == 0 || levels as usize > most {
+        return Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("`levels` = {levels} is outside 1 to {most} for a side of {size}"),
+        ));
+    }
+    Ok(n)
+}
+
+/// Stores the width and height of the relief texture that holds `levels` levels of side `size`
+/// for the `relief` shaders: `size` x `size` for one level, (`size` + `size` / 2) x `size` for
+/// more (level 0 on the left, the others in a column to its right; see
+/// `ocean_relief_mip_atlas_origin`).
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_INVALID_ARGUMENT` for a `size` or `levels` `ocean_relief_mip_level` refuses.
+/// Nothing is written on failure.
+///
+/// # Safety
+///
+/// `out_width` and `out_height` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_mip_atlas_size(
+    size: u32,
+    levels: u32,
+    out_width: *mut u32,
+    out_height: *mut u32,
+) -> OceanStatus {
+    guard("ocean_relief_mip_atlas_size", || {
+        check_ptr(out_width.cast_const(), "out_width")?;
+        check_ptr(out_height.cast_const(), "out_height")?;
+        let n = check_levels(size, levels)?;
+        let (w, h) = atlas_size(n, levels as usize);
+        // SAFETY: forwarded from this function's contract (both checked above).
+        unsafe { write_out(out_width, "out_width", w as u32) }?;
+        // SAFETY: as above.
+        unsafe { write_out(out_height, "out_height", h as u32) }
+    })
+}
+
+/// Stores where level `level` (side `size` >> `level`) starts in the relief texture of
+/// `ocean_relief_mip_atlas_size`, in texels from its first row's first texel: (0, 0) for level
+/// 0, (`size`, `size` - (`size` >> (`level` - 1))) for the others. Copy the level's texels
+/// (`ocean_relief_cones_texels` of its own cones) there, row by row.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+/// `OCEAN_STATUS_INVALID_ARGUMENT` for a `size` `ocean_relief_mip_level` refuses or a `level`
+/// at or beyond log2 `size`. Nothing is written on failure.
+///
+/// # Safety
+///
+/// `out_x` and `out_y` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_mip_atlas_origin(
+    size: u32,
+    level: u32,
+    out_x: *mut u32,
+    out_y: *mut u32,
+) -> OceanStatus {
+    guard("ocean_relief_mip_atlas_origin", || {
+        check_ptr(out_x.cast_const(), "out_x")?;
+        check_ptr(out_y.cast_const(), "out_y")?;
+        let n = check_levels(size, level.saturating_add(1)).map_err(|_| {
+            Error::new(
+                OceanStatus::InvalidArgument,
+                format!("`level` = {level} is not a level of a relief texture of side {size}"),
+            )
+        })?;
+        let (x, y) = atlas_origin(n, level as usize);
+        // SAFETY: forwarded from this function's contract (both checked above).
+        unsafe { write_out(out_x, "out_x", x as u32) }?;
+        // SAFETY: as above.
+        unsafe { write_out(out_y, "out_y", y as u32) }
+    })
+}
+
 /// Stores in `*out_level` the mip level a fragment of the `relief` shader reads for the screen
 /// derivatives (du_x, du_y) = dFdx(uv) and (dv_x, dv_y) = dFdy(uv) of its texture coordinates
 /// (texture widths per pixel), for a texture of side `size` with `levels` levels: with
@@ -68,24 +166,7 @@ pub unsafe extern "C" fn ocean_relief_mip_level(
 ) -> OceanStatus {
     guard("ocean_relief_mip_level", || {
         check_ptr(out_level.cast_const(), "out_level")?;
-        let n = size as usize;
-        if !(2..=ocean_relief::MAX_SIDE).contains(&n) {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!("`size` = {size} is outside 2 to {}", ocean_relief::MAX_SIDE),
-            ));
-        }
-        let most = if n.is_power_of_two() {
-            max_levels(n)
-        } else {
-            1
-        };
-        if levels == 0 || levels as usize > most {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!("`levels` = {levels} is outside 1 to {most} for a side of {size}"),
-            ));
-        }
+        let n = check_levels(size, levels)?;
         let l = mip_level(
             Vec2::new(du_x, du_y),
             Vec2::new(dv_x, dv_y),
@@ -148,6 +229,55 @@ mod tests {
         let want = |k: f32| 1.0 - k / 15.0;
         for (d, k) in depths.iter().zip([2.5, 4.5, 10.5, 12.5]) {
             assert!((d - want(k)).abs() < 1.0e-6, "{d} vs {}", want(k));
+        }
+    }
+
+    /// The crate's atlas: 64 texels and 6 levels make a 96 x 64 texture, level 2 at (64, 32);
+    /// one level is the map alone; level 6 of 64 does not exist.
+    #[test]
+    fn atlas_is_the_crates() {
+        let (mut w, mut h, mut x, mut y) = (0u32, 0u32, 0u32, 0u32);
+        // SAFETY: writable out-parameters.
+        unsafe {
+            assert_eq!(
+                ocean_relief_mip_atlas_size(64, 6, &mut w, &mut h),
+                OceanStatus::Ok
+            );
+            assert_eq!((w, h), (96, 64));
+            assert_eq!(
+                ocean_relief_mip_atlas_size(64, 1, &mut w, &mut h),
+                OceanStatus::Ok
+            );
+            assert_eq!((w, h), (64, 64));
+            assert_eq!(
+                ocean_relief_mip_atlas_origin(64, 2, &mut x, &mut y),
+                OceanStatus::Ok
+            );
+            assert_eq!((x, y), (64, 32));
+            assert_eq!(
+                ocean_relief_mip_atlas_origin(64, 0, &mut x, &mut y),
+                OceanStatus::Ok
+            );
+            assert_eq!((x, y), (0, 0));
+            x = 7;
+            assert_eq!(
+                ocean_relief_mip_atlas_origin(64, 6, &mut x, &mut y),
+                OceanStatus::InvalidArgument
+            );
+            assert_eq!(x, 7, "written on failure");
+            assert!(last_error().contains("`level` = 6"), "{}", last_error());
+            assert_eq!(
+                ocean_relief_mip_atlas_size(64, 7, &mut w, &mut h),
+                OceanStatus::InvalidArgument
+            );
+            assert_eq!(
+                ocean_relief_mip_atlas_size(64, 2, null_mut(), &mut h),
+                OceanStatus::NullPointer
+            );
+            assert_eq!(
+                ocean_relief_mip_atlas_origin(64, 1, &mut x, null_mut()),
+                OceanStatus::NullPointer
+            );
         }
     }
 

@@ -47,11 +47,15 @@
 //! box-filtered surface with its own cones, `ocean_relief::lod`). The fragment stage takes the
 //! level once, first, from `dpdx` and `dpdy` of the polygon's texture coordinates
 //! ([`ocean_relief::lod::mip_level`], the nearest level to `log₂` of the footprint in texels),
-//! and every fetch of its viewing ray, its light ray and its relief normal reads that level with
-//! `textureLoad(…, level)`: the tracer at level `l` is the level-0 tracer on a map of side
-//! `N/2^l`, bit for bit the CPU's on [`ReliefMips::level`]. The loops need no implicit level of
-//! detail, so they may branch (WGSL forbids implicit-LOD sampling in non-uniform control flow).
-//! With [`ReliefRenderer::set_texture`] (one level) every fragment reads level 0.
+//! and every fetch of its viewing ray, its light ray and its relief normal reads that level: the
+//! tracer at level `l` is the level-0 tracer on a map of side `N/2^l`, bit for bit the CPU's on
+//! [`ReliefMips::level`]. The levels are packed side by side into one texture level
+//! (`ocean_relief::lod`'s atlas, `3N/2 × N`), not uploaded as a mip chain: an `rgba32float`
+//! texture is not filterable, and OpenGL (so wgpu's GL backend) leaves `texelFetch` of its levels
+//! above the base undefined; on llvmpipe, lanes reading different levels fetched the first
+//! lane's. The loops need no implicit level of detail, so they may branch (WGSL forbids
+//! implicit-LOD sampling in non-uniform control flow). With [`ReliefRenderer::set_texture`] (one
+//! level) every fragment reads level 0.
 //!
 //! ## Parity
 //!
@@ -73,6 +77,7 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 use glam::{DMat4, DVec2, DVec3, DVec4, Vec2, Vec3};
 use ocean_core::{Camera, DepthDirection, DepthRange, Projection};
 use ocean_relief::gpu_params::{FLAG_SHADOWS, FLAG_SRGB_ENCODE, ReliefUniforms};
+use ocean_relief::lod::atlas_size;
 use ocean_relief::trace::BinarySearch;
 use ocean_relief::{
     Edge, Hit, Method, QuadReliefMips, QuadReliefTexture, ReliefMips, ReliefTexture,
@@ -720,12 +725,13 @@ impl ReliefRenderer {
         ctx: &GpuContext,
         texture: &ReliefTexture,
     ) -> Result<(), GpuError> {
+        let n = texture.size();
         self.upload(
             ctx,
-            texture.size(),
-            texture.edge(),
+            (n, texture.edge(), 1),
             ReliefLayout::Isotropic,
-            &[texture.texels()],
+            (n, n),
+            texture.texels(),
         )
     }
 
@@ -737,15 +743,17 @@ impl ReliefRenderer {
     ///
     /// # Errors
     ///
-    /// As [`set_texture`](Self::set_texture).
+    /// [`GpuError::TooLarge`] when the atlas of the levels (`3N/2` texels wide for two levels
+    /// or more) is wider than the device's largest 2D texture; [`GpuError::Wgpu`] for a device
+    /// error.
     pub fn set_mips(&mut self, ctx: &GpuContext, mips: &ReliefMips) -> Result<(), GpuError> {
-        let levels: Vec<&[[f32; 4]]> = mips.levels().iter().map(|t| t.texels()).collect();
+        let n = mips.size();
         self.upload(
             ctx,
-            mips.size(),
-            mips.edge(),
+            (n, mips.edge(), mips.len()),
             ReliefLayout::Isotropic,
-            &levels,
+            atlas_size(n, mips.len()),
+            &mips.atlas(),
         )
     }
 
@@ -754,15 +762,21 @@ impl ReliefRenderer {
     ///
     /// # Errors
     ///
-    /// As [`set_texture`](Self::set_texture).
+    /// As [`set_mips`](Self::set_mips).
     pub fn set_quad_mips(
         &mut self,
         ctx: &GpuContext,
         mips: &QuadReliefMips,
     ) -> Result<(), GpuError> {
-        let texels: Vec<Vec<[f32; 4]>> = mips.levels().iter().map(|t| t.texels()).collect();
-        let levels: Vec<&[[f32; 4]]> = texels.iter().map(Vec::as_slice).collect();
-        self.upload(ctx, mips.size(), mips.edge(), ReliefLayout::Quad, &levels)
+        let n = mips.size();
+        let texels: Vec<[f32; 4]> = mips.atlas_layers().concat();
+        self.upload(
+            ctx,
+            (n, mips.edge(), mips.len()),
+            ReliefLayout::Quad,
+            atlas_size(n, mips.len()),
+            &texels,
+        )
     }
 
     /// Uploads a quad-directional relief texture ([`QuadReliefTexture`], §18.1): a 4-layer
@@ -780,12 +794,13 @@ impl ReliefRenderer {
         ctx: &GpuContext,
         texture: &QuadReliefTexture,
     ) -> Result<(), GpuError> {
+        let n = texture.size();
         self.upload(
             ctx,
-            texture.size(),
-            texture.edge(),
+            (n, texture.edge(), 1),
             ReliefLayout::Quad,
-            &[&texture.texels()],
+            (n, n),
+            &texture.texels(),
         )
     }
 
@@ -794,57 +809,60 @@ impl ReliefRenderer {
         self.texture.as_ref().map(|t| t.layout)
     }
 
+    /// Uploads `texels` (layer by layer, each `width × height` row-major) of a relief texture of
+    /// side `n`, edge mode `edge` and `levels` levels packed as `ocean_relief::lod`'s atlas.
     fn upload(
         &mut self,
         ctx: &GpuContext,
-        n: usize,
-        edge: Edge,
+        (n, edge, levels): (usize, Edge, usize),
         layout: ReliefLayout,
-        levels: &[&[[f32; 4]]],
+        (width, height): (usize, usize),
+        texels: &[[f32; 4]],
     ) -> Result<(), GpuError> {
         let max = ctx.device().limits().max_texture_dimension_2d;
-        if n as u64 > u64::from(max) {
+        if width as u64 > u64::from(max) {
             return Err(GpuError::TooLarge {
-                what: "relief texture side (texels)",
-                needed: n as u64,
+                what: if levels > 1 {
+                    "relief texture atlas width (texels: 3/2 of the side)"
+                } else {
+                    "relief texture side (texels)"
+                },
+                needed: width as u64,
                 limit: u64::from(max),
             });
         }
         let device = ctx.device();
         let view = crate::scoped(device, || {
-            let extent = |side: usize| wgpu::Extent3d {
-                width: side as u32,
-                height: side as u32,
+            let extent = wgpu::Extent3d {
+                width: width as u32,
+                height: height as u32,
                 depth_or_array_layers: layout.layers(),
             };
             let t = device.create_texture(&wgpu::TextureDescriptor {
                 label: Some("ocean relief texture"),
-                size: extent(n),
-                mip_level_count: levels.len() as u32,
+                size: extent,
+                mip_level_count: 1,
                 sample_count: 1,
                 dimension: wgpu::TextureDimension::D2,
                 format: wgpu::TextureFormat::Rgba32Float,
                 usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
                 view_formats: &[],
             });
-            for (l, texels) in levels.iter().enumerate() {
-                let side = n >> l;
-                ctx.queue().write_texture(
-                    wgpu::TexelCopyTextureInfo {
-                        texture: &t,
-                        mip_level: l as u32,
-                        origin: wgpu::Origin3d::ZERO,
-                        aspect: wgpu::TextureAspect::All,
-                    },
-                    bytemuck::cast_slice(texels),
-                    wgpu::TexelCopyBufferLayout {
-                        offset: 0,
-                        bytes_per_row: Some(side as u32 * 16),
-                        rows_per_image: Some(side as u32),
-                    },
-                    extent(side),
-                );
-            }
+            ctx.queue().write_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &t,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d::ZERO,
+                    aspect: wgpu::TextureAspect::All,
+                },
+                bytemuck::cast_slice(texels),
+                wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(width as u32 * 16),
+                    rows_per_image: Some(height as u32),
+                },
+                extent,
+            );
             Ok(t.create_view(&wgpu::TextureViewDescriptor {
                 dimension: Some(layout.view_dimension()),
                 ..Default::default()
@@ -853,7 +871,7 @@ impl ReliefRenderer {
         self.texture = Some(TextureState {
             size: n,
             edge,
-            levels: levels.len(),
+            levels,
             layout,
             view,
         });

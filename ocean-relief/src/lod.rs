@@ -31,7 +31,18 @@
 //! search, the light ray of the self-shadow test and the relief normal all read that one level.
 //! One level, not a blend of two: a trilinear blend would double every fetch of the loops, and
 //! two traced surfaces cannot be blended into one hit.
+//!
+//! **The atlas** ([`atlas_size`], [`atlas_origin`], [`Mips::atlas`]): the GPU reads the levels
+//! from one texture level, packed side by side, level 0 at `(0, 0)` and level `l ≥ 1` in a
+//! column to its right at `(N, N − N/2^(l−1))`; a `(3N/2) × N` texture for two levels or more.
+//! Not a mip chain, because a relief texture is `rgba32float`, which is not filterable, and
+//! OpenGL makes such a texture complete only with a non-mipmapped minification filter (wgpu's GL
+//! backend sets `NEAREST`), under which `texelFetch` of a level above the base is undefined.
+//! Measured on llvmpipe: the lanes of one shader invocation group that read different levels
+//! all fetch the first lane's level. The tracer resolves texel indices inside the level's
+//! `N/2^l` square (wrap or clamp) before it offsets them, so levels never bleed into each other.
 
+use alloc::vec;
 use alloc::vec::Vec;
 
 use glam::Vec2;
@@ -75,6 +86,22 @@ pub fn downsample(map: &HeightMap) -> Result<HeightMap, ReliefError> {
     HeightMap::from_depths(h, h, &depths, map.edge(), HeightRange::Refuse)
 }
 
+/// Width and height of the atlas of `levels` levels of side `n` (module documentation):
+/// `n × n` for one level, `(n + n/2) × n` for more.
+pub fn atlas_size(n: usize, levels: usize) -> (usize, usize) {
+    if levels > 1 { (n + n / 2, n) } else { (n, n) }
+}
+
+/// Where level `level` of a chain of side `n` starts in its atlas: `(0, 0)` for level 0,
+/// `(n, n − n/2^(level−1))` for the others (module documentation).
+pub fn atlas_origin(n: usize, level: usize) -> (usize, usize) {
+    if level == 0 {
+        (0, 0)
+    } else {
+        (n, n - (n >> (level - 1)))
+    }
+}
+
 /// Most levels a power-of-two side `n ≥ 2` allows: down to 2×2, so `log₂ n` levels.
 pub fn max_levels(n: usize) -> usize {
     if n < 2 { 0 } else { n.ilog2() as usize }
@@ -102,6 +129,8 @@ pub trait MipTexture {
     fn side(&self) -> usize;
     /// Edge mode.
     fn edge_mode(&self) -> Edge;
+    /// The texels of each layer, row-major.
+    fn layer_texels(&self) -> Vec<&[[f32; 4]]>;
 }
 
 impl MipTexture for ReliefTexture {
@@ -111,6 +140,9 @@ impl MipTexture for ReliefTexture {
     fn edge_mode(&self) -> Edge {
         self.edge()
     }
+    fn layer_texels(&self) -> Vec<&[[f32; 4]]> {
+        vec![self.texels()]
+    }
 }
 
 impl MipTexture for QuadReliefTexture {
@@ -119,6 +151,9 @@ impl MipTexture for QuadReliefTexture {
     }
     fn edge_mode(&self) -> Edge {
         self.edge()
+    }
+    fn layer_texels(&self) -> Vec<&[[f32; 4]]> {
+        self.layers().iter().map(|l| l.texels()).collect()
     }
 }
 
@@ -193,6 +228,33 @@ impl<T: MipTexture> Mips<T> {
     /// The edge mode of every level.
     pub fn edge(&self) -> Edge {
         self.levels[0].edge_mode()
+    }
+
+    /// The atlas of the levels' texels (module documentation), row-major, [`atlas_size`] wide;
+    /// texels outside every level are zero.
+    pub fn atlas(&self) -> Vec<[f32; 4]> {
+        self.atlas_layers()[0].clone()
+    }
+
+    /// The levels' atlases, one per layer (one layer for isotropic textures, four for quadrant
+    /// textures in [`crate::Quadrant::index`] order): what a texture array uploads, layer by
+    /// layer.
+    pub fn atlas_layers(&self) -> Vec<Vec<[f32; 4]>> {
+        let n = self.size();
+        let (w, h) = atlas_size(n, self.len());
+        let layers = self.levels[0].layer_texels().len();
+        let mut out = vec![vec![[0.0f32; 4]; w * h]; layers];
+        for (l, t) in self.levels.iter().enumerate() {
+            let side = n >> l;
+            let (x0, y0) = atlas_origin(n, l);
+            for (atlas, texels) in out.iter_mut().zip(t.layer_texels()) {
+                for j in 0..side {
+                    let row = &texels[j * side..(j + 1) * side];
+                    atlas[(y0 + j) * w + x0..(y0 + j) * w + x0 + side].copy_from_slice(row);
+                }
+            }
+        }
+        out
     }
 
     /// The level [`mip_level`] picks for screen derivatives `du`, `dv` of the texture
@@ -294,6 +356,33 @@ mod tests {
             6,
         );
         assert_eq!(l, 2, "ρ = 3√2 ≈ 4.24 lies in [2^1.5, 2^2.5)");
+    }
+
+    /// Levels sit side by side without overlap and inside the atlas, for every side and count.
+    #[test]
+    fn atlas_levels_do_not_overlap() {
+        for k in 1..=12 {
+            let n = 1usize << k;
+            for levels in 1..=max_levels(n) {
+                let (w, h) = atlas_size(n, levels);
+                let mut used = vec![false; w * h];
+                for l in 0..levels {
+                    let (x0, y0) = atlas_origin(n, l);
+                    let side = n >> l;
+                    assert!(x0 + side <= w && y0 + side <= h, "{n} {l}");
+                    for j in y0..y0 + side {
+                        for i in x0..x0 + side {
+                            assert!(!used[j * w + i], "{n} level {l} overlaps at ({i}, {j})");
+                            used[j * w + i] = true;
+                        }
+                    }
+                }
+            }
+        }
+        assert_eq!(atlas_size(64, 6), (96, 64));
+        assert_eq!(atlas_origin(64, 1), (64, 0));
+        assert_eq!(atlas_origin(64, 2), (64, 32));
+        assert_eq!(atlas_origin(64, 5), (64, 60));
     }
 
     #[test]

@@ -6,7 +6,9 @@ mod common;
 
 use common::maps;
 use ocean_relief::check::{Channels, CheckParams, check, check_quadrant};
-use ocean_relief::lod::{QuadReliefMips, ReliefMips, downsample, max_levels, mip_level};
+use ocean_relief::lod::{
+    QuadReliefMips, ReliefMips, atlas_origin, atlas_size, downsample, max_levels, mip_level,
+};
 use ocean_relief::mip::{MipRule, chain};
 use ocean_relief::{
     ConeKind, ConeMap, ConeParams, Edge, HeightMap, QuadConeMap, QuadReliefTexture, Quadrant,
@@ -177,5 +179,49 @@ fn footprint_picks_the_nearest_level() {
             let (got, t) = mips.for_footprint(dv, du);
             assert_eq!((got, t.size()), (l, 64 >> l));
         }
+    }
+}
+
+/// The atlas holds every texel of every level at its origin, row by row, and zeros elsewhere;
+/// a quadrant chain's atlas layers are its layers' atlases.
+#[test]
+fn atlas_places_every_level() {
+    let map = common::from_fn(32, Edge::Clamp, |i, j| {
+        ((i * 5 + j * 11) % 13) as f32 / 12.0
+    });
+    let p = ConeParams::relaxed(2.0);
+    let mips = ReliefMips::generate(&map, p, 5).unwrap();
+    let (w, h) = atlas_size(32, 5);
+    let atlas = mips.atlas();
+    assert_eq!(atlas.len(), w * h);
+    let mut covered = 0;
+    for (l, t) in mips.levels().iter().enumerate() {
+        let (x0, y0) = atlas_origin(32, l);
+        let side = t.size();
+        for j in 0..side {
+            for i in 0..side {
+                assert_eq!(
+                    atlas[(y0 + j) * w + x0 + i],
+                    t.texels()[j * side + i],
+                    "{l} {i} {j}"
+                );
+            }
+        }
+        covered += side * side;
+    }
+    let zeros = atlas.iter().filter(|t| **t == [0.0; 4]).count();
+    assert!(
+        zeros >= w * h - covered,
+        "{zeros} zero texels, {} uncovered",
+        w * h - covered
+    );
+    let quad = QuadReliefMips::generate(&map, p, 3).unwrap();
+    let layers = quad.atlas_layers();
+    assert_eq!(layers.len(), 4);
+    for q in Quadrant::ALL {
+        let one =
+            ReliefMips::from_levels(quad.levels().iter().map(|t| t.layer(q).clone()).collect())
+                .unwrap();
+        assert_eq!(layers[q.index()], one.atlas(), "{q:?}");
     }
 }

@@ -26,8 +26,8 @@
  * - Quad-directional cones (section 18.1) on the box map: the 4-layer texture against the map
  *   and the isotropic cones, the cap where a quadrant sees only floor, hits and shadows as
  *   above, progress over the four layers (test_quad derives the counts).
- * - Level of detail: the next level's 2 x 2 means on the box map, cones of that map, and the
- *   level a footprint reads (test_lod derives the values).
+ * - Level of detail: the next level's 2 x 2 means on the box map, cones of that map, the level
+ *   a footprint reads and where each level lies in the texture (test_lod derives the values).
  * - Cancellation from a C callback, progress to completion, and every error path with the
  *   outputs untouched.
  *
@@ -856,6 +856,18 @@ static void test_lod(void)
            OCEAN_STATUS_INVALID_ARGUMENT);
     CHECK(level == 99, "level written on failure");
     EXPECT(ocean_relief_mip_level(t, 0.0f, 0.0f, t, BOX, 1, NULL), OCEAN_STATUS_NULL_POINTER);
+    /* The atlas of 6 levels of 64 texels: 96 x 64, level 1 at (64, 0), level 5 at (64, 60). */
+    {
+        uint32_t w = 0, hh = 0, x = 0, y = 0;
+        OK(ocean_relief_mip_atlas_size(BOX, 6, &w, &hh));
+        CHECK(w == 96 && hh == 64, "atlas %u x %u", w, hh);
+        OK(ocean_relief_mip_atlas_origin(BOX, 1, &x, &y));
+        CHECK(x == 64 && y == 0, "level 1 at (%u, %u)", x, y);
+        OK(ocean_relief_mip_atlas_origin(BOX, 5, &x, &y));
+        CHECK(x == 64 && y == 60, "level 5 at (%u, %u)", x, y);
+        EXPECT(ocean_relief_mip_atlas_origin(BOX, 6, &x, &y), OCEAN_STATUS_INVALID_ARGUMENT);
+        EXPECT(ocean_relief_mip_atlas_size(BOX, 7, &w, &hh), OCEAN_STATUS_INVALID_ARGUMENT);
+    }
     EXPECT(ocean_relief_map_downsample(map, NULL), OCEAN_STATUS_NULL_POINTER);
     ocean_relief_map_destroy(map);
     /* A 2 x 2 map has no coarser level; nothing is written. */

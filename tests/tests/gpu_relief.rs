@@ -30,8 +30,8 @@ use ocean_relief::occlusion::{occlusion_depth, view_distance};
 use ocean_relief::shadow::in_shadow;
 use ocean_relief::trace::BinarySearch;
 use ocean_relief::{
-    ConeMap, ConeParams, Edge, HeightMap, Hit, Method, QuadConeMap, QuadReliefTexture, Ray,
-    ReliefError, ReliefTexture,
+    ConeMap, ConeParams, Edge, HeightMap, Hit, Method, QuadConeMap, QuadReliefMips,
+    QuadReliefTexture, Ray, ReliefError, ReliefMips, ReliefTexture,
 };
 use ocean_tests::gpu_context_or_skip;
 
@@ -301,6 +301,142 @@ fn quad_probe_matches_the_cpu_quad_tracer() {
         "quad probe: {total} rays (per layer {per_layer:?}), worst {worst:e} texel, {identical} \
          bit-identical, {shadow_mismatch} shadow flags differ"
     );
+}
+
+/// Power-of-two maps of [`test_maps`] (every one but the 50² noise), for mip chains.
+fn mip_maps() -> Vec<(&'static str, HeightMap)> {
+    test_maps()
+        .into_iter()
+        .filter(|(_, m)| m.size().is_power_of_two())
+        .collect()
+}
+
+/// Methods of the mip probes: each tracer family once.
+fn mip_methods() -> Vec<Method> {
+    vec![
+        Method::Linear {
+            linear: 15,
+            binary: 6,
+        },
+        Method::ConeStep { steps: 21 },
+        Method::Relaxed {
+            cone: 15,
+            binary: 6,
+            search: BinarySearch::LastStep,
+        },
+        Method::Relaxed {
+            cone: 32,
+            binary: 6,
+            search: BinarySearch::Shared,
+        },
+    ]
+}
+
+/// Mip levels of the 64² chains: 64 down to 2.
+const MIP_LEVELS: usize = 6;
+
+/// A footprint for ray `k` (the texture coordinates' screen derivatives, texture widths per
+/// pixel): `1.2 · 2^t` texels a pixel with `t = k mod 7`, which is level `t` (between
+/// `2^(t − ½)` and `2^(t + ½)`, `ocean_relief::lod::mip_level`), and `t = 6` the coarsest
+/// level 5 by clamping; the longer derivative along a random direction, the other shorter.
+fn footprint(rng: &mut Rng, k: usize) -> [Vec2; 2] {
+    let rho = 1.2 * 2f32.powi((k % 7) as i32) / N as f32;
+    let a = rng.next() * std::f32::consts::TAU;
+    let b = rng.next() * std::f32::consts::TAU;
+    let du = Vec2::from_angle(a) * rho;
+    let dv = Vec2::from_angle(b) * rho * (0.2 + 0.8 * rng.next());
+    if k % 2 == 0 { [du, dv] } else { [dv, du] }
+}
+
+/// Level of detail through the probe: mip chains of the power-of-two test maps (each level its
+/// own surface and cones, `ReliefMips` / `QuadReliefMips`, relaxed cones and conservative ones
+/// for cone step mapping), 420 rays per map, edge mode and method, each with a footprint that
+/// picks a level from 0 to 5 (`footprint`). Expected: the probe reads the level
+/// `mip_level` picks for the footprint, exactly, and traces and shadows there as the CPU does on
+/// that level's texture (`Method::trace`, `in_shadow`; `QuadReliefTexture::trace`,
+/// `::in_shadow`): the same fetch counts, hits within the issue's 0.01 texel (of level 0),
+/// bit-identical with the same shadow flags on software adapters. Every level must be read.
+#[test]
+fn mip_probe_reads_the_footprints_level() {
+    let Some(ctx) = gpu_context_or_skip() else {
+        return;
+    };
+    let exact = software(&ctx);
+    let mut renderer = ReliefRenderer::new(&ctx, Default::default()).unwrap();
+    let mut rng = Rng(23);
+    let (mut total, mut worst) = (0usize, 0.0f32);
+    let mut per_level = [0usize; MIP_LEVELS];
+    for (name, map) in mip_maps() {
+        let iso = |p| ReliefMips::generate(&map, p, MIP_LEVELS).unwrap();
+        let quad = |p| QuadReliefMips::generate(&map, p, MIP_LEVELS).unwrap();
+        let iso = [
+            iso(ConeParams::relaxed(1.0)),
+            iso(ConeParams::conservative(1.0)),
+        ];
+        let quad = [
+            quad(ConeParams::relaxed(1.0)),
+            quad(ConeParams::conservative(1.0)),
+        ];
+        for method in mip_methods() {
+            let kind = usize::from(matches!(method, Method::ConeStep { .. }));
+            for layout in [ReliefLayout::Isotropic, ReliefLayout::Quad] {
+                match layout {
+                    ReliefLayout::Isotropic => renderer.set_mips(&ctx, &iso[kind]).unwrap(),
+                    ReliefLayout::Quad => renderer.set_quad_mips(&ctx, &quad[kind]).unwrap(),
+                }
+                let set = rays(&mut rng, 420);
+                let mut probe = Vec::new();
+                let mut cpu = Vec::new();
+                for (k, &(start, view, scale, light)) in set.iter().enumerate() {
+                    let fp = footprint(&mut rng, k);
+                    let ray = Ray::from_view(start, view, scale).unwrap();
+                    let (level, hit, shadow) = match layout {
+                        ReliefLayout::Isotropic => {
+                            let (l, t) = iso[kind].for_footprint(fp[0], fp[1]);
+                            let hit = method.trace(t, &ray).unwrap();
+                            let shadow =
+                                in_shadow(t, &method, hit.pos, light, scale, 0.01).unwrap();
+                            (l, hit, shadow)
+                        }
+                        ReliefLayout::Quad => {
+                            let (l, t) = quad[kind].for_footprint(fp[0], fp[1]);
+                            let hit = t.trace(&method, &ray).unwrap();
+                            let shadow = t.in_shadow(&method, hit.pos, light, scale, 0.01).unwrap();
+                            (l, hit, shadow)
+                        }
+                    };
+                    cpu.push((level, hit, shadow));
+                    probe.push(ReliefRay {
+                        start,
+                        view,
+                        depth_scale: scale,
+                        point: hit.pos,
+                        light,
+                        bias: 0.01,
+                        footprint: fp,
+                    });
+                }
+                let gpu = renderer.probe(&ctx, &method, &probe).unwrap();
+                for ((g, (level, c, sh)), r) in gpu.iter().zip(&cpu).zip(&probe) {
+                    let label = format!("{name} {:?} {layout:?} {method:?} {r:?}", map.edge());
+                    assert_eq!(g.level as usize, *level, "{label}: level");
+                    assert_eq!(g.hit.fetches, c.fetches, "{label}");
+                    let d = texel_distance(g.hit.pos, c.pos, r.depth_scale, map.size());
+                    assert!(d <= HIT_TOL_TEXELS, "{label}: {d} texels");
+                    worst = worst.max(d);
+                    if exact {
+                        assert_eq!(g.hit.pos, c.pos, "{label}: not bit-identical");
+                        assert_eq!(g.shadow, *sh, "{label}: shadow");
+                    }
+                    per_level[*level] += 1;
+                    total += 1;
+                }
+            }
+        }
+    }
+    eprintln!("mip probe: {total} rays, per level {per_level:?}, worst {worst:e} texel");
+    // Levels 0–4 take a seventh of the rays each, level 5 two sevenths.
+    assert!(per_level.iter().all(|&c| c * 8 >= total), "{per_level:?}");
 }
 
 /// With quadrant cones the GPU tracer must read the ray's own layer: a probe through a texture
@@ -736,6 +872,8 @@ fn cone_map_generation_large() {
 /// What the CPU twin computes for one pixel.
 #[derive(Clone, Copy, Debug)]
 struct Truth {
+    /// The mip level traced.
+    level: usize,
     hit: Hit,
     /// Window depth of the hit ([`window_depth`] of `occlusion_depth`).
     depth: f64,
@@ -753,9 +891,59 @@ struct Setup {
     texture: ReliefTexture,
     scene: ReliefScene,
     frame: TangentFrame,
+    /// With mip levels: the chain the renderer draws with, and each level's height map.
+    mips: Option<(ReliefMips, Vec<HeightMap>)>,
 }
 
 impl Setup {
+    /// The scene of [`Setup::new`], tiled `tiles` times across each edge, with a mip chain of
+    /// [`MIP_LEVELS`] levels (`ReliefMips::generate`, relaxed cones capped at 1).
+    fn with_mips(method: Method, tiles: f64) -> Self {
+        let mut s = Self::new(method);
+        s.scene.tiles = DVec2::splat(tiles);
+        s.frame = s.scene.tangent_frame().unwrap();
+        let mips = ReliefMips::generate(&s.map, ConeParams::relaxed(1.0), MIP_LEVELS).unwrap();
+        let mut maps = vec![s.map.clone()];
+        while maps.len() < MIP_LEVELS {
+            let next = ocean_relief::lod::downsample(maps.last().unwrap()).unwrap();
+            maps.push(next);
+        }
+        s.mips = Some((mips, maps));
+        s
+    }
+
+    /// The texture and height map of level `l`.
+    fn level(&self, l: usize) -> (&ReliefTexture, &HeightMap) {
+        match &self.mips {
+            Some((mips, maps)) => (mips.level(l), &maps[l]),
+            None => (&self.texture, &self.map),
+        }
+    }
+
+    /// The level the draw pass reads at pixel `(px, py)`, if certain: `mip_level` of the
+    /// texture coordinates' differences across the pixel's 2×2 quad (both rows for `dpdx`,
+    /// both columns for `dpdy`, since an adapter may take either), scaled by 0.98 and 1.02 for
+    /// the rasteriser's rounding, must agree; `None` where they do not (near a level's
+    /// threshold). Level 0 without mips.
+    fn level_at(&self, camera: &Camera, px: u32, py: u32, size: (u32, u32)) -> Option<usize> {
+        let Some((mips, _)) = &self.mips else {
+            return Some(0);
+        };
+        let (qx, qy) = (f64::from(px & !1) + 0.5, f64::from(py & !1) + 0.5);
+        let uv = |dx: f64, dy: f64| self.plane_uv(camera, qx + dx, qy + dy, size);
+        let (a, b, c, d) = (uv(0.0, 0.0)?, uv(1.0, 0.0)?, uv(0.0, 1.0)?, uv(1.0, 1.0)?);
+        let mut levels = Vec::new();
+        for du in [b - a, d - c] {
+            for dv in [c - a, d - b] {
+                for scale in [0.98, 1.02] {
+                    let (du, dv) = ((du * scale).as_vec2(), (dv * scale).as_vec2());
+                    levels.push(ocean_relief::lod::mip_level(du, dv, N, mips.len()));
+                }
+            }
+        }
+        levels.iter().all(|&l| l == levels[0]).then_some(levels[0])
+    }
+
     fn new(method: Method) -> Self {
         let map = to_map(N, &value_noise(N, 4, 4, 11), Edge::Wrap).unwrap();
         let cones = ConeMap::generate(&map, ConeParams::relaxed(1.0)).unwrap();
@@ -782,44 +970,46 @@ impl Setup {
             texture,
             scene,
             frame,
+            mips: None,
         }
     }
 
     /// The relief normal at texture coordinates `(u, v)` as `relief_common.wgsl` computes it:
     /// the bilinear blend of the four texels' central differences (`relief::normals`'s), then
     /// normalised.
-    fn normal(&self, u: f32, v: f32) -> Vec3 {
-        let n = N as i64;
-        let d = |i: i64, j: i64| self.map.depth(i, j);
+    fn normal(&self, level: usize, u: f32, v: f32) -> Vec3 {
+        let (_, map) = self.level(level);
+        let side = map.size();
+        let n = side as i64;
+        let d = |i: i64, j: i64| map.depth(i, j);
         let grad = |i: i64, j: i64| {
             Vec2::new(
                 (d(i + 1, j) - d(i - 1, j)) * 0.5,
                 (d(i, j + 1) - d(i, j - 1)) * 0.5,
             )
         };
-        let x = u * N as f32 - 0.5;
-        let y = v * N as f32 - 0.5;
+        let x = u * side as f32 - 0.5;
+        let y = v * side as f32 - 0.5;
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = (x - x0, y - y0);
         let (i, j) = ((x0 as i64).rem_euclid(n), (y0 as i64).rem_euclid(n));
         let top = grad(i, j).lerp(grad(i + 1, j), fx);
         let bottom = grad(i, j + 1).lerp(grad(i + 1, j + 1), fx);
         let g = top.lerp(bottom, fy);
-        let texels = self.frame.depth_scale as f32 * N as f32;
+        // The shader's ldexp(normal.w, -level): the depth in this level's texels.
+        let texels = self.frame.depth_scale as f32 * N as f32 / (1u32 << level) as f32;
         Vec3::new(texels * g.x, texels * g.y, 1.0).normalize()
     }
 
-    /// The CPU twin at pixel position `(x, y)` (pixel centres at half-integers, y down) of a
-    /// `w × h` image, with the texture coordinates and the view and light vectors nudged by
-    /// `nudge` (tangent space, for the stability test); `None` off the quad's front.
-    fn truth(
+    /// Where pixel position `(x, y)`'s ray meets the quad's plane: the world point, the ray's
+    /// direction and the quad coordinates `(su, sv)` (0 to 1 on the quad, beyond it off it).
+    fn plane_hit(
         &self,
         camera: &Camera,
         x: f64,
         y: f64,
         (w, h): (u32, u32),
-        nudge: [f32; 4],
-    ) -> Option<Truth> {
+    ) -> Option<(DVec3, DVec3, DVec2)> {
         let ndc = DVec2::new(2.0 * x / f64::from(w) - 1.0, 1.0 - 2.0 * y / f64::from(h));
         let conv = camera.depth();
         let near = conv.near_ndc();
@@ -832,13 +1022,42 @@ impl Setup {
         let t = f.normal.dot(s.origin - p0) / f.normal.dot(dir);
         let p = p0 + dir * t;
         let rel = p - s.origin;
-        let (su, sv) = (
+        let q = DVec2::new(
             rel.dot(f.tangent) / s.edge_u.length(),
             rel.dot(f.bitangent) / s.edge_v.length(),
         );
+        Some((p, dir, q))
+    }
+
+    /// The texture coordinates of pixel position `(x, y)` on the quad's plane (off the quad
+    /// too, as a helper invocation interpolates them).
+    fn plane_uv(&self, camera: &Camera, x: f64, y: f64, size: (u32, u32)) -> Option<DVec2> {
+        let (_, _, q) = self.plane_hit(camera, x, y, size)?;
+        Some(q * self.scene.tiles)
+    }
+
+    /// The CPU twin at pixel position `(x, y)` (pixel centres at half-integers, y down) of a
+    /// `w × h` image, traced at mip `level`, with the texture coordinates and the view and light
+    /// vectors nudged by `nudge` (tangent space, for the stability test); `None` off the quad's
+    /// front.
+    fn truth(
+        &self,
+        camera: &Camera,
+        x: f64,
+        y: f64,
+        size: (u32, u32),
+        nudge: [f32; 4],
+        level: usize,
+    ) -> Option<Truth> {
+        let (p, dir, q) = self.plane_hit(camera, x, y, size)?;
+        let conv = camera.depth();
+        let f = &self.frame;
+        let s = &self.scene;
+        let (su, sv) = (q.x, q.y);
         if !(0.0..=1.0).contains(&su) || !(0.0..=1.0).contains(&sv) {
             return None;
         }
+        let (texture, _) = self.level(level);
         let view = match camera.projection() {
             Projection::Perspective { .. } => (p - camera.eye()).normalize(),
             Projection::Orthographic { .. } => dir,
@@ -852,7 +1071,7 @@ impl Setup {
         let scale = f.depth_scale as f32;
         let hit = s
             .method
-            .trace(&self.texture, &Ray::from_view(uv, vt, scale).unwrap())
+            .trace(texture, &Ray::from_view(uv, vt, scale).unwrap())
             .unwrap();
         let distance = view_distance(hit.pos.z, vt, s.depth as f32).unwrap();
         let v = camera.view_f64();
@@ -873,17 +1092,10 @@ impl Setup {
             (window_depth(camera, ndc_at(bottom)) - window_depth(camera, ndc_at(0.0))).abs();
         let light =
             f.to_tangent(s.light().unwrap()).as_vec3() + Vec3::new(nudge[2], nudge[3], 0.0) * 0.5;
-        let shadow = in_shadow(
-            &self.texture,
-            &s.method,
-            hit.pos,
-            light,
-            scale,
-            s.shadow_bias,
-        )
-        .unwrap();
-        let diffuse = self.normal(hit.pos.x, hit.pos.y).dot(light).max(0.0);
+        let shadow = in_shadow(texture, &s.method, hit.pos, light, scale, s.shadow_bias).unwrap();
+        let diffuse = self.normal(level, hit.pos.x, hit.pos.y).dot(light).max(0.0);
         Some(Truth {
+            level,
             hit,
             depth: window_depth(camera, ndc_depth),
             shadow,
@@ -926,7 +1138,7 @@ fn interior(setup: &Setup, camera: &Camera, px: u32, py: u32, size: (u32, u32)) 
         .iter()
         .all(|&(dx, dy)| {
             setup
-                .truth(camera, x + dx, y + dy, size, [0.0; 4])
+                .truth(camera, x + dx, y + dy, size, [0.0; 4], 0)
                 .is_some()
         })
 }
@@ -941,10 +1153,11 @@ fn stable_truth(
     size: (u32, u32),
 ) -> Option<Truth> {
     let (x, y) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
-    let t = setup.truth(camera, x, y, size, [0.0; 4])?;
+    let level = setup.level_at(camera, px, py, size)?;
+    let t = setup.truth(camera, x, y, size, [0.0; 4], level)?;
     let scale = setup.frame.depth_scale as f32;
     for nudge in NUDGES {
-        let n = setup.truth(camera, x, y, size, nudge)?;
+        let n = setup.truth(camera, x, y, size, nudge, level)?;
         if n.shadow != t.shadow || texel_distance(n.hit.pos, t.hit.pos, scale, N) > 1.0e-3 {
             return None;
         }
@@ -1003,38 +1216,41 @@ const DEPTH_TOL: f64 = 2.0e-6;
 /// Colour tolerance, 8-bit steps: the shader's `pow` in the sRGB curve and its `f32` normal.
 const COLOR_TOL: u8 = 2;
 
-/// A 96 × 72 headless render of the relief-mapped quad for four cameras (perspective `[0, 1]`,
-/// reversed-Z with an infinite far plane, OpenGL's `[−1, 1]`, orthographic), compared pixel by
-/// pixel with the CPU twin on the stable interior pixels (`interior`, `stable_truth`: at least
-/// 90% of the interior, measured 95% in the perspective views and 93% in the orthographic one;
-/// the rest are pixels where a nudge of the twin's inputs moves the hit by more than 1e-3 texel
-/// or flips the shadow): the depth buffer holds `occlusion_depth`'s window depth within
-/// [`DEPTH_TOL`]; a pixel is shadowed (ambient colour only) exactly where `in_shadow` says so,
-/// wherever the light makes a visible difference (`N·L ≥ 0.05`); the colour is the CPU's
-/// shading within [`COLOR_TOL`]; pixels off the quad keep the clear depth. Each view must show
-/// at least 50 shadowed and 50 lit pixels (measured 329 and 1830 in perspective).
-#[test]
-fn headless_render_matches_the_cpu_twin() {
-    let Some(ctx) = gpu_context_or_skip() else {
-        return;
-    };
+/// What [`compare_render`] saw in one view.
+struct ViewStats {
+    name: &'static str,
+    /// Interior pixels of the quad.
+    quad: usize,
+    /// Stable interior pixels, compared.
+    stable: usize,
+    /// Compared pixels where the light makes a difference, shadowed and lit.
+    shadowed: usize,
+    lit: usize,
+    /// Compared pixels per mip level.
+    per_level: [usize; MIP_LEVELS],
+}
+
+/// Draws `setup` with `renderer` (its texture set) at 96 × 72 for every camera of [`cameras`]
+/// and compares each stable interior pixel with the CPU twin at the pixel's level (see
+/// [`headless_render_matches_the_cpu_twin`] for what is compared and within what).
+fn compare_render(ctx: &GpuContext, setup: &Setup, renderer: &ReliefRenderer) -> Vec<ViewStats> {
     let size = (96u32, 72u32);
-    let method = Method::Relaxed {
-        cone: 15,
-        binary: 6,
-        search: BinarySearch::LastStep,
-    };
-    let setup = Setup::new(method);
-    let mut renderer = ReliefRenderer::new(&ctx, Default::default()).unwrap();
-    renderer.set_texture(&ctx, &setup.texture).unwrap();
+    let mut out = Vec::new();
     for (name, camera) in cameras() {
         let t = Instant::now();
         let image = renderer
-            .render_image(&ctx, &camera, &setup.scene, size.0, size.1)
+            .render_image(ctx, &camera, &setup.scene, size.0, size.1)
             .unwrap();
         let draw = t.elapsed();
         let clear = window_depth(&camera, camera.depth().clear_depth()) as f32;
-        let (mut quad, mut stable, mut shadowed, mut lit) = (0, 0, 0, 0);
+        let mut v = ViewStats {
+            name,
+            quad: 0,
+            stable: 0,
+            shadowed: 0,
+            lit: 0,
+            per_level: [0; MIP_LEVELS],
+        };
         let mut worst_depth = 0.0f64;
         let mut span = f64::INFINITY;
         for py in 0..size.1 {
@@ -1047,28 +1263,31 @@ fn headless_render_matches_the_cpu_twin() {
                     f64::from(py) + 0.5,
                     size,
                     [0.0; 4],
+                    0,
                 );
                 let Some(c) = centre else {
                     // Off the quad, unless next to its border.
-                    if stable_border_free(&setup, &camera, px, py, size) {
+                    if stable_border_free(setup, &camera, px, py, size) {
                         assert_eq!(image.depth[k], clear, "{name} ({px}, {py}): off the quad");
                     }
                     continue;
                 };
                 span = span.min(c.relief_span);
-                if !interior(&setup, &camera, px, py, size) {
+                if !interior(setup, &camera, px, py, size) {
                     continue;
                 }
-                quad += 1;
-                let Some(t) = stable_truth(&setup, &camera, px, py, size) else {
+                v.quad += 1;
+                let Some(t) = stable_truth(setup, &camera, px, py, size) else {
                     continue;
                 };
-                stable += 1;
+                v.stable += 1;
+                v.per_level[t.level] += 1;
                 let dd = (gpu_depth - t.depth).abs();
                 worst_depth = worst_depth.max(dd);
                 assert!(
                     dd <= DEPTH_TOL,
-                    "{name} ({px}, {py}): depth {gpu_depth} vs {}",
+                    "{name} ({px}, {py}) level {}: depth {gpu_depth} vs {}",
+                    t.level,
                     t.depth
                 );
                 let g = image.rgba[4 * k];
@@ -1086,26 +1305,105 @@ fn headless_render_matches_the_cpu_twin() {
                         "{name} ({px}, {py}): shadow ({t:?})"
                     );
                     if t.shadow {
-                        shadowed += 1;
+                        v.shadowed += 1;
                     } else {
-                        lit += 1;
+                        v.lit += 1;
                     }
                 }
             }
         }
         eprintln!(
-            "{name}: draw + readback {draw:?}; {quad} quad pixels, {stable} stable, {shadowed} \
-             shadowed, {lit} lit; worst depth difference {worst_depth:e}, smallest relief span \
-             {span:e}"
+            "{name}: draw + readback {draw:?}; {} quad pixels, {} stable (per level {:?}), {} \
+             shadowed, {} lit; worst depth difference {worst_depth:e}, smallest relief span \
+             {span:e}",
+            v.quad, v.stable, v.per_level, v.shadowed, v.lit
         );
+        out.push(v);
+    }
+    out
+}
+
+/// A 96 × 72 headless render of the relief-mapped quad for four cameras (perspective `[0, 1]`,
+/// reversed-Z with an infinite far plane, OpenGL's `[−1, 1]`, orthographic), compared pixel by
+/// pixel with the CPU twin on the stable interior pixels (`interior`, `stable_truth`: at least
+/// 90% of the interior, measured 95% in the perspective views and 93% in the orthographic one;
+/// the rest are pixels where a nudge of the twin's inputs moves the hit by more than 1e-3 texel
+/// or flips the shadow): the depth buffer holds `occlusion_depth`'s window depth within
+/// [`DEPTH_TOL`]; a pixel is shadowed (ambient colour only) exactly where `in_shadow` says so,
+/// wherever the light makes a visible difference (`N·L ≥ 0.05`); the colour is the CPU's
+/// shading within [`COLOR_TOL`]; pixels off the quad keep the clear depth. Each view must show
+/// at least 50 shadowed and 50 lit pixels (measured 329 and 1830 in perspective). One level:
+/// every pixel reads level 0.
+#[test]
+fn headless_render_matches_the_cpu_twin() {
+    let Some(ctx) = gpu_context_or_skip() else {
+        return;
+    };
+    let method = Method::Relaxed {
+        cone: 15,
+        binary: 6,
+        search: BinarySearch::LastStep,
+    };
+    let setup = Setup::new(method);
+    let mut renderer = ReliefRenderer::new(&ctx, Default::default()).unwrap();
+    renderer.set_texture(&ctx, &setup.texture).unwrap();
+    for v in compare_render(&ctx, &setup, &renderer) {
+        let name = v.name;
         assert!(
-            stable * 10 >= quad * 9,
-            "{name}: {stable} of {quad} interior pixels stable"
+            v.stable * 10 >= v.quad * 9,
+            "{name}: {} of {} interior pixels stable",
+            v.stable,
+            v.quad
         );
+        assert_eq!(v.per_level[0], v.stable, "{name}: one level");
         // The view must show both shadowed and lit relief for the comparison to mean anything.
         assert!(
-            shadowed >= 50 && lit >= 50,
-            "{name}: {shadowed} shadowed, {lit} lit"
+            v.shadowed >= 50 && v.lit >= 50,
+            "{name}: {} shadowed, {} lit",
+            v.shadowed,
+            v.lit
+        );
+    }
+}
+
+/// The same views of the quad tiled 4 times (so a pixel covers 2–8 level-0 texels) drawn with a
+/// mip chain (`set_mips`, 6 levels): each stable pixel is compared, as above, with the CPU twin
+/// traced, shadowed and shaded at the level `mip_level` picks from the pixel quad's texture
+/// coordinate differences (`Setup::level_at`; pixels whose level is uncertain within ±2% of the
+/// footprint are skipped, as are unstable ones). Expected: every compared pixel agrees within
+/// the same tolerances; the views read several levels, each perspective view at least two with
+/// 200 pixels or more; and at least 80% of the interior is compared.
+#[test]
+fn headless_mip_render_reads_each_pixels_level() {
+    let Some(ctx) = gpu_context_or_skip() else {
+        return;
+    };
+    let method = Method::Relaxed {
+        cone: 15,
+        binary: 6,
+        search: BinarySearch::LastStep,
+    };
+    let setup = Setup::with_mips(method, 4.0);
+    let mut renderer = ReliefRenderer::new(&ctx, Default::default()).unwrap();
+    renderer
+        .set_mips(&ctx, &setup.mips.as_ref().unwrap().0)
+        .unwrap();
+    for v in compare_render(&ctx, &setup, &renderer) {
+        let name = v.name;
+        assert!(
+            v.stable * 10 >= v.quad * 8,
+            "{name}: {} of {} interior pixels compared",
+            v.stable,
+            v.quad
+        );
+        let used = v.per_level.iter().filter(|&&c| c >= 200).count();
+        if name.starts_with("perspective") {
+            assert!(used >= 2, "{name}: levels {:?}", v.per_level);
+        }
+        assert!(
+            v.per_level[0] < v.stable,
+            "{name}: only level 0 {:?}",
+            v.per_level
         );
     }
 }
@@ -1117,7 +1415,7 @@ fn stable_border_free(setup: &Setup, camera: &Camera, px: u32, py: u32, size: (u
         .iter()
         .all(|&(dx, dy)| {
             setup
-                .truth(camera, x + dx, y + dy, size, [0.0; 4])
+                .truth(camera, x + dx, y + dy, size, [0.0; 4], 0)
                 .is_none()
         })
 }
@@ -1151,6 +1449,7 @@ fn relief_depth_occludes_in_the_callers_targets() {
                     f64::from(y) + 0.5,
                     size,
                     [0.0; 4],
+                    0,
                 )
                 .map(|t| t.depth)
         })

@@ -9,11 +9,15 @@
 // see), and textureLoad() needs no implicit level of detail, so the marching loops may branch.
 //
 // Level of detail (ocean_relief::lod). The texture may hold mip levels, each a relief texture
-// of its own box-filtered surface with its own cones (ReliefMips, QuadReliefMips). The draw
-// pass picks one level per fragment before any loop (relief_lod(), from the derivatives of the
-// polygon's texture coordinates) and stores it in relief_level; every fetch of the viewing
-// ray, its bisection, the light ray and the relief normal then read that level, whose side is
-// N >> relief_level. The tracers at level l are the level-0 tracers on that smaller map.
+// of its own box-filtered surface with its own cones (ReliefMips, QuadReliefMips), packed side
+// by side in one texture level (the atlas of ocean_relief::lod: level 0 at (0, 0), level l >= 1
+// at (N, N - (N >> (l - 1))); not a mip chain, because OpenGL leaves texelFetch of the levels
+// of an unfilterable texture undefined). The draw pass picks one level per fragment before any
+// loop (relief_lod(), from the derivatives of the polygon's texture coordinates) and
+// relief_use_level() stores it and its atlas origin; every fetch of the viewing ray, its
+// bisection, the light ray and the relief normal then read that level, whose side is
+// N >> relief_level, resolving indices inside it before the origin is added. The tracers at
+// level l are the level-0 tracers on that smaller map.
 //
 // Texture: rgba32float, N x N, texel (i, j) = [depth, cone ratio, clearance, near cap]
 // (ocean_relief::ReliefTexture), declared by relief_texture.wgsl; or a
@@ -56,8 +60,17 @@ struct Relief {
 
 @group(0) @binding(0) var<uniform> relief: Relief;
 
-// The mip level every fetch reads: set once per fragment (or probe item) before tracing.
+// The mip level every fetch reads and where it lies in the atlas: set once per fragment (or
+// probe item) before tracing, by relief_use_level().
 var<private> relief_level: i32 = 0;
+var<private> relief_origin: vec2<i32> = vec2<i32>(0, 0);
+
+// Selects level l for every later fetch (ocean_relief::lod::atlas_origin).
+fn relief_use_level(l: i32) {
+    let n = i32(relief.trace.x);
+    relief_level = l;
+    relief_origin = select(vec2<i32>(n, n - (n >> u32(max(l - 1, 0)))), vec2<i32>(0, 0), l == 0);
+}
 
 const METHOD_LINEAR: u32 = 0u;
 const METHOD_CONE_STEP: u32 = 1u;

@@ -57,7 +57,7 @@ struct ReliefShade {
 fn relief_shade(in: VsOut) -> ReliefShade {
     // The level of detail, once, before anything branches (derivatives need uniform control
     // flow) and before the tracer's loops (ocean_relief::lod).
-    relief_level = relief_lod(dpdx(in.uv), dpdy(in.uv));
+    relief_use_level(relief_lod(dpdx(in.uv), dpdy(in.uv)));
     let t = relief.tangent.xyz;
     let b = relief.bitangent.xyz;
     let n = relief.normal.xyz;

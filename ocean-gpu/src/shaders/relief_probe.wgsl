@@ -23,7 +23,7 @@ fn probe_trace(@builtin(global_invocation_id) id: vec3<u32>) {
     let light = probe_in[5u * k + 3u].xyz;
     let footprint = probe_in[5u * k + 4u];
     // As the draw pass does, once, before the tracers' loops.
-    relief_level = relief_lod(footprint.xy, footprint.zw);
+    relief_use_level(relief_lod(footprint.xy, footprint.zw));
     let hit = relief_trace(ray.xy, relief_view_ray(view, ray.z));
     let shadow = relief_shadow(point, light, ray.z, ray.w);
     probe_out[2u * k] = vec4<f32>(hit.pos, f32(hit.fetches));

@@ -2,7 +2,8 @@
 // section 18.1's four cones per texel, ocean_relief::quad): an rgba32float N x N texture array
 // of 4 layers, layer k texel (i, j) = [depth, c_k, D_k, E_k], the cones of the closed quadrant
 // k = x_neg + 2 y_neg of the ray's horizontal direction (ocean_relief::QuadReliefTexture), and
-// its mip levels (ocean_relief::QuadReliefMips).
+// its mip levels (ocean_relief::QuadReliefMips) packed into one atlas per layer
+// (relief_common.wgsl).
 // relief_common.wgsl reads the texture only through these two functions.
 
 @group(0) @binding(1) var relief_map: texture_2d_array<f32>;
@@ -14,12 +15,13 @@ fn relief_layer(dx: f32, dy: f32) -> i32 {
     return select(0, 1, dx < 0.0) + select(0, 2, dy < 0.0);
 }
 
-// Texel (i, j) (resolved indices) of the layer, at the fragment's level.
+// Texel (i, j) (indices resolved inside the level) of the layer, at the fragment's level.
 fn relief_texel(layer: i32, i: i32, j: i32) -> vec4<f32> {
-    return textureLoad(relief_map, vec2<i32>(i, j), layer, relief_level);
+    return textureLoad(relief_map, relief_origin + vec2<i32>(i, j), layer, 0);
 }
 
-// The texture's side in texels, known only when the shader runs (relief_ctl).
+// The texture's width in texels (the side N, or 3N/2 for an atlas of levels), known only
+// when the shader runs (relief_ctl).
 fn relief_side() -> u32 {
     return textureDimensions(relief_map).x;
 }
