@@ -26,7 +26,7 @@ use ocean_gpu::{
     ComposeInputs, ContextOptions, GpuContext, LightTargets, OceanOptions, OceanRenderer,
     RADIANCE_FORMAT, ReliefOptions, ReliefRenderer, ReliefScene,
 };
-use ocean_relief::{ConeParams, Edge, ReliefTexture};
+use ocean_relief::{ConeParams, Edge, ReliefMips, ReliefTexture};
 
 use crate::cone_cache;
 use crate::island::Island;
@@ -154,24 +154,35 @@ impl FaceLight {
     }
 }
 
-/// Builds the relief texture of `heights` (an `n × n` map, wrapping), its relaxed cone map
-/// (from the cache on disk when there) and a renderer holding it.
+/// Builds the relief texture of `heights` (an `n × n` map, wrapping) with its mip levels down to
+/// 8 × 8 (`ocean_relief::lod`: each level's 2 × 2-mean map with its own relaxed cones, from the
+/// cache on disk when there), so distant faces trace a coarser surface, and a renderer holding
+/// it. A side that is not a power of two gets level 0 alone. `cached`: every level came from the
+/// cache.
 fn relief_renderer(
     ctx: &GpuContext,
     n: usize,
     heights: &[f32],
 ) -> Result<(ReliefRenderer, bool), String> {
     let relief_error = |e: ocean_relief::ReliefError| format!("relief: {e}");
-    let map = ocean_relief::maps::to_map(n, heights, Edge::Wrap).map_err(relief_error)?;
-    let (cones, source) =
-        cone_cache::cones(&map, ConeParams::relaxed(4.0)).map_err(relief_error)?;
-    let texture = ReliefTexture::new(&map, &cones).map_err(relief_error)?;
+    let params = ConeParams::relaxed(4.0);
+    let mut maps = vec![ocean_relief::maps::to_map(n, heights, Edge::Wrap).map_err(relief_error)?];
+    while n.is_power_of_two() && maps[maps.len() - 1].size() > 8 {
+        let next = ocean_relief::lod::downsample(&maps[maps.len() - 1]).map_err(relief_error)?;
+        maps.push(next);
+    }
+    let mut cached = true;
+    let mut levels = Vec::with_capacity(maps.len());
+    for map in &maps {
+        let (cones, source) = cone_cache::cones(map, params).map_err(relief_error)?;
+        cached &= source == cone_cache::Source::Cached;
+        levels.push(ReliefTexture::new(map, &cones).map_err(relief_error)?);
+    }
+    let mips = ReliefMips::from_levels(levels).map_err(relief_error)?;
     let mut renderer =
         ReliefRenderer::new(ctx, ReliefOptions::default()).map_err(|e| e.to_string())?;
-    renderer
-        .set_texture(ctx, &texture)
-        .map_err(|e| e.to_string())?;
-    Ok((renderer, source == cone_cache::Source::Cached))
+    renderer.set_mips(ctx, &mips).map_err(|e| e.to_string())?;
+    Ok((renderer, cached))
 }
 
 /// The rocks and the pier of `scene`: their relief textures and faces.
@@ -615,7 +626,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     );
     let cached = rocks.iter().filter(|r| r.cached).count();
     println!(
-        "  relief maps      {:9.1} ms  ({} height and cone maps for the rocks and the pier, relaxed: {} generated on the CPU, {cached} from the cache{})",
+        "  relief maps      {:9.1} ms  ({} relief textures for the rocks and the pier, each with its mip levels down to 8 x 8, relaxed cones: {} generated on the CPU, {cached} from the cache{})",
         1e3 * times.rocks,
         rocks.len(),
         rocks.len() - cached,

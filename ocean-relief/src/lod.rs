@@ -170,14 +170,14 @@ pub type ReliefMips = Mips<ReliefTexture>;
 pub type QuadReliefMips = Mips<QuadReliefTexture>;
 
 impl<T: MipTexture> Mips<T> {
-    /// A chain from its levels, finest first: sides must halve from a power of two, every level
-    /// with the first one's edge mode. Use it for cones made otherwise (quantised ones, say);
+    /// A chain from its levels, finest first: sides must halve from a power of two (any side for
+    /// a single level), every level with the first one's edge mode. Use it for cones made otherwise (quantised ones, say);
     /// each level must hold cones valid for its own depths.
     ///
     /// # Errors
     ///
-    /// [`ReliefError::OutOfRange`] for no level; [`ReliefError::NotPowerOfTwo`] unless level 0's
-    /// side is a power of two; [`ReliefError::Mismatch`] for a level of the wrong side or edge
+    /// [`ReliefError::OutOfRange`] for no level; [`ReliefError::NotPowerOfTwo`] for several
+    /// levels unless level 0's side is a power of two; [`ReliefError::Mismatch`] for a level of the wrong side or edge
     /// mode.
     pub fn from_levels(levels: Vec<T>) -> Result<Self, ReliefError> {
         let Some(first) = levels.first() else {
@@ -189,7 +189,7 @@ impl<T: MipTexture> Mips<T> {
             });
         };
         let (n, edge) = (first.side(), first.edge_mode());
-        if !n.is_power_of_two() {
+        if levels.len() > 1 && !n.is_power_of_two() {
             return Err(ReliefError::NotPowerOfTwo(n));
         }
         for (l, t) in levels.iter().enumerate() {

@@ -345,7 +345,11 @@ fn footprint(rng: &mut Rng, k: usize) -> [Vec2; 2] {
     let b = rng.next() * std::f32::consts::TAU;
     let du = Vec2::from_angle(a) * rho;
     let dv = Vec2::from_angle(b) * rho * (0.2 + 0.8 * rng.next());
-    if k.is_multiple_of(2) { [du, dv] } else { [dv, du] }
+    if k.is_multiple_of(2) {
+        [du, dv]
+    } else {
+        [dv, du]
+    }
 }
 
 /// Level of detail through the probe: mip chains of the power-of-two test maps (each level its
