@@ -50,8 +50,9 @@ enum Suite {
     /// hierarchy, per pass at four resolutions with guard bands, and the CPU reference.
     Sao,
     /// Relief mapping (issue 6): relaxed cone-map generation at 256², 512² and 1024², the
-    /// brute-force oracle at 128², progress overhead, CPU tracer rays per second per method, and
-    /// the accuracy table.
+    /// brute-force oracle at 128², progress overhead, GPU generation, CPU tracer rays per second
+    /// per method, the level of detail's draw time and shimmer on the GPU, and the accuracy
+    /// table.
     Relief,
     /// Every suite above in turn; with `--json`, one document holding each suite's report with
     /// the date and the machine.

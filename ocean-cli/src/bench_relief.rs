@@ -23,6 +23,14 @@
 //!    deep, view 60° from the normal, 2¹⁸ rays with random starts and azimuths), on one thread
 //!    and on all threads.
 //! 6. **Accuracy**: `accuracy::table(&Config::standard(128, 4096))`, the table the tests print.
+//! 7. **Level of detail** (GPU): a minified relief quad (the fBm map at 256², tiled 8 × 8 on a
+//!    1 m quad 0.01 m deep, seen from 1.3 m at 50° from its normal, 256 × 256 pixels, so a
+//!    pixel covers about 4 to 16 level-0 texels) drawn by `ReliefRenderer` with level 0 alone
+//!    (`set_texture`) and with its 8 levels (`set_mips`, `ocean_relief::lod`): the median time
+//!    of a draw with its readback, and the shimmer, the mean absolute change of the 8-bit green
+//!    channel over the pixels on the quad in both frames when the quad moves by 0.002 m (about
+//!    0.4 pixel); and the CPU time to generate level 0's cones against the whole chain's.
+//!    `--no-gpu` or a missing adapter leaves the reason in `lod`.
 //!
 //! Times are medians of `--runs` runs. Generation runs are not preceded by a warm-up (each
 //! takes 0.1 s or more, so no cache or thread wake-up effect shows); tracer runs are.
@@ -33,7 +41,9 @@ use glam::{Vec2, Vec3};
 use ocean_core::rng::Pcg32;
 use ocean_relief::accuracy::{Config, Textures, adaptive_cone_steps, table};
 use ocean_relief::maps::{bumps, to_map, value_noise};
-use ocean_relief::{ConeMap, ConeParams, Edge, HeightMap, Method, QuadConeMap, Ray};
+use ocean_relief::{
+    ConeMap, ConeParams, Edge, HeightMap, Method, QuadConeMap, Ray, ReliefMips, ReliefTexture,
+};
 use rayon::prelude::*;
 use serde_json::{Value, json};
 
@@ -146,6 +156,104 @@ fn gpu_generation(runs: u32) -> Result<Value, String> {
         "device": ctx.describe(),
         "software_adapter": software,
         "sizes": sizes,
+    }))
+}
+
+/// Side, levels and tiling of figure 7.
+const LOD_SIDE: usize = 256;
+const LOD_LEVELS: usize = 8;
+const LOD_TILES: f64 = 8.0;
+const LOD_IMAGE: u32 = 256;
+
+/// Figure 7: a minified relief quad with level 0 alone and with its mip levels.
+fn gpu_lod(runs: u32) -> Result<Value, String> {
+    use glam::{DVec2, DVec3};
+    use ocean_core::{Camera, DepthConvention, Far, Projection};
+    use ocean_gpu::{GpuContext, ReliefRenderer, ReliefScene};
+
+    let map = to_map(LOD_SIDE, &value_noise(LOD_SIDE, 8, 6, 1), Edge::Wrap).map_err(err)?;
+    let params = ConeParams::relaxed(1.0);
+    let mut level0 = None;
+    let level0_s = seconds(|| level0 = Some(ConeMap::generate(&map, params)));
+    let texture = ReliefTexture::new(&map, &level0.expect("timed").map_err(err)?).map_err(err)?;
+    let mut mips = None;
+    let mips_s = seconds(|| mips = Some(ReliefMips::generate(&map, params, LOD_LEVELS)));
+    let mips = mips.expect("timed").map_err(err)?;
+
+    let ctx = GpuContext::headless().map_err(err)?;
+    let eye = DVec3::new(
+        0.0,
+        1.3 * 50f64.to_radians().cos(),
+        1.3 * 50f64.to_radians().sin(),
+    );
+    let camera = Camera::look_at(
+        eye,
+        DVec3::ZERO,
+        DVec3::Y,
+        Projection::Perspective {
+            fov_y: 0.9,
+            aspect: 1.0,
+            near: 0.1,
+            far: Far::Finite(10.0),
+        },
+        DepthConvention::ZERO_TO_ONE,
+    )
+    .map_err(err)?;
+    let scene = ReliefScene {
+        origin: DVec3::new(-0.5, 0.0, 0.5),
+        edge_u: DVec3::X,
+        edge_v: DVec3::NEG_Z,
+        tiles: DVec2::splat(LOD_TILES),
+        depth: 0.01,
+        ..Default::default()
+    };
+    let moved = ReliefScene {
+        origin: scene.origin + DVec3::new(0.002, 0.0, 0.0),
+        ..scene
+    };
+    let clear = ocean_gpu::relief::window_depth(&camera, camera.depth().clear_depth()) as f32;
+    let measure = |renderer: &ReliefRenderer| -> Result<Value, String> {
+        let draw = || renderer.render_image(&ctx, &camera, &scene, LOD_IMAGE, LOD_IMAGE);
+        draw().map_err(err)?;
+        let mut times = Vec::new();
+        for _ in 0..runs.max(3) {
+            times.push(seconds(|| {
+                let _ = draw();
+            }));
+        }
+        let a = draw().map_err(err)?;
+        let b = renderer
+            .render_image(&ctx, &camera, &moved, LOD_IMAGE, LOD_IMAGE)
+            .map_err(err)?;
+        let (mut sum, mut pixels) = (0u64, 0u64);
+        for k in 0..a.depth.len() {
+            if a.depth[k] != clear && b.depth[k] != clear {
+                sum += u64::from(a.rgba[4 * k + 1].abs_diff(b.rgba[4 * k + 1]));
+                pixels += 1;
+            }
+        }
+        Ok(json!({
+            "seconds": median(times),
+            "shimmer": sum as f64 / pixels.max(1) as f64,
+            "pixels": pixels,
+        }))
+    };
+    let mut renderer = ReliefRenderer::new(&ctx, Default::default()).map_err(err)?;
+    renderer.set_texture(&ctx, &texture).map_err(err)?;
+    let single = measure(&renderer)?;
+    renderer.set_mips(&ctx, &mips).map_err(err)?;
+    let chain = measure(&renderer)?;
+    Ok(json!({
+        "measured": true,
+        "device": ctx.describe(),
+        "side": LOD_SIDE,
+        "levels": LOD_LEVELS,
+        "tiles": LOD_TILES,
+        "image": LOD_IMAGE,
+        "level0": single,
+        "mips": chain,
+        "cpu_generate_level0_seconds": level0_s,
+        "cpu_generate_mips_seconds": mips_s,
     }))
 }
 
@@ -343,6 +451,11 @@ pub fn relief(args: &BenchArgs) -> Result<Value, String> {
             gpu_generation(runs).unwrap_or_else(|e| json!({ "measured": false, "reason": e }))
         },
         "tracers": tracers(runs)?,
+        "lod": if args.no_gpu {
+            json!({ "measured": false, "reason": "skipped (--no-gpu)" })
+        } else {
+            gpu_lod(runs).unwrap_or_else(|e| json!({ "measured": false, "reason": e }))
+        },
         "accuracy": accuracy.rows.iter().map(|r| json!({
             "map": r.map,
             "depth_texels": r.depth_texels,
@@ -486,5 +599,32 @@ fn print_table(doc: &Value) {
             m["rays_per_s_single_thread"].as_f64().unwrap_or(f64::NAN),
             m["rays_per_s_all_threads"].as_f64().unwrap_or(f64::NAN)
         );
+    }
+    let l = &doc["lod"];
+    match l["device"].as_str() {
+        Some(device) => {
+            println!(
+                "7. level of detail on {device}: {}² map tiled {} x {}, {} x {} image",
+                l["side"], l["tiles"], l["tiles"], l["image"], l["image"]
+            );
+            for (key, what) in [("level0", "level 0 only"), ("mips", "8 levels")] {
+                let r = &l[key];
+                println!(
+                    "   {what:<13} draw + readback {} ms, shimmer {} (mean |Δ green| over {} pixels, quad moved 0.4 px)",
+                    f(&(r["seconds"].as_f64().unwrap_or(f64::NAN) * 1e3).into(), 1),
+                    f(&r["shimmer"], 2),
+                    r["pixels"]
+                );
+            }
+            println!(
+                "   CPU cones: level 0 {} s, all levels {} s",
+                f(&l["cpu_generate_level0_seconds"], 3),
+                f(&l["cpu_generate_mips_seconds"], 3)
+            );
+        }
+        None => println!(
+            "7. level of detail: not measured ({})",
+            l["reason"].as_str().unwrap_or("?")
+        ),
     }
 }
