@@ -200,6 +200,20 @@ impl<T: MipTexture> Mips<T> {
         Ok(Self { levels })
     }
 
+    /// The chain of `levels` levels of `map`, each level's texture made by `texture` from its
+    /// own map.
+    fn generate_levels(
+        map: &HeightMap,
+        levels: usize,
+        texture: impl Fn(&HeightMap) -> Result<T, ReliefError>,
+    ) -> Result<Self, ReliefError> {
+        let textures = height_chain(map, levels)?
+            .iter()
+            .map(texture)
+            .collect::<Result<Vec<_>, _>>()?;
+        Self::from_levels(textures)
+    }
+
     /// The levels, finest first.
     pub fn levels(&self) -> &[T] {
         &self.levels
@@ -279,11 +293,9 @@ impl ReliefMips {
         params: ConeParams,
         levels: usize,
     ) -> Result<Self, ReliefError> {
-        let textures = height_chain(map, levels)?
-            .iter()
-            .map(|m| ReliefTexture::new(m, &ConeMap::generate(m, params)?))
-            .collect::<Result<Vec<_>, _>>()?;
-        Self::from_levels(textures)
+        Self::generate_levels(map, levels, |m| {
+            ReliefTexture::new(m, &ConeMap::generate(m, params)?)
+        })
     }
 }
 
@@ -298,11 +310,9 @@ impl QuadReliefMips {
         params: ConeParams,
         levels: usize,
     ) -> Result<Self, ReliefError> {
-        let textures = height_chain(map, levels)?
-            .iter()
-            .map(|m| QuadReliefTexture::new(m, &QuadConeMap::generate(m, params)?))
-            .collect::<Result<Vec<_>, _>>()?;
-        Self::from_levels(textures)
+        Self::generate_levels(map, levels, |m| {
+            QuadReliefTexture::new(m, &QuadConeMap::generate(m, params)?)
+        })
     }
 }
 

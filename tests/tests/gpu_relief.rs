@@ -1237,10 +1237,22 @@ struct ViewStats {
     per_level: [usize; MIP_LEVELS],
 }
 
-/// Draws `setup` with `renderer` (its texture set) at 96 × 72 for every camera of [`cameras`]
-/// and compares each stable interior pixel with the CPU twin at the pixel's level (see
-/// [`headless_render_matches_the_cpu_twin`] for what is compared and within what).
-fn compare_render(ctx: &GpuContext, setup: &Setup, renderer: &ReliefRenderer) -> Vec<ViewStats> {
+/// The draw tests' method: the book's 15 cone steps, then 6 bisections of the last step.
+const RELAXED_15_6: Method = Method::Relaxed {
+    cone: 15,
+    binary: 6,
+    search: BinarySearch::LastStep,
+};
+
+/// Draws `setup` (its mip chain when it has one, else its texture) at 96 × 72 for every camera
+/// of [`cameras`] and compares each stable interior pixel with the CPU twin at the pixel's
+/// level (see [`headless_render_matches_the_cpu_twin`] for what is compared and within what).
+fn compare_render(ctx: &GpuContext, setup: &Setup) -> Vec<ViewStats> {
+    let mut renderer = ReliefRenderer::new(ctx, Default::default()).unwrap();
+    match &setup.mips {
+        Some((mips, _)) => renderer.set_mips(ctx, mips).unwrap(),
+        None => renderer.set_texture(ctx, &setup.texture).unwrap(),
+    }
     let size = (96u32, 72u32);
     let mut out = Vec::new();
     for (name, camera) in cameras() {
@@ -1346,15 +1358,8 @@ fn headless_render_matches_the_cpu_twin() {
     let Some(ctx) = gpu_context_or_skip() else {
         return;
     };
-    let method = Method::Relaxed {
-        cone: 15,
-        binary: 6,
-        search: BinarySearch::LastStep,
-    };
-    let setup = Setup::new(method);
-    let mut renderer = ReliefRenderer::new(&ctx, Default::default()).unwrap();
-    renderer.set_texture(&ctx, &setup.texture).unwrap();
-    for v in compare_render(&ctx, &setup, &renderer) {
+    let setup = Setup::new(RELAXED_15_6);
+    for v in compare_render(&ctx, &setup) {
         let name = v.name;
         assert!(
             v.stable * 10 >= v.quad * 9,
@@ -1385,17 +1390,8 @@ fn headless_mip_render_reads_each_pixels_level() {
     let Some(ctx) = gpu_context_or_skip() else {
         return;
     };
-    let method = Method::Relaxed {
-        cone: 15,
-        binary: 6,
-        search: BinarySearch::LastStep,
-    };
-    let setup = Setup::with_mips(method, 4.0);
-    let mut renderer = ReliefRenderer::new(&ctx, Default::default()).unwrap();
-    renderer
-        .set_mips(&ctx, &setup.mips.as_ref().unwrap().0)
-        .unwrap();
-    for v in compare_render(&ctx, &setup, &renderer) {
+    let setup = Setup::with_mips(RELAXED_15_6, 4.0);
+    for v in compare_render(&ctx, &setup) {
         let name = v.name;
         assert!(
             v.stable * 10 >= v.quad * 8,
