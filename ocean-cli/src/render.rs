@@ -126,8 +126,8 @@ fn check_writable(out: &Path) -> Result<(), String> {
 struct RockDraw {
     renderer: ReliefRenderer,
     faces: Vec<ReliefScene>,
-    /// Whether its cone map came from the cache on disk.
-    cached: bool,
+    /// How many of its levels' cone maps were generated and how many came from the cache.
+    cones: (usize, usize),
 }
 
 /// The lighting of relief faces in the sea's radiance units (a Lambertian face's radiance is
@@ -157,13 +157,13 @@ impl FaceLight {
 /// Builds the relief texture of `heights` (an `n × n` map, wrapping) with its mip levels down to
 /// 8 × 8 (`ocean_relief::lod`: each level's 2 × 2-mean map with its own relaxed cones, from the
 /// cache on disk when there), so distant faces trace a coarser surface, and a renderer holding
-/// it. A side that is not a power of two gets level 0 alone. `cached`: every level came from the
-/// cache.
+/// it. A side that is not a power of two gets level 0 alone. Also returns how many levels' cones
+/// were generated and how many came from the cache.
 fn relief_renderer(
     ctx: &GpuContext,
     n: usize,
     heights: &[f32],
-) -> Result<(ReliefRenderer, bool), String> {
+) -> Result<(ReliefRenderer, (usize, usize)), String> {
     let relief_error = |e: ocean_relief::ReliefError| format!("relief: {e}");
     let params = ConeParams::relaxed(4.0);
     let mut maps = vec![ocean_relief::maps::to_map(n, heights, Edge::Wrap).map_err(relief_error)?];
@@ -171,18 +171,21 @@ fn relief_renderer(
         let next = ocean_relief::lod::downsample(&maps[maps.len() - 1]).map_err(relief_error)?;
         maps.push(next);
     }
-    let mut cached = true;
+    let (mut generated, mut cached) = (0, 0);
     let mut levels = Vec::with_capacity(maps.len());
     for map in &maps {
         let (cones, source) = cone_cache::cones(map, params).map_err(relief_error)?;
-        cached &= source == cone_cache::Source::Cached;
+        match source {
+            cone_cache::Source::Cached => cached += 1,
+            cone_cache::Source::Generated => generated += 1,
+        }
         levels.push(ReliefTexture::new(map, &cones).map_err(relief_error)?);
     }
     let mips = ReliefMips::from_levels(levels).map_err(relief_error)?;
     let mut renderer =
         ReliefRenderer::new(ctx, ReliefOptions::default()).map_err(|e| e.to_string())?;
     renderer.set_mips(ctx, &mips).map_err(|e| e.to_string())?;
-    Ok((renderer, cached))
+    Ok((renderer, (generated, cached)))
 }
 
 /// The rocks and the pier of `scene`: their relief textures and faces.
@@ -195,19 +198,19 @@ fn rock_draws(
     for rock in &scene.rocks {
         let n = rock.map_size;
         let heights = ocean_relief::maps::value_noise(n, (n / 32).max(2), 5, rock.seed);
-        let (renderer, cached) = relief_renderer(ctx, n, &heights)?;
+        let (renderer, cones) = relief_renderer(ctx, n, &heights)?;
         draws.push(RockDraw {
             renderer,
             faces: rock.faces(light)?,
-            cached,
+            cones,
         });
     }
     if let Some(pier) = &scene.pier {
-        let (renderer, cached) = relief_renderer(ctx, pier.map_size, &pier.plank_heights())?;
+        let (renderer, cones) = relief_renderer(ctx, pier.map_size, &pier.plank_heights())?;
         draws.push(RockDraw {
             renderer,
             faces: pier.deck().faces(light)?,
-            cached,
+            cones,
         });
     }
     Ok(draws)
@@ -624,12 +627,13 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         per(times.waves),
         scene.boxes.len()
     );
-    let cached = rocks.iter().filter(|r| r.cached).count();
+    let generated: usize = rocks.iter().map(|r| r.cones.0).sum();
+    let cached: usize = rocks.iter().map(|r| r.cones.1).sum();
     println!(
-        "  relief maps      {:9.1} ms  ({} relief textures for the rocks and the pier, each with its mip levels down to 8 x 8, relaxed cones: {} generated on the CPU, {cached} from the cache{})",
+        "  relief maps      {:9.1} ms  ({} relief textures for the rocks and the pier with {} levels down to 8 x 8, relaxed cones: {generated} generated on the CPU, {cached} from the cache{})",
         1e3 * times.rocks,
         rocks.len(),
-        rocks.len() - cached,
+        generated + cached,
         cone_cache::dir().map_or_else(
             || " (none: no cache directory)".to_owned(),
             |d| format!(" in {}", d.display())

@@ -268,8 +268,12 @@ fn the_rock_face_is_drawn() {
         return;
     }
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    // The rock's map and the pier's planks.
-    assert!(String::from_utf8_lossy(&o.stdout).contains("2 height and cone maps"));
+    // The rock's map and the pier's planks, 256² each, with their levels down to 8²: 6 + 6.
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("2 relief textures for the rocks and the pier with 12 levels"),
+        "{text}"
+    );
     let scene = d.join("no-rocks.toml");
     std::fs::write(&scene, "[render]\nwidth = 128\nheight = 72\n").unwrap();
     let without = d.join("without.png");
@@ -287,8 +291,9 @@ fn the_rock_face_is_drawn() {
     );
 }
 
-/// The cone maps (the rock's and the pier's planks') are generated once and then
-/// read from the cache, with the same image; a corrupt cache file is ignored and written again.
+/// The cone maps (the rock's and the pier's planks', 256² each, with their levels down to 8²:
+/// 6 + 6 maps) are generated once and then read from the cache, with the same image; a
+/// corrupt cache file is ignored and written again.
 #[test]
 fn cone_maps_are_cached_on_disk() {
     let d = dir("cache");
@@ -309,15 +314,15 @@ fn cone_maps_are_cached_on_disk() {
     }
     let text = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(
-        text.contains("2 generated on the CPU, 0 from the cache"),
+        text.contains("12 generated on the CPU, 0 from the cache"),
         "{text}"
     );
     let stored = files(&cache);
-    assert_eq!(stored.len(), 2, "{stored:?}");
+    assert_eq!(stored.len(), 12, "{stored:?}");
     let (o, second) = run("second.png");
     let text = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(
-        text.contains("0 generated on the CPU, 2 from the cache"),
+        text.contains("0 generated on the CPU, 12 from the cache"),
         "{text}"
     );
     assert_eq!(read_png(&first), read_png(&second));
@@ -330,7 +335,7 @@ fn cone_maps_are_cached_on_disk() {
     let (o, third) = run("third.png");
     let text = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(
-        text.contains("1 generated on the CPU, 1 from the cache"),
+        text.contains("1 generated on the CPU, 11 from the cache"),
         "{text}"
     );
     assert_eq!(read_png(&first), read_png(&third));
