@@ -3394,7 +3394,8 @@ OceanStatus ocean_relief_scene_default(struct OceanReliefScene *out);
  * - for a quad-directional cone map (`ocean_relief_quad_cones_create`), export `relief_quad`
  *   instead: the same block (this function, unchanged), and binding 1 is a
  *   `GL_TEXTURE_2D_ARRAY`, `GL_RGBA32F`, `size` x `size` x 4 layers, the texels of
- *   `ocean_relief_quad_cones_texels`; each ray reads the layer of its direction's quadrant;
+ *   `ocean_relief_quad_cones_texels`; each ray reads the layer of its direction's quadrant.
+ *   With `levels` > 1 every layer is an atlas as above, of that layer's texels at each level;
  * - draw 6 vertices as `GL_TRIANGLES` with no vertex buffer (an empty vertex array object);
  * - depth test `GL_LESS` (`GL_GREATER` for a reversed-Z camera) with depth writes: the fragment
  *   stage writes the hit point's depth to `gl_FragDepth`, so the relief occludes and is
