@@ -1065,7 +1065,7 @@ impl Setup {
         let top = grad(i, j).lerp(grad(i + 1, j), fx);
         let bottom = grad(i, j + 1).lerp(grad(i + 1, j + 1), fx);
         let g = top.lerp(bottom, fy);
-        // The shader's ldexp(normal.w, -level): the depth in this level's texels.
+        // The shader's normal.w · 2^-level (exact): the depth in this level's texels.
         let texels = self.frame.depth_scale as f32 * N as f32 / (1u32 << level) as f32;
         Vec3::new(texels * g.x, texels * g.y, 1.0).normalize()
     }

@@ -84,8 +84,10 @@ fn relief_shade(in: VsOut) -> ReliefShade {
 
     let l = relief.light.xyz;
     let light = vec3<f32>(dot(l, t), dot(l, b), dot(l, n));
-    // normal.w is the depth in level-0 texels; a level-l texel is 2^l of them.
-    let normal = relief_normal(hit.pos.x, hit.pos.y, ldexp(relief.normal.w, -relief_level));
+    // normal.w is the depth in level-0 texels; a level-l texel is 2^l of them. The factor
+    // 2^-l is built from its exponent bits (GLSL 330 has no ldexp), so the product is exact.
+    let texel_scale = bitcast<f32>(u32(127 - relief_level) << 23u);
+    let normal = relief_normal(hit.pos.x, hit.pos.y, relief.normal.w * texel_scale);
     var shadow = 0.0;
     if (relief_ctl(relief.steps.z) & FLAG_SHADOWS) != 0u {
         shadow = relief_shadow(hit.pos, light, depth_scale, relief.shading.y).x;
