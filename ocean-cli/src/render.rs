@@ -166,11 +166,14 @@ fn relief_renderer(
 ) -> Result<(ReliefRenderer, (usize, usize)), String> {
     let relief_error = |e: ocean_relief::ReliefError| format!("relief: {e}");
     let params = ConeParams::relaxed(4.0);
-    let mut maps = vec![ocean_relief::maps::to_map(n, heights, Edge::Wrap).map_err(relief_error)?];
-    while n.is_power_of_two() && maps[maps.len() - 1].size() > 8 {
-        let next = ocean_relief::lod::downsample(&maps[maps.len() - 1]).map_err(relief_error)?;
-        maps.push(next);
-    }
+    let map = ocean_relief::maps::to_map(n, heights, Edge::Wrap).map_err(relief_error)?;
+    let maps = if n.is_power_of_two() && n > 8 {
+        // log₂ n − 2 levels: n down to 8.
+        let levels = ocean_relief::lod::max_levels(n) - 2;
+        ocean_relief::lod::level_maps(&map, levels).map_err(relief_error)?
+    } else {
+        vec![map]
+    };
     let (mut generated, mut cached) = (0, 0);
     let mut levels = Vec::with_capacity(maps.len());
     for map in &maps {

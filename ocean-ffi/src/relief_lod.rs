@@ -58,11 +58,7 @@ fn check_levels(size: u32, levels: u32) -> Result<usize, Error> {
             format!("`size` = {size} is outside 2 to {}", ocean_relief::MAX_SIDE),
         ));
     }
-    let most = if n.is_power_of_two() {
-        max_levels(n)
-    } else {
-        1
-    };
+    let most = max_levels(n);
     if levels == 0 || levels as usize > most {
         return Err(Error::new(
             OceanStatus::InvalidArgument,

@@ -177,12 +177,7 @@ impl ReliefUniforms {
     ///
     /// [`ReliefError::OutOfRange`] for a count outside that range.
     pub fn set_levels(&mut self, levels: usize) -> Result<(), ReliefError> {
-        let n = self.trace[0] as usize;
-        let most = if n.is_power_of_two() {
-            crate::lod::max_levels(n).max(1)
-        } else {
-            1
-        };
+        let most = crate::lod::max_levels(self.trace[0] as usize);
         check_range("mip levels", levels as f64, 1.0, most as f64)?;
         self.shading[3] = levels as f32;
         Ok(())

@@ -102,13 +102,25 @@ pub fn atlas_origin(n: usize, level: usize) -> (usize, usize) {
     }
 }
 
-/// Most levels a power-of-two side `n ≥ 2` allows: down to 2×2, so `log₂ n` levels.
+/// Most levels a relief texture of side `n` can have: `log₂ n` for a power of two `≥ 2` (down to
+/// 2×2), 1 for any other side `≥ 2` (level 0 alone), 0 below 2.
 pub fn max_levels(n: usize) -> usize {
-    if n < 2 { 0 } else { n.ilog2() as usize }
+    match n {
+        0 | 1 => 0,
+        _ if n.is_power_of_two() => n.ilog2() as usize,
+        _ => 1,
+    }
 }
 
-/// The maps of levels `0 .. levels` (module documentation).
-fn height_chain(map: &HeightMap, levels: usize) -> Result<Vec<HeightMap>, ReliefError> {
+/// The height maps of levels `0 .. levels` of `map` (module documentation): `map` itself, then
+/// each the [`downsample`] of the one before. What the levels' cones are generated from, and
+/// what a normal map of each level is computed from.
+///
+/// # Errors
+///
+/// [`ReliefError::NotPowerOfTwo`] unless the side is a power of two;
+/// [`ReliefError::OutOfRange`] for `levels` outside 1 to [`max_levels`].
+pub fn level_maps(map: &HeightMap, levels: usize) -> Result<Vec<HeightMap>, ReliefError> {
     let n = map.size();
     if !n.is_power_of_two() {
         return Err(ReliefError::NotPowerOfTwo(n));
@@ -207,7 +219,7 @@ impl<T: MipTexture> Mips<T> {
         levels: usize,
         texture: impl Fn(&HeightMap) -> Result<T, ReliefError>,
     ) -> Result<Self, ReliefError> {
-        let textures = height_chain(map, levels)?
+        let textures = level_maps(map, levels)?
             .iter()
             .map(texture)
             .collect::<Result<Vec<_>, _>>()?;
@@ -247,7 +259,7 @@ impl<T: MipTexture> Mips<T> {
     /// The atlas of the levels' texels (module documentation), row-major, [`atlas_size`] wide;
     /// texels outside every level are zero.
     pub fn atlas(&self) -> Vec<[f32; 4]> {
-        self.atlas_layers()[0].clone()
+        self.atlas_layers().swap_remove(0)
     }
 
     /// The levels' atlases, one per layer (one layer for isotropic textures, four for quadrant

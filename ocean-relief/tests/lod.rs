@@ -128,6 +128,8 @@ fn quad_levels_are_valid_for_their_own_surface() {
 fn chain_errors() {
     let map = common::from_fn(16, Edge::Wrap, |i, j| ((i * 7 + j * 3) % 5) as f32 / 4.0);
     assert_eq!(max_levels(16), 4);
+    // Any other side holds level 0 alone; below 2 there is no texture.
+    assert_eq!((max_levels(12), max_levels(2), max_levels(1)), (1, 1, 0));
     let p = ConeParams::relaxed(1.0);
     assert!(ReliefMips::generate(&map, p, 4).is_ok());
     for bad in [0, 5] {

@@ -565,11 +565,7 @@ fn quad_mip_draw_with_isotropic_layers_is_the_isotropic_mip_draw() {
     let map = to_map(N, &boxes(N, 12, 2), Edge::Wrap).unwrap();
     let params = ConeParams::relaxed(1.0);
     let iso = ReliefMips::generate(&map, params, MIP_LEVELS).unwrap();
-    let mut maps = vec![map.clone()];
-    while maps.len() < MIP_LEVELS {
-        let next = ocean_relief::lod::downsample(maps.last().unwrap()).unwrap();
-        maps.push(next);
-    }
+    let maps = ocean_relief::lod::level_maps(&map, MIP_LEVELS).unwrap();
     let same = QuadReliefMips::from_levels(
         maps.iter()
             .map(|m| {
@@ -680,6 +676,21 @@ fn tie_maps() -> Vec<(String, HeightMap)> {
     out
 }
 
+/// The cone-map parity cases: the procedural maps of [`test_maps`] with relaxed and
+/// conservative cones capped at 1 and the `extra` parameters, and the tie maps with those two,
+/// a cap of 64 (many tile copies in wrap mode) and one of 0.01 (every texel capped).
+fn cone_cases(extra: &[ConeParams]) -> Vec<(String, HeightMap, Vec<ConeParams>)> {
+    let book = [ConeParams::relaxed(1.0), ConeParams::conservative(1.0)];
+    let procedural = test_maps()
+        .into_iter()
+        .map(|(name, map)| (name.to_owned(), map, [&book[..], extra].concat()));
+    let ties = tie_maps().into_iter().map(|(name, map)| {
+        let caps = [ConeParams::relaxed(64.0), ConeParams::relaxed(0.01)];
+        (name, map, [&book[..], &caps[..]].concat())
+    });
+    procedural.chain(ties).collect()
+}
+
 /// GPU cone maps against `ConeMap::generate` on the six procedural maps in both edge modes and
 /// the tie maps, relaxed and conservative, with the book's cap (1), a wide one (4, and 64 on the
 /// tie maps: many tile copies in wrap mode) and a tiny one (0.01: every texel capped).
@@ -694,32 +705,7 @@ fn cone_maps_match_the_cpu() {
     };
     let exact = software(&ctx);
     let generator = ConeMapGenerator::new(&ctx).unwrap();
-    let mut cases: Vec<(String, HeightMap, Vec<ConeParams>)> = test_maps()
-        .into_iter()
-        .map(|(name, map)| {
-            (
-                name.to_owned(),
-                map,
-                vec![
-                    ConeParams::relaxed(1.0),
-                    ConeParams::conservative(1.0),
-                    ConeParams::relaxed(4.0),
-                ],
-            )
-        })
-        .collect();
-    for (name, map) in tie_maps() {
-        cases.push((
-            name,
-            map,
-            vec![
-                ConeParams::relaxed(1.0),
-                ConeParams::conservative(1.0),
-                ConeParams::relaxed(64.0),
-                ConeParams::relaxed(0.01),
-            ],
-        ));
-    }
+    let cases = cone_cases(&[ConeParams::relaxed(4.0)]);
     let mut count = 0;
     for (name, map, params) in &cases {
         for &p in params {
@@ -759,28 +745,7 @@ fn quad_cone_maps_match_the_cpu() {
     };
     let exact = software(&ctx);
     let generator = ConeMapGenerator::new(&ctx).unwrap();
-    let mut cases: Vec<(String, HeightMap, Vec<ConeParams>)> = test_maps()
-        .into_iter()
-        .map(|(name, map)| {
-            (
-                name.to_owned(),
-                map,
-                vec![ConeParams::relaxed(1.0), ConeParams::conservative(1.0)],
-            )
-        })
-        .collect();
-    for (name, map) in tie_maps() {
-        cases.push((
-            name,
-            map,
-            vec![
-                ConeParams::relaxed(1.0),
-                ConeParams::conservative(1.0),
-                ConeParams::relaxed(64.0),
-                ConeParams::relaxed(0.01),
-            ],
-        ));
-    }
+    let cases = cone_cases(&[]);
     let (mut count, mut wider) = (0, 0usize);
     for (name, map, params) in &cases {
         for &p in params {
@@ -972,11 +937,7 @@ impl Setup {
         s.scene.tiles = DVec2::splat(tiles);
         s.frame = s.scene.tangent_frame().unwrap();
         let mips = ReliefMips::generate(&s.map, ConeParams::relaxed(1.0), MIP_LEVELS).unwrap();
-        let mut maps = vec![s.map.clone()];
-        while maps.len() < MIP_LEVELS {
-            let next = ocean_relief::lod::downsample(maps.last().unwrap()).unwrap();
-            maps.push(next);
-        }
+        let maps = ocean_relief::lod::level_maps(&s.map, MIP_LEVELS).unwrap();
         s.mips = Some((mips, maps));
         s
     }
