@@ -62,4 +62,8 @@ pub enum EvalError {
     /// The grid description is invalid.
     #[error("invalid grid: {0}")]
     Grid(&'static str),
+    /// The instruction set asked for ([`crate::evaluate_layers_isa`]) is not available on this
+    /// CPU.
+    #[error("instruction set {0:?} is not available on this CPU")]
+    Isa(crate::Isa),
 }

@@ -31,11 +31,12 @@ use glam::Vec3;
 
 use crate::error::EvalError;
 use crate::grid::Grid;
-use crate::kernel::{Acc, HALF, LANES, WaveCoeffs};
+use pulp::WithSimd;
+
+use crate::isa::{Isa, Kernel};
+use crate::kernel::{Acc, HALF, Interleave, LANES, Portable, WaveCoeffs};
 use crate::modulation::Modulation;
-use crate::trochoid::{
-    ColumnSinCos, GridPlan, LANE_INDEX, WaveSet, check_outputs, check_time, dispatch,
-};
+use crate::trochoid::{ColumnSinCos, GridPlan, LANE_INDEX, WaveSet, check_outputs, check_time};
 
 /// A rectangle of grid points: columns `i0..i0 + nx`, rows `j0..j0 + nz`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -100,10 +101,14 @@ struct Plan<'a> {
     plans: Vec<GridPlan<'a>>,
     cols: Vec<Vec<ColumnSinCos>>,
     height: Option<&'a [f32]>,
+    /// The instruction set the rows run on.
+    kernel: Kernel,
 }
 
 impl<'a> Plan<'a> {
+    #[allow(clippy::too_many_arguments)]
     fn new(
+        isa: Isa,
         grid: &'a Grid,
         t: f64,
         layers: &'a [Layer<'a>],
@@ -150,6 +155,7 @@ impl<'a> Plan<'a> {
             plans,
             cols,
             height,
+            kernel: Kernel::new(isa).ok_or(EvalError::Isa(isa))?,
         })
     }
 
@@ -191,16 +197,31 @@ impl<'a> Plan<'a> {
             });
         }
         let height = self.height.map(|h| &h[j * nx..(j + 1) * nx]);
-        dispatch(LayerRow {
-            layers: &scratch.active,
-            rows: &scratch.rows,
-            height,
-            first_chunk: c0,
-            dx: self.grid.spacing.x as f32,
-            z: self.grid.local(0, j).1,
-            pos: &mut pos[a..b],
-            nrm: &mut nrm[a..b],
-        });
+        macro_rules! row {
+            ($how:expr) => {
+                LayerRow {
+                    layers: &scratch.active,
+                    rows: &scratch.rows,
+                    height,
+                    first_chunk: c0,
+                    dx: self.grid.spacing.x as f32,
+                    z: self.grid.local(0, j).1,
+                    pos: &mut pos[a..b],
+                    nrm: &mut nrm[a..b],
+                    how: $how,
+                }
+            };
+        }
+        match self.kernel {
+            // Built for the compilation target: pulp's dispatch would pick AVX2 here.
+            Kernel::Portable => row!(Portable).with_simd(pulp::Scalar::new()),
+            #[cfg(target_arch = "x86_64")]
+            Kernel::Avx2(simd) => pulp::Simd::vectorize(simd, row!(simd)),
+            #[cfg(target_arch = "x86_64")]
+            Kernel::Avx512(simd) => {
+                pulp::Simd::vectorize(simd, crate::avx512::Wide(simd, row!(Portable)))
+            }
+        }
     }
 }
 
@@ -214,32 +235,34 @@ struct Scratch<'p> {
 }
 
 /// One layer's data for one grid row.
-struct ActiveLayer<'a> {
-    coeffs: &'a [WaveCoeffs],
+pub(crate) struct ActiveLayer<'a> {
+    pub(crate) coeffs: &'a [WaveCoeffs],
     /// Where the sin and cos of each wave's row phase lie in [`Scratch::rows`].
-    rows: core::ops::Range<usize>,
+    pub(crate) rows: core::ops::Range<usize>,
     /// The layer's column table (see [`GridPlan`]).
-    cols: &'a [ColumnSinCos],
+    pub(crate) cols: &'a [ColumnSinCos],
     /// The grid column of `modulation[0]`.
-    first: usize,
+    pub(crate) first: usize,
     /// The layer's modulation along this row, over the row's span of non-zero values: zero
     /// on either side.
-    modulation: &'a [[f32; 2]],
+    pub(crate) modulation: &'a [[f32; 2]],
 }
 
-struct LayerRow<'a> {
-    layers: &'a [ActiveLayer<'a>],
-    rows: &'a [[f32; 2]],
-    height: Option<&'a [f32]>,
+pub(crate) struct LayerRow<'a, I> {
+    pub(crate) layers: &'a [ActiveLayer<'a>],
+    pub(crate) rows: &'a [[f32; 2]],
+    pub(crate) height: Option<&'a [f32]>,
     /// Chunk of the row where `pos` and `nrm` start.
-    first_chunk: usize,
-    dx: f32,
-    z: f32,
-    pos: &'a mut [Vec3],
-    nrm: &'a mut [Vec3],
+    pub(crate) first_chunk: usize,
+    pub(crate) dx: f32,
+    pub(crate) z: f32,
+    pub(crate) pos: &'a mut [Vec3],
+    pub(crate) nrm: &'a mut [Vec3],
+    /// How the finished chunks are interleaved.
+    pub(crate) how: I,
 }
 
-impl pulp::WithSimd for LayerRow<'_> {
+impl<I: Interleave> pulp::WithSimd for LayerRow<'_, I> {
     type Output = ();
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _: S) {
@@ -248,7 +271,7 @@ impl pulp::WithSimd for LayerRow<'_> {
 }
 
 #[inline(always)]
-fn layer_row_kernel(row: LayerRow<'_>) {
+fn layer_row_kernel<I: Interleave>(row: LayerRow<'_, I>) {
     let LayerRow {
         layers,
         rows,
@@ -258,6 +281,7 @@ fn layer_row_kernel(row: LayerRow<'_>) {
         z,
         pos: out_pos,
         nrm: out_nrm,
+        how,
     } = row;
     for (n, (pos, nrm)) in out_pos
         .chunks_mut(LANES)
@@ -268,8 +292,8 @@ fn layer_row_kernel(row: LayerRow<'_>) {
         let first_col = c * LANES;
         // Each half chunk sums every layer's waves with its sums in registers (eight AVX2
         // registers), then the halves meet for the normalisation and the stores.
-        let lo = half_sums(layers, rows, c, first_col);
-        let hi = half_sums(layers, rows, c, first_col + HALF);
+        let lo = lane_sums::<HALF>(layers, rows, c, first_col);
+        let hi = lane_sums::<HALF>(layers, rows, c, first_col + HALF);
         let mut acc = Acc::from_halves(&lo, &hi);
         if let Some(h) = height {
             let mut add = [0.0f32; LANES];
@@ -282,38 +306,38 @@ fn layer_row_kernel(row: LayerRow<'_>) {
         for l in 0..LANES {
             x[l] = (first + LANE_INDEX[l]) * dx;
         }
-        acc.finish(&x, &[z; LANES], pos, nrm);
+        acc.finished(&x, &[z; LANES]).store(how, pos, nrm);
     }
 }
 
-/// The sums of every layer over the [`HALF`] lanes from grid column `first_col` (in chunk `c`
+/// The sums of every layer over the `N` lanes (a chunk or half of one) from grid column `first_col` (in chunk `c`
 /// of the column tables).
 #[inline(always)]
-fn half_sums(
+fn lane_sums<const N: usize>(
     layers: &[ActiveLayer<'_>],
     rows: &[[f32; 2]],
     c: usize,
     first_col: usize,
-) -> Acc<HALF> {
-    let mut acc = Acc::<HALF>::new();
+) -> Acc<N> {
+    let mut acc = Acc::<N>::new();
     let offset = first_col - c * LANES;
     for layer in layers {
         let end = layer.first + layer.modulation.len();
-        if end <= first_col || layer.first >= first_col + HALF {
+        if end <= first_col || layer.first >= first_col + N {
             continue;
         }
         // The modulation of these lanes; zero outside the row's span.
-        let mut re = [0.0f32; HALF];
-        let mut im = [0.0f32; HALF];
-        if first_col >= layer.first && first_col + HALF <= end {
+        let mut re = [0.0f32; N];
+        let mut im = [0.0f32; N];
+        if first_col >= layer.first && first_col + N <= end {
             // All lanes inside the span: one contiguous run to de-interleave.
-            let run = &layer.modulation[first_col - layer.first..][..HALF];
-            for l in 0..HALF {
+            let run = &layer.modulation[first_col - layer.first..][..N];
+            for l in 0..N {
                 re[l] = run[l][0];
                 im[l] = run[l][1];
             }
         } else {
-            for l in 0..HALF {
+            for l in 0..N {
                 let i = first_col + l;
                 if i >= layer.first && i < end {
                     [re[l], im[l]] = layer.modulation[i - layer.first];
@@ -324,7 +348,7 @@ fn half_sums(
         // sum: skipping it changes no bit. The test ORs the magnitude bits, a reduction LLVM
         // vectorises (a float sum would be evaluated lane by lane, in order).
         let mut bits = 0u32;
-        for l in 0..HALF {
+        for l in 0..N {
             bits |= (re[l].to_bits() | im[l].to_bits()) & 0x7fff_ffff;
         }
         if bits == 0 {
@@ -334,9 +358,9 @@ fn half_sums(
         let table = &layer.cols[c * waves..(c + 1) * waves];
         let rows = &rows[layer.rows.clone()];
         for ((coeff, &[rs, rc]), col) in layer.coeffs.iter().zip(rows).zip(table) {
-            let mut s = [0.0f32; HALF];
-            let mut co = [0.0f32; HALF];
-            for l in 0..HALF {
+            let mut s = [0.0f32; N];
+            let mut co = [0.0f32; N];
+            for l in 0..N {
                 let (cs, cc) = (col.sin[offset + l], col.cos[offset + l]);
                 let (sin, cos) = (rs * cc + rc * cs, rc * cc - rs * cs);
                 let (mr, mi) = (re[l], im[l]);
@@ -401,7 +425,49 @@ pub fn evaluate_layers_region(
     out_pos: &mut [Vec3],
     out_nrm: &mut [Vec3],
 ) -> Result<(), EvalError> {
-    let plan = Plan::new(grid, t, layers, height, out_pos, out_nrm, false)?;
+    region_on(
+        Isa::best(),
+        grid,
+        t,
+        layers,
+        height,
+        region,
+        out_pos,
+        out_nrm,
+    )
+}
+
+/// [`evaluate_layers`] on the instruction set `isa` instead of the fastest one: the same bits
+/// (see [`crate::isa`]), for tests that check that and for benchmarks.
+///
+/// # Errors
+///
+/// As [`evaluate_layers`]; [`EvalError::Isa`] if this CPU cannot run `isa`.
+pub fn evaluate_layers_isa(
+    isa: Isa,
+    grid: &Grid,
+    t: f64,
+    layers: &[Layer<'_>],
+    height: Option<&[f32]>,
+    out_pos: &mut [Vec3],
+    out_nrm: &mut [Vec3],
+) -> Result<(), EvalError> {
+    let all = whole(grid);
+    region_on(isa, grid, t, layers, height, all, out_pos, out_nrm)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn region_on(
+    isa: Isa,
+    grid: &Grid,
+    t: f64,
+    layers: &[Layer<'_>],
+    height: Option<&[f32]>,
+    region: GridRect,
+    out_pos: &mut [Vec3],
+    out_nrm: &mut [Vec3],
+) -> Result<(), EvalError> {
+    let plan = Plan::new(isa, grid, t, layers, height, out_pos, out_nrm, false)?;
     let Some((rows, chunks)) = region_span(grid, region)? else {
         return Ok(());
     };
@@ -471,7 +537,7 @@ pub fn evaluate_layers_region_par(
     out_nrm: &mut [Vec3],
 ) -> Result<(), EvalError> {
     use rayon::prelude::*;
-    let plan = Plan::new(grid, t, layers, height, out_pos, out_nrm, true)?;
+    let plan = Plan::new(Isa::best(), grid, t, layers, height, out_pos, out_nrm, true)?;
     let Some((rows, chunks)) = region_span(grid, region)? else {
         return Ok(());
     };

@@ -44,7 +44,8 @@
 //! The `f32` wave kernels use only IEEE-754 additions, multiplications, square roots and
 //! divisions, in a fixed order, with no fused multiply-add and no platform `sin`/`cos`
 //! ([`sincos`] is this crate's own). The same inputs therefore give bit-identical outputs on every
-//! platform, for every SIMD width and thread count. Enable the `libm` feature to make the `f64`
+//! platform, for every SIMD width and thread count: the instruction set chosen at run time
+//! ([`Isa`]) changes only the speed. Enable the `libm` feature to make the `f64`
 //! set-up functions (`tanh`, `sqrt` in the dispersion relation, the `f64` reference path) pure Rust
 //! too.
 //!
@@ -65,11 +66,16 @@ extern crate std;
 #[cfg(not(any(feature = "std", feature = "libm")))]
 compile_error!("ocean-core needs the `std` or the `libm` feature for its f64 math functions");
 
+#[cfg(target_arch = "x86_64")]
+mod avx2;
+#[cfg(target_arch = "x86_64")]
+mod avx512;
 pub mod camera;
 pub mod dispersion;
 mod error;
 pub mod frustum;
 pub mod grid;
+pub mod isa;
 pub mod kernel;
 pub mod layers;
 pub mod math;
@@ -89,8 +95,9 @@ pub use dispersion::{Depth, GRAVITY};
 pub use error::{EvalError, WaveError};
 pub use frustum::{Containment, Frustum, FrustumError};
 pub use grid::Grid;
+pub use isa::Isa;
 pub use kernel::WaveCoeffs;
-pub use layers::{GridRect, Layer, evaluate_layers, evaluate_layers_region};
+pub use layers::{GridRect, Layer, evaluate_layers, evaluate_layers_isa, evaluate_layers_region};
 #[cfg(feature = "std")]
 pub use layers::{evaluate_layers_par, evaluate_layers_region_par};
 pub use modulation::Modulation;

@@ -1,0 +1,272 @@
+//! The layers kernel ([`crate::layers`]) written out in AVX-512 for CPUs that have it.
+//!
+//! With 32 vector registers a whole 16-point chunk fits: the eight running sums, the chunk's
+//! modulation and the wave's temporaries stay in registers across every layer and wave, where
+//! the AVX2 kernel sums each half chunk on its own. Written with intrinsics (pulp's safe
+//! wrappers) rather than left to LLVM's vectoriser, which for the same loops emitted scalar
+//! reductions, masked partial loads and stack round trips.
+//!
+//! **Bits.** Every lane performs exactly the IEEE operations of the portable kernel, in the same
+//! order, with no fused multiply-add: [`Acc::add_sin_cos`](crate::kernel::Acc) for each wave,
+//! [`Acc::finished`](crate::kernel::Acc) for the normal. Its output is therefore bit-identical
+//! to the AVX2 and portable paths (tested in `tests/layers_isa.rs`), whatever the CPU.
+
+use core::arch::x86_64::{__m512, __m512i};
+
+use glam::Vec3;
+use pulp::x86::V4;
+
+use crate::kernel::{LANES, Portable};
+use crate::layers::{ActiveLayer, LayerRow};
+use crate::trochoid::LANE_INDEX;
+
+const _: () = assert!(LANES == 16, "one AVX-512 vector per chunk");
+
+/// One row of [`crate::layers`] on AVX-512: what [`pulp::Simd::vectorize`] runs.
+pub(crate) struct Wide<'a>(pub(crate) V4, pub(crate) LayerRow<'a, Portable>);
+
+impl pulp::WithSimd for Wide<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        row(self.0, self.1);
+    }
+}
+
+/// Even and odd floats of 32 (`permutex2var` indices: 0–15 pick from the first operand,
+/// 16–31 from the second): the real and imaginary parts of 16 `[re, im]` pairs.
+const EVEN: [i32; LANES] = {
+    let mut v = [0i32; LANES];
+    let mut l = 0;
+    while l < LANES {
+        v[l] = 2 * l as i32;
+        l += 1;
+    }
+    v
+};
+const ODD: [i32; LANES] = {
+    let mut v = [0i32; LANES];
+    let mut l = 0;
+    while l < LANES {
+        v[l] = 2 * l as i32 + 1;
+        l += 1;
+    }
+    v
+};
+
+/// For output vector `k` of 16 points interleaved as `xyz` (48 floats), the indices of the
+/// first step (x from the first operand, y from the second; z slots left at 0) and of the
+/// second (z from the second operand into the z slots, every other slot kept).
+const fn interleave_indices(k: usize) -> ([i32; LANES], [i32; LANES]) {
+    let mut first = [0i32; LANES];
+    let mut second = [0i32; LANES];
+    let mut e = 0;
+    while e < LANES {
+        let g = LANES * k + e;
+        let (point, component) = ((g / 3) as i32, g % 3);
+        first[e] = match component {
+            0 => point,
+            1 => LANES as i32 + point,
+            _ => 0,
+        };
+        second[e] = if component == 2 {
+            LANES as i32 + point
+        } else {
+            e as i32
+        };
+        e += 1;
+    }
+    (first, second)
+}
+const XYZ: [([i32; LANES], [i32; LANES]); 3] = [
+    interleave_indices(0),
+    interleave_indices(1),
+    interleave_indices(2),
+];
+
+#[inline(always)]
+fn v(a: [f32; LANES]) -> __m512 {
+    bytemuck::cast(a)
+}
+
+#[inline(always)]
+fn vi(a: [i32; LANES]) -> __m512i {
+    bytemuck::cast(a)
+}
+
+/// The 48 floats of 16 points: `x`, `y`, `z` interleaved.
+#[inline(always)]
+fn interleave(simd: V4, x: __m512, y: __m512, z: __m512) -> [[f32; LANES]; 3] {
+    let f = simd.avx512f;
+    let mut out = [[0.0f32; LANES]; 3];
+    for (k, o) in out.iter_mut().enumerate() {
+        let (first, second) = XYZ[k];
+        let xy = f._mm512_permutex2var_ps(x, vi(first), y);
+        *o = bytemuck::cast(f._mm512_permutex2var_ps(xy, vi(second), z));
+    }
+    out
+}
+
+/// The modulation of the chunk from grid column `first_col`, zero outside the layer's span:
+/// (real parts, imaginary parts).
+#[inline(always)]
+fn modulation(simd: V4, layer: &ActiveLayer<'_>, first_col: usize) -> (__m512, __m512) {
+    let f = simd.avx512f;
+    let end = layer.first + layer.modulation.len();
+    if first_col >= layer.first && first_col + LANES <= end {
+        let run = &layer.modulation[first_col - layer.first..][..LANES];
+        // 16 pairs are two vectors of 16 floats.
+        let halves: &[[f32; LANES]] = bytemuck::cast_slice(run);
+        let (lo, hi) = (v(halves[0]), v(halves[1]));
+        (
+            f._mm512_permutex2var_ps(lo, vi(EVEN), hi),
+            f._mm512_permutex2var_ps(lo, vi(ODD), hi),
+        )
+    } else {
+        partial_modulation(layer, first_col, end)
+    }
+}
+
+/// Chunks of modulation read ahead of the kernel: the hardware prefetchers lag several
+/// interleaved streams (every layer's modulation and the two outputs).
+const AHEAD: usize = 8;
+
+/// Asks for the modulation [`AHEAD`] chunks on (two cache lines a chunk). A prefetch reads
+/// nothing and faults on no address, so one past the end of the span is harmless.
+#[inline(always)]
+fn prefetch(simd: V4, layer: &ActiveLayer<'_>, first_col: usize) {
+    let at = (first_col + AHEAD * LANES).wrapping_sub(layer.first);
+    let p = layer.modulation.as_ptr().wrapping_add(at).cast::<i8>();
+    simd.sse
+        ._mm_prefetch::<{ core::arch::x86_64::_MM_HINT_T0 }>(p);
+    simd.sse
+        ._mm_prefetch::<{ core::arch::x86_64::_MM_HINT_T0 }>(p.wrapping_add(64));
+}
+
+/// [`modulation`] for a chunk that the span covers in part (at most two a layer and row).
+#[inline(never)]
+fn partial_modulation(layer: &ActiveLayer<'_>, first_col: usize, end: usize) -> (__m512, __m512) {
+    let mut re = [0.0f32; LANES];
+    let mut im = [0.0f32; LANES];
+    for l in 0..LANES {
+        let i = first_col + l;
+        if i >= layer.first && i < end {
+            [re[l], im[l]] = layer.modulation[i - layer.first];
+        }
+    }
+    (v(re), v(im))
+}
+
+#[inline(always)]
+fn row(simd: V4, row: LayerRow<'_, Portable>) {
+    let f = simd.avx512f;
+    let LayerRow {
+        layers,
+        rows,
+        height,
+        first_chunk,
+        dx,
+        z,
+        pos: out_pos,
+        nrm: out_nrm,
+        how: _,
+    } = row;
+    let (add, sub, mul) = (
+        |a, b| f._mm512_add_ps(a, b),
+        |a, b| f._mm512_sub_ps(a, b),
+        |a, b| f._mm512_mul_ps(a, b),
+    );
+    let zero = f._mm512_setzero_ps();
+    let one = f._mm512_set1_ps(1.0);
+    let magnitude = f._mm512_set1_epi32(0x7fff_ffff);
+    for (n, (pos, nrm)) in out_pos
+        .chunks_mut(LANES)
+        .zip(out_nrm.chunks_mut(LANES))
+        .enumerate()
+    {
+        let c = first_chunk + n;
+        let first_col = c * LANES;
+        let (mut sdx, mut sy, mut sdz) = (zero, zero, zero);
+        let (mut jxx, mut jxz, mut jzz) = (one, zero, one);
+        let (mut sx, mut sz) = (zero, zero);
+        for layer in layers {
+            let end = layer.first + layer.modulation.len();
+            if end <= first_col || layer.first >= first_col + LANES {
+                continue;
+            }
+            prefetch(simd, layer, first_col);
+            let (mr, mi) = modulation(simd, layer, first_col);
+            // Skip a layer whose μ is zero on every lane (land): it would add ±0.
+            let bits = f._mm512_or_si512(bytemuck::cast(mr), bytemuck::cast(mi));
+            if f._mm512_test_epi32_mask(bits, magnitude) == 0 {
+                continue;
+            }
+            let waves = layer.coeffs.len();
+            let table = &layer.cols[c * waves..(c + 1) * waves];
+            let rows = &rows[layer.rows.clone()];
+            for ((k, &[rs, rc]), col) in layer.coeffs.iter().zip(rows).zip(table) {
+                let (cs, cc) = (v(col.sin), v(col.cos));
+                let (rs, rc) = (f._mm512_set1_ps(rs), f._mm512_set1_ps(rc));
+                let sin = add(mul(rs, cc), mul(rc, cs));
+                let cos = sub(mul(rc, cc), mul(rs, cs));
+                let s = add(mul(sin, mr), mul(cos, mi));
+                let co = sub(mul(cos, mr), mul(sin, mi));
+                let b = |x: f32| f._mm512_set1_ps(x);
+                sdx = sub(sdx, mul(b(k.ahx), s));
+                sdz = sub(sdz, mul(b(k.ahz), s));
+                sy = add(sy, mul(b(k.a), co));
+                jxx = sub(jxx, mul(b(k.cxx), co));
+                jxz = sub(jxz, mul(b(k.cxz), co));
+                jzz = sub(jzz, mul(b(k.czz), co));
+                sx = sub(sx, mul(b(k.gx), s));
+                sz = sub(sz, mul(b(k.gz), s));
+            }
+        }
+        let len = pos.len().min(LANES);
+        if let Some(h) = height {
+            let mut add_h = [0.0f32; LANES];
+            add_h[..len].copy_from_slice(&h[first_col..first_col + len]);
+            sy = add(sy, v(add_h));
+        }
+        // Acc::finished, lane for lane.
+        let x = mul(
+            add(f._mm512_set1_ps(first_col as f32), v(LANE_INDEX)),
+            f._mm512_set1_ps(dx),
+        );
+        let px = add(x, sdx);
+        let pz = add(f._mm512_set1_ps(z), sdz);
+        let a = sub(mul(sz, jxz), mul(jzz, sx));
+        let b = sub(mul(jzz, jxx), mul(jxz, jxz));
+        let cz = sub(mul(jxz, sx), mul(sz, jxx));
+        let len2 = add(add(mul(a, a), mul(b, b)), mul(cz, cz));
+        let degenerate = f._mm512_cmp_ps_mask::<{ core::arch::x86_64::_CMP_LT_OQ }>(
+            len2,
+            f._mm512_set1_ps(f32::MIN_POSITIVE),
+        );
+        let inv = f._mm512_div_ps(
+            one,
+            f._mm512_sqrt_ps(f._mm512_mask_blend_ps(degenerate, len2, one)),
+        );
+        let nx = f._mm512_mask_blend_ps(degenerate, mul(a, inv), zero);
+        let ny = f._mm512_mask_blend_ps(degenerate, mul(b, inv), one);
+        let nz = f._mm512_mask_blend_ps(degenerate, mul(cz, inv), zero);
+        let p = interleave(simd, px, sy, pz);
+        let q = interleave(simd, nx, ny, nz);
+        store(&p, pos);
+        store(&q, nrm);
+    }
+}
+
+/// Writes the first `out.len()` (at most 16) of 16 interleaved points.
+#[inline(always)]
+fn store(xyz: &[[f32; LANES]; 3], out: &mut [Vec3]) {
+    if out.len() >= LANES {
+        // Three whole vectors: fixed-size stores, not a call to memcpy.
+        let full: &mut [[f32; LANES]] = bytemuck::cast_slice_mut(&mut out[..LANES]);
+        full.copy_from_slice(xyz);
+    } else {
+        let flat: &[f32] = bytemuck::cast_slice(xyz);
+        let n = out.len();
+        bytemuck::cast_slice_mut::<Vec3, f32>(out).copy_from_slice(&flat[..3 * n]);
+    }
+}
