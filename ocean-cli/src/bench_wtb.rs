@@ -17,10 +17,15 @@
 //!    for the effects that are cached, on rebuild (every box moved before every frame).
 //! 5. **Height queries**: `Frame::heights` and `Frame::heights_par` at random points over
 //!    scenario 1 at 512².
+//! 6. **GPU**: scenario 1's frames on the GPU (unless `--no-gpu`).
+//! 7. **Instruction sets**: scenario 1's layers at 1024² on one thread with each kernel this
+//!    CPU can run (`ocean_core::Isa`), against a one-thread memory baseline, outputs compared
+//!    bit for bit.
 
 use std::time::Instant;
 
 use glam::{DVec2, DVec3, Vec3};
+use ocean_core::Isa;
 use ocean_core::camera::{Camera, DepthConvention, Far, Projection};
 use ocean_core::frustum::Frustum;
 use ocean_core::rng::Pcg32;
@@ -536,6 +541,9 @@ pub fn wtb(args: &BenchArgs) -> Result<Value, String> {
         }
     };
 
+    // 7. The layers kernel on each instruction set this CPU has, one thread.
+    let isa = isa_figure(runs)?;
+
     // Judged on the incremental path: with buffers kept between frames, a grid no box covers
     // needs no rewriting, so the ratio measures the wave work culling removes (the paper's
     // "water calculation"); the full-rewrite ratio is reported beside it.
@@ -547,6 +555,7 @@ pub fn wtb(args: &BenchArgs) -> Result<Value, String> {
         "suite": "wtb",
         "cpu": cpu_name(),
         "threads": threads,
+        "isa": format!("{:?}", Isa::best()),
         "runs": runs,
         "scenario_1": scenario,
         "scaling": {
@@ -559,6 +568,7 @@ pub fn wtb(args: &BenchArgs) -> Result<Value, String> {
         "effects": effect_tables,
         "queries": queries,
         "gpu": gpu,
+        "isa_kernels": isa,
         "targets": [
             target("scenario 1 at 1024²: frame / memory baseline", "max", json!(TARGET_RATIO_1024), ratio_1024, ratio_1024 <= TARGET_RATIO_1024),
             target("scaling t(2048²) / t(512²)", "range", json!([TARGET_SCALING.0, TARGET_SCALING.1]), scaling, (TARGET_SCALING.0..=TARGET_SCALING.1).contains(&scaling)),
@@ -568,6 +578,98 @@ pub fn wtb(args: &BenchArgs) -> Result<Value, String> {
         "wall_s": started.elapsed().as_secs_f64(),
     });
     Ok(report)
+}
+
+/// Side of figure 7's grid.
+const ISA_SIDE: usize = 1024;
+
+/// Figure 7: scenario 1's layers (`ocean_core::evaluate_layers_isa`) at 1024² on one thread,
+/// on every instruction set this CPU has, interleaved with a one-thread memory baseline. The
+/// outputs are compared bit for bit as well (they must agree: `ocean_core::isa`).
+fn isa_figure(runs: u32) -> Result<Value, String> {
+    let (mut scene, _) = scenario_1(ISA_SIDE, paper_effects());
+    let frame = scene.frame(T0, None).map_err(|e| e.to_string())?;
+    let layers = frame.layers();
+    let grid = frame.grid().grid();
+    let n = ISA_SIDE * ISA_SIDE;
+    let sets: Vec<Isa> = Isa::ALL.into_iter().filter(|i| i.is_available()).collect();
+    let mut outs: Vec<(Vec<Vec3>, Vec<Vec3>)> = sets
+        .iter()
+        .map(|_| (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]))
+        .collect();
+    let (mut bp, mut bq) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    let mut times: Vec<Vec<f64>> = vec![Vec::new(); sets.len() + 1];
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .map_err(|e| e.to_string())?;
+    one.install(|| -> Result<(), String> {
+        for round in 0..runs + 2 {
+            let t = Instant::now();
+            memory_baseline(ISA_SIDE, &mut bp, &mut bq);
+            std::hint::black_box((&bp, &bq));
+            let base = t.elapsed().as_secs_f64() * 1e3;
+            if round >= 2 {
+                times[0].push(base);
+            }
+            for (k, (&isa, (p, q))) in sets.iter().zip(outs.iter_mut()).enumerate() {
+                let t = Instant::now();
+                ocean_core::evaluate_layers_isa(
+                    isa,
+                    grid,
+                    frame.time(),
+                    &layers,
+                    frame.height_field(),
+                    p,
+                    q,
+                )
+                .map_err(|e| e.to_string())?;
+                std::hint::black_box((&p, &q));
+                if round >= 2 {
+                    times[k + 1].push(t.elapsed().as_secs_f64() * 1e3);
+                }
+            }
+        }
+        Ok(())
+    })?;
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let baseline_ms = median(&mut times[0]);
+    let portable_ms = median(&mut times[1].clone());
+    let identical = outs.windows(2).all(|w| {
+        let bits = |v: &[Vec3]| {
+            v.iter()
+                .map(|p| p.to_array().map(f32::to_bits))
+                .collect::<Vec<_>>()
+        };
+        bits(&w[0].0) == bits(&w[1].0) && bits(&w[0].1) == bits(&w[1].1)
+    });
+    if !identical {
+        return Err("instruction sets disagree on scenario 1's bits".to_string());
+    }
+    let kernels: Vec<Value> = sets
+        .iter()
+        .zip(times.iter_mut().skip(1))
+        .map(|(isa, t)| {
+            let ms = median(t);
+            json!({
+                "isa": format!("{isa:?}"),
+                "ms": ms,
+                "over_memory_baseline": ms / baseline_ms,
+                "speed_over_portable": portable_ms / ms,
+            })
+        })
+        .collect();
+    Ok(json!({
+        "side": ISA_SIDE,
+        "runs": runs,
+        "threads": 1,
+        "memory_baseline_ms": baseline_ms,
+        "kernels": kernels,
+        "bit_identical": identical,
+    }))
 }
 
 /// The suite's tables.
@@ -770,9 +872,10 @@ fn num(v: &Value) -> f64 {
 
 fn print_wtb(r: &Value) {
     println!(
-        "wtb: CPU {}, {} threads, {} rounds (fewer where stated); every time a median",
+        "wtb: CPU {}, {} threads, kernel {}, {} rounds (fewer where stated); every time a median",
         r["cpu"].as_str().unwrap_or("?"),
         r["threads"],
+        r["isa"].as_str().unwrap_or("?"),
         r["runs"]
     );
     println!();
@@ -925,6 +1028,23 @@ fn print_wtb(r: &Value) {
             "6. GPU: {}",
             g["unavailable"].as_str().unwrap_or("unavailable")
         ),
+    }
+    let k = &r["isa_kernels"];
+    println!();
+    println!(
+        "7. Layers kernel per instruction set, scenario 1 at {}², one thread (outputs bit-identical: {}); memory baseline {:.3} ms",
+        k["side"],
+        k["bit_identical"],
+        num(&k["memory_baseline_ms"])
+    );
+    for c in k["kernels"].as_array().into_iter().flatten() {
+        println!(
+            "   {:<9} {:>8.3} ms  {:>5.2}× the memory baseline  {:>5.2}× the portable kernel's speed",
+            c["isa"].as_str().unwrap_or("?"),
+            num(&c["ms"]),
+            num(&c["over_memory_baseline"]),
+            num(&c["speed_over_portable"]),
+        );
     }
     println!();
     println!("Targets (issue 3):");
