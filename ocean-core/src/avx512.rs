@@ -22,7 +22,8 @@ use crate::trochoid::LANE_INDEX;
 
 const _: () = assert!(LANES == 16, "one AVX-512 vector per chunk");
 
-/// One row of [`crate::layers`] on AVX-512: what [`pulp::Simd::vectorize`] runs.
+/// One row of [`crate::layers`] on AVX-512: what [`pulp::Simd::vectorize`] runs. The row's
+/// `how` goes unused: this kernel interleaves its outputs with its own permutes.
 pub(crate) struct Wide<'a>(pub(crate) V4, pub(crate) LayerRow<'a, Portable>);
 
 impl pulp::WithSimd for Wide<'_> {
@@ -94,17 +95,14 @@ fn vi(a: [i32; LANES]) -> __m512i {
     bytemuck::cast(a)
 }
 
-/// The 48 floats of 16 points: `x`, `y`, `z` interleaved.
+/// The 48 floats of 16 points: `x`, `y`, `z` interleaved, as three vectors.
 #[inline(always)]
-fn interleave(simd: V4, x: __m512, y: __m512, z: __m512) -> [[f32; LANES]; 3] {
+fn interleave(simd: V4, x: __m512, y: __m512, z: __m512) -> [__m512; 3] {
     let f = simd.avx512f;
-    let mut out = [[0.0f32; LANES]; 3];
-    for (k, o) in out.iter_mut().enumerate() {
-        let (first, second) = XYZ[k];
+    XYZ.map(|(first, second)| {
         let xy = f._mm512_permutex2var_ps(x, vi(first), y);
-        *o = bytemuck::cast(f._mm512_permutex2var_ps(xy, vi(second), z));
-    }
-    out
+        f._mm512_permutex2var_ps(xy, vi(second), z)
+    })
 }
 
 /// The modulation of the chunk from grid column `first_col`, zero outside the layer's span:
@@ -252,20 +250,23 @@ fn row(simd: V4, row: LayerRow<'_, Portable>) {
         let nz = f._mm512_mask_blend_ps(degenerate, mul(cz, inv), zero);
         let p = interleave(simd, px, sy, pz);
         let q = interleave(simd, nx, ny, nz);
-        store(&p, pos);
-        store(&q, nrm);
+        store(p, pos);
+        store(q, nrm);
     }
 }
 
 /// Writes the first `out.len()` (at most 16) of 16 interleaved points.
 #[inline(always)]
-fn store(xyz: &[[f32; LANES]; 3], out: &mut [Vec3]) {
+fn store(xyz: [__m512; 3], out: &mut [Vec3]) {
     if out.len() >= LANES {
-        // Three whole vectors: fixed-size stores, not a call to memcpy.
+        // Three whole vectors: fixed-size stores straight from the registers.
         let full: &mut [[f32; LANES]] = bytemuck::cast_slice_mut(&mut out[..LANES]);
-        full.copy_from_slice(xyz);
+        for (o, v) in full.iter_mut().zip(xyz) {
+            *o = bytemuck::cast(v);
+        }
     } else {
-        let flat: &[f32] = bytemuck::cast_slice(xyz);
+        let staged: [[f32; LANES]; 3] = xyz.map(bytemuck::cast);
+        let flat: &[f32] = bytemuck::cast_slice(&staged);
         let n = out.len();
         bytemuck::cast_slice_mut::<Vec3, f32>(out).copy_from_slice(&flat[..3 * n]);
     }
