@@ -1,4 +1,5 @@
-//! The layers kernel ([`crate::layers`]) written out in AVX-512 for CPUs that have it.
+//! The layers kernel ([`crate::layers`]) and the trochoid grid kernel ([`crate::trochoid`])
+//! written out in AVX-512 for CPUs that have it.
 //!
 //! With 32 vector registers a whole 16-point chunk fits: the eight running sums, the chunk's
 //! modulation and the wave's temporaries stay in registers across every layer and wave, where
@@ -16,9 +17,9 @@ use core::arch::x86_64::{__m512, __m512i};
 use glam::Vec3;
 use pulp::x86::V4;
 
-use crate::kernel::{LANES, Portable};
+use crate::kernel::{LANES, Portable, WaveCoeffs};
 use crate::layers::{ActiveLayer, LayerRow};
-use crate::trochoid::LANE_INDEX;
+use crate::trochoid::{ColumnSinCos, LANE_INDEX};
 
 const _: () = assert!(LANES == 16, "one AVX-512 vector per chunk");
 
@@ -155,6 +156,127 @@ fn partial_modulation(layer: &ActiveLayer<'_>, first_col: usize, end: usize) -> 
     (v(re), v(im))
 }
 
+/// The eight running sums of a chunk ([`Acc`](crate::kernel::Acc)'s fields), one vector each.
+#[derive(Clone, Copy)]
+struct Sums {
+    dx: __m512,
+    y: __m512,
+    dz: __m512,
+    jxx: __m512,
+    jxz: __m512,
+    jzz: __m512,
+    sx: __m512,
+    sz: __m512,
+}
+
+impl Sums {
+    /// `Acc::new`: zero displacement, identity Jacobian, zero slope.
+    #[inline(always)]
+    fn new(simd: V4) -> Self {
+        let f = simd.avx512f;
+        let (zero, one) = (f._mm512_setzero_ps(), f._mm512_set1_ps(1.0));
+        Self {
+            dx: zero,
+            y: zero,
+            dz: zero,
+            jxx: one,
+            jxz: zero,
+            jzz: one,
+            sx: zero,
+            sz: zero,
+        }
+    }
+
+    /// `Acc::add_sin_cos`: one wave, given its sine and cosine on every lane.
+    #[inline(always)]
+    fn add(&mut self, simd: V4, k: &WaveCoeffs, s: __m512, co: __m512) {
+        let f = simd.avx512f;
+        let b = |x: f32| f._mm512_set1_ps(x);
+        let (add, sub, mul) = (
+            |a, b| f._mm512_add_ps(a, b),
+            |a, b| f._mm512_sub_ps(a, b),
+            |a, b| f._mm512_mul_ps(a, b),
+        );
+        self.dx = sub(self.dx, mul(b(k.ahx), s));
+        self.dz = sub(self.dz, mul(b(k.ahz), s));
+        self.y = add(self.y, mul(b(k.a), co));
+        self.jxx = sub(self.jxx, mul(b(k.cxx), co));
+        self.jxz = sub(self.jxz, mul(b(k.cxz), co));
+        self.jzz = sub(self.jzz, mul(b(k.czz), co));
+        self.sx = sub(self.sx, mul(b(k.gx), s));
+        self.sz = sub(self.sz, mul(b(k.gz), s));
+    }
+
+    /// `Acc::finished` and the interleaved stores: the chunk from grid column `first_col` of
+    /// a row at `z`, columns `dx` apart, into the first `pos.len()` (at most 16) points.
+    #[inline(always)]
+    fn finish(
+        self,
+        simd: V4,
+        first_col: usize,
+        dx: f32,
+        z: f32,
+        pos: &mut [Vec3],
+        nrm: &mut [Vec3],
+    ) {
+        let f = simd.avx512f;
+        let (add, sub, mul) = (
+            |a, b| f._mm512_add_ps(a, b),
+            |a, b| f._mm512_sub_ps(a, b),
+            |a, b| f._mm512_mul_ps(a, b),
+        );
+        let (zero, one) = (f._mm512_setzero_ps(), f._mm512_set1_ps(1.0));
+        let Sums {
+            dx: sdx,
+            y,
+            dz: sdz,
+            jxx,
+            jxz,
+            jzz,
+            sx,
+            sz,
+        } = self;
+        let x = mul(
+            add(f._mm512_set1_ps(first_col as f32), v(LANE_INDEX)),
+            f._mm512_set1_ps(dx),
+        );
+        let px = add(x, sdx);
+        let pz = add(f._mm512_set1_ps(z), sdz);
+        let a = sub(mul(sz, jxz), mul(jzz, sx));
+        let b = sub(mul(jzz, jxx), mul(jxz, jxz));
+        let c = sub(mul(jxz, sx), mul(sz, jxx));
+        let len2 = add(add(mul(a, a), mul(b, b)), mul(c, c));
+        let degenerate = f._mm512_cmp_ps_mask::<{ core::arch::x86_64::_CMP_LT_OQ }>(
+            len2,
+            f._mm512_set1_ps(f32::MIN_POSITIVE),
+        );
+        let inv = f._mm512_div_ps(
+            one,
+            f._mm512_sqrt_ps(f._mm512_mask_blend_ps(degenerate, len2, one)),
+        );
+        let nx = f._mm512_mask_blend_ps(degenerate, mul(a, inv), zero);
+        let ny = f._mm512_mask_blend_ps(degenerate, mul(b, inv), one);
+        let nz = f._mm512_mask_blend_ps(degenerate, mul(c, inv), zero);
+        store(interleave(simd, px, y, pz), pos);
+        store(interleave(simd, nx, ny, nz), nrm);
+    }
+}
+
+/// sin θ and cos θ of every lane of one wave from its row's (`rs`, `rc`) and its column
+/// table's values, by angle addition: the grid kernels' four products and two sums.
+#[inline(always)]
+fn angle_sum(simd: V4, rs: f32, rc: f32, col: &ColumnSinCos) -> (__m512, __m512) {
+    let f = simd.avx512f;
+    let (add, sub, mul) = (
+        |a, b| f._mm512_add_ps(a, b),
+        |a, b| f._mm512_sub_ps(a, b),
+        |a, b| f._mm512_mul_ps(a, b),
+    );
+    let (cs, cc) = (v(col.sin), v(col.cos));
+    let (rs, rc) = (f._mm512_set1_ps(rs), f._mm512_set1_ps(rc));
+    (add(mul(rs, cc), mul(rc, cs)), sub(mul(rc, cc), mul(rs, cs)))
+}
+
 #[inline(always)]
 fn row(simd: V4, row: LayerRow<'_, Portable>) {
     let f = simd.avx512f;
@@ -174,8 +296,6 @@ fn row(simd: V4, row: LayerRow<'_, Portable>) {
         |a, b| f._mm512_sub_ps(a, b),
         |a, b| f._mm512_mul_ps(a, b),
     );
-    let zero = f._mm512_setzero_ps();
-    let one = f._mm512_set1_ps(1.0);
     let magnitude = f._mm512_set1_epi32(0x7fff_ffff);
     for (n, (pos, nrm)) in out_pos
         .chunks_mut(LANES)
@@ -184,9 +304,7 @@ fn row(simd: V4, row: LayerRow<'_, Portable>) {
     {
         let c = first_chunk + n;
         let first_col = c * LANES;
-        let (mut sdx, mut sy, mut sdz) = (zero, zero, zero);
-        let (mut jxx, mut jxz, mut jzz) = (one, zero, one);
-        let (mut sx, mut sz) = (zero, zero);
+        let mut sums = Sums::new(simd);
         for layer in layers {
             let end = layer.first + layer.modulation.len();
             if end <= first_col || layer.first >= first_col + LANES {
@@ -203,55 +321,59 @@ fn row(simd: V4, row: LayerRow<'_, Portable>) {
             let table = &layer.cols[c * waves..(c + 1) * waves];
             let rows = &rows[layer.rows.clone()];
             for ((k, &[rs, rc]), col) in layer.coeffs.iter().zip(rows).zip(table) {
-                let (cs, cc) = (v(col.sin), v(col.cos));
-                let (rs, rc) = (f._mm512_set1_ps(rs), f._mm512_set1_ps(rc));
-                let sin = add(mul(rs, cc), mul(rc, cs));
-                let cos = sub(mul(rc, cc), mul(rs, cs));
+                let (sin, cos) = angle_sum(simd, rs, rc, col);
                 let s = add(mul(sin, mr), mul(cos, mi));
                 let co = sub(mul(cos, mr), mul(sin, mi));
-                let b = |x: f32| f._mm512_set1_ps(x);
-                sdx = sub(sdx, mul(b(k.ahx), s));
-                sdz = sub(sdz, mul(b(k.ahz), s));
-                sy = add(sy, mul(b(k.a), co));
-                jxx = sub(jxx, mul(b(k.cxx), co));
-                jxz = sub(jxz, mul(b(k.cxz), co));
-                jzz = sub(jzz, mul(b(k.czz), co));
-                sx = sub(sx, mul(b(k.gx), s));
-                sz = sub(sz, mul(b(k.gz), s));
+                sums.add(simd, k, s, co);
             }
         }
-        let len = pos.len().min(LANES);
         if let Some(h) = height {
+            let len = pos.len().min(LANES);
             let mut add_h = [0.0f32; LANES];
             add_h[..len].copy_from_slice(&h[first_col..first_col + len]);
-            sy = add(sy, v(add_h));
+            sums.y = add(sums.y, v(add_h));
         }
-        // Acc::finished, lane for lane.
-        let x = mul(
-            add(f._mm512_set1_ps(first_col as f32), v(LANE_INDEX)),
-            f._mm512_set1_ps(dx),
-        );
-        let px = add(x, sdx);
-        let pz = add(f._mm512_set1_ps(z), sdz);
-        let a = sub(mul(sz, jxz), mul(jzz, sx));
-        let b = sub(mul(jzz, jxx), mul(jxz, jxz));
-        let cz = sub(mul(jxz, sx), mul(sz, jxx));
-        let len2 = add(add(mul(a, a), mul(b, b)), mul(cz, cz));
-        let degenerate = f._mm512_cmp_ps_mask::<{ core::arch::x86_64::_CMP_LT_OQ }>(
-            len2,
-            f._mm512_set1_ps(f32::MIN_POSITIVE),
-        );
-        let inv = f._mm512_div_ps(
-            one,
-            f._mm512_sqrt_ps(f._mm512_mask_blend_ps(degenerate, len2, one)),
-        );
-        let nx = f._mm512_mask_blend_ps(degenerate, mul(a, inv), zero);
-        let ny = f._mm512_mask_blend_ps(degenerate, mul(b, inv), one);
-        let nz = f._mm512_mask_blend_ps(degenerate, mul(cz, inv), zero);
-        let p = interleave(simd, px, sy, pz);
-        let q = interleave(simd, nx, ny, nz);
-        store(p, pos);
-        store(q, nrm);
+        sums.finish(simd, first_col, dx, z, pos, nrm);
+    }
+}
+
+/// One row of [`WaveSet::evaluate_grid`](crate::WaveSet::evaluate_grid) on AVX-512: the
+/// trochoid grid kernel (`crate::trochoid`) with the same operations, lane for lane.
+pub(crate) struct WideGrid<'a> {
+    pub(crate) simd: V4,
+    pub(crate) coeffs: &'a [WaveCoeffs],
+    pub(crate) rows: &'a [[f32; 2]],
+    pub(crate) cols: &'a [ColumnSinCos],
+    pub(crate) dx: f32,
+    pub(crate) z: f32,
+    pub(crate) pos: &'a mut [Vec3],
+    pub(crate) nrm: &'a mut [Vec3],
+}
+
+impl pulp::WithSimd for WideGrid<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        let WideGrid {
+            simd,
+            coeffs,
+            rows,
+            cols,
+            dx,
+            z,
+            pos,
+            nrm,
+        } = self;
+        let block = coeffs.len();
+        for (c, (pos, nrm)) in pos.chunks_mut(LANES).zip(nrm.chunks_mut(LANES)).enumerate() {
+            let table = &cols[c * block..(c + 1) * block];
+            let mut sums = Sums::new(simd);
+            for ((k, &[rs, rc]), col) in coeffs.iter().zip(rows).zip(table) {
+                let (s, co) = angle_sum(simd, rs, rc, col);
+                sums.add(simd, k, s, co);
+            }
+            sums.finish(simd, c * LANES, dx, z, pos, nrm);
+        }
     }
 }
 

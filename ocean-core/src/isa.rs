@@ -1,5 +1,9 @@
 //! Which instruction set the `f32` grid kernels run on.
 //!
+//! The layers kernel (wave train boxes) runs on the [`Isa`] chosen here; the plain trochoid
+//! grid kernel ([`WaveSet::evaluate_grid`](crate::WaveSet::evaluate_grid)) uses AVX-512 too
+//! where the CPU has it, else AVX2, and its unit tests compare it with the baseline build.
+//!
 //! Every instruction set performs, lane by lane, the same IEEE operations in the same order,
 //! with no fused multiply-add, so the output is bit-identical whichever runs: a machine with
 //! AVX-512 and one without agree to the last bit (networked games depend on it). The choice

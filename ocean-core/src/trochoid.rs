@@ -146,13 +146,21 @@ pub(crate) fn check_outputs(n: usize, pos: &[Vec3], nrm: &[Vec3]) -> Result<(), 
     Ok(())
 }
 
-/// Runs a kernel compiled for the best SIMD level the CPU offers (AVX2 on x86-64 when present).
-/// The kernel avoids fused multiply-add, so every level yields the same bits.
+/// Runs a kernel compiled for AVX2 on x86-64 when the CPU has it (pulp's best level
+/// elsewhere). The kernel avoids fused multiply-add, so every level yields the same bits.
 ///
 /// pulp compiles [`pulp::WithSimd::with_simd`] inside a `#[target_feature]` function; the
-/// kernels are `#[inline(always)]` all the way down so that they are vectorised there.
+/// kernels are `#[inline(always)]` all the way down so that they are vectorised there. Not
+/// AVX-512 (pulp's `x86-v4` level, enabled for the layers kernel in `crate::avx512`): LLVM's
+/// vectorisation of these loops for it ran slower than for AVX2.
 #[inline(always)]
 pub(crate) fn dispatch<K: pulp::WithSimd>(kernel: K) -> K::Output {
+    #[cfg(target_arch = "x86_64")]
+    return match pulp::x86::V3::try_new() {
+        Some(simd) => pulp::Simd::vectorize(simd, kernel),
+        None => kernel.with_simd(pulp::Scalar::new()),
+    };
+    #[cfg(not(target_arch = "x86_64"))]
     pulp::Arch::new().dispatch(kernel)
 }
 
@@ -644,6 +652,9 @@ pub(crate) struct GridPlan<'a> {
     timed: Vec<Timed>,
     waves: usize,
     chunks: usize,
+    /// The AVX-512 token where the CPU has it: rows then run `crate::avx512::WideGrid`.
+    #[cfg(target_arch = "x86_64")]
+    avx512: Option<pulp::x86::V4>,
 }
 
 impl<'a> GridPlan<'a> {
@@ -667,6 +678,8 @@ impl<'a> GridPlan<'a> {
             timed: set.timed(grid.origin, t),
             waves: set.waves.len(),
             chunks: grid.size.0.div_ceil(LANES),
+            #[cfg(target_arch = "x86_64")]
+            avx512: pulp::x86::V4::try_new(),
         }
     }
 
@@ -720,11 +733,26 @@ impl<'a> GridPlan<'a> {
         };
         self.row_sin_cos(j, rows);
         let z = self.grid.local(0, j).1;
+        let dx = self.grid.spacing.x as f32;
+        #[cfg(target_arch = "x86_64")]
+        if let Some(simd) = self.avx512 {
+            let row = crate::avx512::WideGrid {
+                simd,
+                coeffs,
+                rows,
+                cols,
+                dx,
+                z,
+                pos,
+                nrm,
+            };
+            return pulp::Simd::vectorize(simd, row);
+        }
         dispatch(GridRow {
             coeffs,
             rows,
             cols,
-            dx: self.grid.spacing.x as f32,
+            dx,
             z,
             pos,
             nrm,
@@ -907,6 +935,29 @@ mod tests {
         };
         let best = pulp::Arch::new();
         std::println!("best SIMD level: {best:?}");
-        assert_eq!(run(pulp::Arch::Scalar), run(best));
+        let scalar = run(pulp::Arch::Scalar);
+        assert_eq!(scalar, run(best));
+        // The AVX-512 kernel written with intrinsics, where the CPU has it.
+        #[cfg(target_arch = "x86_64")]
+        if let Some(simd) = pulp::x86::V4::try_new() {
+            let (mut p, mut n) = (vec![Vec3::ZERO; 101], vec![Vec3::ZERO; 101]);
+            let row = crate::avx512::WideGrid {
+                simd,
+                coeffs: &set.coeffs,
+                rows: &rows,
+                cols: &cols,
+                dx: grid.spacing.x as f32,
+                z: 0.66,
+                pos: &mut p,
+                nrm: &mut n,
+            };
+            pulp::Simd::vectorize(simd, row);
+            let wide: Vec<u32> = p
+                .iter()
+                .chain(&n)
+                .flat_map(|v| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()])
+                .collect();
+            assert_eq!(scalar, wide);
+        }
     }
 }
