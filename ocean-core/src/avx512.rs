@@ -19,7 +19,7 @@ use pulp::x86::V4;
 
 use crate::kernel::{LANES, Portable, WaveCoeffs};
 use crate::layers::{ActiveLayer, LayerRow};
-use crate::trochoid::{ColumnSinCos, LANE_INDEX};
+use crate::trochoid::{ColumnSinCos, GridRow, LANE_INDEX};
 
 const _: () = assert!(LANES == 16, "one AVX-512 vector per chunk");
 
@@ -339,31 +339,24 @@ fn row(simd: V4, row: LayerRow<'_, Portable>) {
 
 /// One row of [`WaveSet::evaluate_grid`](crate::WaveSet::evaluate_grid) on AVX-512: the
 /// trochoid grid kernel (`crate::trochoid`) with the same operations, lane for lane.
-pub(crate) struct WideGrid<'a> {
-    pub(crate) simd: V4,
-    pub(crate) coeffs: &'a [WaveCoeffs],
-    pub(crate) rows: &'a [[f32; 2]],
-    pub(crate) cols: &'a [ColumnSinCos],
-    pub(crate) dx: f32,
-    pub(crate) z: f32,
-    pub(crate) pos: &'a mut [Vec3],
-    pub(crate) nrm: &'a mut [Vec3],
-}
+pub(crate) struct WideGrid<'a>(pub(crate) V4, pub(crate) GridRow<'a>);
 
 impl pulp::WithSimd for WideGrid<'_> {
     type Output = ();
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _: S) {
-        let WideGrid {
+        let WideGrid(
             simd,
-            coeffs,
-            rows,
-            cols,
-            dx,
-            z,
-            pos,
-            nrm,
-        } = self;
+            GridRow {
+                coeffs,
+                rows,
+                cols,
+                dx,
+                z,
+                pos,
+                nrm,
+            },
+        ) = self;
         let block = coeffs.len();
         for (c, (pos, nrm)) in pos.chunks_mut(LANES).zip(nrm.chunks_mut(LANES)).enumerate() {
             let table = &cols[c * block..(c + 1) * block];

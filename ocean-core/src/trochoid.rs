@@ -164,15 +164,16 @@ pub(crate) fn dispatch<K: pulp::WithSimd>(kernel: K) -> K::Output {
     pulp::Arch::new().dispatch(kernel)
 }
 
-/// One grid row: the arguments of [`grid_row_kernel`].
-struct GridRow<'a> {
-    coeffs: &'a [WaveCoeffs],
-    rows: &'a [[f32; 2]],
-    cols: &'a [ColumnSinCos],
-    dx: f32,
-    z: f32,
-    pos: &'a mut [Vec3],
-    nrm: &'a mut [Vec3],
+/// One grid row: the arguments of [`grid_row_kernel`] (and of its AVX-512 twin,
+/// `crate::avx512::WideGrid`).
+pub(crate) struct GridRow<'a> {
+    pub(crate) coeffs: &'a [WaveCoeffs],
+    pub(crate) rows: &'a [[f32; 2]],
+    pub(crate) cols: &'a [ColumnSinCos],
+    pub(crate) dx: f32,
+    pub(crate) z: f32,
+    pub(crate) pos: &'a mut [Vec3],
+    pub(crate) nrm: &'a mut [Vec3],
 }
 
 impl pulp::WithSimd for GridRow<'_> {
@@ -733,30 +734,20 @@ impl<'a> GridPlan<'a> {
         };
         self.row_sin_cos(j, rows);
         let z = self.grid.local(0, j).1;
-        let dx = self.grid.spacing.x as f32;
-        #[cfg(target_arch = "x86_64")]
-        if let Some(simd) = self.avx512 {
-            let row = crate::avx512::WideGrid {
-                simd,
-                coeffs,
-                rows,
-                cols,
-                dx,
-                z,
-                pos,
-                nrm,
-            };
-            return pulp::Simd::vectorize(simd, row);
-        }
-        dispatch(GridRow {
+        let row = GridRow {
             coeffs,
             rows,
             cols,
-            dx,
+            dx: self.grid.spacing.x as f32,
             z,
             pos,
             nrm,
-        });
+        };
+        #[cfg(target_arch = "x86_64")]
+        if let Some(simd) = self.avx512 {
+            return pulp::Simd::vectorize(simd, crate::avx512::WideGrid(simd, row));
+        }
+        dispatch(row);
     }
 }
 
@@ -917,21 +908,35 @@ mod tests {
                 [s, c]
             })
             .collect();
+        let dx = grid.spacing.x as f32;
+        fn row<'a>(
+            set: &'a WaveSet,
+            rows: &'a [[f32; 2]],
+            cols: &'a [ColumnSinCos],
+            dx: f32,
+            pos: &'a mut [Vec3],
+            nrm: &'a mut [Vec3],
+        ) -> GridRow<'a> {
+            GridRow {
+                coeffs: &set.coeffs,
+                rows,
+                cols,
+                dx,
+                z: 0.66,
+                pos,
+                nrm,
+            }
+        }
+        let bits = |p: &[Vec3], n: &[Vec3]| -> Vec<u32> {
+            p.iter()
+                .chain(n)
+                .flat_map(|v| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()])
+                .collect()
+        };
         let run = |arch: pulp::Arch| {
             let (mut p, mut n) = (vec![Vec3::ZERO; 101], vec![Vec3::ZERO; 101]);
-            arch.dispatch(GridRow {
-                coeffs: &set.coeffs,
-                rows: &rows,
-                cols: &cols,
-                dx: grid.spacing.x as f32,
-                z: 0.66,
-                pos: &mut p,
-                nrm: &mut n,
-            });
-            p.iter()
-                .chain(&n)
-                .flat_map(|v| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()])
-                .collect::<Vec<u32>>()
+            arch.dispatch(row(&set, &rows, &cols, dx, &mut p, &mut n));
+            bits(&p, &n)
         };
         let best = pulp::Arch::new();
         std::println!("best SIMD level: {best:?}");
@@ -941,23 +946,9 @@ mod tests {
         #[cfg(target_arch = "x86_64")]
         if let Some(simd) = pulp::x86::V4::try_new() {
             let (mut p, mut n) = (vec![Vec3::ZERO; 101], vec![Vec3::ZERO; 101]);
-            let row = crate::avx512::WideGrid {
-                simd,
-                coeffs: &set.coeffs,
-                rows: &rows,
-                cols: &cols,
-                dx: grid.spacing.x as f32,
-                z: 0.66,
-                pos: &mut p,
-                nrm: &mut n,
-            };
-            pulp::Simd::vectorize(simd, row);
-            let wide: Vec<u32> = p
-                .iter()
-                .chain(&n)
-                .flat_map(|v| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()])
-                .collect();
-            assert_eq!(scalar, wide);
+            let wide = crate::avx512::WideGrid(simd, row(&set, &rows, &cols, dx, &mut p, &mut n));
+            pulp::Simd::vectorize(simd, wide);
+            assert_eq!(scalar, bits(&p, &n));
         }
     }
 }
