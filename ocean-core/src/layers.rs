@@ -29,10 +29,10 @@ use alloc::vec::Vec;
 
 use glam::Vec3;
 
-use crate::error::EvalError;
-use crate::grid::Grid;
 use pulp::WithSimd;
 
+use crate::error::EvalError;
+use crate::grid::Grid;
 use crate::isa::{Isa, Kernel};
 use crate::kernel::{Acc, HALF, Interleave, LANES, Portable, WaveCoeffs};
 use crate::modulation::Modulation;
@@ -292,8 +292,8 @@ fn layer_row_kernel<I: Interleave>(row: LayerRow<'_, I>) {
         let first_col = c * LANES;
         // Each half chunk sums every layer's waves with its sums in registers (eight AVX2
         // registers), then the halves meet for the normalisation and the stores.
-        let lo = lane_sums::<HALF>(layers, rows, c, first_col);
-        let hi = lane_sums::<HALF>(layers, rows, c, first_col + HALF);
+        let lo = half_sums(layers, rows, c, first_col);
+        let hi = half_sums(layers, rows, c, first_col + HALF);
         let mut acc = Acc::from_halves(&lo, &hi);
         if let Some(h) = height {
             let mut add = [0.0f32; LANES];
@@ -310,34 +310,34 @@ fn layer_row_kernel<I: Interleave>(row: LayerRow<'_, I>) {
     }
 }
 
-/// The sums of every layer over the `N` lanes (a chunk or half of one) from grid column `first_col` (in chunk `c`
+/// The sums of every layer over the [`HALF`] lanes from grid column `first_col` (in chunk `c`
 /// of the column tables).
 #[inline(always)]
-fn lane_sums<const N: usize>(
+fn half_sums(
     layers: &[ActiveLayer<'_>],
     rows: &[[f32; 2]],
     c: usize,
     first_col: usize,
-) -> Acc<N> {
-    let mut acc = Acc::<N>::new();
+) -> Acc<HALF> {
+    let mut acc = Acc::<HALF>::new();
     let offset = first_col - c * LANES;
     for layer in layers {
         let end = layer.first + layer.modulation.len();
-        if end <= first_col || layer.first >= first_col + N {
+        if end <= first_col || layer.first >= first_col + HALF {
             continue;
         }
         // The modulation of these lanes; zero outside the row's span.
-        let mut re = [0.0f32; N];
-        let mut im = [0.0f32; N];
-        if first_col >= layer.first && first_col + N <= end {
+        let mut re = [0.0f32; HALF];
+        let mut im = [0.0f32; HALF];
+        if first_col >= layer.first && first_col + HALF <= end {
             // All lanes inside the span: one contiguous run to de-interleave.
-            let run = &layer.modulation[first_col - layer.first..][..N];
-            for l in 0..N {
+            let run = &layer.modulation[first_col - layer.first..][..HALF];
+            for l in 0..HALF {
                 re[l] = run[l][0];
                 im[l] = run[l][1];
             }
         } else {
-            for l in 0..N {
+            for l in 0..HALF {
                 let i = first_col + l;
                 if i >= layer.first && i < end {
                     [re[l], im[l]] = layer.modulation[i - layer.first];
@@ -348,7 +348,7 @@ fn lane_sums<const N: usize>(
         // sum: skipping it changes no bit. The test ORs the magnitude bits, a reduction LLVM
         // vectorises (a float sum would be evaluated lane by lane, in order).
         let mut bits = 0u32;
-        for l in 0..N {
+        for l in 0..HALF {
             bits |= (re[l].to_bits() | im[l].to_bits()) & 0x7fff_ffff;
         }
         if bits == 0 {
@@ -358,9 +358,9 @@ fn lane_sums<const N: usize>(
         let table = &layer.cols[c * waves..(c + 1) * waves];
         let rows = &rows[layer.rows.clone()];
         for ((coeff, &[rs, rc]), col) in layer.coeffs.iter().zip(rows).zip(table) {
-            let mut s = [0.0f32; N];
-            let mut co = [0.0f32; N];
-            for l in 0..N {
+            let mut s = [0.0f32; HALF];
+            let mut co = [0.0f32; HALF];
+            for l in 0..HALF {
                 let (cs, cc) = (col.sin[offset + l], col.cos[offset + l]);
                 let (sin, cos) = (rs * cc + rc * cs, rc * cc - rs * cs);
                 let (mr, mi) = (re[l], im[l]);

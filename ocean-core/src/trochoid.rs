@@ -151,8 +151,9 @@ pub(crate) fn check_outputs(n: usize, pos: &[Vec3], nrm: &[Vec3]) -> Result<(), 
 ///
 /// pulp compiles [`pulp::WithSimd::with_simd`] inside a `#[target_feature]` function; the
 /// kernels are `#[inline(always)]` all the way down so that they are vectorised there. Not
-/// AVX-512 (pulp's `x86-v4` level, enabled for the layers kernel in `crate::avx512`): LLVM's
-/// vectorisation of these loops for it ran slower than for AVX2.
+/// AVX-512 (pulp's `x86-v4` level, enabled for the hand-written kernels of `crate::avx512`):
+/// LLVM's vectorisation for it ran the layers loops slower than for AVX2 and the grid loops
+/// no faster.
 #[inline(always)]
 pub(crate) fn dispatch<K: pulp::WithSimd>(kernel: K) -> K::Output {
     #[cfg(target_arch = "x86_64")]
