@@ -1,83 +1,357 @@
-//! The one AVX2 sequence written by hand: interleaving three arrays into `xyz` points.
+//! The layers kernel ([`crate::layers`]) and the trochoid grid kernel ([`crate::trochoid`])
+//! written out in AVX2, for CPUs without AVX-512 ([`crate::avx512`] has the wide twin).
 //!
-//! LLVM vectorises the kernels' arithmetic well, but for the stride-3 stores of a chunk's
-//! positions and normals it emits a long chain of shuffles, blends and stack round trips
-//! (about a quarter of a 1024² wave train box frame's instructions). Interleaving eight
-//! points takes eleven shuffles here. The bits are only moved, never computed, so the output
-//! is identical to [`Portable`](crate::kernel::Portable)'s.
+//! With 16 vector registers a chunk is summed in two halves of eight lanes, each half's eight
+//! sums in registers across every layer and wave, and each half is finished and stored on its
+//! own. Written with intrinsics (pulp's safe wrappers) rather than left to LLVM's vectoriser:
+//! for the same loops it joined the halves through the stack, hoisted the partial-span path's
+//! index arithmetic into every chunk and interleaved the stores with a long chain of shuffles,
+//! about 900 instructions per 16-point chunk of which 240 were the waves' arithmetic.
+//!
+//! **Bits.** Every lane performs exactly the IEEE operations of the portable kernel, in the
+//! same order, with no fused multiply-add, so the output is bit-identical to the portable and
+//! AVX-512 paths (`tests/layers_isa.rs`).
 
-use core::arch::x86_64::__m256;
+use core::arch::x86_64::{__m256, __m256d, __m256i};
 
+use glam::Vec3;
 use pulp::x86::V3;
 
-use crate::kernel::{HALF, Interleave};
+use crate::kernel::{HALF, LANES, WaveCoeffs};
+use crate::layers::{ActiveLayer, LayerRow};
+use crate::trochoid::{ColumnSinCos, GridRow, LANE_INDEX};
 
-impl Interleave for V3 {
-    /// With x = (x0 … x7) and likewise y, z, each 128-bit half first interleaves its four
-    /// points into three vectors A = (x0 y0 z0 x1), B = (y1 z1 x2 y2), C = (z2 x3 y3 z3) (and
-    /// x4 … z7 in the upper halves); the three outputs then take their halves from A, B, C:
-    /// (A.lo, B.lo), (C.lo, A.hi), (B.hi, C.hi).
-    #[inline(always)]
-    fn xyz(self, x: &[f32; HALF], y: &[f32; HALF], z: &[f32; HALF], out: &mut [f32]) {
-        let avx = self.avx;
-        let (x, y, z): (__m256, __m256, __m256) =
-            (bytemuck::cast(*x), bytemuck::cast(*y), bytemuck::cast(*z));
-        let xy_lo = avx._mm256_unpacklo_ps(x, y); // x0 y0 x1 y1
-        let xy_hi = avx._mm256_unpackhi_ps(x, y); // x2 y2 x3 y3
-        let yz_lo = avx._mm256_unpacklo_ps(y, z); // y0 z0 y1 z1
-        let yz_hi = avx._mm256_unpackhi_ps(y, z); // y2 z2 y3 z3
-        let zx_lo = avx._mm256_shuffle_ps::<0x50>(z, x); // z0 z0 x1 x1
-        let zx_hi = avx._mm256_shuffle_ps::<0xFA>(z, x); // z2 z2 x3 x3
-        let a = avx._mm256_shuffle_ps::<0x84>(xy_lo, zx_lo); // x0 y0 z0 x1
-        let b = avx._mm256_shuffle_ps::<0x4E>(yz_lo, xy_hi); // y1 z1 x2 y2
-        let c = avx._mm256_shuffle_ps::<0xE8>(zx_hi, yz_hi); // z2 x3 y3 z3
-        let o0: [f32; HALF] = bytemuck::cast(avx._mm256_permute2f128_ps::<0x20>(a, b));
-        let o1: [f32; HALF] = bytemuck::cast(avx._mm256_permute2f128_ps::<0x30>(c, a));
-        let o2: [f32; HALF] = bytemuck::cast(avx._mm256_permute2f128_ps::<0x31>(b, c));
-        let out = &mut out[..3 * HALF];
-        out[..HALF].copy_from_slice(&o0);
-        out[HALF..2 * HALF].copy_from_slice(&o1);
-        out[2 * HALF..].copy_from_slice(&o2);
-    }
+const _: () = assert!(HALF == 8, "one AVX2 vector per half chunk");
+
+#[inline(always)]
+fn v(a: [f32; HALF]) -> __m256 {
+    bytemuck::cast(a)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::kernel::Portable;
+/// Lanes `h·8 … h·8 + 7` of a chunk's array.
+#[inline(always)]
+fn half(a: &[f32; LANES], h: usize) -> __m256 {
+    let halves: &[[f32; HALF]; 2] = bytemuck::cast_ref(a);
+    v(halves[h])
+}
 
-    /// Every lane lands where the element-by-element interleave puts it.
-    #[test]
-    fn interleave_matches_the_portable_order() {
-        let Some(simd) = V3::try_new() else {
-            return;
-        };
-        let x: [f32; HALF] = core::array::from_fn(|l| l as f32);
-        let y: [f32; HALF] = core::array::from_fn(|l| 100.0 + l as f32);
-        let z: [f32; HALF] = core::array::from_fn(|l| 200.0 + l as f32);
-        let mut want = [0.0f32; 3 * HALF];
-        let mut got = [0.0f32; 3 * HALF];
-        Portable.xyz(&x, &y, &z, &mut want);
-        pulp::Simd::vectorize(simd, Run(simd, &x, &y, &z, &mut got));
-        assert_eq!(got, want);
-        for l in 0..HALF {
-            assert_eq!(want[3 * l..3 * l + 3], [x[l], y[l], z[l]]);
+/// The eight running sums of a half chunk ([`Acc`](crate::kernel::Acc)'s fields).
+#[derive(Clone, Copy)]
+struct Sums {
+    dx: __m256,
+    y: __m256,
+    dz: __m256,
+    jxx: __m256,
+    jxz: __m256,
+    jzz: __m256,
+    sx: __m256,
+    sz: __m256,
+}
+
+impl Sums {
+    /// `Acc::new`: zero displacement, identity Jacobian, zero slope.
+    #[inline(always)]
+    fn new(simd: V3) -> Self {
+        let (zero, one) = (simd.avx._mm256_setzero_ps(), simd.avx._mm256_set1_ps(1.0));
+        Self {
+            dx: zero,
+            y: zero,
+            dz: zero,
+            jxx: one,
+            jxz: zero,
+            jzz: one,
+            sx: zero,
+            sz: zero,
         }
     }
 
-    struct Run<'a>(
-        V3,
-        &'a [f32; HALF],
-        &'a [f32; HALF],
-        &'a [f32; HALF],
-        &'a mut [f32],
-    );
+    /// `Acc::add_sin_cos`: one wave, given its sine and cosine on every lane.
+    #[inline(always)]
+    fn add(&mut self, simd: V3, k: &WaveCoeffs, s: __m256, co: __m256) {
+        let f = simd.avx;
+        let b = |x: f32| f._mm256_set1_ps(x);
+        let (add, sub, mul) = (
+            |a, b| f._mm256_add_ps(a, b),
+            |a, b| f._mm256_sub_ps(a, b),
+            |a, b| f._mm256_mul_ps(a, b),
+        );
+        self.dx = sub(self.dx, mul(b(k.ahx), s));
+        self.dz = sub(self.dz, mul(b(k.ahz), s));
+        self.y = add(self.y, mul(b(k.a), co));
+        self.jxx = sub(self.jxx, mul(b(k.cxx), co));
+        self.jxz = sub(self.jxz, mul(b(k.cxz), co));
+        self.jzz = sub(self.jzz, mul(b(k.czz), co));
+        self.sx = sub(self.sx, mul(b(k.gx), s));
+        self.sz = sub(self.sz, mul(b(k.gz), s));
+    }
 
-    impl pulp::WithSimd for Run<'_> {
-        type Output = ();
-        fn with_simd<S: pulp::Simd>(self, _: S) {
-            let Run(simd, x, y, z, out) = self;
-            simd.xyz(x, y, z, out);
+    /// `Acc::finish` and its interleaved stores for the half chunk whose first lane is lane
+    /// `h·8` of the chunk from grid column `chunk_col`, into the first `pos.len()` (at most 8)
+    /// points.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn finish(
+        self,
+        simd: V3,
+        chunk_col: usize,
+        h: usize,
+        dx: f32,
+        z: f32,
+        pos: &mut [Vec3],
+        nrm: &mut [Vec3],
+    ) {
+        let f = simd.avx;
+        let (add, sub, mul) = (
+            |a, b| f._mm256_add_ps(a, b),
+            |a, b| f._mm256_sub_ps(a, b),
+            |a, b| f._mm256_mul_ps(a, b),
+        );
+        let (zero, one) = (f._mm256_setzero_ps(), f._mm256_set1_ps(1.0));
+        let Sums {
+            dx: sdx,
+            y,
+            dz: sdz,
+            jxx,
+            jxz,
+            jzz,
+            sx,
+            sz,
+        } = self;
+        // (first + LANE_INDEX[l]) · dx with the chunk's first column, as the portable kernel.
+        let x = mul(
+            add(f._mm256_set1_ps(chunk_col as f32), half(&LANE_INDEX, h)),
+            f._mm256_set1_ps(dx),
+        );
+        let px = add(x, sdx);
+        let pz = add(f._mm256_set1_ps(z), sdz);
+        let a = sub(mul(sz, jxz), mul(jzz, sx));
+        let b = sub(mul(jzz, jxx), mul(jxz, jxz));
+        let c = sub(mul(jxz, sx), mul(sz, jxx));
+        let len2 = add(add(mul(a, a), mul(b, b)), mul(c, c));
+        let degenerate = f._mm256_cmp_ps::<{ core::arch::x86_64::_CMP_LT_OQ }>(
+            len2,
+            f._mm256_set1_ps(f32::MIN_POSITIVE),
+        );
+        let inv = f._mm256_div_ps(
+            one,
+            f._mm256_sqrt_ps(f._mm256_blendv_ps(len2, one, degenerate)),
+        );
+        let nx = f._mm256_blendv_ps(mul(a, inv), zero, degenerate);
+        let ny = f._mm256_blendv_ps(mul(b, inv), one, degenerate);
+        let nz = f._mm256_blendv_ps(mul(c, inv), zero, degenerate);
+        store(interleave(simd, px, y, pz), pos);
+        store(interleave(simd, nx, ny, nz), nrm);
+    }
+}
+
+/// Eight points' x, y, z interleaved as `xyz`: three vectors.
+///
+/// Each 128-bit half first interleaves its four points into A = (x0 y0 z0 x1),
+/// B = (y1 z1 x2 y2), C = (z2 x3 y3 z3) (and x4 … z7 in the upper halves); the outputs then take
+/// their halves from A, B, C: (A.lo, B.lo), (C.lo, A.hi), (B.hi, C.hi). Eleven shuffles.
+#[inline(always)]
+fn interleave(simd: V3, x: __m256, y: __m256, z: __m256) -> [__m256; 3] {
+    let avx = simd.avx;
+    let xy_lo = avx._mm256_unpacklo_ps(x, y); // x0 y0 x1 y1
+    let xy_hi = avx._mm256_unpackhi_ps(x, y); // x2 y2 x3 y3
+    let yz_lo = avx._mm256_unpacklo_ps(y, z); // y0 z0 y1 z1
+    let yz_hi = avx._mm256_unpackhi_ps(y, z); // y2 z2 y3 z3
+    let zx_lo = avx._mm256_shuffle_ps::<0x50>(z, x); // z0 z0 x1 x1
+    let zx_hi = avx._mm256_shuffle_ps::<0xFA>(z, x); // z2 z2 x3 x3
+    let a = avx._mm256_shuffle_ps::<0x84>(xy_lo, zx_lo); // x0 y0 z0 x1
+    let b = avx._mm256_shuffle_ps::<0x4E>(yz_lo, xy_hi); // y1 z1 x2 y2
+    let c = avx._mm256_shuffle_ps::<0xE8>(zx_hi, yz_hi); // z2 x3 y3 z3
+    [
+        avx._mm256_permute2f128_ps::<0x20>(a, b),
+        avx._mm256_permute2f128_ps::<0x30>(c, a),
+        avx._mm256_permute2f128_ps::<0x31>(b, c),
+    ]
+}
+
+/// Writes the first `out.len()` (at most 8) of 8 interleaved points.
+#[inline(always)]
+fn store(xyz: [__m256; 3], out: &mut [Vec3]) {
+    if out.len() >= HALF {
+        let full: &mut [[f32; HALF]] = bytemuck::cast_slice_mut(&mut out[..HALF]);
+        for (o, v) in full.iter_mut().zip(xyz) {
+            *o = bytemuck::cast(v);
+        }
+    } else {
+        let staged: [[f32; HALF]; 3] = xyz.map(bytemuck::cast);
+        let flat: &[f32] = bytemuck::cast_slice(&staged);
+        let n = out.len();
+        bytemuck::cast_slice_mut::<Vec3, f32>(out).copy_from_slice(&flat[..3 * n]);
+    }
+}
+
+/// sin θ and cos θ on the lanes of half `h` of one wave's column table entry, by angle
+/// addition with its row's (`rs`, `rc`).
+#[inline(always)]
+fn angle_sum(simd: V3, rs: f32, rc: f32, col: &ColumnSinCos, h: usize) -> (__m256, __m256) {
+    let f = simd.avx;
+    let (add, sub, mul) = (
+        |a, b| f._mm256_add_ps(a, b),
+        |a, b| f._mm256_sub_ps(a, b),
+        |a, b| f._mm256_mul_ps(a, b),
+    );
+    let (cs, cc) = (half(&col.sin, h), half(&col.cos, h));
+    let (rs, rc) = (f._mm256_set1_ps(rs), f._mm256_set1_ps(rc));
+    (add(mul(rs, cc), mul(rc, cs)), sub(mul(rc, cc), mul(rs, cs)))
+}
+
+/// The modulation of the eight lanes from grid column `col`, zero outside the layer's span:
+/// (real parts, imaginary parts).
+#[inline(always)]
+fn modulation(simd: V3, layer: &ActiveLayer<'_>, col: usize) -> (__m256, __m256) {
+    let end = layer.first + layer.modulation.len();
+    if col >= layer.first && col + HALF <= end {
+        let run = &layer.modulation[col - layer.first..][..HALF];
+        // Eight pairs are two vectors of eight floats.
+        let pairs: &[[f32; HALF]] = bytemuck::cast_slice(run);
+        let (lo, hi) = (v(pairs[0]), v(pairs[1]));
+        let avx = simd.avx;
+        // Even floats, then odd, in 64-bit blocks (0, 2, 1, 3) of the true order.
+        let re = avx._mm256_shuffle_ps::<0x88>(lo, hi);
+        let im = avx._mm256_shuffle_ps::<0xDD>(lo, hi);
+        let order = |a: __m256| -> __m256 {
+            bytemuck::cast(
+                simd.avx2
+                    ._mm256_permute4x64_pd::<0xD8>(bytemuck::cast::<__m256, __m256d>(a)),
+            )
+        };
+        (order(re), order(im))
+    } else {
+        partial_modulation(layer, col, end)
+    }
+}
+
+/// [`modulation`] for lanes that the span covers in part (at most two a layer and row).
+#[inline(never)]
+fn partial_modulation(layer: &ActiveLayer<'_>, col: usize, end: usize) -> (__m256, __m256) {
+    let mut re = [0.0f32; HALF];
+    let mut im = [0.0f32; HALF];
+    for l in 0..HALF {
+        let i = col + l;
+        if i >= layer.first && i < end {
+            [re[l], im[l]] = layer.modulation[i - layer.first];
+        }
+    }
+    (v(re), v(im))
+}
+
+/// Half chunks of modulation read ahead of the kernel (one cache line each).
+const AHEAD: usize = 16;
+
+#[inline(always)]
+fn prefetch(simd: V3, layer: &ActiveLayer<'_>, col: usize) {
+    let at = (col + AHEAD * HALF).wrapping_sub(layer.first);
+    let p = layer.modulation.as_ptr().wrapping_add(at).cast::<i8>();
+    simd.sse
+        ._mm_prefetch::<{ core::arch::x86_64::_MM_HINT_T0 }>(p);
+}
+
+/// One row of [`crate::layers`] on AVX2: what [`pulp::Simd::vectorize`] runs.
+pub(crate) struct Half<'a>(pub(crate) V3, pub(crate) LayerRow<'a>);
+
+impl pulp::WithSimd for Half<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        let Half(simd, row) = self;
+        let f = simd.avx;
+        let LayerRow {
+            layers,
+            rows,
+            height,
+            first_chunk,
+            dx,
+            z,
+            pos: out_pos,
+            nrm: out_nrm,
+        } = row;
+        let (add, sub, mul) = (
+            |a, b| f._mm256_add_ps(a, b),
+            |a, b| f._mm256_sub_ps(a, b),
+            |a, b| f._mm256_mul_ps(a, b),
+        );
+        let magnitude: __m256i = bytemuck::cast([0x7fff_ffffu32; HALF]);
+        for (n, (pos, nrm)) in out_pos
+            .chunks_mut(LANES)
+            .zip(out_nrm.chunks_mut(LANES))
+            .enumerate()
+        {
+            let c = first_chunk + n;
+            let chunk_col = c * LANES;
+            for (h, (pos, nrm)) in pos.chunks_mut(HALF).zip(nrm.chunks_mut(HALF)).enumerate() {
+                let col = chunk_col + h * HALF;
+                let mut sums = Sums::new(simd);
+                for layer in layers {
+                    let end = layer.first + layer.modulation.len();
+                    if end <= col || layer.first >= col + HALF {
+                        continue;
+                    }
+                    prefetch(simd, layer, col);
+                    let (mr, mi) = modulation(simd, layer, col);
+                    // Skip a layer whose μ is zero on every lane (land): it would add ±0.
+                    let bits = simd
+                        .avx2
+                        ._mm256_or_si256(bytemuck::cast(mr), bytemuck::cast(mi));
+                    if f._mm256_testz_si256(bits, magnitude) == 1 {
+                        continue;
+                    }
+                    let waves = layer.coeffs.len();
+                    let table = &layer.cols[c * waves..(c + 1) * waves];
+                    let rows = &rows[layer.rows.clone()];
+                    for ((k, &[rs, rc]), entry) in layer.coeffs.iter().zip(rows).zip(table) {
+                        let (sin, cos) = angle_sum(simd, rs, rc, entry, h);
+                        let s = add(mul(sin, mr), mul(cos, mi));
+                        let co = sub(mul(cos, mr), mul(sin, mi));
+                        sums.add(simd, k, s, co);
+                    }
+                }
+                if let Some(hf) = height {
+                    let len = pos.len();
+                    let mut add_h = [0.0f32; HALF];
+                    add_h[..len].copy_from_slice(&hf[col..col + len]);
+                    sums.y = add(sums.y, v(add_h));
+                }
+                sums.finish(simd, chunk_col, h, dx, z, pos, nrm);
+            }
+        }
+    }
+}
+
+/// One row of [`WaveSet::evaluate_grid`](crate::WaveSet::evaluate_grid) on AVX2: the trochoid
+/// grid kernel (`crate::trochoid`) with the same operations, lane for lane.
+pub(crate) struct HalfGrid<'a>(pub(crate) V3, pub(crate) GridRow<'a>);
+
+impl pulp::WithSimd for HalfGrid<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        let HalfGrid(
+            simd,
+            GridRow {
+                coeffs,
+                rows,
+                cols,
+                dx,
+                z,
+                pos,
+                nrm,
+            },
+        ) = self;
+        let block = coeffs.len();
+        for (c, (pos, nrm)) in pos.chunks_mut(LANES).zip(nrm.chunks_mut(LANES)).enumerate() {
+            let table = &cols[c * block..(c + 1) * block];
+            for (h, (pos, nrm)) in pos.chunks_mut(HALF).zip(nrm.chunks_mut(HALF)).enumerate() {
+                let mut sums = Sums::new(simd);
+                for ((k, &[rs, rc]), entry) in coeffs.iter().zip(rows).zip(table) {
+                    let (s, co) = angle_sum(simd, rs, rc, entry, h);
+                    sums.add(simd, k, s, co);
+                }
+                sums.finish(simd, c * LANES, h, dx, z, pos, nrm);
+            }
         }
     }
 }

@@ -9,7 +9,7 @@
 //!
 //! **Bits.** Every lane performs exactly the IEEE operations of the portable kernel, in the same
 //! order, with no fused multiply-add: [`Acc::add_sin_cos`](crate::kernel::Acc) for each wave,
-//! [`Acc::finished`](crate::kernel::Acc) for the normal. Its output is therefore bit-identical
+//! [`Acc::finish`](crate::kernel::Acc) for the normal. Its output is therefore bit-identical
 //! to the AVX2 and portable paths (tested in `tests/layers_isa.rs`), whatever the CPU.
 
 use core::arch::x86_64::{__m512, __m512i};
@@ -17,15 +17,14 @@ use core::arch::x86_64::{__m512, __m512i};
 use glam::Vec3;
 use pulp::x86::V4;
 
-use crate::kernel::{LANES, Portable, WaveCoeffs};
+use crate::kernel::{LANES, WaveCoeffs};
 use crate::layers::{ActiveLayer, LayerRow};
 use crate::trochoid::{ColumnSinCos, GridRow, LANE_INDEX};
 
 const _: () = assert!(LANES == 16, "one AVX-512 vector per chunk");
 
-/// One row of [`crate::layers`] on AVX-512: what [`pulp::Simd::vectorize`] runs. The row's
-/// `how` goes unused: this kernel interleaves its outputs with its own permutes.
-pub(crate) struct Wide<'a>(pub(crate) V4, pub(crate) LayerRow<'a, Portable>);
+/// One row of [`crate::layers`] on AVX-512: what [`pulp::Simd::vectorize`] runs.
+pub(crate) struct Wide<'a>(pub(crate) V4, pub(crate) LayerRow<'a>);
 
 impl pulp::WithSimd for Wide<'_> {
     type Output = ();
@@ -207,7 +206,7 @@ impl Sums {
         self.sz = sub(self.sz, mul(b(k.gz), s));
     }
 
-    /// `Acc::finished` and the interleaved stores: the chunk from grid column `first_col` of
+    /// `Acc::finish` and its interleaved stores: the chunk from grid column `first_col` of
     /// a row at `z`, columns `dx` apart, into the first `pos.len()` (at most 16) points.
     #[inline(always)]
     fn finish(
@@ -278,7 +277,7 @@ fn angle_sum(simd: V4, rs: f32, rc: f32, col: &ColumnSinCos) -> (__m512, __m512)
 }
 
 #[inline(always)]
-fn row(simd: V4, row: LayerRow<'_, Portable>) {
+fn row(simd: V4, row: LayerRow<'_>) {
     let f = simd.avx512f;
     let LayerRow {
         layers,
@@ -289,7 +288,6 @@ fn row(simd: V4, row: LayerRow<'_, Portable>) {
         z,
         pos: out_pos,
         nrm: out_nrm,
-        how: _,
     } = row;
     let (add, sub, mul) = (
         |a, b| f._mm512_add_ps(a, b),

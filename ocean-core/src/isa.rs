@@ -1,8 +1,8 @@
 //! Which instruction set the `f32` grid kernels run on.
 //!
-//! The layers kernel (wave train boxes) runs on the [`Isa`] chosen here; the plain trochoid
-//! grid kernel ([`WaveSet::evaluate_grid`](crate::WaveSet::evaluate_grid)) uses AVX-512 too
-//! where the CPU has it, else AVX2, and its unit tests compare it with the baseline build.
+//! The layers kernel (wave train boxes) and the plain trochoid grid kernel
+//! ([`WaveSet::evaluate_grid`](crate::WaveSet::evaluate_grid)) run on [`Isa::best`]. The
+//! scattered-points kernel stays with LLVM's vectorisation for AVX2.
 //!
 //! Every instruction set performs, lane by lane, the same IEEE operations in the same order,
 //! with no fused multiply-add, so the output is bit-identical whichever runs: a machine with
@@ -10,14 +10,14 @@
 //! only changes speed. [`Isa::best`] is what the evaluators use;
 //! [`evaluate_layers_isa`](crate::evaluate_layers_isa) forces one, for tests and benchmarks.
 
-/// An instruction set for the layers kernel ([`crate::layers`]).
+/// An instruction set for the layers and grid kernels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Isa {
     /// Element-wise loops that LLVM vectorises for the compilation target (SSE2 on x86-64,
     /// NEON on AArch64): available everywhere.
     Portable,
-    /// x86-64 with AVX2 (pulp's `V3`): LLVM's vectorised loops on half chunks, with
-    /// hand-written interleaved stores.
+    /// x86-64 with AVX2 (pulp's `V3`): kernels written with intrinsics, one 8-lane vector a
+    /// half chunk.
     Avx2,
     /// x86-64 with AVX-512 F/BW/CD/DQ/VL (pulp's `V4`): a kernel written with intrinsics, one
     /// 16-lane vector a chunk.
@@ -62,6 +62,11 @@ pub(crate) enum Kernel {
 }
 
 impl Kernel {
+    /// The kernel of [`Isa::best`].
+    pub(crate) fn best() -> Kernel {
+        Kernel::new(Isa::best()).unwrap_or(Kernel::Portable)
+    }
+
     /// The kernel for `isa`, or `None` if this CPU cannot run it.
     pub(crate) fn new(isa: Isa) -> Option<Kernel> {
         match isa {

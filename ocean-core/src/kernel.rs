@@ -177,23 +177,14 @@ impl Acc<LANES> {
         out_pos: &mut [Vec3],
         out_nrm: &mut [Vec3],
     ) {
-        self.finished(x, z).store(Portable, out_pos, out_nrm);
-    }
-
-    /// The positions and unit normals of [`Acc::finish`], lane by lane, not yet interleaved.
-    #[inline(always)]
-    pub(crate) fn finished(&self, x: &[f32; LANES], z: &[f32; LANES]) -> Finished {
-        let mut f = Finished {
-            px: [0.0; LANES],
-            py: self.y,
-            pz: [0.0; LANES],
-            nx: [0.0; LANES],
-            ny: [0.0; LANES],
-            nz: [0.0; LANES],
-        };
+        let mut px = [0.0f32; LANES];
+        let mut pz = [0.0f32; LANES];
+        let mut nx = [0.0f32; LANES];
+        let mut ny = [0.0f32; LANES];
+        let mut nz = [0.0f32; LANES];
         for l in 0..LANES {
-            f.px[l] = x[l] + self.dx[l];
-            f.pz[l] = z[l] + self.dz[l];
+            px[l] = x[l] + self.dx[l];
+            pz[l] = z[l] + self.dz[l];
             let a = self.sz[l] * self.jxz[l] - self.jzz[l] * self.sx[l];
             let b = self.jzz[l] * self.jxx[l] - self.jxz[l] * self.jxz[l];
             let c = self.jxz[l] * self.sx[l] - self.sz[l] * self.jxx[l];
@@ -202,70 +193,29 @@ impl Acc<LANES> {
             // (|n| < 1.1e-19, only next to a cusp).
             let degenerate = len2 < f32::MIN_POSITIVE;
             let inv = 1.0 / crate::math::sqrtf(if degenerate { 1.0 } else { len2 });
-            f.nx[l] = if degenerate { 0.0 } else { a * inv };
-            f.ny[l] = if degenerate { 1.0 } else { b * inv };
-            f.nz[l] = if degenerate { 0.0 } else { c * inv };
+            nx[l] = if degenerate { 0.0 } else { a * inv };
+            ny[l] = if degenerate { 1.0 } else { b * inv };
+            nz[l] = if degenerate { 0.0 } else { c * inv };
         }
-        f
-    }
-}
-
-/// A chunk's finished positions and normals, one array per component.
-pub(crate) struct Finished {
-    px: [f32; LANES],
-    py: [f32; LANES],
-    pz: [f32; LANES],
-    nx: [f32; LANES],
-    ny: [f32; LANES],
-    nz: [f32; LANES],
-}
-
-/// How a chunk's components are interleaved into `xyz` order and stored: the stores move
-/// the bits as they are, so every way gives the same output.
-pub(crate) trait Interleave: Copy {
-    /// Writes three arrays of [`HALF`] values as `HALF` points, `xyz` each, into `out`
-    /// (`3 HALF` values).
-    fn xyz(self, x: &[f32; HALF], y: &[f32; HALF], z: &[f32; HALF], out: &mut [f32]);
-}
-
-/// Element by element, for LLVM to vectorise as it can.
-#[derive(Clone, Copy)]
-pub(crate) struct Portable;
-
-impl Interleave for Portable {
-    #[inline(always)]
-    fn xyz(self, x: &[f32; HALF], y: &[f32; HALF], z: &[f32; HALF], out: &mut [f32]) {
-        let out = &mut out[..3 * HALF];
-        for l in 0..HALF {
-            out[3 * l] = x[l];
-            out[3 * l + 1] = y[l];
-            out[3 * l + 2] = z[l];
-        }
-    }
-}
-
-impl Finished {
-    /// Writes the first `out_pos.len()` lanes (at most [`LANES`]): positions and normals.
-    #[inline(always)]
-    pub(crate) fn store<I: Interleave>(&self, how: I, out_pos: &mut [Vec3], out_nrm: &mut [Vec3]) {
         if out_pos.len() >= LANES && out_nrm.len() >= LANES {
-            // Full chunk: interleave into xyz order in registers and store contiguous runs,
-            // instead of six scalar stores per point.
-            let p = bytemuck::cast_slice_mut::<Vec3, f32>(&mut out_pos[..LANES]);
-            let q = bytemuck::cast_slice_mut::<Vec3, f32>(&mut out_nrm[..LANES]);
-            let halves = |a: &[f32; LANES]| bytemuck::cast::<_, [[f32; HALF]; 2]>(*a);
-            let (px, py, pz) = (halves(&self.px), halves(&self.py), halves(&self.pz));
-            let (nx, ny, nz) = (halves(&self.nx), halves(&self.ny), halves(&self.nz));
-            let (p0, p1) = p.split_at_mut(3 * HALF);
-            let (q0, q1) = q.split_at_mut(3 * HALF);
-            how.xyz(&px[0], &py[0], &pz[0], p0);
-            how.xyz(&px[1], &py[1], &pz[1], p1);
-            how.xyz(&nx[0], &ny[0], &nz[0], q0);
-            how.xyz(&nx[1], &ny[1], &nz[1], q1);
+            // Full chunk: interleave into xyz order here and store contiguous runs, instead
+            // of six scalar stores per point.
+            let mut p = [0.0f32; 3 * LANES];
+            let mut q = [0.0f32; 3 * LANES];
+            for l in 0..LANES {
+                p[3 * l] = px[l];
+                p[3 * l + 1] = self.y[l];
+                p[3 * l + 2] = pz[l];
+                q[3 * l] = nx[l];
+                q[3 * l + 1] = ny[l];
+                q[3 * l + 2] = nz[l];
+            }
+            bytemuck::cast_slice_mut::<Vec3, f32>(&mut out_pos[..LANES]).copy_from_slice(&p);
+            bytemuck::cast_slice_mut::<Vec3, f32>(&mut out_nrm[..LANES]).copy_from_slice(&q);
         } else {
             for l in 0..out_pos.len().min(LANES) {
-                out_pos[l] = Vec3::new(self.px[l], self.py[l], self.pz[l]);
-                out_nrm[l] = Vec3::new(self.nx[l], self.ny[l], self.nz[l]);
+                out_pos[l] = Vec3::new(px[l], self.y[l], pz[l]);
+                out_nrm[l] = Vec3::new(nx[l], ny[l], nz[l]);
             }
         }
     }

@@ -34,7 +34,7 @@ use pulp::WithSimd;
 use crate::error::EvalError;
 use crate::grid::Grid;
 use crate::isa::{Isa, Kernel};
-use crate::kernel::{Acc, HALF, Interleave, LANES, Portable, WaveCoeffs};
+use crate::kernel::{Acc, HALF, LANES, WaveCoeffs};
 use crate::modulation::Modulation;
 use crate::trochoid::{ColumnSinCos, GridPlan, LANE_INDEX, WaveSet, check_outputs, check_time};
 
@@ -197,30 +197,23 @@ impl<'a> Plan<'a> {
             });
         }
         let height = self.height.map(|h| &h[j * nx..(j + 1) * nx]);
-        macro_rules! row {
-            ($how:expr) => {
-                LayerRow {
-                    layers: &scratch.active,
-                    rows: &scratch.rows,
-                    height,
-                    first_chunk: c0,
-                    dx: self.grid.spacing.x as f32,
-                    z: self.grid.local(0, j).1,
-                    pos: &mut pos[a..b],
-                    nrm: &mut nrm[a..b],
-                    how: $how,
-                }
-            };
-        }
+        let row = LayerRow {
+            layers: &scratch.active,
+            rows: &scratch.rows,
+            height,
+            first_chunk: c0,
+            dx: self.grid.spacing.x as f32,
+            z: self.grid.local(0, j).1,
+            pos: &mut pos[a..b],
+            nrm: &mut nrm[a..b],
+        };
         match self.kernel {
-            // Built for the compilation target: pulp's dispatch would pick AVX2 here.
-            Kernel::Portable => row!(Portable).with_simd(pulp::Scalar::new()),
+            // Built for the compilation target (SSE2 on x86-64, NEON on AArch64).
+            Kernel::Portable => row.with_simd(pulp::Scalar::new()),
             #[cfg(target_arch = "x86_64")]
-            Kernel::Avx2(simd) => pulp::Simd::vectorize(simd, row!(simd)),
+            Kernel::Avx2(simd) => pulp::Simd::vectorize(simd, crate::avx2::Half(simd, row)),
             #[cfg(target_arch = "x86_64")]
-            Kernel::Avx512(simd) => {
-                pulp::Simd::vectorize(simd, crate::avx512::Wide(simd, row!(Portable)))
-            }
+            Kernel::Avx512(simd) => pulp::Simd::vectorize(simd, crate::avx512::Wide(simd, row)),
         }
     }
 }
@@ -248,7 +241,7 @@ pub(crate) struct ActiveLayer<'a> {
     pub(crate) modulation: &'a [[f32; 2]],
 }
 
-pub(crate) struct LayerRow<'a, I> {
+pub(crate) struct LayerRow<'a> {
     pub(crate) layers: &'a [ActiveLayer<'a>],
     pub(crate) rows: &'a [[f32; 2]],
     pub(crate) height: Option<&'a [f32]>,
@@ -258,11 +251,9 @@ pub(crate) struct LayerRow<'a, I> {
     pub(crate) z: f32,
     pub(crate) pos: &'a mut [Vec3],
     pub(crate) nrm: &'a mut [Vec3],
-    /// How the finished chunks are interleaved.
-    pub(crate) how: I,
 }
 
-impl<I: Interleave> pulp::WithSimd for LayerRow<'_, I> {
+impl pulp::WithSimd for LayerRow<'_> {
     type Output = ();
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _: S) {
@@ -271,7 +262,7 @@ impl<I: Interleave> pulp::WithSimd for LayerRow<'_, I> {
 }
 
 #[inline(always)]
-fn layer_row_kernel<I: Interleave>(row: LayerRow<'_, I>) {
+fn layer_row_kernel(row: LayerRow<'_>) {
     let LayerRow {
         layers,
         rows,
@@ -281,7 +272,6 @@ fn layer_row_kernel<I: Interleave>(row: LayerRow<'_, I>) {
         z,
         pos: out_pos,
         nrm: out_nrm,
-        how,
     } = row;
     for (n, (pos, nrm)) in out_pos
         .chunks_mut(LANES)
@@ -306,7 +296,7 @@ fn layer_row_kernel<I: Interleave>(row: LayerRow<'_, I>) {
         for l in 0..LANES {
             x[l] = (first + LANE_INDEX[l]) * dx;
         }
-        acc.finished(&x, &[z; LANES]).store(how, pos, nrm);
+        acc.finish(&x, &[z; LANES], pos, nrm);
     }
 }
 

@@ -654,9 +654,8 @@ pub(crate) struct GridPlan<'a> {
     timed: Vec<Timed>,
     waves: usize,
     chunks: usize,
-    /// The AVX-512 token where the CPU has it: rows then run `crate::avx512::WideGrid`.
-    #[cfg(target_arch = "x86_64")]
-    avx512: Option<pulp::x86::V4>,
+    /// The instruction set the rows run on: [`Isa::best`](crate::Isa::best)'s.
+    kernel: crate::isa::Kernel,
 }
 
 impl<'a> GridPlan<'a> {
@@ -680,8 +679,7 @@ impl<'a> GridPlan<'a> {
             timed: set.timed(grid.origin, t),
             waves: set.waves.len(),
             chunks: grid.size.0.div_ceil(LANES),
-            #[cfg(target_arch = "x86_64")]
-            avx512: pulp::x86::V4::try_new(),
+            kernel: crate::isa::Kernel::best(),
         }
     }
 
@@ -744,11 +742,14 @@ impl<'a> GridPlan<'a> {
             pos,
             nrm,
         };
-        #[cfg(target_arch = "x86_64")]
-        if let Some(simd) = self.avx512 {
-            return pulp::Simd::vectorize(simd, crate::avx512::WideGrid(simd, row));
+        use crate::isa::Kernel;
+        match self.kernel {
+            Kernel::Portable => pulp::WithSimd::with_simd(row, pulp::Scalar::new()),
+            #[cfg(target_arch = "x86_64")]
+            Kernel::Avx2(simd) => pulp::Simd::vectorize(simd, crate::avx2::HalfGrid(simd, row)),
+            #[cfg(target_arch = "x86_64")]
+            Kernel::Avx512(simd) => pulp::Simd::vectorize(simd, crate::avx512::WideGrid(simd, row)),
         }
-        dispatch(row);
     }
 }
 
@@ -943,7 +944,14 @@ mod tests {
         std::println!("best SIMD level: {best:?}");
         let scalar = run(pulp::Arch::Scalar);
         assert_eq!(scalar, run(best));
-        // The AVX-512 kernel written with intrinsics, where the CPU has it.
+        // The kernels written with intrinsics, where the CPU has them.
+        #[cfg(target_arch = "x86_64")]
+        if let Some(simd) = pulp::x86::V3::try_new() {
+            let (mut p, mut n) = (vec![Vec3::ZERO; 101], vec![Vec3::ZERO; 101]);
+            let half = crate::avx2::HalfGrid(simd, row(&set, &rows, &cols, dx, &mut p, &mut n));
+            pulp::Simd::vectorize(simd, half);
+            assert_eq!(scalar, bits(&p, &n));
+        }
         #[cfg(target_arch = "x86_64")]
         if let Some(simd) = pulp::x86::V4::try_new() {
             let (mut p, mut n) = (vec![Vec3::ZERO; 101], vec![Vec3::ZERO; 101]);
