@@ -381,10 +381,10 @@ fn tracers(runs: u32) -> Result<Value, String> {
     let mut rows = Vec::new();
     for entry in entries {
         let mut method = entry.method;
-        if entry.adaptive {
-            if let Method::Relaxed { cone, .. } = &mut method {
-                *cone = adaptive_cone_steps(*cone, TRACE_ANGLE);
-            }
+        if entry.adaptive
+            && let Method::Relaxed { cone, .. } = &mut method
+        {
+            *cone = adaptive_cone_steps(*cone, TRACE_ANGLE);
         }
         let trace = |r: &Ray| textures.trace(entry.cones, &method, r);
         trace(&rays[0]).map_err(err)?;

@@ -113,12 +113,11 @@ pub fn cones(
 ) -> Result<(ConeMap, Source), ocean_relief::ReliefError> {
     let k = key(map, &params);
     let path = dir().map(|d| d.join(format!("cones-{}-{k:016x}.bin", map.size())));
-    if let Some(p) = &path {
-        if let Ok(bytes) = std::fs::read(p) {
-            if let Some(c) = decode(&bytes, k, map.size(), map.edge()) {
-                return Ok((c, Source::Cached));
-            }
-        }
+    if let Some(p) = &path
+        && let Ok(bytes) = std::fs::read(p)
+        && let Some(c) = decode(&bytes, k, map.size(), map.edge())
+    {
+        return Ok((c, Source::Cached));
     }
     let cones = ConeMap::generate(map, params)?;
     if let Some(p) = &path {

@@ -347,10 +347,10 @@ impl SceneFile {
         range("camera.fov_y", c.fov_y, 1.0, 170.0)?;
         range("camera.near", c.near, 1e-4, 1e4)?;
         for (key, v) in [("camera.eye", c.eye), ("camera.target", c.target)] {
-            if let Some(v) = v {
-                if let Some(x) = v.iter().find(|x| !x.is_finite()) {
-                    return Err((key, format!("holds {x}, which is not finite")));
-                }
+            if let Some(v) = v
+                && let Some(x) = v.iter().find(|x| !x.is_finite())
+            {
+                return Err((key, format!("holds {x}, which is not finite")));
             }
         }
         let s = &self.sun;
@@ -518,12 +518,12 @@ fn line_of(text: &str, path: &str, index: usize) -> Option<usize> {
             }
             continue;
         }
-        if current == section && seen == index + 1 {
-            if let Some((k, _)) = t.split_once('=') {
-                if k.trim() == key {
-                    return Some(i + 1);
-                }
-            }
+        if current == section
+            && seen == index + 1
+            && let Some((k, _)) = t.split_once('=')
+            && k.trim() == key
+        {
+            return Some(i + 1);
         }
     }
     None

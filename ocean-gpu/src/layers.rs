@@ -604,14 +604,14 @@ impl LayersPass {
             modulation_words += 2 * r.len() as u64;
         }
         let has_height = input.height.is_some() || input.device_height.is_some();
-        if let Some(d) = input.device_height {
-            if d.size < 4 * points {
-                return Err(too_large(
-                    "device height field (bytes: one f32 per grid point)",
-                    4 * points,
-                    d.size,
-                ));
-            }
+        if let Some(d) = input.device_height
+            && d.size < 4 * points
+        {
+            return Err(too_large(
+                "device height field (bytes: one f32 per grid point)",
+                4 * points,
+                d.size,
+            ));
         }
         let height_words = if has_height { points } else { 0 };
         let data_words = scratch_words + modulation_words + height_words;

@@ -285,10 +285,10 @@ pub fn table(config: &Config) -> Result<Table, ReliefError> {
                     .collect::<Result<_, ReliefError>>()?;
                 for entry in &config.entries {
                     let mut method = entry.method;
-                    if entry.adaptive {
-                        if let Method::Relaxed { cone, .. } = &mut method {
-                            *cone = adaptive_cone_steps(*cone, angle);
-                        }
+                    if entry.adaptive
+                        && let Method::Relaxed { cone, .. } = &mut method
+                    {
+                        *cone = adaptive_cone_steps(*cone, angle);
                     }
                     // Step counts are checked once; the rays are valid by construction.
                     textures.trace(entry.cones, &method, &rays[0])?;

@@ -237,11 +237,11 @@ pub fn relaxed_limit(
                 from = dip_below(pc, floor_level);
                 dipped = from.is_some();
             }
-            if let Some(f) = from {
-                if let Some(s) = rise_above(pc, f, floor_level) {
-                    best = best.min(s / height);
-                    crossed = true;
-                }
+            if let Some(f) = from
+                && let Some(s) = rise_above(pc, f, floor_level)
+            {
+                best = best.min(s / height);
+                crossed = true;
             }
         }
         m = m.min(pc.at(pc.s1));
@@ -473,13 +473,12 @@ fn check_in(
     for (lines, violations, worst, u, k) in rows {
         report.lines += lines;
         report.violations += violations;
-        if let Some(w) = worst {
-            if report
+        if let Some(w) = worst
+            && report
                 .worst
                 .is_none_or(|r| w.stored / w.limit > r.stored / r.limit)
-            {
-                report.worst = Some(w);
-            }
+        {
+            report.worst = Some(w);
         }
         use_sum += u;
         use_n += k;

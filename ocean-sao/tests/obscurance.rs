@@ -226,10 +226,10 @@ fn box_in_room_darkens_monotonically_toward_the_contact() {
         for (i, &a) in st.ao.iter().enumerate() {
             if r.is_geometry(i) {
                 let face = r.raster.face[r.input_index(i)] as usize;
-                if let Some(d) = near_side(face, r.world_point(i)) {
-                    if d >= 1.5 {
-                        assert_eq!(a, 1.0, "{name}: pixel {i} at {d} m");
-                    }
+                if let Some(d) = near_side(face, r.world_point(i))
+                    && d >= 1.5
+                {
+                    assert_eq!(a, 1.0, "{name}: pixel {i} at {d} m");
                 }
             }
         }

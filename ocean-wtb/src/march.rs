@@ -119,11 +119,11 @@ impl MarchBox {
                     let land = terrain.is_land(i, j);
                     // Refraction: the phase lag of the shorter shallow-water wave, integrated along
                     // the ray at fixed frequency (midpoint of the step's two depths' integrands).
-                    if self.refraction {
-                        if let Some(prev) = last_a {
-                            let integrand = if land { 0.0 } else { shortening.get(depth) };
-                            lag += k_p * integrand * (p.a - prev);
-                        }
+                    if self.refraction
+                        && let Some(prev) = last_a
+                    {
+                        let integrand = if land { 0.0 } else { shortening.get(depth) };
+                        lag += k_p * integrand * (p.a - prev);
                     }
                     last_a = Some(p.a);
                     if land != on_land {

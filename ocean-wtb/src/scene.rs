@@ -234,15 +234,15 @@ impl Scene {
     ///
     /// [`WtbError::OutOfRange`] for a negative or non-finite time.
     pub fn set_budget(&mut self, budget: Budget) -> Result<(), WtbError> {
-        if let Budget::Seconds(s) = budget {
-            if !(s.is_finite() && s >= 0.0) {
-                return Err(WtbError::OutOfRange {
-                    name: "budget seconds",
-                    value: s,
-                    min: 0.0,
-                    max: f64::MAX,
-                });
-            }
+        if let Budget::Seconds(s) = budget
+            && !(s.is_finite() && s >= 0.0)
+        {
+            return Err(WtbError::OutOfRange {
+                name: "budget seconds",
+                value: s,
+                min: 0.0,
+                max: f64::MAX,
+            });
         }
         if let Budget::Explicit(sel) = budget {
             check_effects(&sel.effects)?;
@@ -450,10 +450,11 @@ impl Scene {
             let Some(state) = slot.spec.wind.state(t) else {
                 continue;
             };
-            if let Some(frame) = slot.spec.wind.frame(t, spacing)? {
-                if frame.length() > 0.0 && state.envelope > 0.0 {
-                    alive.push((k, frame, state.envelope));
-                }
+            if let Some(frame) = slot.spec.wind.frame(t, spacing)?
+                && frame.length() > 0.0
+                && state.envelope > 0.0
+            {
+                alive.push((k, frame, state.envelope));
             }
         }
         stats.alive = alive.len();
@@ -733,10 +734,10 @@ fn height_field(grid: &WaterGrid, terrain: &Terrain, e: &Effects, t: f64) -> Opt
             if let Some(n) = &e.noise {
                 y += effects::noise_height(n, (j * nx + i) as u64, t);
             }
-            if let Some(b) = &e.beach {
-                if !terrain.is_land(i, j) {
-                    y += effects::run_up(b, terrain.depth(i, j));
-                }
+            if let Some(b) = &e.beach
+                && !terrain.is_land(i, j)
+            {
+                y += effects::run_up(b, terrain.depth(i, j));
             }
             *v = y as f32;
         }
