@@ -17,9 +17,10 @@ use core::arch::x86_64::{__m256, __m256d, __m256i};
 use glam::Vec3;
 use pulp::x86::V3;
 
-use crate::kernel::{HALF, LANES, WaveCoeffs};
+use crate::kernel::{HALF, LANES};
 use crate::layers::{ActiveLayer, LayerRow};
-use crate::trochoid::{ColumnSinCos, GridRow, LANE_INDEX};
+use crate::trochoid::{GridRow, LANE_INDEX};
+use crate::vector::{Sums, Vector, angle_sum, modulate};
 
 const _: () = assert!(HALF == 8, "one AVX2 vector per half chunk");
 
@@ -35,113 +36,66 @@ fn half(a: &[f32; LANES], h: usize) -> __m256 {
     v(halves[h])
 }
 
-/// The eight running sums of a half chunk ([`Acc`](crate::kernel::Acc)'s fields).
-#[derive(Clone, Copy)]
-struct Sums {
-    dx: __m256,
-    y: __m256,
-    dz: __m256,
-    jxx: __m256,
-    jxz: __m256,
-    jzz: __m256,
-    sx: __m256,
-    sz: __m256,
+impl Vector for V3 {
+    type V = __m256;
+    /// All bits set in a lane where the condition holds.
+    type Mask = __m256;
+    #[inline(always)]
+    fn splat(self, x: f32) -> __m256 {
+        self.avx._mm256_set1_ps(x)
+    }
+    #[inline(always)]
+    fn add(self, a: __m256, b: __m256) -> __m256 {
+        self.avx._mm256_add_ps(a, b)
+    }
+    #[inline(always)]
+    fn sub(self, a: __m256, b: __m256) -> __m256 {
+        self.avx._mm256_sub_ps(a, b)
+    }
+    #[inline(always)]
+    fn mul(self, a: __m256, b: __m256) -> __m256 {
+        self.avx._mm256_mul_ps(a, b)
+    }
+    #[inline(always)]
+    fn div(self, a: __m256, b: __m256) -> __m256 {
+        self.avx._mm256_div_ps(a, b)
+    }
+    #[inline(always)]
+    fn sqrt(self, a: __m256) -> __m256 {
+        self.avx._mm256_sqrt_ps(a)
+    }
+    #[inline(always)]
+    fn less(self, a: __m256, b: __m256) -> __m256 {
+        self.avx
+            ._mm256_cmp_ps::<{ core::arch::x86_64::_CMP_LT_OQ }>(a, b)
+    }
+    #[inline(always)]
+    fn select(self, m: __m256, t: __m256, f: __m256) -> __m256 {
+        self.avx._mm256_blendv_ps(f, t, m)
+    }
 }
 
-impl Sums {
-    /// `Acc::new`: zero displacement, identity Jacobian, zero slope.
-    #[inline(always)]
-    fn new(simd: V3) -> Self {
-        let (zero, one) = (simd.avx._mm256_setzero_ps(), simd.avx._mm256_set1_ps(1.0));
-        Self {
-            dx: zero,
-            y: zero,
-            dz: zero,
-            jxx: one,
-            jxz: zero,
-            jzz: one,
-            sx: zero,
-            sz: zero,
-        }
-    }
-
-    /// `Acc::add_sin_cos`: one wave, given its sine and cosine on every lane.
-    #[inline(always)]
-    fn add(&mut self, simd: V3, k: &WaveCoeffs, s: __m256, co: __m256) {
-        let f = simd.avx;
-        let b = |x: f32| f._mm256_set1_ps(x);
-        let (add, sub, mul) = (
-            |a, b| f._mm256_add_ps(a, b),
-            |a, b| f._mm256_sub_ps(a, b),
-            |a, b| f._mm256_mul_ps(a, b),
-        );
-        self.dx = sub(self.dx, mul(b(k.ahx), s));
-        self.dz = sub(self.dz, mul(b(k.ahz), s));
-        self.y = add(self.y, mul(b(k.a), co));
-        self.jxx = sub(self.jxx, mul(b(k.cxx), co));
-        self.jxz = sub(self.jxz, mul(b(k.cxz), co));
-        self.jzz = sub(self.jzz, mul(b(k.czz), co));
-        self.sx = sub(self.sx, mul(b(k.gx), s));
-        self.sz = sub(self.sz, mul(b(k.gz), s));
-    }
-
-    /// `Acc::finish` and its interleaved stores for the half chunk whose first lane is lane
-    /// `h·8` of the chunk from grid column `chunk_col`, into the first `pos.len()` (at most 8)
-    /// points.
-    #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn finish(
-        self,
-        simd: V3,
-        chunk_col: usize,
-        h: usize,
-        dx: f32,
-        z: f32,
-        pos: &mut [Vec3],
-        nrm: &mut [Vec3],
-    ) {
-        let f = simd.avx;
-        let (add, sub, mul) = (
-            |a, b| f._mm256_add_ps(a, b),
-            |a, b| f._mm256_sub_ps(a, b),
-            |a, b| f._mm256_mul_ps(a, b),
-        );
-        let (zero, one) = (f._mm256_setzero_ps(), f._mm256_set1_ps(1.0));
-        let Sums {
-            dx: sdx,
-            y,
-            dz: sdz,
-            jxx,
-            jxz,
-            jzz,
-            sx,
-            sz,
-        } = self;
-        // (first + LANE_INDEX[l]) · dx with the chunk's first column, as the portable kernel.
-        let x = mul(
-            add(f._mm256_set1_ps(chunk_col as f32), half(&LANE_INDEX, h)),
-            f._mm256_set1_ps(dx),
-        );
-        let px = add(x, sdx);
-        let pz = add(f._mm256_set1_ps(z), sdz);
-        let a = sub(mul(sz, jxz), mul(jzz, sx));
-        let b = sub(mul(jzz, jxx), mul(jxz, jxz));
-        let c = sub(mul(jxz, sx), mul(sz, jxx));
-        let len2 = add(add(mul(a, a), mul(b, b)), mul(c, c));
-        let degenerate = f._mm256_cmp_ps::<{ core::arch::x86_64::_CMP_LT_OQ }>(
-            len2,
-            f._mm256_set1_ps(f32::MIN_POSITIVE),
-        );
-        let inv = f._mm256_div_ps(
-            one,
-            f._mm256_sqrt_ps(f._mm256_blendv_ps(len2, one, degenerate)),
-        );
-        let nx = f._mm256_blendv_ps(mul(a, inv), zero, degenerate);
-        let ny = f._mm256_blendv_ps(mul(b, inv), one, degenerate);
-        let nz = f._mm256_blendv_ps(mul(c, inv), zero, degenerate);
-        store(interleave(simd, px, y, pz), pos);
-        store(interleave(simd, nx, ny, nz), nrm);
-    }
+/// `Acc::finish` and its interleaved stores for the half chunk whose first lane is lane
+/// `h·8` of the chunk from grid column `chunk_col`, into the first `pos.len()` (at most 8)
+/// points.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    simd: V3,
+    sums: Sums<__m256>,
+    chunk_col: usize,
+    h: usize,
+    dx: f32,
+    z: f32,
+    pos: &mut [Vec3],
+    nrm: &mut [Vec3],
+) {
+    // (first + LANE_INDEX[l]) · dx with the chunk's first column, as the portable kernel.
+    let first = simd.splat(chunk_col as f32);
+    let x = simd.mul(simd.add(first, half(&LANE_INDEX, h)), simd.splat(dx));
+    let ([px, py, pz], [nx, ny, nz]) = sums.finish(simd, x, z);
+    store(interleave(simd, px, py, pz), pos);
+    store(interleave(simd, nx, ny, nz), nrm);
 }
 
 /// Eight points' x, y, z interleaved as `xyz`: three vectors.
@@ -182,21 +136,6 @@ fn store(xyz: [__m256; 3], out: &mut [Vec3]) {
         let n = out.len();
         bytemuck::cast_slice_mut::<Vec3, f32>(out).copy_from_slice(&flat[..3 * n]);
     }
-}
-
-/// sin θ and cos θ on the lanes of half `h` of one wave's column table entry, by angle
-/// addition with its row's (`rs`, `rc`).
-#[inline(always)]
-fn angle_sum(simd: V3, rs: f32, rc: f32, col: &ColumnSinCos, h: usize) -> (__m256, __m256) {
-    let f = simd.avx;
-    let (add, sub, mul) = (
-        |a, b| f._mm256_add_ps(a, b),
-        |a, b| f._mm256_sub_ps(a, b),
-        |a, b| f._mm256_mul_ps(a, b),
-    );
-    let (cs, cc) = (half(&col.sin, h), half(&col.cos, h));
-    let (rs, rc) = (f._mm256_set1_ps(rs), f._mm256_set1_ps(rc));
-    (add(mul(rs, cc), mul(rc, cs)), sub(mul(rc, cc), mul(rs, cs)))
 }
 
 /// The modulation of the eight lanes from grid column `col`, zero outside the layer's span:
@@ -269,11 +208,6 @@ impl pulp::WithSimd for Half<'_> {
             pos: out_pos,
             nrm: out_nrm,
         } = row;
-        let (add, sub, mul) = (
-            |a, b| f._mm256_add_ps(a, b),
-            |a, b| f._mm256_sub_ps(a, b),
-            |a, b| f._mm256_mul_ps(a, b),
-        );
         let magnitude: __m256i = bytemuck::cast([0x7fff_ffffu32; HALF]);
         for (n, (pos, nrm)) in out_pos
             .chunks_mut(LANES)
@@ -303,9 +237,9 @@ impl pulp::WithSimd for Half<'_> {
                     let table = &layer.cols[c * waves..(c + 1) * waves];
                     let rows = &rows[layer.rows.clone()];
                     for ((k, &[rs, rc]), entry) in layer.coeffs.iter().zip(rows).zip(table) {
-                        let (sin, cos) = angle_sum(simd, rs, rc, entry, h);
-                        let s = add(mul(sin, mr), mul(cos, mi));
-                        let co = sub(mul(cos, mr), mul(sin, mi));
+                        let (cs, cc) = (half(&entry.sin, h), half(&entry.cos, h));
+                        let (sin, cos) = angle_sum(simd, rs, rc, cs, cc);
+                        let (s, co) = modulate(simd, sin, cos, mr, mi);
                         sums.add(simd, k, s, co);
                     }
                 }
@@ -313,9 +247,9 @@ impl pulp::WithSimd for Half<'_> {
                     let len = pos.len();
                     let mut add_h = [0.0f32; HALF];
                     add_h[..len].copy_from_slice(&hf[col..col + len]);
-                    sums.y = add(sums.y, v(add_h));
+                    sums.y = simd.add(sums.y, v(add_h));
                 }
-                sums.finish(simd, chunk_col, h, dx, z, pos, nrm);
+                finish(simd, sums, chunk_col, h, dx, z, pos, nrm);
             }
         }
     }
@@ -347,10 +281,11 @@ impl pulp::WithSimd for HalfGrid<'_> {
             for (h, (pos, nrm)) in pos.chunks_mut(HALF).zip(nrm.chunks_mut(HALF)).enumerate() {
                 let mut sums = Sums::new(simd);
                 for ((k, &[rs, rc]), entry) in coeffs.iter().zip(rows).zip(table) {
-                    let (s, co) = angle_sum(simd, rs, rc, entry, h);
+                    let (cs, cc) = (half(&entry.sin, h), half(&entry.cos, h));
+                    let (s, co) = angle_sum(simd, rs, rc, cs, cc);
                     sums.add(simd, k, s, co);
                 }
-                sums.finish(simd, c * LANES, h, dx, z, pos, nrm);
+                finish(simd, sums, c * LANES, h, dx, z, pos, nrm);
             }
         }
     }

@@ -12,14 +12,15 @@
 //! [`Acc::finish`](crate::kernel::Acc) for the normal. Its output is therefore bit-identical
 //! to the AVX2 and portable paths (tested in `tests/layers_isa.rs`), whatever the CPU.
 
-use core::arch::x86_64::{__m512, __m512i};
+use core::arch::x86_64::{__m512, __m512i, __mmask16};
 
 use glam::Vec3;
 use pulp::x86::V4;
 
-use crate::kernel::{LANES, WaveCoeffs};
+use crate::kernel::LANES;
 use crate::layers::{ActiveLayer, LayerRow};
-use crate::trochoid::{ColumnSinCos, GridRow, LANE_INDEX};
+use crate::trochoid::{GridRow, LANE_INDEX};
+use crate::vector::{Sums, Vector, angle_sum, modulate};
 
 const _: () = assert!(LANES == 16, "one AVX-512 vector per chunk");
 
@@ -155,125 +156,64 @@ fn partial_modulation(layer: &ActiveLayer<'_>, first_col: usize, end: usize) -> 
     (v(re), v(im))
 }
 
-/// The eight running sums of a chunk ([`Acc`](crate::kernel::Acc)'s fields), one vector each.
-#[derive(Clone, Copy)]
-struct Sums {
-    dx: __m512,
-    y: __m512,
-    dz: __m512,
-    jxx: __m512,
-    jxz: __m512,
-    jzz: __m512,
-    sx: __m512,
-    sz: __m512,
-}
-
-impl Sums {
-    /// `Acc::new`: zero displacement, identity Jacobian, zero slope.
+impl Vector for V4 {
+    type V = __m512;
+    type Mask = __mmask16;
     #[inline(always)]
-    fn new(simd: V4) -> Self {
-        let f = simd.avx512f;
-        let (zero, one) = (f._mm512_setzero_ps(), f._mm512_set1_ps(1.0));
-        Self {
-            dx: zero,
-            y: zero,
-            dz: zero,
-            jxx: one,
-            jxz: zero,
-            jzz: one,
-            sx: zero,
-            sz: zero,
-        }
+    fn splat(self, x: f32) -> __m512 {
+        self.avx512f._mm512_set1_ps(x)
     }
-
-    /// `Acc::add_sin_cos`: one wave, given its sine and cosine on every lane.
     #[inline(always)]
-    fn add(&mut self, simd: V4, k: &WaveCoeffs, s: __m512, co: __m512) {
-        let f = simd.avx512f;
-        let b = |x: f32| f._mm512_set1_ps(x);
-        let (add, sub, mul) = (
-            |a, b| f._mm512_add_ps(a, b),
-            |a, b| f._mm512_sub_ps(a, b),
-            |a, b| f._mm512_mul_ps(a, b),
-        );
-        self.dx = sub(self.dx, mul(b(k.ahx), s));
-        self.dz = sub(self.dz, mul(b(k.ahz), s));
-        self.y = add(self.y, mul(b(k.a), co));
-        self.jxx = sub(self.jxx, mul(b(k.cxx), co));
-        self.jxz = sub(self.jxz, mul(b(k.cxz), co));
-        self.jzz = sub(self.jzz, mul(b(k.czz), co));
-        self.sx = sub(self.sx, mul(b(k.gx), s));
-        self.sz = sub(self.sz, mul(b(k.gz), s));
+    fn add(self, a: __m512, b: __m512) -> __m512 {
+        self.avx512f._mm512_add_ps(a, b)
     }
-
-    /// `Acc::finish` and its interleaved stores: the chunk from grid column `first_col` of
-    /// a row at `z`, columns `dx` apart, into the first `pos.len()` (at most 16) points.
     #[inline(always)]
-    fn finish(
-        self,
-        simd: V4,
-        first_col: usize,
-        dx: f32,
-        z: f32,
-        pos: &mut [Vec3],
-        nrm: &mut [Vec3],
-    ) {
-        let f = simd.avx512f;
-        let (add, sub, mul) = (
-            |a, b| f._mm512_add_ps(a, b),
-            |a, b| f._mm512_sub_ps(a, b),
-            |a, b| f._mm512_mul_ps(a, b),
-        );
-        let (zero, one) = (f._mm512_setzero_ps(), f._mm512_set1_ps(1.0));
-        let Sums {
-            dx: sdx,
-            y,
-            dz: sdz,
-            jxx,
-            jxz,
-            jzz,
-            sx,
-            sz,
-        } = self;
-        let x = mul(
-            add(f._mm512_set1_ps(first_col as f32), v(LANE_INDEX)),
-            f._mm512_set1_ps(dx),
-        );
-        let px = add(x, sdx);
-        let pz = add(f._mm512_set1_ps(z), sdz);
-        let a = sub(mul(sz, jxz), mul(jzz, sx));
-        let b = sub(mul(jzz, jxx), mul(jxz, jxz));
-        let c = sub(mul(jxz, sx), mul(sz, jxx));
-        let len2 = add(add(mul(a, a), mul(b, b)), mul(c, c));
-        let degenerate = f._mm512_cmp_ps_mask::<{ core::arch::x86_64::_CMP_LT_OQ }>(
-            len2,
-            f._mm512_set1_ps(f32::MIN_POSITIVE),
-        );
-        let inv = f._mm512_div_ps(
-            one,
-            f._mm512_sqrt_ps(f._mm512_mask_blend_ps(degenerate, len2, one)),
-        );
-        let nx = f._mm512_mask_blend_ps(degenerate, mul(a, inv), zero);
-        let ny = f._mm512_mask_blend_ps(degenerate, mul(b, inv), one);
-        let nz = f._mm512_mask_blend_ps(degenerate, mul(c, inv), zero);
-        store(interleave(simd, px, y, pz), pos);
-        store(interleave(simd, nx, ny, nz), nrm);
+    fn sub(self, a: __m512, b: __m512) -> __m512 {
+        self.avx512f._mm512_sub_ps(a, b)
+    }
+    #[inline(always)]
+    fn mul(self, a: __m512, b: __m512) -> __m512 {
+        self.avx512f._mm512_mul_ps(a, b)
+    }
+    #[inline(always)]
+    fn div(self, a: __m512, b: __m512) -> __m512 {
+        self.avx512f._mm512_div_ps(a, b)
+    }
+    #[inline(always)]
+    fn sqrt(self, a: __m512) -> __m512 {
+        self.avx512f._mm512_sqrt_ps(a)
+    }
+    #[inline(always)]
+    fn less(self, a: __m512, b: __m512) -> __mmask16 {
+        self.avx512f
+            ._mm512_cmp_ps_mask::<{ core::arch::x86_64::_CMP_LT_OQ }>(a, b)
+    }
+    #[inline(always)]
+    fn select(self, m: __mmask16, t: __m512, f: __m512) -> __m512 {
+        self.avx512f._mm512_mask_blend_ps(m, f, t)
     }
 }
 
-/// sin θ and cos θ of every lane of one wave from its row's (`rs`, `rc`) and its column
-/// table's values, by angle addition: the grid kernels' four products and two sums.
+/// `Acc::finish` and its interleaved stores: the chunk from grid column `first_col` of a row
+/// at `z`, columns `dx` apart, into the first `pos.len()` (at most 16) points.
 #[inline(always)]
-fn angle_sum(simd: V4, rs: f32, rc: f32, col: &ColumnSinCos) -> (__m512, __m512) {
-    let f = simd.avx512f;
-    let (add, sub, mul) = (
-        |a, b| f._mm512_add_ps(a, b),
-        |a, b| f._mm512_sub_ps(a, b),
-        |a, b| f._mm512_mul_ps(a, b),
+fn finish(
+    simd: V4,
+    sums: Sums<__m512>,
+    first_col: usize,
+    dx: f32,
+    z: f32,
+    pos: &mut [Vec3],
+    nrm: &mut [Vec3],
+) {
+    // (first + LANE_INDEX[l]) · dx, as the portable kernel forms x.
+    let x = simd.mul(
+        simd.add(simd.splat(first_col as f32), v(LANE_INDEX)),
+        simd.splat(dx),
     );
-    let (cs, cc) = (v(col.sin), v(col.cos));
-    let (rs, rc) = (f._mm512_set1_ps(rs), f._mm512_set1_ps(rc));
-    (add(mul(rs, cc), mul(rc, cs)), sub(mul(rc, cc), mul(rs, cs)))
+    let ([px, py, pz], [nx, ny, nz]) = sums.finish(simd, x, z);
+    store(interleave(simd, px, py, pz), pos);
+    store(interleave(simd, nx, ny, nz), nrm);
 }
 
 #[inline(always)]
@@ -289,11 +229,6 @@ fn row(simd: V4, row: LayerRow<'_>) {
         pos: out_pos,
         nrm: out_nrm,
     } = row;
-    let (add, sub, mul) = (
-        |a, b| f._mm512_add_ps(a, b),
-        |a, b| f._mm512_sub_ps(a, b),
-        |a, b| f._mm512_mul_ps(a, b),
-    );
     let magnitude = f._mm512_set1_epi32(0x7fff_ffff);
     for (n, (pos, nrm)) in out_pos
         .chunks_mut(LANES)
@@ -319,9 +254,8 @@ fn row(simd: V4, row: LayerRow<'_>) {
             let table = &layer.cols[c * waves..(c + 1) * waves];
             let rows = &rows[layer.rows.clone()];
             for ((k, &[rs, rc]), col) in layer.coeffs.iter().zip(rows).zip(table) {
-                let (sin, cos) = angle_sum(simd, rs, rc, col);
-                let s = add(mul(sin, mr), mul(cos, mi));
-                let co = sub(mul(cos, mr), mul(sin, mi));
+                let (sin, cos) = angle_sum(simd, rs, rc, v(col.sin), v(col.cos));
+                let (s, co) = modulate(simd, sin, cos, mr, mi);
                 sums.add(simd, k, s, co);
             }
         }
@@ -329,9 +263,9 @@ fn row(simd: V4, row: LayerRow<'_>) {
             let len = pos.len().min(LANES);
             let mut add_h = [0.0f32; LANES];
             add_h[..len].copy_from_slice(&h[first_col..first_col + len]);
-            sums.y = add(sums.y, v(add_h));
+            sums.y = simd.add(sums.y, v(add_h));
         }
-        sums.finish(simd, first_col, dx, z, pos, nrm);
+        finish(simd, sums, first_col, dx, z, pos, nrm);
     }
 }
 
@@ -360,10 +294,10 @@ impl pulp::WithSimd for WideGrid<'_> {
             let table = &cols[c * block..(c + 1) * block];
             let mut sums = Sums::new(simd);
             for ((k, &[rs, rc]), col) in coeffs.iter().zip(rows).zip(table) {
-                let (s, co) = angle_sum(simd, rs, rc, col);
+                let (s, co) = angle_sum(simd, rs, rc, v(col.sin), v(col.cos));
                 sums.add(simd, k, s, co);
             }
-            sums.finish(simd, c * LANES, dx, z, pos, nrm);
+            finish(simd, sums, c * LANES, dx, z, pos, nrm);
         }
     }
 }

@@ -86,6 +86,8 @@ pub mod rows;
 pub mod sincos;
 pub mod timed;
 pub mod trochoid;
+#[cfg(target_arch = "x86_64")]
+mod vector;
 pub mod wave;
 
 pub use camera::{
