@@ -142,40 +142,26 @@ fn store(xyz: [__m256; 3], out: &mut [Vec3]) {
 /// (real parts, imaginary parts).
 #[inline(always)]
 fn modulation(simd: V3, layer: &ActiveLayer<'_>, col: usize) -> (__m256, __m256) {
-    let end = layer.first + layer.modulation.len();
-    if col >= layer.first && col + HALF <= end {
-        let run = &layer.modulation[col - layer.first..][..HALF];
-        // Eight pairs are two vectors of eight floats.
-        let pairs: &[[f32; HALF]] = bytemuck::cast_slice(run);
-        let (lo, hi) = (v(pairs[0]), v(pairs[1]));
-        let avx = simd.avx;
-        // Even floats, then odd, in 64-bit blocks (0, 2, 1, 3) of the true order.
-        let re = avx._mm256_shuffle_ps::<0x88>(lo, hi);
-        let im = avx._mm256_shuffle_ps::<0xDD>(lo, hi);
-        let order = |a: __m256| -> __m256 {
-            bytemuck::cast(
-                simd.avx2
-                    ._mm256_permute4x64_pd::<0xD8>(bytemuck::cast::<__m256, __m256d>(a)),
-            )
-        };
-        (order(re), order(im))
-    } else {
-        partial_modulation(layer, col, end)
-    }
-}
-
-/// [`modulation`] for lanes that the span covers in part (at most two a layer and row).
-#[inline(never)]
-fn partial_modulation(layer: &ActiveLayer<'_>, col: usize, end: usize) -> (__m256, __m256) {
-    let mut re = [0.0f32; HALF];
-    let mut im = [0.0f32; HALF];
-    for l in 0..HALF {
-        let i = col + l;
-        if i >= layer.first && i < end {
-            [re[l], im[l]] = layer.modulation[i - layer.first];
+    match layer.run(col, HALF) {
+        Some(run) => {
+            // Eight pairs are two vectors of eight floats.
+            let pairs: &[[f32; HALF]] = bytemuck::cast_slice(run);
+            let (lo, hi) = (v(pairs[0]), v(pairs[1]));
+            let avx = simd.avx;
+            // Even floats, then odd, in 64-bit blocks (0, 2, 1, 3) of the true order.
+            let re = avx._mm256_shuffle_ps::<0x88>(lo, hi);
+            let im = avx._mm256_shuffle_ps::<0xDD>(lo, hi);
+            let order = |a: __m256| -> __m256 {
+                let a: __m256d = bytemuck::cast(a);
+                bytemuck::cast(simd.avx2._mm256_permute4x64_pd::<0xD8>(a))
+            };
+            (order(re), order(im))
+        }
+        None => {
+            let (re, im) = layer.partial::<HALF>(col);
+            (v(re), v(im))
         }
     }
-    (v(re), v(im))
 }
 
 /// Half chunks of modulation read ahead of the kernel (one cache line each).
@@ -220,8 +206,7 @@ impl pulp::WithSimd for Half<'_> {
                 let col = chunk_col + h * HALF;
                 let mut sums = Sums::new(simd);
                 for layer in layers {
-                    let end = layer.first + layer.modulation.len();
-                    if end <= col || layer.first >= col + HALF {
+                    if !layer.touches(col, HALF) {
                         continue;
                     }
                     prefetch(simd, layer, col);
@@ -233,10 +218,9 @@ impl pulp::WithSimd for Half<'_> {
                     if f._mm256_testz_si256(bits, magnitude) == 1 {
                         continue;
                     }
-                    let waves = layer.coeffs.len();
-                    let table = &layer.cols[c * waves..(c + 1) * waves];
                     let rows = &rows[layer.rows.clone()];
-                    for ((k, &[rs, rc]), entry) in layer.coeffs.iter().zip(rows).zip(table) {
+                    for ((k, &[rs, rc]), entry) in layer.coeffs.iter().zip(rows).zip(layer.table(c))
+                    {
                         let (cs, cc) = (half(&entry.sin, h), half(&entry.cos, h));
                         let (sin, cos) = angle_sum(simd, rs, rc, cs, cc);
                         let (s, co) = modulate(simd, sin, cos, mr, mi);

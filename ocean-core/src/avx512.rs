@@ -111,18 +111,20 @@ fn interleave(simd: V4, x: __m512, y: __m512, z: __m512) -> [__m512; 3] {
 #[inline(always)]
 fn modulation(simd: V4, layer: &ActiveLayer<'_>, first_col: usize) -> (__m512, __m512) {
     let f = simd.avx512f;
-    let end = layer.first + layer.modulation.len();
-    if first_col >= layer.first && first_col + LANES <= end {
-        let run = &layer.modulation[first_col - layer.first..][..LANES];
-        // 16 pairs are two vectors of 16 floats.
-        let halves: &[[f32; LANES]] = bytemuck::cast_slice(run);
-        let (lo, hi) = (v(halves[0]), v(halves[1]));
-        (
-            f._mm512_permutex2var_ps(lo, vi(EVEN), hi),
-            f._mm512_permutex2var_ps(lo, vi(ODD), hi),
-        )
-    } else {
-        partial_modulation(layer, first_col, end)
+    match layer.run(first_col, LANES) {
+        Some(run) => {
+            // 16 pairs are two vectors of 16 floats.
+            let halves: &[[f32; LANES]] = bytemuck::cast_slice(run);
+            let (lo, hi) = (v(halves[0]), v(halves[1]));
+            (
+                f._mm512_permutex2var_ps(lo, vi(EVEN), hi),
+                f._mm512_permutex2var_ps(lo, vi(ODD), hi),
+            )
+        }
+        None => {
+            let (re, im) = layer.partial::<LANES>(first_col);
+            (v(re), v(im))
+        }
     }
 }
 
@@ -140,20 +142,6 @@ fn prefetch(simd: V4, layer: &ActiveLayer<'_>, first_col: usize) {
         ._mm_prefetch::<{ core::arch::x86_64::_MM_HINT_T0 }>(p);
     simd.sse
         ._mm_prefetch::<{ core::arch::x86_64::_MM_HINT_T0 }>(p.wrapping_add(64));
-}
-
-/// [`modulation`] for a chunk that the span covers in part (at most two a layer and row).
-#[inline(never)]
-fn partial_modulation(layer: &ActiveLayer<'_>, first_col: usize, end: usize) -> (__m512, __m512) {
-    let mut re = [0.0f32; LANES];
-    let mut im = [0.0f32; LANES];
-    for l in 0..LANES {
-        let i = first_col + l;
-        if i >= layer.first && i < end {
-            [re[l], im[l]] = layer.modulation[i - layer.first];
-        }
-    }
-    (v(re), v(im))
 }
 
 impl Vector for V4 {
@@ -239,8 +227,7 @@ fn row(simd: V4, row: LayerRow<'_>) {
         let first_col = c * LANES;
         let mut sums = Sums::new(simd);
         for layer in layers {
-            let end = layer.first + layer.modulation.len();
-            if end <= first_col || layer.first >= first_col + LANES {
+            if !layer.touches(first_col, LANES) {
                 continue;
             }
             prefetch(simd, layer, first_col);
@@ -250,10 +237,8 @@ fn row(simd: V4, row: LayerRow<'_>) {
             if f._mm512_test_epi32_mask(bits, magnitude) == 0 {
                 continue;
             }
-            let waves = layer.coeffs.len();
-            let table = &layer.cols[c * waves..(c + 1) * waves];
             let rows = &rows[layer.rows.clone()];
-            for ((k, &[rs, rc]), col) in layer.coeffs.iter().zip(rows).zip(table) {
+            for ((k, &[rs, rc]), col) in layer.coeffs.iter().zip(rows).zip(layer.table(c)) {
                 let (sin, cos) = angle_sum(simd, rs, rc, v(col.sin), v(col.cos));
                 let (s, co) = modulate(simd, sin, cos, mr, mi);
                 sums.add(simd, k, s, co);

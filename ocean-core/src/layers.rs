@@ -241,6 +241,49 @@ pub(crate) struct ActiveLayer<'a> {
     pub(crate) modulation: &'a [[f32; 2]],
 }
 
+impl ActiveLayer<'_> {
+    /// The grid column past the row's span.
+    #[inline(always)]
+    fn end(&self) -> usize {
+        self.first + self.modulation.len()
+    }
+
+    /// Whether the span reaches into the `n` columns from grid column `col`.
+    #[inline(always)]
+    pub(crate) fn touches(&self, col: usize, n: usize) -> bool {
+        self.end() > col && self.first < col + n
+    }
+
+    /// The `n` values of μ from grid column `col`, if the span holds all of them.
+    #[inline(always)]
+    pub(crate) fn run(&self, col: usize, n: usize) -> Option<&[[f32; 2]]> {
+        (col >= self.first && col + n <= self.end())
+            .then(|| &self.modulation[col - self.first..][..n])
+    }
+
+    /// μ on the `N` lanes from grid column `col` where the span covers them in part (at most
+    /// two runs a layer and row): real and imaginary parts, zero outside the span. Kept out of
+    /// line so that the kernels' loops do not carry its index arithmetic.
+    #[inline(never)]
+    pub(crate) fn partial<const N: usize>(&self, col: usize) -> ([f32; N], [f32; N]) {
+        let (mut re, mut im) = ([0.0f32; N], [0.0f32; N]);
+        for l in 0..N {
+            let i = col + l;
+            if i >= self.first && i < self.end() {
+                [re[l], im[l]] = self.modulation[i - self.first];
+            }
+        }
+        (re, im)
+    }
+
+    /// The column table entries of chunk `c`, one a wave.
+    #[inline(always)]
+    pub(crate) fn table(&self, c: usize) -> &[ColumnSinCos] {
+        let waves = self.coeffs.len();
+        &self.cols[c * waves..(c + 1) * waves]
+    }
+}
+
 pub(crate) struct LayerRow<'a> {
     pub(crate) layers: &'a [ActiveLayer<'a>],
     pub(crate) rows: &'a [[f32; 2]],
@@ -312,28 +355,22 @@ fn half_sums(
     let mut acc = Acc::<HALF>::new();
     let offset = first_col - c * LANES;
     for layer in layers {
-        let end = layer.first + layer.modulation.len();
-        if end <= first_col || layer.first >= first_col + HALF {
+        if !layer.touches(first_col, HALF) {
             continue;
         }
         // The modulation of these lanes; zero outside the row's span.
-        let mut re = [0.0f32; HALF];
-        let mut im = [0.0f32; HALF];
-        if first_col >= layer.first && first_col + HALF <= end {
-            // All lanes inside the span: one contiguous run to de-interleave.
-            let run = &layer.modulation[first_col - layer.first..][..HALF];
-            for l in 0..HALF {
-                re[l] = run[l][0];
-                im[l] = run[l][1];
-            }
-        } else {
-            for l in 0..HALF {
-                let i = first_col + l;
-                if i >= layer.first && i < end {
-                    [re[l], im[l]] = layer.modulation[i - layer.first];
+        let (re, im) = match layer.run(first_col, HALF) {
+            Some(run) => {
+                // All lanes inside the span: one contiguous run to de-interleave.
+                let (mut re, mut im) = ([0.0f32; HALF], [0.0f32; HALF]);
+                for l in 0..HALF {
+                    re[l] = run[l][0];
+                    im[l] = run[l][1];
                 }
+                (re, im)
             }
-        }
+            None => layer.partial::<HALF>(first_col),
+        };
         // Where μ is zero (land inside a box), a layer's terms would add exactly ±0 to every
         // sum: skipping it changes no bit. The test ORs the magnitude bits, a reduction LLVM
         // vectorises (a float sum would be evaluated lane by lane, in order).
@@ -344,10 +381,8 @@ fn half_sums(
         if bits == 0 {
             continue;
         }
-        let waves = layer.coeffs.len();
-        let table = &layer.cols[c * waves..(c + 1) * waves];
         let rows = &rows[layer.rows.clone()];
-        for ((coeff, &[rs, rc]), col) in layer.coeffs.iter().zip(rows).zip(table) {
+        for ((coeff, &[rs, rc]), col) in layer.coeffs.iter().zip(rows).zip(layer.table(c)) {
             let mut s = [0.0f32; HALF];
             let mut co = [0.0f32; HALF];
             for l in 0..HALF {
