@@ -113,13 +113,10 @@ impl<'a> Plan<'a> {
         t: f64,
         layers: &'a [Layer<'a>],
         height: Option<&'a [f32]>,
-        out_pos: &[Vec3],
-        out_nrm: &[Vec3],
         parallel: bool,
     ) -> Result<Self, EvalError> {
         check_time(t)?;
         let n = grid.point_count()?;
-        check_outputs(n, out_pos, out_nrm)?;
         for layer in layers {
             // The modulation's values were checked when it was built; only the fit is left.
             if !layer.rect().fits(grid.size) {
@@ -159,7 +156,14 @@ impl<'a> Plan<'a> {
         })
     }
 
-    /// Evaluates the chunks `chunks` of row `j` into `pos` and `nrm` (that row, whole).
+    /// The grid columns `a..b` of the 16-column chunks `chunks` (the last one cut at the
+    /// grid's edge).
+    fn chunk_columns(&self, chunks: &core::ops::Range<usize>) -> (usize, usize) {
+        (chunks.start * LANES, (chunks.end * LANES).min(self.grid.size.0))
+    }
+
+    /// Evaluates the chunks `chunks` of row `j` into `pos` and `nrm`, which hold the columns
+    /// [`Plan::chunk_columns`] of those chunks.
     fn row<'p>(
         &'p self,
         j: usize,
@@ -169,8 +173,9 @@ impl<'a> Plan<'a> {
         scratch: &mut Scratch<'p>,
     ) {
         let nx = self.grid.size.0;
-        let (c0, c1) = (chunks.start, chunks.end);
-        let (a, b) = (c0 * LANES, (c1 * LANES).min(nx));
+        let c0 = chunks.start;
+        let (a, b) = self.chunk_columns(&chunks);
+        debug_assert!(pos.len() == b - a && nrm.len() == b - a);
         // The layers with non-zero modulation on this row, with their row tables.
         scratch.active.clear();
         scratch.rows.clear();
@@ -204,8 +209,8 @@ impl<'a> Plan<'a> {
             first_chunk: c0,
             dx: self.grid.spacing.x as f32,
             z: self.grid.local(0, j).1,
-            pos: &mut pos[a..b],
-            nrm: &mut nrm[a..b],
+            pos,
+            nrm,
         };
         match self.kernel {
             // Built for the compilation target (SSE2 on x86-64, NEON on AArch64).
@@ -492,16 +497,18 @@ fn region_on(
     out_pos: &mut [Vec3],
     out_nrm: &mut [Vec3],
 ) -> Result<(), EvalError> {
-    let plan = Plan::new(isa, grid, t, layers, height, out_pos, out_nrm, false)?;
+    check_outputs(grid.point_count()?, out_pos, out_nrm)?;
+    let plan = Plan::new(isa, grid, t, layers, height, false)?;
     let Some((rows, chunks)) = region_span(grid, region)? else {
         return Ok(());
     };
     let nx = grid.size.0;
+    let (a, b) = plan.chunk_columns(&chunks);
     let mut scratch = Scratch::default();
     for j in rows {
         let (p, n) = (
-            &mut out_pos[j * nx..(j + 1) * nx],
-            &mut out_nrm[j * nx..(j + 1) * nx],
+            &mut out_pos[j * nx + a..j * nx + b],
+            &mut out_nrm[j * nx + a..j * nx + b],
         );
         plan.row(j, chunks.clone(), p, n, &mut scratch);
     }
@@ -562,11 +569,13 @@ pub fn evaluate_layers_region_par(
     out_nrm: &mut [Vec3],
 ) -> Result<(), EvalError> {
     use rayon::prelude::*;
-    let plan = Plan::new(Isa::best(), grid, t, layers, height, out_pos, out_nrm, true)?;
+    check_outputs(grid.point_count()?, out_pos, out_nrm)?;
+    let plan = Plan::new(Isa::best(), grid, t, layers, height, true)?;
     let Some((rows, chunks)) = region_span(grid, region)? else {
         return Ok(());
     };
     let nx = grid.size.0;
+    let (a, b) = plan.chunk_columns(&chunks);
     let per_task = crate::trochoid::rows_per_task(nx);
     let (first, last) = (rows.start, rows.end);
     out_pos[first * nx..last * nx]
@@ -579,11 +588,80 @@ pub fn evaluate_layers_region_par(
                 plan.row(
                     first + task * per_task + r,
                     chunks.clone(),
-                    p,
-                    n,
+                    &mut p[a..b],
+                    &mut n[a..b],
                     &mut scratch,
                 );
             }
         });
     Ok(())
+}
+
+/// A frame's layers prepared once (validated, with their column tables) for evaluating blocks
+/// of grid points on demand: each point gets the bits [`evaluate_layers`] gives it. Height
+/// queries on the drawn mesh evaluate the few blocks around their points this way instead of
+/// the whole grid.
+pub struct LayersEvaluator<'a> {
+    plan: Plan<'a>,
+}
+
+impl<'a> LayersEvaluator<'a> {
+    /// Validates the inputs as [`evaluate_layers`] does and builds every layer's column tables.
+    ///
+    /// # Errors
+    ///
+    /// As [`evaluate_layers`], but for the output buffers.
+    pub fn new(
+        grid: &'a Grid,
+        t: f64,
+        layers: &'a [Layer<'a>],
+        height: Option<&'a [f32]>,
+    ) -> Result<Self, EvalError> {
+        Ok(Self {
+            plan: Plan::new(Isa::best(), grid, t, layers, height, false)?,
+        })
+    }
+
+    /// The points of `block` into `pos` and `nrm`, row-major over the block (point (i, j) at
+    /// `(j − block.j0)·block.nx + i − block.i0`), positions relative to the grid's origin, each
+    /// the value [`evaluate_layers`] writes for it. A block whose columns start at a multiple
+    /// of 16 and span whole 16-column chunks (or end at the grid's edge) costs no more than
+    /// those points do in a whole-grid evaluation.
+    ///
+    /// # Errors
+    ///
+    /// [`EvalError::Empty`] for an empty block, [`EvalError::Grid`] for one outside the grid,
+    /// [`EvalError::OutputLength`] unless
+    /// both buffers hold `block.len()` points. Nothing is written then.
+    pub fn evaluate_block(
+        &self,
+        block: GridRect,
+        pos: &mut [Vec3],
+        nrm: &mut [Vec3],
+    ) -> Result<(), EvalError> {
+        check_outputs(block.len(), pos, nrm)?;
+        let grid = self.plan.grid;
+        let Some((rows, chunks)) = region_span(grid, block)? else {
+            return Ok(());
+        };
+        let (a, b) = self.plan.chunk_columns(&chunks);
+        let aligned = a == block.i0 && b == block.i0 + block.nx;
+        let mut row_pos = vec![Vec3::ZERO; if aligned { 0 } else { b - a }];
+        let mut row_nrm = row_pos.clone();
+        let mut scratch = Scratch::default();
+        let w = block.nx;
+        for (r, j) in rows.enumerate() {
+            let (p, n) = (&mut pos[r * w..(r + 1) * w], &mut nrm[r * w..(r + 1) * w]);
+            if aligned {
+                self.plan.row(j, chunks.clone(), p, n, &mut scratch);
+            } else {
+                self.plan
+                    .row(j, chunks.clone(), &mut row_pos, &mut row_nrm, &mut scratch);
+                let from = block.i0 - a;
+                p.copy_from_slice(&row_pos[from..from + w]);
+                n.copy_from_slice(&row_nrm[from..from + w]);
+            }
+        }
+        Ok(())
+    }
 }

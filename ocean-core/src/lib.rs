@@ -99,7 +99,9 @@ pub use frustum::{Containment, Frustum, FrustumError};
 pub use grid::Grid;
 pub use isa::Isa;
 pub use kernel::WaveCoeffs;
-pub use layers::{GridRect, Layer, evaluate_layers, evaluate_layers_isa, evaluate_layers_region};
+pub use layers::{
+    GridRect, Layer, LayersEvaluator, evaluate_layers, evaluate_layers_isa, evaluate_layers_region,
+};
 #[cfg(feature = "std")]
 pub use layers::{evaluate_layers_par, evaluate_layers_region_par};
 pub use modulation::Modulation;

@@ -24,6 +24,8 @@ pub struct Modulation {
     /// Per row of `rect`: the columns (relative to `rect.i0`) from the first to past the last
     /// non-zero entry; `[0, 0]` for a row of zeros.
     spans: Vec<[u32; 2]>,
+    /// An upper bound of |μ| over the rectangle (see [`Modulation::magnitude_bound`]).
+    bound: f32,
 }
 
 impl Modulation {
@@ -48,11 +50,22 @@ impl Modulation {
         }
         let spans = row_spans(&values, rect.nx);
         match spans {
-            Some(spans) => Ok(Self {
-                rect,
-                values,
-                spans,
-            }),
+            Some(rows) => {
+                let (spans, peaks): (Vec<[u32; 2]>, Vec<[f32; 2]>) = rows.into_iter().unzip();
+                let peak = peaks
+                    .iter()
+                    .fold([0.0f32; 2], |a, p| [a[0].max(p[0]), a[1].max(p[1])]);
+                // Rounded up by a relative 2⁻²⁰: the square root and the sum each round by
+                // at most half an ulp (2⁻²⁴), so the bound never falls below max |μ|.
+                let bound = crate::math::sqrtf(peak[0] * peak[0] + peak[1] * peak[1])
+                    * (1.0 + 1.0 / (1u32 << 20) as f32);
+                Ok(Self {
+                    rect,
+                    values,
+                    spans,
+                    bound,
+                })
+            }
             None => {
                 let index = values
                     .iter()
@@ -109,6 +122,14 @@ impl Modulation {
         a as usize..b as usize
     }
 
+    /// An upper bound of |μ| = m over the rectangle, from the largest |m cos φ| and |m sin φ|
+    /// of its entries (at most √2 times max |μ|; exact for a real or imaginary μ). A layer's
+    /// waves move a point horizontally by at most this times the sum of their amplitudes.
+    #[inline]
+    pub fn magnitude_bound(&self) -> f32 {
+        self.bound
+    }
+
     /// μ at grid point (i, j); zero outside the rectangle.
     #[inline]
     pub fn at(&self, i: usize, j: usize) -> [f32; 2] {
@@ -116,9 +137,11 @@ impl Modulation {
     }
 }
 
-/// Each row's span of non-zero entries, or `None` if any value is not finite. With `std`, large
-/// arrays are split by rows over the current rayon pool (the result does not depend on it).
-fn row_spans(values: &[[f32; 2]], nx: usize) -> Option<Vec<[u32; 2]>> {
+/// Each row's span of non-zero entries and its largest |m cos φ| and |m sin φ|, or `None` if
+/// any value is not finite. With `std`, large arrays are split by rows over the current rayon
+/// pool (the result does not depend on it).
+#[allow(clippy::type_complexity)]
+fn row_spans(values: &[[f32; 2]], nx: usize) -> Option<Vec<([u32; 2], [f32; 2])>> {
     #[cfg(feature = "std")]
     if values.len() >= 1 << 16 {
         use rayon::prelude::*;
@@ -127,24 +150,28 @@ fn row_spans(values: &[[f32; 2]], nx: usize) -> Option<Vec<[u32; 2]>> {
     values.chunks(nx).map(row_span).collect()
 }
 
-/// One row's span of non-zero entries, or `None` if a value is not finite.
-fn row_span(row: &[[f32; 2]]) -> Option<[u32; 2]> {
+/// One row's span of non-zero entries and its largest |m cos φ| and |m sin φ|, or `None` if a
+/// value is not finite.
+fn row_span(row: &[[f32; 2]]) -> Option<([u32; 2], [f32; 2])> {
     // x·0 is 0 for finite x and NaN otherwise: one vectorisable pass for the finiteness.
     let mut acc = [0.0f32; 2];
+    let mut peak = [0.0f32; 2];
     for v in row {
         acc[0] += v[0] * 0.0;
         acc[1] += v[1] * 0.0;
+        peak[0] = peak[0].max(v[0].abs());
+        peak[1] = peak[1].max(v[1].abs());
     }
     if acc != [0.0, 0.0] {
         return None;
     }
     let zero = |v: &[f32; 2]| v[0] == 0.0 && v[1] == 0.0;
     let Some(first) = row.iter().position(|v| !zero(v)) else {
-        return Some([0, 0]);
+        return Some(([0, 0], peak));
     };
     let last = row.iter().rposition(|v| !zero(v)).unwrap_or(first);
     // The caller checked that the row length fits in u32.
-    Some([first as u32, last as u32 + 1])
+    Some(([first as u32, last as u32 + 1], peak))
 }
 
 #[cfg(test)]
@@ -194,6 +221,10 @@ mod tests {
         assert_eq!(m.at(3 + 1, 5), [0.5, 0.0]);
         assert_eq!(m.at(2, 5), [0.0, 0.0], "left of the rectangle");
         assert_eq!(m.row(2)[4], [0.0, 1e-30]);
+        // The largest |re| is 1.0 and |im| 0.25: √(1 + 1/16), rounded up by 2⁻²⁰.
+        let bound = f64::from(m.magnitude_bound());
+        let exact = (1.0f64 + 0.0625).sqrt();
+        assert!(bound >= exact && bound <= exact * (1.0 + 2e-6), "{bound}");
     }
 
     #[test]

@@ -10,8 +10,8 @@ use core::f64::consts::TAU;
 
 use glam::{DVec2, Vec3};
 use ocean_core::{
-    Depth, EvalError, Grid, GridRect, Isa, Layer, Modulation, Pcg32, WaveDesc, WaveSet,
-    evaluate_layers, evaluate_layers_isa,
+    Depth, EvalError, Grid, GridRect, Isa, Layer, LayersEvaluator, Modulation, Pcg32, WaveDesc,
+    WaveSet, evaluate_layers, evaluate_layers_isa,
 };
 
 fn waves(rng: &mut Pcg32, count: usize, steepness: f64) -> WaveSet {
@@ -166,5 +166,56 @@ fn best_is_available_and_an_unavailable_set_is_an_error() {
             assert_eq!(r, Err(EvalError::Isa(isa)));
             assert!(p.iter().all(|v| *v == Vec3::ZERO), "nothing written");
         }
+    }
+}
+
+/// `LayersEvaluator::evaluate_block` gives every point of a block the whole grid's bits:
+/// blocks aligned to 16-column chunks, blocks that start and end inside chunks, single points,
+/// blocks at the grid's far edges.
+#[test]
+fn blocks_have_the_whole_grid_bits() {
+    for (seed, size) in [(3u64, (45usize, 23usize)), (4, (97, 40)), (5, (40, 16))] {
+        let c = case(seed, size, 3, seed % 2 == 1, 0.8);
+        let (p0, q0) = eval(&c, None);
+        let layers: Vec<Layer> = c
+            .sets
+            .iter()
+            .zip(&c.mods)
+            .map(|(waves, modulation)| Layer { waves, modulation })
+            .collect();
+        let e = LayersEvaluator::new(&c.grid, c.t, &layers, c.height.as_deref()).unwrap();
+        let (nx, nz) = size;
+        let mut rng = Pcg32::new(seed, 11);
+        let mut blocks = vec![
+            GridRect { i0: 0, j0: 0, nx, nz },
+            GridRect { i0: 16, j0: 1, nx: 16.min(nx - 16), nz: 3 },
+            GridRect { i0: nx - 1, j0: nz - 1, nx: 1, nz: 1 },
+        ];
+        for _ in 0..20 {
+            let i0 = (rng.next_f64() * nx as f64) as usize;
+            let j0 = (rng.next_f64() * nz as f64) as usize;
+            let w = 1 + (rng.next_f64() * (nx - i0) as f64) as usize;
+            let h = 1 + (rng.next_f64() * (nz - j0) as f64) as usize;
+            blocks.push(GridRect { i0, j0, nx: w.min(nx - i0), nz: h.min(nz - j0) });
+        }
+        for b in blocks {
+            let (mut p, mut q) = (vec![Vec3::NAN; b.len()], vec![Vec3::NAN; b.len()]);
+            e.evaluate_block(b, &mut p, &mut q).unwrap();
+            for dj in 0..b.nz {
+                for di in 0..b.nx {
+                    let (k, g) = (dj * b.nx + di, (b.j0 + dj) * nx + b.i0 + di);
+                    assert_eq!(bits(&[p[k], q[k]]), bits(&[p0[g], q0[g]]), "{b:?} ({di}, {dj})");
+                }
+            }
+        }
+        let outside = GridRect { i0: nx - 1, j0: 0, nx: 2, nz: 1 };
+        let (mut p, mut q) = (vec![Vec3::NAN; 2], vec![Vec3::NAN; 2]);
+        assert!(matches!(e.evaluate_block(outside, &mut p, &mut q), Err(EvalError::Grid(_))));
+        assert!(p.iter().all(|v| v.x.is_nan()), "nothing written on error");
+        let one = GridRect { i0: 0, j0: 0, nx: 1, nz: 1 };
+        assert!(matches!(
+            e.evaluate_block(one, &mut p, &mut q),
+            Err(EvalError::OutputLength { .. })
+        ));
     }
 }
