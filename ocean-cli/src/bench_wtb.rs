@@ -482,11 +482,11 @@ pub fn wtb(args: &BenchArgs) -> Result<Value, String> {
         // one is slower for a few milliseconds on the shared virtual machine.
         let [threads_ms] = interleaved_medians(
             runs,
-            [&mut || frame.heights_par(&at, &mut par).expect("queries")],
+            [&mut || frame.continuous_heights_par(&at, &mut par).expect("queries")],
         );
         let [single_ms] = interleaved_medians(
             runs,
-            [&mut || frame.heights(&at, &mut one).expect("queries")],
+            [&mut || frame.continuous_heights(&at, &mut one).expect("queries")],
         );
         let worst = par.iter().map(|s| s.residual).fold(0.0, f64::max);
         // Queries whose Newton iteration stopped above its tolerance, and of those the ones

@@ -1361,7 +1361,7 @@ pub unsafe extern "C" fn ocean_scene_heights(
             let mut scene = scene.lock();
             let frame = scene.frame(time, None).map_err(|e| wtb_error("", e))?;
             frame
-                .heights_par(&at, &mut samples)
+                .continuous_heights_par(&at, &mut samples)
                 .map_err(|e| wtb_error("", e))?;
         }
         // SAFETY: non-NULL and aligned (checked), byte size fits (checked), `n` writable
@@ -1513,7 +1513,7 @@ mod tests {
             let st = unsafe { ocean_scene_heights(s, t, xz.as_ptr(), 2, out.as_mut_ptr()) };
             assert_eq!(st, OceanStatus::Ok, "{}", last_error());
             for (q, o) in xz.iter().zip(&out) {
-                let h = frame.height_at(DVec2::new(q.x, q.z)).unwrap();
+                let h = frame.continuous_height_at(DVec2::new(q.x, q.z)).unwrap();
                 assert_eq!(o.height.to_bits(), h.height.to_bits());
                 assert_eq!([o.rest.x, o.rest.z], h.rest.to_array());
                 assert_eq!([o.normal.x, o.normal.y, o.normal.z], h.normal.to_array());

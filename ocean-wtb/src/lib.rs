@@ -9,7 +9,9 @@
 //!
 //! - [`scene::Scene`]: the water grid, the terrain and the boxes; [`scene::Scene::frame`]
 //!   prepares an instant (culling, budget, effects) and the [`scene::Frame`] evaluates the grid
-//!   and answers height queries on the same surface.
+//!   and answers height queries on two named surfaces: [`drawn`], the triangles of the grid
+//!   it evaluates (what an engine draws), and [`continuous`], the model between grid points
+//!   (the limit of an ever finer grid).
 //! - [`wind::Wind`]: a box's placement, size, lifecycle (Eq. 1) and seeded wave trains.
 //! - [`frame`]: the box's internal frame and the quadrant scan of its wave rays (Fig. 2).
 //! - [`effects`]: refraction, shoaling, irregular height, noise, round waves, beaches (§2.1).
@@ -52,8 +54,12 @@
 //! let mut pos = vec![Vec3::ZERO; 128 * 128];
 //! let mut nrm = vec![Vec3::ZERO; 128 * 128];
 //! frame.evaluate_par(&mut pos, &mut nrm)?;
-//! let buoy = frame.height_at(DVec2::new(60.0, 60.0))?; // exactly as the grid shows it
-//! assert!(buoy.height.abs() < 1.5 && buoy.residual <= ocean_wtb::scene::QUERY_TOLERANCE);
+//! // A buoy on the triangles drawn from `pos` (the grid's mesh, see `drawn`)...
+//! let buoy = frame.drawn_height_at(DVec2::new(60.0, 60.0))?;
+//! assert!(buoy.triangle.is_some() && buoy.height.abs() < 1.5);
+//! // ...and on the model between the grid points (see `continuous`).
+//! let model = frame.continuous_height_at(DVec2::new(60.0, 60.0))?;
+//! assert!(model.residual <= ocean_wtb::scene::QUERY_TOLERANCE);
 //! # Ok::<(), ocean_wtb::WtbError>(())
 //! ```
 #![no_std]
@@ -64,13 +70,15 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+mod batch;
 pub mod budget;
+pub mod continuous;
+pub mod drawn;
 pub mod effects;
 pub mod error;
 pub mod frame;
 pub mod grid;
 pub mod march;
-mod query;
 pub mod scenarios;
 pub mod scene;
 pub mod shore;

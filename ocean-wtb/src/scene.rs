@@ -764,6 +764,11 @@ impl FrameLayer<'_> {
     pub(crate) fn rect(&self) -> GridRect {
         self.cache.rect()
     }
+
+    /// The trains' amplitudes A, metres.
+    pub(crate) fn amplitudes(&self) -> impl Iterator<Item = f32> + '_ {
+        self.waves.coeffs().iter().map(|c| c.a)
+    }
 }
 
 /// Where a grid's buffers may differ from the sea at rest, carried between calls of
@@ -809,7 +814,8 @@ fn union(a: Option<GridRect>, b: GridRect) -> GridRect {
     }
 }
 
-pub use crate::query::{HeightSample, QUERY_MAX_ITERATIONS, QUERY_TOLERANCE};
+pub use crate::continuous::{HeightSample, QUERY_MAX_ITERATIONS, QUERY_TOLERANCE};
+pub use crate::drawn::{DrawnSample, DrawnTriangle};
 
 /// One prepared instant of a [`Scene`] (see [`Scene::frame`]).
 #[derive(Clone, Debug)]
@@ -854,7 +860,7 @@ impl Frame<'_> {
         self.core_layers()
     }
 
-    fn core_layers(&self) -> Vec<Layer<'_>> {
+    pub(crate) fn core_layers(&self) -> Vec<Layer<'_>> {
         self.layers
             .iter()
             .map(|l| Layer {

@@ -261,7 +261,7 @@ fn queries_agree_with_the_grid_within_1_mm() {
             };
             at.len()
         ];
-        f.heights(&at, &mut out).unwrap();
+        f.continuous_heights(&at, &mut out).unwrap();
         for (o, (y, n)) in out.iter().zip(&expect) {
             assert!(o.residual <= ocean_wtb::scene::QUERY_TOLERANCE);
             worst = worst.max((o.height - f64::from(*y)).abs());
@@ -285,7 +285,7 @@ fn batched_queries_equal_single_queries_bit_for_bit() {
     let at: Vec<DVec2> = (0..1000)
         .map(|_| DVec2::new(rng.next_f64() * 80.0 - 8.0, rng.next_f64() * 80.0 - 8.0))
         .collect();
-    let want: Vec<_> = at.iter().map(|p| f.height_at(*p).unwrap()).collect();
+    let want: Vec<_> = at.iter().map(|p| f.continuous_height_at(*p).unwrap()).collect();
     assert!(want.iter().any(|w| w.height != 0.0) && want.iter().any(|w| w.height == 0.0));
     let blank = ocean_wtb::scene::HeightSample {
         height: f64::NAN,
@@ -295,7 +295,7 @@ fn batched_queries_equal_single_queries_bit_for_bit() {
     };
     for n in [255, 256, 1000] {
         let mut out = vec![blank; n];
-        f.heights(&at[..n], &mut out).unwrap();
+        f.continuous_heights(&at[..n], &mut out).unwrap();
         assert!(out == want[..n], "{n} queries, one thread");
         for threads in [1, 2, 8] {
             let pool = rayon::ThreadPoolBuilder::new()
@@ -303,7 +303,7 @@ fn batched_queries_equal_single_queries_bit_for_bit() {
                 .build()
                 .unwrap();
             let mut out = vec![blank; n];
-            pool.install(|| f.heights_par(&at[..n], &mut out)).unwrap();
+            pool.install(|| f.continuous_heights_par(&at[..n], &mut out)).unwrap();
             assert!(out == want[..n], "{n} queries, {threads} threads");
         }
     }
@@ -396,7 +396,7 @@ fn bad_input_is_refused() {
     let (mut p, mut q) = (vec![Vec3::splat(5.0); 100], vec![Vec3::splat(5.0); 100]);
     assert!(f.evaluate(&mut p, &mut q).is_err());
     assert!(p.iter().all(|v| *v == Vec3::splat(5.0)));
-    assert!(f.height_at(DVec2::new(f64::NAN, 0.0)).is_err());
+    assert!(f.continuous_height_at(DVec2::new(f64::NAN, 0.0)).is_err());
     // The scene still works.
     assert_eq!(s.box_ids().count(), 2);
 }

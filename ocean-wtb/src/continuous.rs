@@ -1,11 +1,23 @@
-//! Height queries: the water surface over a world (x, z), exactly as the grid shows it.
+//! Height queries on the continuous surface: the model between grid points, the limit of an
+//! ever finer grid.
+//!
+//! The frame's model is a sum of layers: each box's trains, multiplied by its modulation μ,
+//! which the grid stores at its points (zero at every point outside the box, by the inside
+//! rule of [`crate::frame`]) and which is **bilinear** between them, as the additive height
+//! field is. Every position then has an exact surface: the trochoids of Eq. 6–7 at the
+//! interpolated μ. At a grid point it is the grid's own vertex (to the kernel's `f32`
+//! rounding); between grid points it is what a finer grid would draw, and what the
+//! projected-grid renderer (`ocean_gpu::OceanRenderer`, which evaluates the trains at each of
+//! its vertices) approaches. The drawn mesh ([`crate::drawn`]) differs from it inside cells
+//! by the linear interpolation of the trains: about A·(1 − cos(π·s/λ)) for a train of
+//! amplitude A and wavelength λ on a grid of spacing s.
 //!
 //! Gerstner waves move points horizontally, so a query first finds the rest position p₀ whose
 //! displaced point lies over (x, z), by Newton's method on p₀ + D(p₀) = (x, z), then reads the
 //! height and normal there. Batches are solved [`LANES`] queries at a time in lock step: every
 //! Newton round evaluates the waves for all the lanes that still iterate with one lane loop
 //! ([`TimedWaves::add_sums_lanes`]), whose lanes do exactly the operations of a single query,
-//! so a batched answer has the bits of [`Frame::height_at`] for the same point.
+//! so a batched answer has the bits of [`Frame::continuous_height_at`] for the same point.
 
 // Lane loops index several arrays in step; that indexed shape is what LLVM vectorises.
 #![allow(clippy::needless_range_loop)]
@@ -16,10 +28,11 @@ use alloc::vec::Vec;
 use glam::{DVec2, DVec3};
 use ocean_core::LaneSums;
 
+use crate::batch::{QUERY_SORT_MIN, check_batch, grid_order, scatter, sorted_batch};
 use crate::error::WtbError;
 use crate::scene::{Frame, FrameLayer};
 
-/// A height query's answer.
+/// A continuous height query's answer.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HeightSample {
     /// Water height at the queried (x, z), metres.
@@ -42,33 +55,31 @@ impl HeightSample {
     };
 }
 
-/// Horizontal residual at which a height query stops, metres: half a millimetre, so the
-/// answer is within 1 mm horizontally of the surface the grid shows, with margin.
-pub const QUERY_TOLERANCE: f64 = 5e-4;
+/// Horizontal residual at which a continuous height query stops, metres: 10 µm, which moves
+/// the height by at most the slope times that (Newton's last step, quadratic, usually ends
+/// far below it).
+pub const QUERY_TOLERANCE: f64 = 1e-5;
 
-/// Newton steps a height query may take.
+/// Newton steps a continuous height query may take.
 pub const QUERY_MAX_ITERATIONS: usize = 16;
-
-/// Batches of at least this many height queries are answered in grid order (see
-/// [`Frame::heights`]); smaller ones in the caller's order.
-const QUERY_SORT_MIN: usize = 256;
 
 /// Queries solved together: four `f64` lanes, one AVX2 register or two SSE2 ones.
 const LANES: usize = 4;
 
 impl Frame<'_> {
-    /// The water surface over world (x, z) = `at`, as the grid shows it: Gerstner waves move
-    /// points horizontally, so the rest position p₀ whose displaced point lies over `at` is
-    /// found first by Newton's method on p₀ + D(p₀) = `at` (the Jacobian is ∂p/∂p₀, positive
-    /// definite while no crest folds, so the iteration converges quadratically from p₀ = `at`;
-    /// where it is singular a fixed-point step is taken instead). The modulation and the height
-    /// field are interpolated bilinearly between grid points, so at grid points the answer is
-    /// the grid's own. Outside the grid the water is at rest.
+    /// The continuous surface over world (x, z) = `at` (see [`crate::continuous`]): the
+    /// model, not the drawn mesh ([`Frame::drawn_height_at`]). Gerstner waves move points
+    /// horizontally, so the rest position p₀ whose displaced point lies over `at` is found
+    /// first by Newton's method on p₀ + D(p₀) = `at` (the Jacobian is ∂p/∂p₀, positive definite
+    /// while no crest folds, so the iteration converges quadratically from p₀ = `at`; where it
+    /// is singular a fixed-point step is taken instead), to a residual of
+    /// [`QUERY_TOLERANCE`]. The modulation and the height field are bilinear between grid
+    /// points, and zero beyond the grid, where the water is at rest.
     ///
     /// # Errors
     ///
     /// [`WtbError::NotFinite`] for a non-finite position.
-    pub fn height_at(&self, at: DVec2) -> Result<HeightSample, WtbError> {
+    pub fn continuous_height_at(&self, at: DVec2) -> Result<HeightSample, WtbError> {
         if !at.is_finite() {
             return Err(WtbError::NotFinite("query position"));
         }
@@ -77,8 +88,8 @@ impl Frame<'_> {
         Ok(out[0])
     }
 
-    /// [`Frame::height_at`] for many points, each answer bit-identical to its own
-    /// [`Frame::height_at`]. A batch of 256 or more is answered in the order of the grid
+    /// [`Frame::continuous_height_at`] for many points, each answer bit-identical to its own
+    /// [`Frame::continuous_height_at`]. A batch of 256 or more is answered in the order of the grid
     /// points nearest the queries (row-major, by a radix sort) rather than in the caller's
     /// order (the answers still land at the queries' indices): random queries then read the
     /// modulation row by row, not one cache miss at a time. This costs four `u32` and one
@@ -88,8 +99,8 @@ impl Frame<'_> {
     ///
     /// [`WtbError::Eval`] when `out` is not as long as `at`; [`WtbError::NotFinite`] for a
     /// non-finite position. Nothing is written on error.
-    pub fn heights(&self, at: &[DVec2], out: &mut [HeightSample]) -> Result<(), WtbError> {
-        check_batch(at, out)?;
+    pub fn continuous_heights(&self, at: &[DVec2], out: &mut [HeightSample]) -> Result<(), WtbError> {
+        check_batch(at, out.len())?;
         if !sorted_batch(at.len()) {
             self.solve_all(at, out);
             return Ok(());
@@ -102,16 +113,16 @@ impl Frame<'_> {
         Ok(())
     }
 
-    /// [`Frame::heights`] on the current rayon thread pool; the same bits on any number of
+    /// [`Frame::continuous_heights`] on the current rayon thread pool; the same bits on any number of
     /// threads.
     ///
     /// # Errors
     ///
-    /// As [`Frame::heights`].
+    /// As [`Frame::continuous_heights`].
     #[cfg(feature = "std")]
-    pub fn heights_par(&self, at: &[DVec2], out: &mut [HeightSample]) -> Result<(), WtbError> {
+    pub fn continuous_heights_par(&self, at: &[DVec2], out: &mut [HeightSample]) -> Result<(), WtbError> {
         use rayon::prelude::*;
-        check_batch(at, out)?;
+        check_batch(at, out.len())?;
         if !sorted_batch(at.len()) {
             at.par_chunks(QUERY_SORT_MIN)
                 .zip(out.par_chunks_mut(QUERY_SORT_MIN))
@@ -152,7 +163,7 @@ impl Frame<'_> {
     /// its place in [`grid_order`]. Visited in that order, a batch reads the modulation and
     /// the height field row by row instead of at random; each answer depends on its own
     /// position only, so the order changes no bit of it.
-    fn query_cell(&self, p: DVec2) -> [u32; 2] {
+    pub(crate) fn query_cell(&self, p: DVec2) -> [u32; 2] {
         let l = (p - self.grid.origin()) * self.inv_spacing + DVec2::splat(0.5);
         let (nx, nz) = (self.grid.nx(), self.grid.nz());
         if l.x >= 0.0 && l.y >= 0.0 && l.x < nx as f64 && l.y < nz as f64 {
@@ -186,7 +197,7 @@ impl Frame<'_> {
 
     /// Solves up to [`LANES`] finite queries in lock step into `out` (as long as `at`).
     ///
-    /// Each lane follows [`Frame::height_at`]'s iteration: evaluate at p₀ = `at`; then, until
+    /// Each lane follows [`Frame::continuous_height_at`]'s iteration: evaluate at p₀ = `at`; then, until
     /// the residual is within [`QUERY_TOLERANCE`] or [`QUERY_MAX_ITERATIONS`] rounds have
     /// run, take a Newton step and evaluate again. A lane that has stopped is carried along
     /// unchanged.
@@ -296,72 +307,6 @@ impl Frame<'_> {
     }
 }
 
-/// The length and finiteness checks of a batch.
-fn check_batch(at: &[DVec2], out: &[HeightSample]) -> Result<(), WtbError> {
-    if at.len() != out.len() || at.is_empty() {
-        return Err(WtbError::Eval(ocean_core::EvalError::OutputLength {
-            expected: at.len(),
-            positions: out.len(),
-            normals: out.len(),
-        }));
-    }
-    if !at.iter().all(|p| p.is_finite()) {
-        return Err(WtbError::NotFinite("query position"));
-    }
-    Ok(())
-}
-
-/// Whether a batch of `n` is answered in grid order (its indices must fit a `u32`).
-fn sorted_batch(n: usize) -> bool {
-    (QUERY_SORT_MIN..=u32::MAX as usize).contains(&n)
-}
-
-/// The query indices in grid order: by the nearest grid point's row, then its column, then
-/// index ([`Frame::query_cell`] gives the pair). An LSD radix sort of two stable counting
-/// passes (column, then row), linear where a comparison sort of 32 768 keys took a quarter of
-/// the queries' instructions. Row order keeps the modulation reads in two rows; column order
-/// within a row also keeps neighbouring lanes together, so they leave the Newton loop and
-/// the boxes at the same round (measured: row order alone was 1.4 times slower).
-fn grid_order(cells: &[[u32; 2]], nx: usize, nz: usize) -> Vec<u32> {
-    let by_column = counting_order(cells, 0, nx + 1, None);
-    counting_order(cells, 1, nz + 1, Some(&by_column))
-}
-
-/// The indices `within` (all of `cells`' when `None`) stably sorted by `cells[_][digit]`, each
-/// below `buckets`.
-fn counting_order(
-    cells: &[[u32; 2]],
-    digit: usize,
-    buckets: usize,
-    within: Option<&[u32]>,
-) -> Vec<u32> {
-    let mut start = vec![0u32; buckets + 1];
-    for c in cells {
-        start[c[digit] as usize + 1] += 1;
-    }
-    for b in 1..=buckets {
-        start[b] += start[b - 1];
-    }
-    let mut order = vec![0u32; cells.len()];
-    let mut place = |q: u32| {
-        let slot = &mut start[cells[q as usize][digit] as usize];
-        order[*slot as usize] = q;
-        *slot += 1;
-    };
-    match within {
-        Some(within) => within.iter().for_each(|&q| place(q)),
-        None => (0..cells.len() as u32).for_each(place),
-    }
-    order
-}
-
-/// Writes the answers `sorted`, in the order of `order`, to their queries' indices in `out`.
-fn scatter(order: &[u32], sorted: Vec<HeightSample>, out: &mut [HeightSample]) {
-    for (s, &q) in sorted.into_iter().zip(order) {
-        out[q as usize] = s;
-    }
-}
-
 /// A layer's modulation interpolated bilinearly over `cell`; zero outside its rectangle.
 #[inline(always)]
 fn modulation_at(layer: &FrameLayer<'_>, cell: &Cell) -> [f64; 2] {
@@ -369,9 +314,10 @@ fn modulation_at(layer: &FrameLayer<'_>, cell: &Cell) -> [f64; 2] {
     let m = layer.modulation().values();
     let at = |q: usize| [f64::from(m[q][0]), f64::from(m[q][1])];
     // The common case: the whole cell inside the rectangle, corners at fixed offsets. A cell
-    // left of or above the rectangle wraps to a huge offset and fails the test too.
+    // left of or above the rectangle wraps to an offset near usize::MAX, which fails the test
+    // as a cell at or past the far edge does (its corners i + 1 would leave the rectangle).
     let (di, dj) = (cell.i.wrapping_sub(r.i0), cell.j.wrapping_sub(r.j0));
-    if di.wrapping_add(1) < r.nx && dj.wrapping_add(1) < r.nz {
+    if di < r.nx.saturating_sub(1) && dj < r.nz.saturating_sub(1) {
         let q = dj * r.nx + di;
         return lerp2(cell, at(q), at(q + 1), at(q + r.nx), at(q + r.nx + 1));
     }
@@ -408,26 +354,4 @@ fn lerp2(c: &Cell, a: [f64; 2], b: [f64; 2], d: [f64; 2], e: [f64; 2]) -> [f64; 
         out[n] = top + (bottom - top) * c.fz;
     }
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn grid_order_is_row_major_then_by_index() {
-        // A 3 × 2 grid; (3, 2) marks a point outside it, which goes last. Sorted by (row,
-        // column, index): (0,0)#2, (1,0)#5, (2,0)#0, (0,1)#1, (0,1)#4, (2,1)#6, outside #3, #7.
-        let cells = [
-            [2, 0],
-            [0, 1],
-            [0, 0],
-            [3, 2],
-            [0, 1],
-            [1, 0],
-            [2, 1],
-            [3, 2],
-        ];
-        assert_eq!(grid_order(&cells, 3, 2), [2, 5, 0, 1, 4, 6, 3, 7]);
-    }
 }
