@@ -482,7 +482,11 @@ pub fn wtb(args: &BenchArgs) -> Result<Value, String> {
         // one is slower for a few milliseconds on the shared virtual machine.
         let [threads_ms] = interleaved_medians(
             runs,
-            [&mut || frame.continuous_heights_par(&at, &mut par).expect("queries")],
+            [&mut || {
+                frame
+                    .continuous_heights_par(&at, &mut par)
+                    .expect("queries")
+            }],
         );
         let [single_ms] = interleaved_medians(
             runs,

@@ -159,7 +159,10 @@ impl<'a> Plan<'a> {
     /// The grid columns `a..b` of the 16-column chunks `chunks` (the last one cut at the
     /// grid's edge).
     fn chunk_columns(&self, chunks: &core::ops::Range<usize>) -> (usize, usize) {
-        (chunks.start * LANES, (chunks.end * LANES).min(self.grid.size.0))
+        (
+            chunks.start * LANES,
+            (chunks.end * LANES).min(self.grid.size.0),
+        )
     }
 
     /// Evaluates the chunks `chunks` of row `j` into `pos` and `nrm`, which hold the columns

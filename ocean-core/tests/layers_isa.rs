@@ -187,16 +187,36 @@ fn blocks_have_the_whole_grid_bits() {
         let (nx, nz) = size;
         let mut rng = Pcg32::new(seed, 11);
         let mut blocks = vec![
-            GridRect { i0: 0, j0: 0, nx, nz },
-            GridRect { i0: 16, j0: 1, nx: 16.min(nx - 16), nz: 3 },
-            GridRect { i0: nx - 1, j0: nz - 1, nx: 1, nz: 1 },
+            GridRect {
+                i0: 0,
+                j0: 0,
+                nx,
+                nz,
+            },
+            GridRect {
+                i0: 16,
+                j0: 1,
+                nx: 16.min(nx - 16),
+                nz: 3,
+            },
+            GridRect {
+                i0: nx - 1,
+                j0: nz - 1,
+                nx: 1,
+                nz: 1,
+            },
         ];
         for _ in 0..20 {
             let i0 = (rng.next_f64() * nx as f64) as usize;
             let j0 = (rng.next_f64() * nz as f64) as usize;
             let w = 1 + (rng.next_f64() * (nx - i0) as f64) as usize;
             let h = 1 + (rng.next_f64() * (nz - j0) as f64) as usize;
-            blocks.push(GridRect { i0, j0, nx: w.min(nx - i0), nz: h.min(nz - j0) });
+            blocks.push(GridRect {
+                i0,
+                j0,
+                nx: w.min(nx - i0),
+                nz: h.min(nz - j0),
+            });
         }
         for b in blocks {
             let (mut p, mut q) = (vec![Vec3::NAN; b.len()], vec![Vec3::NAN; b.len()]);
@@ -204,15 +224,32 @@ fn blocks_have_the_whole_grid_bits() {
             for dj in 0..b.nz {
                 for di in 0..b.nx {
                     let (k, g) = (dj * b.nx + di, (b.j0 + dj) * nx + b.i0 + di);
-                    assert_eq!(bits(&[p[k], q[k]]), bits(&[p0[g], q0[g]]), "{b:?} ({di}, {dj})");
+                    assert_eq!(
+                        bits(&[p[k], q[k]]),
+                        bits(&[p0[g], q0[g]]),
+                        "{b:?} ({di}, {dj})"
+                    );
                 }
             }
         }
-        let outside = GridRect { i0: nx - 1, j0: 0, nx: 2, nz: 1 };
+        let outside = GridRect {
+            i0: nx - 1,
+            j0: 0,
+            nx: 2,
+            nz: 1,
+        };
         let (mut p, mut q) = (vec![Vec3::NAN; 2], vec![Vec3::NAN; 2]);
-        assert!(matches!(e.evaluate_block(outside, &mut p, &mut q), Err(EvalError::Grid(_))));
+        assert!(matches!(
+            e.evaluate_block(outside, &mut p, &mut q),
+            Err(EvalError::Grid(_))
+        ));
         assert!(p.iter().all(|v| v.x.is_nan()), "nothing written on error");
-        let one = GridRect { i0: 0, j0: 0, nx: 1, nz: 1 };
+        let one = GridRect {
+            i0: 0,
+            j0: 0,
+            nx: 1,
+            nz: 1,
+        };
         assert!(matches!(
             e.evaluate_block(one, &mut p, &mut q),
             Err(EvalError::OutputLength { .. })

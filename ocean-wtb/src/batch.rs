@@ -78,7 +78,6 @@ pub(crate) fn scatter<T>(order: &[u32], sorted: Vec<T>, out: &mut [T]) {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;

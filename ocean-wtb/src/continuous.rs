@@ -99,7 +99,11 @@ impl Frame<'_> {
     ///
     /// [`WtbError::Eval`] when `out` is not as long as `at`; [`WtbError::NotFinite`] for a
     /// non-finite position. Nothing is written on error.
-    pub fn continuous_heights(&self, at: &[DVec2], out: &mut [HeightSample]) -> Result<(), WtbError> {
+    pub fn continuous_heights(
+        &self,
+        at: &[DVec2],
+        out: &mut [HeightSample],
+    ) -> Result<(), WtbError> {
         check_batch(at, out.len())?;
         if !sorted_batch(at.len()) {
             self.solve_all(at, out);
@@ -120,7 +124,11 @@ impl Frame<'_> {
     ///
     /// As [`Frame::continuous_heights`].
     #[cfg(feature = "std")]
-    pub fn continuous_heights_par(&self, at: &[DVec2], out: &mut [HeightSample]) -> Result<(), WtbError> {
+    pub fn continuous_heights_par(
+        &self,
+        at: &[DVec2],
+        out: &mut [HeightSample],
+    ) -> Result<(), WtbError> {
         use rayon::prelude::*;
         check_batch(at, out.len())?;
         if !sorted_batch(at.len()) {
@@ -177,10 +185,11 @@ impl Frame<'_> {
     /// `order` names in that order. (Compiled for the baseline target: measured here, the lane
     /// loops ran about 1.5 times faster with SSE2 than inside an AVX2 dispatch.)
     fn solve_batch(&self, at: &[DVec2], order: Option<&[u32]>, out: &mut [HeightSample]) {
+        let reach = self.displacement_bound();
         match order {
             None => {
                 for (at, out) in at.chunks(LANES).zip(out.chunks_mut(LANES)) {
-                    self.solve(at, out);
+                    self.solve(at, reach, out);
                 }
             }
             Some(order) => {
@@ -189,7 +198,7 @@ impl Frame<'_> {
                     for (p, &q) in lanes.iter_mut().zip(order) {
                         *p = at[q as usize];
                     }
-                    self.solve(&lanes[..order.len()], out);
+                    self.solve(&lanes[..order.len()], reach, out);
                 }
             }
         }
@@ -197,18 +206,28 @@ impl Frame<'_> {
 
     /// Solves up to [`LANES`] finite queries in lock step into `out` (as long as `at`).
     ///
-    /// Each lane follows [`Frame::continuous_height_at`]'s iteration: evaluate at p₀ = `at`; then, until
-    /// the residual is within [`QUERY_TOLERANCE`] or [`QUERY_MAX_ITERATIONS`] rounds have
-    /// run, take a Newton step and evaluate again. A lane that has stopped is carried along
+    /// Each lane follows [`Frame::continuous_height_at`]'s iteration: evaluate at p₀ = `at`
+    /// (moved onto the grid's rectangle); then, until the residual is within
+    /// [`QUERY_TOLERANCE`] or [`QUERY_MAX_ITERATIONS`] rounds have run, take a Newton step,
+    /// kept on the rectangle, and evaluate again. A lane that has stopped is carried along
     /// unchanged.
+    ///
+    /// The surface is the image of the grid's rectangle of rest positions (its edge points
+    /// may move outwards, over the sea beyond, or inwards). A query farther than `reach` (the
+    /// largest displacement) from the rectangle, or one whose iteration ends on the
+    /// rectangle's edge unconverged (outside the image), is over the sea at rest.
     #[inline(always)]
-    fn solve(&self, at: &[DVec2], out: &mut [HeightSample]) {
+    fn solve(&self, at: &[DVec2], reach: f64, out: &mut [HeightSample]) {
         let n = at.len();
         debug_assert!(n <= LANES && out.len() == n);
+        let (lo, hi) = (self.grid.origin(), self.grid.max_corner());
         let mut p0 = [DVec2::ZERO; LANES];
-        p0[..n].copy_from_slice(at);
         let mut iterating = [false; LANES];
-        iterating[..n].fill(true);
+        for l in 0..n {
+            p0[l] = at[l].clamp(lo, hi);
+            iterating[l] = (at[l] - p0[l]).length() <= reach;
+        }
+        let off_grid = iterating.map(|b| !b);
         let mut sums = LaneSums::<LANES>::REST;
         self.sums_lanes(&p0, &iterating, &mut sums);
         let mut residual = [f64::INFINITY; LANES];
@@ -230,7 +249,7 @@ impl Frame<'_> {
                 } else {
                     f
                 };
-                p0[l] -= step;
+                p0[l] = (p0[l] - step).clamp(lo, hi);
             }
             if !iterating.iter().any(|&b| b) {
                 break;
@@ -238,6 +257,15 @@ impl Frame<'_> {
             self.sums_lanes(&p0, &iterating, &mut sums);
         }
         for l in 0..n {
+            let p = p0[l];
+            let on_edge = p.x == lo.x || p.y == lo.y || p.x == hi.x || p.y == hi.y;
+            if off_grid[l] || (residual[l] > QUERY_TOLERANCE && on_edge) {
+                out[l] = HeightSample {
+                    rest: at[l],
+                    ..HeightSample::REST
+                };
+                continue;
+            }
             let s = sums.get(l);
             out[l] = HeightSample {
                 height: s.y + self.height_offset(p0[l]),
@@ -290,9 +318,13 @@ impl Frame<'_> {
     fn cell(&self, p: DVec2) -> Option<Cell> {
         let l = (p - self.grid.origin()) * self.inv_spacing;
         let last = self.last_point;
-        if !(l.x >= 0.0 && l.y >= 0.0 && l.x <= last.x && l.y <= last.y) {
+        // A point clamped onto the rectangle's far edge can land a rounding past it in grid
+        // units: within a millionth of a cell it is on the edge.
+        let slack = 1e-6;
+        if !(l.x >= -slack && l.y >= -slack && l.x <= last.x + slack && l.y <= last.y + slack) {
             return None;
         }
+        let l = l.clamp(DVec2::ZERO, last);
         // 0 ≤ l ≤ n − 1 < 4096 (the grid's cap, [`crate::grid::MAX_SIDE`]) here, so
         // truncation through u32 is the floor, one instruction where a conversion to usize
         // takes a branchy sequence.

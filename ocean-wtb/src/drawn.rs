@@ -40,8 +40,8 @@ use alloc::vec::Vec;
 use glam::{DVec2, DVec3, Vec3};
 use ocean_core::{GridRect, LayersEvaluator};
 
-use crate::error::WtbError;
 use crate::batch::{check_batch, grid_order, scatter, sorted_batch};
+use crate::error::WtbError;
 use crate::scene::Frame;
 
 /// The triangle of the drawn mesh that a query landed on.
@@ -148,11 +148,7 @@ impl Frame<'_> {
     ///
     /// As [`Frame::drawn_heights`].
     #[cfg(feature = "std")]
-    pub fn drawn_heights_par(
-        &self,
-        at: &[DVec2],
-        out: &mut [DrawnSample],
-    ) -> Result<(), WtbError> {
+    pub fn drawn_heights_par(&self, at: &[DVec2], out: &mut [DrawnSample]) -> Result<(), WtbError> {
         use rayon::prelude::*;
         check_batch(at, out.len())?;
         let mesh = self.mesh(at, true)?;
@@ -176,25 +172,6 @@ impl Frame<'_> {
             .zip(rank.par_iter())
             .for_each(|(o, r)| *o = sorted[*r as usize]);
         Ok(())
-    }
-
-    /// The largest horizontal displacement of any vertex, metres: Σ over layers of the
-    /// modulation's bound times the layer's Σ A, rounded up.
-    fn displacement_bound(&self) -> f64 {
-        let d: f64 = self
-            .layers
-            .iter()
-            .map(|l| {
-                let a: f64 = l
-                    .amplitudes()
-                    .map(|a| f64::from(a).abs())
-                    .sum();
-                f64::from(l.modulation().magnitude_bound()) * a
-            })
-            .sum();
-        // The kernel's f32 sums of up to a few hundred terms round by well under 10⁻⁴ of
-        // their size; a micrometre covers the rest.
-        d * (1.0 + 1e-4) + 1e-6
     }
 
     /// Evaluates the tiles of vertices that the windows of `at` reach.
@@ -221,8 +198,13 @@ impl Frame<'_> {
             }
         }
         let layers = self.core_layers();
-        let eval = LayersEvaluator::new(self.grid.grid(), self.time(), &layers, self.height.as_deref())
-            .map_err(WtbError::Eval)?;
+        let eval = LayersEvaluator::new(
+            self.grid.grid(),
+            self.time(),
+            &layers,
+            self.height.as_deref(),
+        )
+        .map_err(WtbError::Eval)?;
         let per = TILE * TILE;
         let mut pos = vec![Vec3::ZERO; wanted.len() * per];
         let mut nrm = vec![Vec3::ZERO; wanted.len() * per];
@@ -237,7 +219,10 @@ impl Frame<'_> {
             let (mut bp, mut bn) = (vec![Vec3::ZERO; block.len()], vec![Vec3::ZERO; block.len()]);
             eval.evaluate_block(block, &mut bp, &mut bn)?;
             for r in 0..block.nz {
-                let (src, dst) = (r * block.nx..(r + 1) * block.nx, r * TILE..r * TILE + block.nx);
+                let (src, dst) = (
+                    r * block.nx..(r + 1) * block.nx,
+                    r * TILE..r * TILE + block.nx,
+                );
                 p[dst.clone()].copy_from_slice(&bp[src.clone()]);
                 n[dst].copy_from_slice(&bn[src]);
             }
@@ -271,7 +256,10 @@ impl Frame<'_> {
             nrm,
             folds: vec![false; wanted.len()],
         };
-        mesh.folds = wanted.iter().map(|&(tx, tz)| mesh.tile_folds(tx, tz)).collect();
+        mesh.folds = wanted
+            .iter()
+            .map(|&(tx, tz)| mesh.tile_folds(tx, tz))
+            .collect();
         Ok(mesh)
     }
 }
@@ -440,8 +428,14 @@ impl Mesh {
 
     /// The drawn surface over `at`.
     fn solve(&self, at: DVec2) -> DrawnSample {
-        let Some(w) = window(at, self.origin, self.inv_spacing, self.radius, self.nx, self.nz)
-        else {
+        let Some(w) = window(
+            at,
+            self.origin,
+            self.inv_spacing,
+            self.radius,
+            self.nx,
+            self.nz,
+        ) else {
             return DrawnSample::rest(at);
         };
         let q = at - self.origin;
@@ -485,7 +479,8 @@ impl Mesh {
                     - DVec2::new(i as f64, j as f64) * self.spacing
             };
             let (a, b, c, e) = (d(i, j), d(i + 1, j), d(i, j + 1), d(i + 1, j + 1));
-            let disp = (a * (1.0 - f.x) + b * f.x) * (1.0 - f.y) + (c * (1.0 - f.x) + e * f.x) * f.y;
+            let disp =
+                (a * (1.0 - f.x) + b * f.x) * (1.0 - f.y) + (c * (1.0 - f.x) + e * f.x) * f.y;
             g = (q - disp) * self.inv_spacing;
         }
         let (i, j) = self.cell_in(g, w);
@@ -498,10 +493,11 @@ impl Mesh {
         for _ in 0..MAX_WALK {
             let c = self.corners(&t);
             let b = weights(&c, q)?;
-            let (k, min) = b
-                .iter()
-                .enumerate()
-                .fold((0, f64::INFINITY), |m, (k, &v)| if v < m.1 { (k, v) } else { m });
+            let (k, min) =
+                b.iter().enumerate().fold(
+                    (0, f64::INFINITY),
+                    |m, (k, &v)| if v < m.1 { (k, v) } else { m },
+                );
             if min >= EDGE {
                 return Some((t, b));
             }
@@ -589,5 +585,9 @@ fn weights(c: &[DVec2; 3], q: DVec2) -> Option<[f64; 3]> {
         return None;
     }
     let (a, b, d) = (c[0] - q, c[1] - q, c[2] - q);
-    Some([cross2(b, d) / area, cross2(d, a) / area, cross2(a, b) / area])
+    Some([
+        cross2(b, d) / area,
+        cross2(d, a) / area,
+        cross2(a, b) / area,
+    ])
 }

@@ -833,6 +833,22 @@ pub struct Frame<'a> {
 }
 
 impl Frame<'_> {
+    /// The largest horizontal displacement of any point of the surface, metres: Σ over layers of the
+    /// modulation's bound times the layer's Σ A, rounded up.
+    pub(crate) fn displacement_bound(&self) -> f64 {
+        let d: f64 = self
+            .layers
+            .iter()
+            .map(|l| {
+                let a: f64 = l.amplitudes().map(|a| f64::from(a).abs()).sum();
+                f64::from(l.modulation().magnitude_bound()) * a
+            })
+            .sum();
+        // The kernel's f32 sums of up to a few hundred terms round by well under 10⁻⁴ of
+        // their size; a micrometre covers the rest.
+        d * (1.0 + 1e-4) + 1e-6
+    }
+
     /// What this frame runs.
     pub fn stats(&self) -> &FrameStats {
         &self.stats

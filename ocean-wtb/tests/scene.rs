@@ -285,7 +285,10 @@ fn batched_queries_equal_single_queries_bit_for_bit() {
     let at: Vec<DVec2> = (0..1000)
         .map(|_| DVec2::new(rng.next_f64() * 80.0 - 8.0, rng.next_f64() * 80.0 - 8.0))
         .collect();
-    let want: Vec<_> = at.iter().map(|p| f.continuous_height_at(*p).unwrap()).collect();
+    let want: Vec<_> = at
+        .iter()
+        .map(|p| f.continuous_height_at(*p).unwrap())
+        .collect();
     assert!(want.iter().any(|w| w.height != 0.0) && want.iter().any(|w| w.height == 0.0));
     let blank = ocean_wtb::scene::HeightSample {
         height: f64::NAN,
@@ -303,7 +306,8 @@ fn batched_queries_equal_single_queries_bit_for_bit() {
                 .build()
                 .unwrap();
             let mut out = vec![blank; n];
-            pool.install(|| f.continuous_heights_par(&at[..n], &mut out)).unwrap();
+            pool.install(|| f.continuous_heights_par(&at[..n], &mut out))
+                .unwrap();
             assert!(out == want[..n], "{n} queries, {threads} threads");
         }
     }
