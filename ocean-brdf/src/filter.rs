@@ -9,12 +9,7 @@
 
 use crate::error::{BrdfError, check};
 
-/// w(a, b, x) = 3x̄² − 2x̄³ with x̄ = clamp((x − a)/(b − a), 0, 1) (§3.2): 0 up to a, 1 from b.
-#[inline]
-pub fn smooth_weight(a: f64, b: f64, x: f64) -> f64 {
-    let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
-}
+pub use ocean_core::math::smooth_weight;
 
 /// The N_min and N_max of the weights: how many cells or pixels a wavelength must span to start
 /// and to finish appearing.

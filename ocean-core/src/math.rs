@@ -81,3 +81,12 @@ pub fn sqrt(x: f64) -> f64 {
 pub fn sqrtf(x: f32) -> f32 {
     libm::sqrtf(x)
 }
+
+/// w(a, b, x) = 3x̄² − 2x̄³ with x̄ = clamp((x − a)/(b − a), 0, 1): 0 up to a, 1 from b, C¹
+/// between. The per-wave filter weight of Bruneton, Neyret & Holzschuch §3.2, which both the
+/// lighting paper's ocean and the wave-train-box grids filter their waves with.
+#[inline]
+pub fn smooth_weight(a: f64, b: f64, x: f64) -> f64 {
+    let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}

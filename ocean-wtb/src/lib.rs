@@ -16,6 +16,8 @@
 //! - [`frame`]: the box's internal frame and the quadrant scan of its wave rays (Fig. 2).
 //! - [`effects`]: refraction, shoaling, irregular height, noise, round waves, beaches (§2.1).
 //! - [`march`]: a box's ray march as data, and the frame plan a GPU twin marches from.
+//! - [`filter`]: which trains the grid carries in its geometry (per-train filtering on the
+//!   grid cell).
 //! - [`budget`]: the layered control of §2.3.
 //! - [`scenarios`]: the paper's benchmark scenes.
 //!
@@ -76,6 +78,7 @@ pub mod continuous;
 pub mod drawn;
 pub mod effects;
 pub mod error;
+pub mod filter;
 pub mod frame;
 pub mod grid;
 pub mod march;
@@ -86,6 +89,7 @@ pub mod terrain;
 pub mod wind;
 
 pub use error::WtbError;
+pub use filter::TrainFilter;
 pub use frame::{BoxFrame, FixedTraversal, GridPoint, RayInfo, Traversal};
 pub use grid::WaterGrid;
 pub use terrain::Terrain;

@@ -34,6 +34,7 @@ use ocean_core::{Modulation, TimedWaves, Wave, WaveDesc, WaveSet};
 use crate::budget::{BoxLoad, Budget, CostModel, Selection, select, train_order};
 use crate::effects::{self, Effects, Refraction};
 use crate::error::WtbError;
+use crate::filter::TrainFilter;
 use crate::frame::BoxFrame;
 use crate::grid::{WaterGrid, ceil_i64, floor_i64};
 use crate::march::{self, MarchBox, Plan, PlannedBox};
@@ -151,6 +152,15 @@ pub struct FrameStats {
     pub selection: Option<Selection>,
     /// The cost model's estimate for it, nanoseconds.
     pub estimated_ns: f64,
+    /// Trains of the visible boxes weighted down in the geometry by the scene's
+    /// [`TrainFilter`] (w_p < 1), those left out included.
+    pub filtered_trains: usize,
+    /// Of those, the trains left out entirely (w_p = 0: shorter than the filter's N_min).
+    pub removed_trains: usize,
+    /// Σ ((1 − w_p)·k·A)²/2 over the filtered trains of the visible boxes (at their build-up
+    /// envelope): the slope variance the geometry leaves out, at most, where every box's
+    /// |μ| ≤ 1, for the BRDF's roughness (see [`crate::filter`]).
+    pub filtered_slope_variance: f64,
 }
 
 /// Water grid, terrain and wave train boxes (see the module documentation).
@@ -164,6 +174,9 @@ pub struct Scene {
     effects: Effects,
     budget: Budget,
     cost: CostModel,
+    filter: Option<TrainFilter>,
+    /// Counts the changes of the description (see [`Scene::revision`]).
+    revision: u64,
 }
 
 /// Largest number of boxes in a scene.
@@ -187,7 +200,18 @@ impl Scene {
             effects: Effects::default(),
             budget: Budget::Unlimited,
             cost: CostModel::default(),
+            filter: Some(TrainFilter::DEFAULT),
+            revision: 0,
         })
+    }
+
+    /// A number that changes whenever the scene's description does (terrain, effects, budget,
+    /// cost model, boxes added, replaced or removed), and only then: a frame prepared at the
+    /// same time and view, under the same revision, draws the same grid. Callers that keep
+    /// what they drew (a C engine's last evaluation) compare it to know whether that is still
+    /// the scene's frame.
+    pub fn revision(&self) -> u64 {
+        self.revision
     }
 
     /// The water grid.
@@ -209,6 +233,7 @@ impl Scene {
         check_terrain(&self.grid, &terrain)?;
         self.terrain = terrain;
         self.terrain_version += 1;
+        self.revision += 1;
         Ok(())
     }
 
@@ -225,6 +250,7 @@ impl Scene {
     pub fn set_effects(&mut self, effects: Effects) -> Result<(), WtbError> {
         check_effects(&effects)?;
         self.effects = effects;
+        self.revision += 1;
         Ok(())
     }
 
@@ -248,11 +274,26 @@ impl Scene {
             check_effects(&sel.effects)?;
         }
         self.budget = budget;
+        self.revision += 1;
         Ok(())
+    }
+
+    /// The per-train geometry filter (see [`crate::filter`]); [`TrainFilter::DEFAULT`] unless
+    /// set.
+    pub fn train_filter(&self) -> Option<TrainFilter> {
+        self.filter
+    }
+
+    /// Sets the per-train geometry filter, or `None` to keep every train whole whatever its
+    /// length in grid cells (a renderer that filters the trains itself on its own footprints).
+    pub fn set_train_filter(&mut self, filter: Option<TrainFilter>) {
+        self.filter = filter;
+        self.revision += 1;
     }
 
     /// The cost model the budget uses; refine it with measured frame times.
     pub fn cost_model_mut(&mut self) -> &mut CostModel {
+        self.revision += 1;
         &mut self.cost
     }
 
@@ -276,6 +317,7 @@ impl Scene {
         let slot = self.make_slot(id, spec)?;
         self.next_id += 1;
         self.boxes.push(slot);
+        self.revision += 1;
         Ok(id)
     }
 
@@ -288,6 +330,7 @@ impl Scene {
     pub fn update_box(&mut self, id: BoxId, spec: BoxSpec) -> Result<(), WtbError> {
         let k = self.position(id)?;
         self.boxes[k] = self.make_slot(id, spec)?;
+        self.revision += 1;
         Ok(())
     }
 
@@ -299,6 +342,7 @@ impl Scene {
     pub fn remove_box(&mut self, id: BoxId) -> Result<(), WtbError> {
         let k = self.position(id)?;
         self.boxes.remove(k);
+        self.revision += 1;
         Ok(())
     }
 
@@ -374,6 +418,11 @@ impl Scene {
     /// [`WtbError::NotFinite`] for a non-finite time.
     pub fn frame(&mut self, t: f64, view: Option<&Frustum>) -> Result<Frame<'_>, WtbError> {
         let (mut stats, selection, visible) = self.visible(t, view)?;
+        let choice = TrainChoice {
+            max_trains: selection.max_trains,
+            filter: self.filter,
+            spacing: self.grid.spacing(),
+        };
         let key = StaticKey::of(&selection.effects);
         // Refresh the caches that are stale.
         for (k, frame, _) in &visible {
@@ -396,7 +445,7 @@ impl Scene {
             let Some(static_mu) = &cache.mu else {
                 continue;
             };
-            let Some(waves) = frame_waves(slot, *env, selection.max_trains)? else {
+            let Some(waves) = frame_waves(slot, *env, choice, &mut stats)? else {
                 continue;
             };
             stats.trains += waves.coeffs().len();
@@ -512,6 +561,11 @@ impl Scene {
     /// As [`Scene::frame`].
     pub fn plan(&self, t: f64, view: Option<&Frustum>) -> Result<Plan, WtbError> {
         let (mut stats, selection, visible) = self.visible(t, view)?;
+        let choice = TrainChoice {
+            max_trains: selection.max_trains,
+            filter: self.filter,
+            spacing: self.grid.spacing(),
+        };
         let key = StaticKey::of(&selection.effects);
         let mut boxes = Vec::new();
         for (k, frame, env) in &visible {
@@ -520,7 +574,7 @@ impl Scene {
             if rect.is_empty() {
                 continue;
             }
-            let Some(waves) = frame_waves(slot, *env, selection.max_trains)? else {
+            let Some(waves) = frame_waves(slot, *env, choice, &mut stats)? else {
                 continue;
             };
             stats.trains += waves.coeffs().len();
@@ -659,15 +713,48 @@ fn box_rect(grid: &WaterGrid, frame: &BoxFrame) -> GridRect {
     }
 }
 
-/// A box's trains at envelope `env`, its largest `max_trains` (§2.3); `None` when none is left.
-fn frame_waves(slot: &Slot, env: f64, max_trains: usize) -> Result<Option<WaveSet>, WtbError> {
+/// What a frame's boxes draw their trains with: the budget's train count, the geometry
+/// filter and the grid's spacing.
+#[derive(Clone, Copy)]
+struct TrainChoice {
+    max_trains: usize,
+    filter: Option<TrainFilter>,
+    spacing: f64,
+}
+
+/// A box's trains at envelope `env`: its largest `max_trains` (§2.3), each weighted by the
+/// geometry filter's w_p (the trains it leaves out are not built); `None` when none is left.
+/// The filtered trains are counted in `stats`.
+fn frame_waves(
+    slot: &Slot,
+    env: f64,
+    choice: TrainChoice,
+    stats: &mut FrameStats,
+) -> Result<Option<WaveSet>, WtbError> {
     let order = train_order(&slot.trains.iter().map(|d| d.amplitude).collect::<Vec<_>>());
-    let take = order.len().min(max_trains);
-    let waves: Vec<Wave> = order[..take]
-        .iter()
-        .map(|&i| slot.trains[i].build().and_then(|w| w.scaled(env)))
-        .collect::<Result<_, _>>()
-        .map_err(|source| WtbError::Wave { index: 0, source })?;
+    let take = order.len().min(choice.max_trains);
+    let mut waves: Vec<Wave> = Vec::with_capacity(take);
+    for &i in &order[..take] {
+        let d = &slot.trains[i];
+        let w = choice
+            .filter
+            .map_or(1.0, |f| f.weight(d.wavelength, choice.spacing));
+        if w < 1.0 {
+            stats.filtered_trains += 1;
+            let lost = (1.0 - w) * effects::wavenumber(d.wavelength) * d.amplitude * env;
+            stats.filtered_slope_variance += 0.5 * lost * lost;
+        }
+        if w == 0.0 {
+            stats.removed_trains += 1;
+            continue;
+        }
+        let wave = d
+            .build()
+            .and_then(|w| w.scaled(env))
+            .and_then(|wave| if w < 1.0 { wave.scaled(w) } else { Ok(wave) })
+            .map_err(|source| WtbError::Wave { index: i, source })?;
+        waves.push(wave);
+    }
     if waves.is_empty() {
         return Ok(None);
     }

@@ -482,3 +482,102 @@ fn no_query_fails_on_random_boxes() {
     }
     assert!(points > 40_000);
 }
+
+/// The largest |drawn − continuous| over cell centres and edge midpoints of the grid's
+/// interior: how far the mesh is from the model between its vertices.
+fn mesh_to_model(frame: &Frame) -> f64 {
+    let grid = frame.grid();
+    let (o, s) = (grid.origin(), grid.spacing());
+    let mut at = Vec::new();
+    for j in 4..grid.nz() - 4 {
+        for i in 4..grid.nx() - 4 {
+            for f in [
+                DVec2::new(0.5, 0.5),
+                DVec2::new(0.5, 0.0),
+                DVec2::new(0.0, 0.5),
+            ] {
+                at.push(o + (DVec2::new(i as f64, j as f64) + f) * s);
+            }
+        }
+    }
+    let mut drawn = vec![
+        DrawnSample {
+            height: 0.0,
+            normal: DVec3::Y,
+            shading_normal: DVec3::Y,
+            rest: DVec2::ZERO,
+            triangle: None,
+        };
+        at.len()
+    ];
+    frame.drawn_heights(&at, &mut drawn).unwrap();
+    let mut cont = vec![
+        ocean_wtb::scene::HeightSample {
+            height: 0.0,
+            normal: DVec3::Y,
+            rest: DVec2::ZERO,
+            residual: 0.0,
+        };
+        at.len()
+    ];
+    frame.continuous_heights(&at, &mut cont).unwrap();
+    drawn
+        .iter()
+        .zip(&cont)
+        .map(|(d, c)| (d.height - c.height).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Trains of 2.5, 3.1 and 3.8 cells are weighted by w_p = w(2, 4, λ/s) in the geometry, the
+/// frame reports them and the slope variance they lose, and the mesh then holds the model
+/// far better; with the filter off they are drawn whole and the mesh misses them by a large
+/// share of their amplitude.
+#[test]
+fn grids_filter_the_trains_they_cannot_carry() {
+    let mut scene = short_trains_scene();
+    let expected: f64 = [(2.5, 0.06), (3.1, 0.08), (3.8, 0.1)]
+        .iter()
+        .map(|&(l, a): &(f64, f64)| {
+            let x = ((l - 2.0) / 2.0).clamp(0.0, 1.0);
+            let w = x * x * (3.0 - 2.0 * x);
+            let lost = (1.0 - w) * std::f64::consts::TAU / l * a;
+            0.5 * lost * lost
+        })
+        .sum();
+    let filtered = {
+        let frame = scene.frame(5.0, None).unwrap();
+        let st = *frame.stats();
+        assert_eq!(
+            (st.trains, st.filtered_trains, st.removed_trains),
+            (3, 3, 0)
+        );
+        let v = st.filtered_slope_variance;
+        assert!(
+            (v - expected).abs() <= 1e-12 * expected,
+            "{v} vs {expected}"
+        );
+        mesh_to_model(&frame)
+    };
+    scene.set_train_filter(None);
+    let whole = {
+        let frame = scene.frame(5.0, None).unwrap();
+        let st = *frame.stats();
+        assert_eq!(
+            (st.trains, st.filtered_trains, st.filtered_slope_variance),
+            (3, 0, 0.0)
+        );
+        mesh_to_model(&frame)
+    };
+    println!("mesh to model: {whole:.4} m whole, {filtered:.4} m filtered");
+    // A train of wavelength λ is cut by A·(1 − cos(π·s/λ)) between vertices: 0.06 m at
+    // 2.5 cells loses 0.041 m, 0.08 m at 3.1 cells 0.037 m, 0.1 m at 3.8 cells 0.032 m.
+    assert!(whole > 0.04, "{whole}");
+    assert!(filtered < 0.5 * whole, "{filtered} vs {whole}");
+    // A train shorter than 2 cells is left out, not built.
+    scene.set_train_filter(Some(ocean_wtb::TrainFilter::new(3.5, 8.0).unwrap()));
+    let st = *scene.frame(5.0, None).unwrap().stats();
+    assert_eq!(
+        (st.trains, st.filtered_trains, st.removed_trains),
+        (1, 3, 2)
+    );
+}
