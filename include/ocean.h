@@ -418,6 +418,12 @@ enum OceanStatus
    * The caller's progress callback asked to stop (returned nonzero); nothing was written.
    */
   OCEAN_STATUS_CANCELLED = 14,
+  /**
+   * A call answers for what the last evaluation drew, and there is none: the scene was
+   * never evaluated, or changed since (a box, the terrain, the effects, the budget or the
+   * train filter). Evaluate it again first.
+   */
+  OCEAN_STATUS_NOT_EVALUATED = 15,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -1934,10 +1940,74 @@ typedef struct OceanFrameStats {
    * The cost model's estimate of the frame's work, seconds of one core.
    */
   double estimated_seconds;
+  /**
+   * Trains weighted down in the geometry by the scene's train filter (they span too few
+   * grid cells to be drawn whole; see `ocean_scene_set_train_filter`), those left out
+   * included.
+   */
+  size_t filtered_trains;
+  /**
+   * Of those, the trains left out entirely (shorter than the filter's `min_cells`).
+   */
+  size_t removed_trains;
+  /**
+   * The slope variance the geometry leaves out, sum over the filtered trains of
+   * ((1 - w_p) k A)^2 / 2: add it to the BRDF's roughness (where a box's modulation is at
+   * most 1, the variance of the missing slopes is at most this).
+   */
+  double filtered_slope_variance;
 } OceanFrameStats;
 
 /**
- * The answer of a height query at world (x, z).
+ * The answer of a drawn height query at world (x, z): the triangle of the evaluated grid's
+ * mesh that lies over it.
+ */
+typedef struct OceanDrawnSample {
+  /**
+   * Height of the triangle over the query, metres above the sea at rest; 0 where no
+   * triangle lies over it (`covered` is 0).
+   */
+  double height;
+  /**
+   * The triangle's unit normal, on its upper side (+y where `covered` is 0).
+   */
+  struct OceanDVec3 normal;
+  /**
+   * The vertex normals of the triangle blended by the barycentric weights and normalised:
+   * what a renderer interpolating the grid's normals shades the point with.
+   */
+  struct OceanDVec3 shading_normal;
+  /**
+   * World (x, z) of the rest position the mesh carries to the query (the triangle's rest
+   * vertices blended by the same weights); the query itself where `covered` is 0.
+   */
+  struct OceanDVec2 rest;
+  /**
+   * Barycentric weights of the query on the triangle's three vertices, in the order given
+   * by `upper` (each in [0, 1] up to rounding, summing to 1).
+   */
+  double weights[3];
+  /**
+   * The cell's first grid point: column i and row j.
+   */
+  uint32_t cell_i;
+  /**
+   * See `cell_i`.
+   */
+  uint32_t cell_j;
+  /**
+   * 0: the lower triangle (i, j), (i+1, j), (i, j+1); 1: the upper triangle (i+1, j),
+   * (i+1, j+1), (i, j+1).
+   */
+  uint32_t upper;
+  /**
+   * 1 where a triangle lies over the query, 0 over the sea at rest (off the mesh).
+   */
+  uint32_t covered;
+} OceanDrawnSample;
+
+/**
+ * The answer of a continuous height query at world (x, z).
  */
 typedef struct OceanHeightSample {
   /**
@@ -1954,8 +2024,8 @@ typedef struct OceanHeightSample {
   struct OceanDVec2 rest;
   /**
    * Horizontal distance between that displaced point and the query, metres: the query
-   * iterates until it is at most the library's tolerance (0.5 mm) or 16 Newton steps have
-   * run.
+   * iterates until it is at most the library's tolerance (10 micrometres) or 16 Newton
+   * steps have run.
    */
   double residual;
 } OceanHeightSample;
@@ -4556,33 +4626,98 @@ OceanStatus ocean_scene_evaluate_incremental(struct OceanScene *scene,
 OceanStatus ocean_scene_reset_coverage(struct OceanScene *scene);
 
 /**
- * Answers `n` height queries at world (x, z) = `xz[k]` and `time` seconds, into `out[k]`:
- * the water surface exactly as `ocean_scene_evaluate` shows it (same boxes, depth, land,
- * effects and budget, but never culled), between grid points too. Gerstner waves move points
- * sideways, so the rest position whose displaced point lies over the query is found by
- * Newton's method (from the query itself, while no crest folds) to a horizontal residual of
- * at most 0.5 mm or for at most 16 steps (see `OceanHeightSample::residual`), then the height
- * and normal are taken there; the
- * modulation and height field are bilinear between grid points, so at a displaced grid point
- * the answer is the grid's own. Outside the grid the water is at rest. The batch is spread
- * over the library's worker threads; results do not depend on their number.
+ * Answers `n` height queries at world (x, z) = `xz[k]` on the **drawn** surface, into
+ * `out[k]`: the triangles of the grid that the last `ocean_scene_evaluate` or
+ * `ocean_scene_evaluate_incremental` wrote, culling included (a culled box's water is drawn at
+ * rest, and answered at rest). This is the surface to float objects on where the grid is what
+ * is drawn.
+ *
+ * The mesh: each cell (i, j)-(i+1, j+1) of the grid is split along the diagonal from
+ * (i+1, j) to (i, j+1) into the lower triangle (i, j), (i+1, j), (i, j+1) and the upper
+ * triangle (i+1, j), (i+1, j+1), (i, j+1), counter-clockwise seen from above, over the
+ * evaluated positions (index j*nx + i, relative to the grid origin). The answer is the height
+ * of the triangle over (x, z), exact to double rounding of those float vertices (the library's
+ * tests compare it with an independent intersection of the same triangles: within 1e-14 m).
+ * Where the mesh folds over itself (crests steeper than the trochoid's limit) the highest
+ * triangle is taken. Where no triangle lies over the point (beyond the grid, or past an edge
+ * the waves pull inwards) the sea is at rest: height 0, normal +y, `covered` 0.
+ *
+ * The vertices are recomputed around the queries with the evaluation's own kernel, bit for bit
+ * what it wrote; the caller's buffers are not read. A batch spread over the whole grid costs
+ * about one evaluation of the grid; it is spread over the library's worker threads, and the
+ * answers do not depend on their number.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` (8-byte alignment),
  * `OCEAN_STATUS_EMPTY` if `n` is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if
- * `n * sizeof(OceanHeightSample)` exceeds `PTRDIFF_MAX`, `OCEAN_STATUS_INVALID_ARGUMENT` if
- * `xz` and `out` overlap, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or
- * coordinate (the message gives the first bad index). Nothing is written on failure.
+ * `n * sizeof(OceanDrawnSample)` exceeds `PTRDIFF_MAX`, `OCEAN_STATUS_INVALID_ARGUMENT` if `xz`
+ * and `out` overlap, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite coordinate (the message
+ * gives the first bad index), `OCEAN_STATUS_NOT_EVALUATED` if the scene was never evaluated or
+ * changed since its last evaluation (evaluate it again). Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `scene` must be a live handle, `xz` `n` readable `OceanDVec2`s and `out` `n` writable
+ * `OceanDrawnSample`s, untouched by other threads during the call.
+ */
+OceanStatus ocean_scene_heights_drawn(struct OceanScene *scene,
+                                      const struct OceanDVec2 *xz,
+                                      size_t n,
+                                      struct OceanDrawnSample *out);
+
+/**
+ * Answers `n` height queries at world (x, z) = `xz[k]` and `time` seconds on the
+ * **continuous** surface, into `out[k]`: the model between grid points (the same boxes, depth,
+ * land, effects, budget and train filter as `ocean_scene_evaluate`, but never culled), the
+ * limit of an ever finer grid, and what a renderer evaluating the trains per vertex of a
+ * view-dependent grid approaches. The modulation and the height field are bilinear between
+ * grid points; the surface is the image of the grid's rectangle, beyond which (and where an
+ * edge is pulled inwards) the sea is at rest. Any time may be asked, evaluated or not: the
+ * model needs no evaluation.
+ *
+ * Against the drawn mesh it differs inside cells by the triangles' linear interpolation of the
+ * trains, about A (1 - cos(pi s / lambda)) for a train of amplitude A and wavelength lambda on
+ * a grid of spacing s (a few millimetres for the paper's scenarios; the train filter keeps
+ * trains shorter than a few cells out of both). Gerstner waves move points sideways, so the
+ * rest position whose displaced point lies over the query is found by Newton's method to a
+ * horizontal residual of at most 10 micrometres or for at most 16 steps (see
+ * `OceanHeightSample::residual`), then the height and normal are taken there. The library's
+ * tests hold it within 5 micrometres of a forward double-precision evaluation of the model.
+ *
+ * Statuses as `ocean_scene_heights_drawn`, without `OCEAN_STATUS_NOT_EVALUATED`, plus
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time`. Nothing is written on failure.
  *
  * # Safety
  *
  * `scene` must be a live handle, `xz` `n` readable `OceanDVec2`s and `out` `n` writable
  * `OceanHeightSample`s, untouched by other threads during the call.
  */
-OceanStatus ocean_scene_heights(struct OceanScene *scene,
-                                double time,
-                                const struct OceanDVec2 *xz,
-                                size_t n,
-                                struct OceanHeightSample *out);
+OceanStatus ocean_scene_heights_continuous(struct OceanScene *scene,
+                                           double time,
+                                           const struct OceanDVec2 *xz,
+                                           size_t n,
+                                           struct OceanHeightSample *out);
+
+/**
+ * Sets which trains the grid's geometry carries: each train's amplitude is weighted by
+ * w = smoothstep((lambda / spacing - min_cells) / (max_cells - min_cells)), 0 below
+ * `min_cells` grid cells per wavelength (the train is left out), 1 above `max_cells`, as the
+ * lighting paper filters its waves on a grid cell (Bruneton et al. section 3.2). What the
+ * geometry loses is reported by `OceanFrameStats` (`filtered_trains`, `removed_trains`,
+ * `filtered_slope_variance`) for the BRDF's roughness. The default is 2 and 4 cells: below 2
+ * (Nyquist) a mesh aliases a train, at 4 it still cuts 29 % off its crests between vertices.
+ * Pass 0 and 0 to keep every train whole. Both height queries see the same filtered trains.
+ *
+ * Returns `OCEAN_STATUS_NON_FINITE` for a NaN or infinite threshold,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` unless 0 <= `min_cells` < `max_cells` <= 1e6 (or both 0);
+ * nothing changes then.
+ *
+ * # Safety
+ *
+ * `scene` must be a live handle.
+ */
+OceanStatus ocean_scene_set_train_filter(struct OceanScene *scene,
+                                         double min_cells,
+                                         double max_cells);
 
 #ifdef __cplusplus
 }  // extern "C"

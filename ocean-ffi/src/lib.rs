@@ -41,6 +41,7 @@ mod status;
 mod version;
 mod waves;
 mod wtb;
+mod wtb_query;
 
 pub use gpu::{
     OceanGpuContext, OceanRenderer, OceanRendererOptions, ocean_gpu_context_create,
@@ -140,10 +141,14 @@ pub use waves::{
 };
 pub use wtb::{
     OceanBeach, OceanBoxDesc, OceanDVec2, OceanDVec3, OceanDepthConvention, OceanEffects,
-    OceanFrameStats, OceanHeightSample, OceanIrregular, OceanNoise, OceanRefraction, OceanScene,
-    OceanWaterGridDesc, OceanWindDesc, ocean_effects_default, ocean_scene_add_box,
-    ocean_scene_box_count, ocean_scene_create, ocean_scene_destroy, ocean_scene_evaluate,
-    ocean_scene_heights, ocean_scene_remove_box, ocean_scene_set_budget_explicit,
-    ocean_scene_set_budget_seconds, ocean_scene_set_budget_unlimited, ocean_scene_set_effects,
-    ocean_scene_set_terrain, ocean_scene_update_box,
+    OceanFrameStats, OceanIrregular, OceanNoise, OceanRefraction, OceanScene, OceanWaterGridDesc,
+    OceanWindDesc, ocean_effects_default, ocean_scene_add_box, ocean_scene_box_count,
+    ocean_scene_create, ocean_scene_destroy, ocean_scene_evaluate, ocean_scene_remove_box,
+    ocean_scene_set_budget_explicit, ocean_scene_set_budget_seconds,
+    ocean_scene_set_budget_unlimited, ocean_scene_set_effects, ocean_scene_set_terrain,
+    ocean_scene_update_box,
+};
+pub use wtb_query::{
+    OceanDrawnSample, OceanHeightSample, ocean_scene_heights_continuous, ocean_scene_heights_drawn,
+    ocean_scene_set_train_filter,
 };

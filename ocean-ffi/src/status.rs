@@ -58,10 +58,14 @@ pub enum OceanStatus {
     BufferTooSmall = 13,
     /// The caller's progress callback asked to stop (returned nonzero); nothing was written.
     Cancelled = 14,
+    /// A call answers for what the last evaluation drew, and there is none: the scene was
+    /// never evaluated, or changed since (a box, the terrain, the effects, the budget or the
+    /// train filter). Evaluate it again first.
+    NotEvaluated = 15,
 }
 
 /// Every status, in numeric order.
-const ALL_STATUSES: [OceanStatus; 15] = [
+const ALL_STATUSES: [OceanStatus; 16] = [
     OceanStatus::Ok,
     OceanStatus::NullPointer,
     OceanStatus::MisalignedPointer,
@@ -77,6 +81,7 @@ const ALL_STATUSES: [OceanStatus; 15] = [
     OceanStatus::GpuFailure,
     OceanStatus::BufferTooSmall,
     OceanStatus::Cancelled,
+    OceanStatus::NotEvaluated,
 ];
 
 impl OceanStatus {
@@ -97,6 +102,7 @@ impl OceanStatus {
             OceanStatus::GpuFailure => c"the GPU backend failed",
             OceanStatus::BufferTooSmall => c"the buffer is too small for the result",
             OceanStatus::Cancelled => c"cancelled by the caller's progress callback",
+            OceanStatus::NotEvaluated => c"no evaluated frame to answer for: evaluate first",
         }
     }
 }

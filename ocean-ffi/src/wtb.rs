@@ -12,9 +12,7 @@ use ocean_core::frustum::{Frustum, FrustumError};
 use ocean_core::{WaveDesc, WaveError};
 use ocean_wtb::budget::{Budget, Selection};
 use ocean_wtb::effects::{Beach, Effects, Irregular, Noise, Refraction};
-use ocean_wtb::scene::{
-    BoxId, BoxSpec, Coverage, FrameStats, HeightSample, Scene, rectangles_overlap,
-};
+use ocean_wtb::scene::{BoxId, BoxSpec, Coverage, FrameStats, Scene, rectangles_overlap};
 use ocean_wtb::wind::MAX_EXPLICIT_TRAINS;
 use ocean_wtb::{BoxFrame, Terrain, TrainSource, WaterGrid, Wind, WtbError};
 
@@ -255,22 +253,16 @@ pub struct OceanFrameStats {
     pub effects: OceanEffects,
     /// The cost model's estimate of the frame's work, seconds of one core.
     pub estimated_seconds: f64,
-}
-
-/// The answer of a height query at world (x, z).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct OceanHeightSample {
-    /// Water height there, metres above the sea at rest.
-    pub height: f64,
-    /// Unit surface normal there.
-    pub normal: OceanDVec3,
-    /// World (x, z) of the rest position whose displaced point lies over the query.
-    pub rest: OceanDVec2,
-    /// Horizontal distance between that displaced point and the query, metres: the query
-    /// iterates until it is at most the library's tolerance (0.5 mm) or 16 Newton steps have
-    /// run.
-    pub residual: f64,
+    /// Trains weighted down in the geometry by the scene's train filter (they span too few
+    /// grid cells to be drawn whole; see `ocean_scene_set_train_filter`), those left out
+    /// included.
+    pub filtered_trains: usize,
+    /// Of those, the trains left out entirely (shorter than the filter's `min_cells`).
+    pub removed_trains: usize,
+    /// The slope variance the geometry leaves out, sum over the filtered trains of
+    /// ((1 - w_p) k A)^2 / 2: add it to the BRDF's roughness (where a box's modulation is at
+    /// most 1, the variance of the missing slopes is at most this).
+    pub filtered_slope_variance: f64,
 }
 
 /// A Wave Train Boxes scene (opaque): water grid, terrain, boxes, effects and budget. Create
@@ -284,10 +276,28 @@ pub struct OceanScene {
     scene: Mutex<Scene>,
     /// What the buffers of `ocean_scene_evaluate_incremental` may hold besides rest.
     coverage: Mutex<Coverage>,
+    /// The frame the last evaluation drew, which drawn height queries answer for.
+    evaluated: Mutex<Option<Evaluated>>,
+}
+
+/// What the last successful evaluation drew: the instant, the view it culled by, and the
+/// scene's revision then (the same three give the same grid, see `Scene::revision`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Evaluated {
+    pub(crate) time: f64,
+    pub(crate) view: Option<Frustum>,
+    pub(crate) revision: u64,
 }
 
 impl OceanScene {
-    fn lock(&self) -> MutexGuard<'_, Scene> {
+    /// The record of the last evaluation.
+    pub(crate) fn evaluated(&self) -> MutexGuard<'_, Option<Evaluated>> {
+        self.evaluated
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+    }
+
+    pub(crate) fn lock(&self) -> MutexGuard<'_, Scene> {
         // A panic inside a call (a library bug, reported as OCEAN_STATUS_PANIC) poisons the
         // lock; the scene stays consistent, since every mutation replaces whole values.
         self.scene.lock().unwrap_or_else(PoisonError::into_inner)
@@ -447,7 +457,7 @@ fn effects_to(e: &Effects) -> OceanEffects {
     }
 }
 
-fn stats_to(s: &FrameStats) -> OceanFrameStats {
+pub(crate) fn stats_to(s: &FrameStats) -> OceanFrameStats {
     let selection = s.selection.unwrap_or(Selection {
         max_trains: usize::MAX,
         effects: Effects::default(),
@@ -460,6 +470,9 @@ fn stats_to(s: &FrameStats) -> OceanFrameStats {
         max_trains: selection.max_trains,
         effects: effects_to(&selection.effects),
         estimated_seconds: s.estimated_ns * 1e-9,
+        filtered_trains: s.filtered_trains,
+        removed_trains: s.removed_trains,
+        filtered_slope_variance: s.filtered_slope_variance,
     }
 }
 
@@ -683,7 +696,7 @@ fn check_reaches_grid(grid: &WaterGrid, wind: &Wind) -> Result<(), Error> {
 /// # Safety
 ///
 /// `scene` must be NULL, misaligned, or a live handle from `ocean_scene_create`.
-unsafe fn handle<'a>(scene: *mut OceanScene) -> Result<&'a OceanScene, Error> {
+pub(crate) unsafe fn handle<'a>(scene: *mut OceanScene) -> Result<&'a OceanScene, Error> {
     check_ptr(scene.cast_const(), "scene")?;
     // SAFETY: non-NULL and aligned (checked); live and not being destroyed (caller's
     // guarantee); only shared references are made, and the scene is behind a mutex.
@@ -756,6 +769,7 @@ pub unsafe extern "C" fn ocean_scene_create(
         let handle = Box::into_raw(Box::new(OceanScene {
             scene: Mutex::new(scene),
             coverage: Mutex::new(coverage),
+            evaluated: Mutex::new(None),
         }));
         // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
         unsafe { out.write(handle) };
@@ -1213,7 +1227,8 @@ unsafe fn evaluate(
 ) -> OceanStatus {
     guard(name, || {
         // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene_handle = unsafe { handle(scene) }?;
+        let scene = scene_handle;
         check_ptr(out_pos.cast_const(), "out_pos")?;
         check_ptr(out_normal.cast_const(), "out_normal")?;
         if !out_stats.is_null() {
@@ -1279,109 +1294,16 @@ unsafe fn evaluate(
         } else {
             frame.evaluate_par(pos, nrm).map_err(|e| wtb_error("", e))?;
         }
+        let stats = stats_to(frame.stats());
+        *scene_handle.evaluated() = Some(Evaluated {
+            time,
+            view,
+            revision: scene.revision(),
+        });
         if !out_stats.is_null() {
             // SAFETY: non-NULL and aligned (checked), writable and disjoint from the outputs
             // (checked; the slices above are no longer used).
-            unsafe { out_stats.write(stats_to(frame.stats())) };
-        }
-        Ok(())
-    })
-}
-
-/// Answers `n` height queries at world (x, z) = `xz[k]` and `time` seconds, into `out[k]`:
-/// the water surface exactly as `ocean_scene_evaluate` shows it (same boxes, depth, land,
-/// effects and budget, but never culled), between grid points too. Gerstner waves move points
-/// sideways, so the rest position whose displaced point lies over the query is found by
-/// Newton's method (from the query itself, while no crest folds) to a horizontal residual of
-/// at most 0.5 mm or for at most 16 steps (see `OceanHeightSample::residual`), then the height
-/// and normal are taken there; the
-/// modulation and height field are bilinear between grid points, so at a displaced grid point
-/// the answer is the grid's own. Outside the grid the water is at rest. The batch is spread
-/// over the library's worker threads; results do not depend on their number.
-///
-/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` (8-byte alignment),
-/// `OCEAN_STATUS_EMPTY` if `n` is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if
-/// `n * sizeof(OceanHeightSample)` exceeds `PTRDIFF_MAX`, `OCEAN_STATUS_INVALID_ARGUMENT` if
-/// `xz` and `out` overlap, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or
-/// coordinate (the message gives the first bad index). Nothing is written on failure.
-///
-/// # Safety
-///
-/// `scene` must be a live handle, `xz` `n` readable `OceanDVec2`s and `out` `n` writable
-/// `OceanHeightSample`s, untouched by other threads during the call.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_heights(
-    scene: *mut OceanScene,
-    time: f64,
-    xz: *const OceanDVec2,
-    n: usize,
-    out: *mut OceanHeightSample,
-) -> OceanStatus {
-    guard("ocean_scene_heights", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
-        check_ptr(xz, "xz")?;
-        check_ptr(out.cast_const(), "out")?;
-        if n == 0 {
-            return Err(Error::new(
-                OceanStatus::Empty,
-                "`n` is 0: no points to query",
-            ));
-        }
-        let in_bytes = byte_len::<OceanDVec2>(n, "xz")?;
-        let out_bytes = byte_len::<OceanHeightSample>(n, "out")?;
-        check_disjoint(
-            (xz.cast::<u8>(), in_bytes, "xz"),
-            (out.cast_const().cast::<u8>(), out_bytes, "out"),
-        )?;
-        check_time(time)?;
-        // SAFETY: non-NULL and aligned (checked), the byte size fits in isize (checked), `n`
-        // readable elements (caller's guarantee), disjoint from `out` (checked).
-        let src = unsafe { core::slice::from_raw_parts(xz, n) };
-        if let Some(k) = src
-            .iter()
-            .position(|p| !(p.x.is_finite() && p.z.is_finite()))
-        {
-            return Err(Error::new(
-                OceanStatus::NonFinite,
-                format!("xz[{k}] = ({}, {}) is not finite", src[k].x, src[k].z),
-            ));
-        }
-        let at: Vec<DVec2> = src.iter().map(|p| DVec2::new(p.x, p.z)).collect();
-        let mut samples = vec![
-            HeightSample {
-                height: 0.0,
-                normal: glam::DVec3::Y,
-                rest: DVec2::ZERO,
-                residual: 0.0,
-            };
-            n
-        ];
-        {
-            let mut scene = scene.lock();
-            let frame = scene.frame(time, None).map_err(|e| wtb_error("", e))?;
-            frame
-                .continuous_heights_par(&at, &mut samples)
-                .map_err(|e| wtb_error("", e))?;
-        }
-        // SAFETY: non-NULL and aligned (checked), byte size fits (checked), `n` writable
-        // elements (caller's guarantee), disjoint from `xz` (checked, and `src` is not used
-        // any more).
-        let dst = unsafe { core::slice::from_raw_parts_mut(out, n) };
-        for (d, s) in dst.iter_mut().zip(&samples) {
-            *d = OceanHeightSample {
-                height: s.height,
-                normal: OceanDVec3 {
-                    x: s.normal.x,
-                    y: s.normal.y,
-                    z: s.normal.z,
-                },
-                rest: OceanDVec2 {
-                    x: s.rest.x,
-                    z: s.rest.y,
-                },
-                residual: s.residual,
-            };
+            unsafe { out_stats.write(stats) };
         }
         Ok(())
     })
@@ -1393,6 +1315,10 @@ mod tests {
     use ocean_wtb::scenarios;
 
     use crate::status::last_error;
+    use crate::wtb_query::{
+        OceanDrawnSample, OceanHeightSample, ocean_scene_heights_continuous,
+        ocean_scene_heights_drawn,
+    };
 
     const GRID: OceanWaterGridDesc = OceanWaterGridDesc {
         origin_x: 0.0,
@@ -1510,7 +1436,8 @@ mod tests {
             ];
             let mut out = [OceanHeightSample::default(); 2];
             // SAFETY: two elements each.
-            let st = unsafe { ocean_scene_heights(s, t, xz.as_ptr(), 2, out.as_mut_ptr()) };
+            let st =
+                unsafe { ocean_scene_heights_continuous(s, t, xz.as_ptr(), 2, out.as_mut_ptr()) };
             assert_eq!(st, OceanStatus::Ok, "{}", last_error());
             for (q, o) in xz.iter().zip(&out) {
                 let h = frame.continuous_height_at(DVec2::new(q.x, q.z)).unwrap();
@@ -1519,6 +1446,95 @@ mod tests {
                 assert_eq!([o.normal.x, o.normal.y, o.normal.z], h.normal.to_array());
             }
         }
+        // SAFETY: live handle, destroyed once.
+        unsafe { ocean_scene_destroy(s) };
+    }
+
+    /// Drawn queries answer for the last evaluation, culling included, and refuse a scene
+    /// never evaluated or changed since; the answers are the Rust frame's, bit for bit.
+    #[test]
+    fn drawn_queries_need_an_evaluated_frame() {
+        let s = scenario_1();
+        let xz = [
+            OceanDVec2 { x: 10.3, z: 20.7 },
+            OceanDVec2 { x: -30.0, z: 5.5 },
+        ];
+        let marker = OceanDrawnSample {
+            height: 7.0,
+            ..OceanDrawnSample::default()
+        };
+        let mut out = [marker; 2];
+        // SAFETY: live scene, two elements each.
+        let query = |out: &mut [OceanDrawnSample; 2]| unsafe {
+            ocean_scene_heights_drawn(s, xz.as_ptr(), 2, out.as_mut_ptr())
+        };
+        assert_eq!(query(&mut out), OceanStatus::NotEvaluated);
+        assert!(
+            last_error().contains("not been evaluated"),
+            "{}",
+            last_error()
+        );
+        assert_eq!(out, [marker; 2], "nothing written");
+        let n = 64 * 64;
+        let (mut pos, mut nrm) = (vec![OceanVec3::default(); n], vec![OceanVec3::default(); n]);
+        // A view that sees no box: both are culled, and the drawn grid is at rest.
+        let away = ocean_core::Camera::look_at(
+            glam::DVec3::new(0.0, 10.0, -50.0),
+            glam::DVec3::new(0.0, 10.0, -100.0),
+            glam::DVec3::Y,
+            ocean_core::Projection::Perspective {
+                fov_y: 1.0,
+                aspect: 1.0,
+                near: 0.5,
+                far: ocean_core::Far::Finite(100.0),
+            },
+            DepthConvention::ZERO_TO_ONE,
+        )
+        .unwrap()
+        .view_projection()
+        .unwrap();
+        let mut evaluate = |view: Option<&Mat4>| {
+            let m = view.map(|m| m.to_cols_array());
+            // SAFETY: n elements in each buffer, 16 floats or NULL.
+            let st = unsafe {
+                ocean_scene_evaluate(
+                    s,
+                    4.5,
+                    m.as_ref().map_or(core::ptr::null(), |m| m.as_ptr()),
+                    OceanDepthConvention::ZeroToOne as u32,
+                    pos.as_mut_ptr(),
+                    nrm.as_mut_ptr(),
+                    n,
+                    core::ptr::null_mut(),
+                )
+            };
+            assert_eq!(st, OceanStatus::Ok, "{}", last_error());
+        };
+        evaluate(None);
+        assert_eq!(query(&mut out), OceanStatus::Ok, "{}", last_error());
+        let mut direct = scenarios::scenario_1(64).unwrap();
+        let frame = direct.frame(4.5, None).unwrap();
+        let want = frame.drawn_height_at(DVec2::new(10.3, 20.7)).unwrap();
+        assert_eq!(out[0], OceanDrawnSample::from(&want));
+        assert!(out[0].covered == 1 && out[0].height != 0.0);
+        assert_eq!(
+            (out[1].covered, out[1].height),
+            (0, 0.0),
+            "off the grid: at rest"
+        );
+        evaluate(Some(&away));
+        assert_eq!(query(&mut out), OceanStatus::Ok, "{}", last_error());
+        assert_eq!(
+            (out[0].covered, out[0].height),
+            (1, 0.0),
+            "culled: drawn at rest"
+        );
+        // Any change of the description needs a new evaluation.
+        // SAFETY: live scene.
+        let st = unsafe { ocean_scene_set_budget_unlimited(s) };
+        assert_eq!(st, OceanStatus::Ok);
+        assert_eq!(query(&mut out), OceanStatus::NotEvaluated);
+        assert!(last_error().contains("changed"), "{}", last_error());
         // SAFETY: live handle, destroyed once.
         unsafe { ocean_scene_destroy(s) };
     }
@@ -1678,7 +1694,7 @@ mod tests {
         let bad_xz = base.wrapping_add(4).cast::<OceanDVec2>().cast_const();
         let mut out = [OceanHeightSample::default(); 1];
         // SAFETY: refused before any access.
-        let st = unsafe { ocean_scene_heights(s, 0.0, bad_xz, 1, out.as_mut_ptr()) };
+        let st = unsafe { ocean_scene_heights_continuous(s, 0.0, bad_xz, 1, out.as_mut_ptr()) };
         assert_eq!(st, OceanStatus::MisalignedPointer);
         let bad_scene = base.wrapping_add(4).cast::<OceanScene>();
         // SAFETY: refused before any access.

@@ -45,6 +45,13 @@ pub struct HeightSample {
     pub residual: f64,
 }
 
+impl Default for HeightSample {
+    /// The sea at rest over the origin.
+    fn default() -> Self {
+        Self::REST
+    }
+}
+
 impl HeightSample {
     /// The sea at rest at the origin: the placeholder a batch starts from.
     const REST: Self = Self {

@@ -74,6 +74,13 @@ pub struct DrawnSample {
     pub triangle: Option<DrawnTriangle>,
 }
 
+impl Default for DrawnSample {
+    /// The sea at rest over the origin.
+    fn default() -> Self {
+        Self::rest(DVec2::ZERO)
+    }
+}
+
 impl DrawnSample {
     /// The sea at rest over `at`: the answer off the mesh.
     fn rest(at: DVec2) -> Self {
@@ -406,9 +413,10 @@ impl Mesh {
         let (i0, j0) = (tx * TILE, tz * TILE);
         for j in j0..(j0 + TILE).min(self.nz - 1) {
             for i in i0..(i0 + TILE).min(self.nx - 1) {
-                if !(self.has_vertex(i + 1, j) && self.has_vertex(i, j + 1))
-                    || !self.has_vertex(i + 1, j + 1)
-                {
+                let present = self.has_vertex(i + 1, j)
+                    && self.has_vertex(i, j + 1)
+                    && self.has_vertex(i + 1, j + 1);
+                if !present {
                     continue;
                 }
                 for upper in [false, true] {
