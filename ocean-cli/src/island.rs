@@ -226,6 +226,9 @@ impl Island {
         scene
             .set_effects(Effects::default())
             .map_err(|e| format!("island: {e}"))?;
+        // The renderer filters every train on its own footprints (local waves, §6), so the
+        // scene grid's geometry filter would take out trains the screen resolves.
+        scene.set_train_filter(None);
         for (k, b) in boxes.iter().enumerate() {
             scene
                 .add_box(b.spec())

@@ -15,7 +15,11 @@
 //! as a wave train box scene's near a shore, join the same sums, each train filtered by the same
 //! weights for the same footprints, so near and far water are one surface lit one way; the open
 //! sea's own waves can be faded out over that grid (an amplitude factor per grid point). The
-//! CPU twin is [`ocean_brdf::local`].
+//! CPU twin is [`ocean_brdf::local`]. The projected grid evaluates the trains at each of its own
+//! vertices, so the surface it draws approaches the wave train box scene's *continuous* surface
+//! (`ocean_wtb::continuous`, the model between the scene's grid points) as its cells shrink,
+//! not the scene grid's triangles (`ocean_wtb::drawn`); since it filters every train on its own
+//! footprints, give it the scene's trains unfiltered (`Scene::set_train_filter(None)`).
 //!
 //! A caller's own water mesh (a wave train box scene evaluated on the CPU) can take the
 //! projected grid's place: `mesh_vs`/`mesh_fs` light it the same way, with the surface's waves

@@ -12,6 +12,24 @@ use crate::error::WtbError;
 /// the caller's order.
 pub(crate) const QUERY_SORT_MIN: usize = 256;
 
+/// The grid point nearest `p` as (column, row) on a grid of `size` points from `origin`, or
+/// `size` itself for a point outside the grid: a query's place in [`grid_order`]. Visited in
+/// that order, a batch reads the grid's data row by row instead of at random; each answer
+/// depends on its own position only, so the order changes no bit of it.
+pub(crate) fn nearest_point(
+    origin: DVec2,
+    inv_spacing: f64,
+    (nx, nz): (usize, usize),
+    p: DVec2,
+) -> [u32; 2] {
+    let l = (p - origin) * inv_spacing + DVec2::splat(0.5);
+    if l.x >= 0.0 && l.y >= 0.0 && l.x < nx as f64 && l.y < nz as f64 {
+        [l.x as u32, l.y as u32]
+    } else {
+        [nx as u32, nz as u32]
+    }
+}
+
 /// The length and finiteness checks of a batch of `at` into `out` answers.
 pub(crate) fn check_batch(at: &[DVec2], out: usize) -> Result<(), WtbError> {
     if at.len() != out || at.is_empty() {

@@ -28,7 +28,9 @@ use alloc::vec::Vec;
 use glam::{DVec2, DVec3};
 use ocean_core::LaneSums;
 
-use crate::batch::{QUERY_SORT_MIN, check_batch, grid_order, scatter, sorted_batch};
+#[cfg(feature = "std")]
+use crate::batch::QUERY_SORT_MIN;
+use crate::batch::{check_batch, grid_order, nearest_point, scatter, sorted_batch};
 use crate::error::WtbError;
 use crate::scene::{Frame, FrameLayer};
 
@@ -174,18 +176,10 @@ impl Frame<'_> {
         self.solve_batch(at, Some(order), out);
     }
 
-    /// The grid point nearest `p` as (column, row), or (nx, nz) for a point outside the grid:
-    /// its place in [`grid_order`]. Visited in that order, a batch reads the modulation and
-    /// the height field row by row instead of at random; each answer depends on its own
-    /// position only, so the order changes no bit of it.
+    /// The grid point nearest `p`, or (nx, nz) off the grid (see [`nearest_point`]).
     pub(crate) fn query_cell(&self, p: DVec2) -> [u32; 2] {
-        let l = (p - self.grid.origin()) * self.inv_spacing + DVec2::splat(0.5);
-        let (nx, nz) = (self.grid.nx(), self.grid.nz());
-        if l.x >= 0.0 && l.y >= 0.0 && l.x < nx as f64 && l.y < nz as f64 {
-            [l.x as u32, l.y as u32]
-        } else {
-            [nx as u32, nz as u32]
-        }
+        let size = (self.grid.nx(), self.grid.nz());
+        nearest_point(self.grid.origin(), self.inv_spacing, size, p)
     }
 
     /// Solves a batch [`LANES`] queries at a time: `at` in the caller's order, or the queries

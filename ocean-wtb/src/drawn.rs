@@ -20,7 +20,7 @@
 //! A vertex moves horizontally by at most D = Σ over layers of max |μ| · Σ A (the
 //! modulation's bound times the trains' amplitudes), so every triangle over a point has its
 //! rest triangle within D of the point: the query's **window** of cells. Within it the query
-//! guesses the rest cell by two fixed-point steps on the vertices' displacement, then walks
+//! guesses the rest cell by a fixed-point step on the vertices' displacement, then walks
 //! from triangle to triangle across the edge the point lies beyond, which ends at the one
 //! triangle over the point wherever the mesh does not fold. Where any triangle of the window is
 //! inverted or degenerate (the mesh folds: a crest past the trochoid's limit, Σ k·A·|μ| > 1),
@@ -40,7 +40,9 @@ use alloc::vec::Vec;
 use glam::{DVec2, DVec3, Vec3};
 use ocean_core::{GridRect, LayersEvaluator};
 
-use crate::batch::{check_batch, grid_order, scatter, sorted_batch};
+#[cfg(feature = "std")]
+use crate::batch::QUERY_SORT_MIN;
+use crate::batch::{check_batch, grid_order, nearest_point, sorted_batch};
 use crate::error::WtbError;
 use crate::scene::Frame;
 
@@ -126,7 +128,8 @@ impl Frame<'_> {
     /// [`Frame::drawn_height_at`] for many points; the answers do not depend on the batch. The
     /// vertices around the points are evaluated once for the batch (a batch spread over the
     /// whole grid costs about one evaluation of the grid, plus the walks); a batch of 256 or
-    /// more is then answered in grid order, as [`Frame::continuous_heights`] is.
+    /// more is then answered in the order of the grid points nearest the queries, so that the
+    /// walks read the vertices row by row.
     ///
     /// # Errors
     ///
@@ -134,17 +137,7 @@ impl Frame<'_> {
     /// non-finite position. Nothing is written on error.
     pub fn drawn_heights(&self, at: &[DVec2], out: &mut [DrawnSample]) -> Result<(), WtbError> {
         check_batch(at, out.len())?;
-        let mesh = self.mesh(at, false)?;
-        if !sorted_batch(at.len()) {
-            for (o, p) in out.iter_mut().zip(at) {
-                *o = mesh.solve(*p);
-            }
-            return Ok(());
-        }
-        let cells: Vec<[u32; 2]> = at.iter().map(|p| self.query_cell(*p)).collect();
-        let order = grid_order(&cells, self.grid.nx(), self.grid.nz());
-        let sorted: Vec<DrawnSample> = order.iter().map(|&q| mesh.solve(at[q as usize])).collect();
-        scatter(&order, sorted, out);
+        self.mesh(Some(at), false)?.solve_batch(at, out);
         Ok(())
     }
 
@@ -156,53 +149,85 @@ impl Frame<'_> {
     /// As [`Frame::drawn_heights`].
     #[cfg(feature = "std")]
     pub fn drawn_heights_par(&self, at: &[DVec2], out: &mut [DrawnSample]) -> Result<(), WtbError> {
-        use rayon::prelude::*;
         check_batch(at, out.len())?;
-        let mesh = self.mesh(at, true)?;
-        if !sorted_batch(at.len()) {
-            out.iter_mut()
-                .zip(at)
-                .for_each(|(o, p)| *o = mesh.solve(*p));
-            return Ok(());
-        }
-        let cells: Vec<[u32; 2]> = at.par_iter().map(|p| self.query_cell(*p)).collect();
-        let order = grid_order(&cells, self.grid.nx(), self.grid.nz());
-        let sorted: Vec<DrawnSample> = order
-            .par_iter()
-            .map(|&q| mesh.solve(at[q as usize]))
-            .collect();
-        let mut rank = vec![0u32; order.len()];
-        for (r, &q) in order.iter().enumerate() {
-            rank[q as usize] = r as u32;
-        }
-        out.par_iter_mut()
-            .zip(rank.par_iter())
-            .for_each(|(o, r)| *o = sorted[*r as usize]);
+        self.mesh(Some(at), true)?.solve_batch_par(at, out);
         Ok(())
     }
 
-    /// Evaluates the tiles of vertices that the windows of `at` reach.
-    fn mesh(&self, at: &[DVec2], parallel: bool) -> Result<Mesh, WtbError> {
+    /// The whole drawn mesh of this frame, every vertex evaluated (what [`Frame::evaluate`]
+    /// writes, bit for bit), for many batches of drawn queries on one frame: each batch then
+    /// only walks the mesh ([`DrawnMesh::heights`]). Building it costs about one evaluation of
+    /// the grid and keeps its positions and normals (24 bytes a point).
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::Eval`] if the frame's layers do not fit its grid (a library bug).
+    pub fn drawn_mesh(&self) -> Result<DrawnMesh, WtbError> {
+        self.mesh(None, false)
+    }
+
+    /// [`Frame::drawn_mesh`] on the current rayon thread pool; the same mesh.
+    ///
+    /// # Errors
+    ///
+    /// As [`Frame::drawn_mesh`].
+    #[cfg(feature = "std")]
+    pub fn drawn_mesh_par(&self) -> Result<DrawnMesh, WtbError> {
+        self.mesh(None, true)
+    }
+
+    /// Evaluates the tiles of vertices that the windows of `at` reach (every tile for `None`).
+    fn mesh(&self, at: Option<&[DVec2]>, parallel: bool) -> Result<DrawnMesh, WtbError> {
         let (nx, nz) = (self.grid.nx(), self.grid.nz());
         let tiles = (nx.div_ceil(TILE), nz.div_ceil(TILE));
         let radius = self.displacement_bound() * self.inv_spacing + 1e-3;
         let origin = self.grid.origin();
-        let mut slot = vec![NONE; tiles.0 * tiles.1];
-        let mut wanted = Vec::new();
-        for p in at {
+        let mut wanted = vec![at.is_none(); tiles.0 * tiles.1];
+        for p in at.unwrap_or_default() {
             let Some(w) = window(*p, origin, self.inv_spacing, radius, nx, nz) else {
                 continue;
             };
             // Cells c0..=c1 read vertices c0..=c1 + 1.
             for tz in (w.j0 >> TILE_SHIFT)..=((w.j1 + 1) >> TILE_SHIFT) {
-                for tx in (w.i0 >> TILE_SHIFT)..=((w.i1 + 1) >> TILE_SHIFT) {
-                    let s = &mut slot[tz * tiles.0 + tx];
-                    if *s == NONE {
-                        *s = wanted.len() as u32;
-                        wanted.push((tx, tz));
-                    }
-                }
+                wanted[tz * tiles.0 + (w.i0 >> TILE_SHIFT)
+                    ..=tz * tiles.0 + ((w.i1 + 1) >> TILE_SHIFT)]
+                    .fill(true);
             }
+        }
+        // Slots in row-major tile order, so that each run of wanted tiles along a tile row
+        // owns consecutive slots: one block evaluation a run, straight into its storage, which
+        // costs what those points cost in a whole-grid evaluation (row set-up is paid once a
+        // run, not once a tile).
+        let mut slot = vec![NONE; wanted.len()];
+        let mut runs: Vec<Run> = Vec::new();
+        let mut count = 0u32;
+        for (t, &w) in wanted.iter().enumerate() {
+            if !w {
+                continue;
+            }
+            slot[t] = count;
+            let (tx, tz) = (t % tiles.0, t / tiles.0);
+            match runs.last_mut() {
+                Some(r) if r.tz == tz && r.tx0 + r.len == tx => r.len += 1,
+                _ => runs.push(Run {
+                    tz,
+                    tx0: tx,
+                    len: 1,
+                    slot0: count as usize,
+                }),
+            }
+            count += 1;
+        }
+        // Each run's block is stored row-major with its own width; each tile's vertex (0, 0)
+        // and row stride.
+        let mut place = vec![[0u32; 2]; count as usize];
+        let mut points = 0usize;
+        for r in &runs {
+            let b = r.block((nx, nz));
+            for k in 0..r.len {
+                place[r.slot0 + k] = [(points + k * TILE) as u32, b.nx as u32];
+            }
+            points += b.len();
         }
         let layers = self.core_layers();
         let eval = LayersEvaluator::new(
@@ -212,45 +237,55 @@ impl Frame<'_> {
             self.height.as_deref(),
         )
         .map_err(WtbError::Eval)?;
-        let per = TILE * TILE;
-        let mut pos = vec![Vec3::ZERO; wanted.len() * per];
-        let mut nrm = vec![Vec3::ZERO; wanted.len() * per];
-        let tile = |(tx, tz): (usize, usize), p: &mut [Vec3], n: &mut [Vec3]| {
-            let block = GridRect {
-                i0: tx * TILE,
-                j0: tz * TILE,
-                nx: TILE.min(nx - tx * TILE),
-                nz: TILE.min(nz - tz * TILE),
-            };
-            // Stored with a row stride of TILE whatever the block's width.
-            let (mut bp, mut bn) = (vec![Vec3::ZERO; block.len()], vec![Vec3::ZERO; block.len()]);
-            eval.evaluate_block(block, &mut bp, &mut bn)?;
-            for r in 0..block.nz {
-                let (src, dst) = (
-                    r * block.nx..(r + 1) * block.nx,
-                    r * TILE..r * TILE + block.nx,
-                );
-                p[dst.clone()].copy_from_slice(&bp[src.clone()]);
-                n[dst].copy_from_slice(&bn[src]);
+        let count = count as usize;
+        let (mut pos, mut nrm) = (vec![Vec3::ZERO; points], vec![Vec3::ZERO; points]);
+        let mut folds = vec![false; count];
+        // Each run's share of the storage.
+        let mut parts = Vec::with_capacity(runs.len());
+        {
+            let (mut p, mut n, mut f) = (&mut pos[..], &mut nrm[..], &mut folds[..]);
+            for r in &runs {
+                let len = r.block((nx, nz)).len();
+                let (rp, tp) = core::mem::take(&mut p).split_at_mut(len);
+                let (rn, tn) = core::mem::take(&mut n).split_at_mut(len);
+                let (rf, tf) = core::mem::take(&mut f).split_at_mut(r.len);
+                (p, n, f) = (tp, tn, tf);
+                parts.push((*r, rp, rn, rf));
             }
-            Ok::<(), ocean_core::EvalError>(())
+        }
+        let run = |(r, p, n, f): (Run, &mut [Vec3], &mut [Vec3], &mut [bool])| {
+            evaluate_run(&eval, r, (nx, nz), p, n, f)
         };
         #[cfg(feature = "std")]
         if parallel {
             use rayon::prelude::*;
-            pos.par_chunks_mut(per)
-                .zip(nrm.par_chunks_mut(per))
-                .zip(wanted.par_iter())
-                .try_for_each(|((p, n), &t)| tile(t, p, n))
+            parts
+                .into_par_iter()
+                .try_for_each(run)
+                .map_err(WtbError::Eval)?;
+        } else {
+            parts
+                .into_iter()
+                .try_for_each(run)
                 .map_err(WtbError::Eval)?;
         }
-        let _ = parallel;
-        if !cfg!(feature = "std") || !parallel {
-            for ((p, n), &t) in pos.chunks_mut(per).zip(nrm.chunks_mut(per)).zip(&wanted) {
-                tile(t, p, n).map_err(WtbError::Eval)?;
+        #[cfg(not(feature = "std"))]
+        {
+            let _ = parallel;
+            parts
+                .into_iter()
+                .try_for_each(run)
+                .map_err(WtbError::Eval)?;
+        }
+        // Indexed by tile from here: one load to find a vertex.
+        let (mut tile_place, mut tile_folds) =
+            (vec![[NONE, 0]; slot.len()], vec![false; slot.len()]);
+        for (t, &k) in slot.iter().enumerate() {
+            if k != NONE {
+                (tile_place[t], tile_folds[t]) = (place[k as usize], folds[k as usize]);
             }
         }
-        let mut mesh = Mesh {
+        let mut mesh = DrawnMesh {
             origin,
             spacing: self.grid.spacing(),
             inv_spacing: self.inv_spacing,
@@ -258,17 +293,86 @@ impl Frame<'_> {
             nx,
             nz,
             tiles_x: tiles.0,
-            slot,
+            place: tile_place,
             pos,
             nrm,
-            folds: vec![false; wanted.len()],
+            folds: tile_folds,
         };
-        mesh.folds = wanted
-            .iter()
-            .map(|&(tx, tz)| mesh.tile_folds(tx, tz))
-            .collect();
+        // The cells across a run's far edges, whose vertices other runs hold.
+        for r in &runs {
+            if mesh.run_edge_folds(r) {
+                let first = r.tz * tiles.0 + r.tx0;
+                mesh.folds[first..first + r.len].fill(true);
+            }
+        }
         Ok(mesh)
     }
+}
+
+/// Consecutive wanted tiles along tile row `tz`: columns of tiles `tx0..tx0 + len`, in slots
+/// `slot0..slot0 + len`.
+#[derive(Clone, Copy, Debug)]
+struct Run {
+    tz: usize,
+    tx0: usize,
+    len: usize,
+    slot0: usize,
+}
+
+impl Run {
+    /// The run's grid points, clipped to a grid of `size` points.
+    fn block(&self, (nx, nz): (usize, usize)) -> GridRect {
+        let (i0, j0) = (self.tx0 * TILE, self.tz * TILE);
+        GridRect {
+            i0,
+            j0,
+            nx: (self.len * TILE).min(nx - i0),
+            nz: TILE.min(nz - j0),
+        }
+    }
+}
+
+/// Evaluates a run's block into its storage (row-major over the block) and flags the tiles
+/// holding an inverted or degenerate triangle among the cells whose four vertices the block
+/// holds.
+fn evaluate_run(
+    eval: &LayersEvaluator<'_>,
+    run: Run,
+    size: (usize, usize),
+    pos: &mut [Vec3],
+    nrm: &mut [Vec3],
+    folds: &mut [bool],
+) -> Result<(), ocean_core::EvalError> {
+    let block = run.block(size);
+    eval.evaluate_block(block, pos, nrm)?;
+    let bp = &*pos;
+    let w = block.nx;
+    // The cells' orientations, a row pair and a tile at a time: the differences of the f32
+    // corners taken in f64 (exact), the two triangles' signed areas, and one flag a tile.
+    for r in 0..block.nz.saturating_sub(1) {
+        let (row0, row1) = (&bp[r * w..(r + 1) * w], &bp[(r + 1) * w..(r + 2) * w]);
+        for (t, fold) in folds.iter_mut().enumerate() {
+            let (c0, c1) = (t * TILE, ((t + 1) * TILE).min(w - 1));
+            let mut ok = true;
+            for c in c0..c1 {
+                let (a, b, d, e) = (row0[c], row0[c + 1], row1[c], row1[c + 1]);
+                let f = |u: f32, v: f32| f64::from(u) - f64::from(v);
+                // Lower (a, b, d) and upper (b, e, d).
+                let lower = f(b.x, a.x) * f(d.z, a.z) - f(b.z, a.z) * f(d.x, a.x);
+                let upper = f(e.x, b.x) * f(d.z, b.z) - f(e.z, b.z) * f(d.x, b.x);
+                ok &= lower > 0.0 && upper > 0.0;
+            }
+            *fold |= !ok;
+        }
+    }
+    Ok(())
+}
+
+/// Whether the triangle a, b, c winds counter-clockwise seen from above (its area in the
+/// (x, z) plane is positive).
+#[inline]
+fn positive(a: DVec2, b: DVec2, c: DVec2) -> bool {
+    cross2(b - a, c - a) > 0.0
 }
 
 /// The cells a query's triangle can be in: columns `i0..=i1`, rows `j0..=j1`.
@@ -304,7 +408,8 @@ fn window(
         return None;
     }
     // Within the grid's cells here, so the conversions are in range.
-    let clamp = |v: f64, last: f64| v.floor().clamp(0.0, last - 1.0) as usize;
+    // Truncating a value ≥ 0 is its floor.
+    let clamp = |v: f64, last: f64| v.max(0.0).min(last - 1.0) as usize;
     Some(Window {
         i0: clamp(lo.x, cx),
         i1: clamp(hi.x, cx),
@@ -313,8 +418,11 @@ fn window(
     })
 }
 
-/// The vertices of the tiles a batch reaches.
-struct Mesh {
+/// A frame's drawn mesh with its vertices evaluated ([`Frame::drawn_mesh`]; a batch of
+/// [`Frame::drawn_heights`] builds one over the tiles it reaches): answers drawn queries by
+/// walking it, without evaluating anything.
+#[derive(Clone, Debug)]
+pub struct DrawnMesh {
     origin: DVec2,
     spacing: f64,
     inv_spacing: f64,
@@ -323,13 +431,14 @@ struct Mesh {
     nx: usize,
     nz: usize,
     tiles_x: usize,
-    /// Per tile (row-major), its index in `pos`/`nrm`/`folds`, or [`NONE`].
-    slot: Vec<u32>,
+    /// Per tile (row-major): where its vertex (0, 0) lies in `pos`/`nrm` ([`NONE`] for a tile
+    /// not evaluated), and the row stride (its run's width).
+    place: Vec<[u32; 2]>,
     pos: Vec<Vec3>,
     nrm: Vec<Vec3>,
-    /// Per evaluated tile: whether a triangle of a cell whose first vertex it holds is
-    /// inverted or degenerate (the cells whose vertices are not all evaluated are not in any
-    /// window and are skipped).
+    /// Per tile: whether a triangle of a cell whose first vertex it holds is inverted or
+    /// degenerate (the cells whose vertices are not all evaluated are not in any window and are
+    /// skipped). A run's flags are set together where its far edges fold.
     folds: Vec<bool>,
 }
 
@@ -381,21 +490,21 @@ fn cross2(u: DVec2, v: DVec2) -> f64 {
     u.x * v.y - u.y * v.x
 }
 
-impl Mesh {
+impl DrawnMesh {
     /// Vertex (i, j), which must lie in an evaluated tile: position (relative to the grid's
     /// origin) and normal.
     #[inline]
     fn vertex(&self, i: usize, j: usize) -> (Vec3, Vec3) {
-        let t = self.slot[(j >> TILE_SHIFT) * self.tiles_x + (i >> TILE_SHIFT)];
-        debug_assert!(t != NONE);
-        let k = t as usize * TILE * TILE + (j & (TILE - 1)) * TILE + (i & (TILE - 1));
+        let [first, stride] = self.place[(j >> TILE_SHIFT) * self.tiles_x + (i >> TILE_SHIFT)];
+        debug_assert!(first != NONE);
+        let k = first as usize + (j & (TILE - 1)) * stride as usize + (i & (TILE - 1));
         (self.pos[k], self.nrm[k])
     }
 
     fn has_vertex(&self, i: usize, j: usize) -> bool {
         i < self.nx
             && j < self.nz
-            && self.slot[(j >> TILE_SHIFT) * self.tiles_x + (i >> TILE_SHIFT)] != NONE
+            && self.place[(j >> TILE_SHIFT) * self.tiles_x + (i >> TILE_SHIFT)][0] != NONE
     }
 
     /// The horizontal corners of a triangle, relative to the grid's origin.
@@ -407,31 +516,104 @@ impl Mesh {
         })
     }
 
-    /// Whether a triangle of a cell whose first vertex lies in tile (tx, tz) is inverted or
-    /// degenerate.
-    fn tile_folds(&self, tx: usize, tz: usize) -> bool {
-        let (i0, j0) = (tx * TILE, tz * TILE);
-        for j in j0..(j0 + TILE).min(self.nz - 1) {
-            for i in i0..(i0 + TILE).min(self.nx - 1) {
-                let present = self.has_vertex(i + 1, j)
-                    && self.has_vertex(i, j + 1)
-                    && self.has_vertex(i + 1, j + 1);
-                if !present {
-                    continue;
-                }
-                for upper in [false, true] {
-                    let c = self.corners(&Tri {
-                        i: i as i64,
-                        j: j as i64,
-                        upper,
-                    });
-                    if cross2(c[1] - c[0], c[2] - c[0]) <= 0.0 {
-                        return true;
-                    }
+    /// Whether a cell across the far edges of a run's block (its last column and last row,
+    /// whose other vertices lie in the next tiles) holds an inverted or degenerate triangle;
+    /// cells whose vertices are not all evaluated are in no window and are skipped.
+    fn run_edge_folds(&self, r: &Run) -> bool {
+        let b = r.block((self.nx, self.nz));
+        let (i_last, j_last) = (b.i0 + b.nx - 1, b.j0 + b.nz - 1);
+        let edge = (b.i0..=i_last)
+            .map(|i| (i, j_last))
+            .chain((b.j0..j_last).map(|j| (i_last, j)));
+        for (i, j) in edge {
+            let present = i + 1 < self.nx
+                && j + 1 < self.nz
+                && self.has_vertex(i + 1, j)
+                && self.has_vertex(i, j + 1)
+                && self.has_vertex(i + 1, j + 1);
+            if !present {
+                continue;
+            }
+            for upper in [false, true] {
+                let c = self.corners(&Tri {
+                    i: i as i64,
+                    j: j as i64,
+                    upper,
+                });
+                if !positive(c[0], c[1], c[2]) {
+                    return true;
                 }
             }
         }
         false
+    }
+
+    /// [`Frame::drawn_height_at`] on this mesh.
+    ///
+    /// # Errors
+    ///
+    /// [`WtbError::NotFinite`] for a non-finite position.
+    pub fn height_at(&self, at: DVec2) -> Result<DrawnSample, WtbError> {
+        check_batch(&[at], 1)?;
+        Ok(self.solve(at))
+    }
+
+    /// [`Frame::drawn_heights`] on this mesh: the same answers, bit for bit.
+    ///
+    /// # Errors
+    ///
+    /// As [`Frame::drawn_heights`].
+    pub fn heights(&self, at: &[DVec2], out: &mut [DrawnSample]) -> Result<(), WtbError> {
+        check_batch(at, out.len())?;
+        self.solve_batch(at, out);
+        Ok(())
+    }
+
+    /// [`DrawnMesh::heights`] on the current rayon thread pool; the same bits on any number of
+    /// threads.
+    ///
+    /// # Errors
+    ///
+    /// As [`Frame::drawn_heights`].
+    #[cfg(feature = "std")]
+    pub fn heights_par(&self, at: &[DVec2], out: &mut [DrawnSample]) -> Result<(), WtbError> {
+        check_batch(at, out.len())?;
+        self.solve_batch_par(at, out);
+        Ok(())
+    }
+
+    /// Answers `at` into `out`: in grid order for a batch of 256 or more, each answer written
+    /// straight to its query's place.
+    fn solve_batch(&self, at: &[DVec2], out: &mut [DrawnSample]) {
+        if !sorted_batch(at.len()) {
+            for (o, p) in out.iter_mut().zip(at) {
+                *o = self.solve(*p);
+            }
+            return;
+        }
+        let size = (self.nx, self.nz);
+        let cells: Vec<[u32; 2]> = at
+            .iter()
+            .map(|p| nearest_point(self.origin, self.inv_spacing, size, *p))
+            .collect();
+        for q in grid_order(&cells, self.nx, self.nz) {
+            out[q as usize] = self.solve(at[q as usize]);
+        }
+    }
+
+    /// [`DrawnMesh::solve_batch`] over the rayon pool: each task answers a share of the batch
+    /// in its own grid order, straight into its share of `out` (no batch-sized buffer of
+    /// answers: fresh memory costs more than the walks on the machines measured).
+    #[cfg(feature = "std")]
+    fn solve_batch_par(&self, at: &[DVec2], out: &mut [DrawnSample]) {
+        use rayon::prelude::*;
+        let share = at
+            .len()
+            .div_ceil(rayon::current_num_threads())
+            .max(QUERY_SORT_MIN);
+        at.par_chunks(share)
+            .zip(out.par_chunks_mut(share))
+            .for_each(|(at, out)| self.solve_batch(at, out));
     }
 
     /// The drawn surface over `at`.
@@ -449,7 +631,7 @@ impl Mesh {
         let q = at - self.origin;
         let folds = ((w.j0 >> TILE_SHIFT)..=((w.j1 + 1) >> TILE_SHIFT)).any(|tz| {
             ((w.i0 >> TILE_SHIFT)..=((w.i1 + 1) >> TILE_SHIFT))
-                .any(|tx| self.folds[self.slot[tz * self.tiles_x + tx] as usize])
+                .any(|tx| self.folds[tz * self.tiles_x + tx])
         });
         if !folds && let Some(s) = self.walk(q, &w) {
             return self.sample(s.0, s.1);
@@ -462,23 +644,20 @@ impl Mesh {
 
     /// The rest cell holding grid coordinates `g`, clamped into the window.
     fn cell_in(&self, g: DVec2, w: &Window) -> (usize, usize) {
-        let c = |v: f64, lo: usize, hi: usize| {
-            if v.is_nan() {
-                lo
-            } else {
-                (v.floor().clamp(lo as f64, hi as f64)) as usize
-            }
-        };
+        // max then min (a NaN gives `lo`); truncating a value ≥ 0 is its floor.
+        let c = |v: f64, lo: usize, hi: usize| v.max(lo as f64).min(hi as f64) as usize;
         (c(g.x, w.i0, w.i1), c(g.y, w.j0, w.j1))
     }
 
     /// Walks from a guessed triangle to the one over `q` (metres from the grid's origin);
     /// `None` if the walk leaves the window or runs too long.
     fn walk(&self, q: DVec2, w: &Window) -> Option<(Tri, [f64; 3])> {
-        // Two fixed-point steps on g = (q − d(g))/s, with d the displacement bilinear over
-        // the guessed cell, put the guess within a triangle or two of the answer.
+        // One fixed-point step on g = (q − d(g))/s, with d the displacement bilinear over the
+        // cell under the query, starts the walk on the answer's triangle for at least 96 % of random
+        // queries on the paper's scenario 1 (1.04 triangles visited on average; a second step
+        // gives 1.004 for four more vertex reads, none 1.8).
         let mut g = q * self.inv_spacing;
-        for _ in 0..2 {
+        {
             let (i, j) = self.cell_in(g, w);
             let f = g - DVec2::new(i as f64, j as f64);
             let d = |i: usize, j: usize| {
@@ -593,9 +772,6 @@ fn weights(c: &[DVec2; 3], q: DVec2) -> Option<[f64; 3]> {
         return None;
     }
     let (a, b, d) = (c[0] - q, c[1] - q, c[2] - q);
-    Some([
-        cross2(b, d) / area,
-        cross2(d, a) / area,
-        cross2(a, b) / area,
-    ])
+    let inv = 1.0 / area;
+    Some([cross2(b, d) * inv, cross2(d, a) * inv, cross2(a, b) * inv])
 }

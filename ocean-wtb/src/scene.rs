@@ -902,7 +902,7 @@ fn union(a: Option<GridRect>, b: GridRect) -> GridRect {
 }
 
 pub use crate::continuous::{HeightSample, QUERY_MAX_ITERATIONS, QUERY_TOLERANCE};
-pub use crate::drawn::{DrawnSample, DrawnTriangle};
+pub use crate::drawn::{DrawnMesh, DrawnSample, DrawnTriangle};
 
 /// One prepared instant of a [`Scene`] (see [`Scene::frame`]).
 #[derive(Clone, Debug)]

@@ -14,7 +14,7 @@
 use glam::{DVec2, DVec3, Vec3};
 use ocean_core::{Depth, Pcg32, PointSums, WaveDesc};
 use ocean_wtb::scenarios::{self, spec, steady_wind};
-use ocean_wtb::scene::{BoxSpec, DrawnSample, Frame, Scene};
+use ocean_wtb::scene::{BoxSpec, DrawnSample, Frame, HeightSample, Scene};
 use ocean_wtb::{BoxFrame, Terrain, TrainSource, WaterGrid, Wind};
 
 /// A drawn query must match the mesh to a tenth of a millimetre.
@@ -149,16 +149,7 @@ fn sample_points(boxes: &[BoxFrame], frame: &Frame, pos: &[Vec3], seed: u64) -> 
 /// Drawn queries against the brute-force mesh at `points`; returns the worst error, metres.
 fn check_drawn(frame: &Frame, pos: &[Vec3], points: &[DVec2], name: &str) -> f64 {
     let mesh = Mesh::new(frame.grid(), pos);
-    let mut out = vec![
-        DrawnSample {
-            height: f64::NAN,
-            normal: DVec3::ZERO,
-            shading_normal: DVec3::ZERO,
-            rest: DVec2::ZERO,
-            triangle: None,
-        };
-        points.len()
-    ];
+    let mut out = vec![DrawnSample::default(); points.len()];
     frame.drawn_heights_par(points, &mut out).unwrap();
     let mut worst = 0.0f64;
     for (p, o) in points.iter().zip(&out) {
@@ -344,15 +335,7 @@ fn continuous_queries_are_the_model() {
                 want.push(y);
             }
         }
-        let mut out = vec![
-            ocean_wtb::scene::HeightSample {
-                height: f64::NAN,
-                normal: DVec3::ZERO,
-                rest: DVec2::ZERO,
-                residual: f64::NAN,
-            };
-            at.len()
-        ];
+        let mut out = vec![HeightSample::default(); at.len()];
         frame.continuous_heights_par(&at, &mut out).unwrap();
         let mut worst = 0.0f64;
         for ((p, w), o) in at.iter().zip(&want).zip(&out) {
@@ -464,15 +447,7 @@ fn no_query_fails_on_random_boxes() {
             .collect();
         at.extend(around_rectangles(&frame));
         check_drawn(&frame, &pos, &at, &format!("case {case}"));
-        let mut out = vec![
-            ocean_wtb::scene::HeightSample {
-                height: f64::NAN,
-                normal: DVec3::ZERO,
-                rest: DVec2::ZERO,
-                residual: f64::NAN,
-            };
-            at.len()
-        ];
+        let mut out = vec![HeightSample::default(); at.len()];
         frame.continuous_heights(&at, &mut out).unwrap();
         assert!(
             out.iter()
@@ -500,26 +475,9 @@ fn mesh_to_model(frame: &Frame) -> f64 {
             }
         }
     }
-    let mut drawn = vec![
-        DrawnSample {
-            height: 0.0,
-            normal: DVec3::Y,
-            shading_normal: DVec3::Y,
-            rest: DVec2::ZERO,
-            triangle: None,
-        };
-        at.len()
-    ];
+    let mut drawn = vec![DrawnSample::default(); at.len()];
     frame.drawn_heights(&at, &mut drawn).unwrap();
-    let mut cont = vec![
-        ocean_wtb::scene::HeightSample {
-            height: 0.0,
-            normal: DVec3::Y,
-            rest: DVec2::ZERO,
-            residual: 0.0,
-        };
-        at.len()
-    ];
+    let mut cont = vec![HeightSample::default(); at.len()];
     frame.continuous_heights(&at, &mut cont).unwrap();
     drawn
         .iter()
@@ -580,4 +538,49 @@ fn grids_filter_the_trains_they_cannot_carry() {
         (st.trains, st.filtered_trains, st.removed_trains),
         (1, 3, 2)
     );
+}
+
+/// A drawn answer depends on its point only: single queries, batches below and above the
+/// grid-order threshold, the whole mesh built once, and any number of threads give the same
+/// bits.
+#[test]
+fn drawn_answers_do_not_depend_on_batch_mesh_or_threads() {
+    let mut scene = scenarios::island(64).unwrap();
+    let frame = scene.frame(6.5, None).unwrap();
+    let mut rng = Pcg32::new(17, 5);
+    let at: Vec<DVec2> = (0..1000)
+        .map(|_| DVec2::new(rng.next_f64() * 80.0 - 8.0, rng.next_f64() * 80.0 - 8.0))
+        .collect();
+    let want: Vec<DrawnSample> = at
+        .iter()
+        .map(|p| frame.drawn_height_at(*p).unwrap())
+        .collect();
+    assert!(want.iter().any(|w| w.triangle.is_none()) && want.iter().any(|w| w.height != 0.0));
+    let mesh = frame.drawn_mesh().unwrap();
+    for n in [255, 256, 1000] {
+        let mut out = vec![DrawnSample::default(); n];
+        frame.drawn_heights(&at[..n], &mut out).unwrap();
+        assert!(out == want[..n], "{n} queries, one thread");
+        mesh.heights(&at[..n], &mut out).unwrap();
+        assert!(out == want[..n], "{n} queries on the whole mesh");
+        for threads in [1, 2, 8] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| frame.drawn_heights_par(&at[..n], &mut out))
+                .unwrap();
+            assert!(out == want[..n], "{n} queries, {threads} threads");
+            let m = pool.install(|| frame.drawn_mesh_par()).unwrap();
+            pool.install(|| m.heights_par(&at[..n], &mut out)).unwrap();
+            assert!(
+                out == want[..n],
+                "{n} queries, {threads} threads, whole mesh"
+            );
+        }
+    }
+    assert!(frame.drawn_height_at(DVec2::new(f64::NAN, 0.0)).is_err());
+    assert!(mesh.height_at(DVec2::new(0.0, f64::INFINITY)).is_err());
+    let mut short = vec![DrawnSample::default(); 3];
+    assert!(frame.drawn_heights(&at[..4], &mut short).is_err());
 }
