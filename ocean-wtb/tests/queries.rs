@@ -59,6 +59,11 @@ impl<'a> Mesh<'a> {
 
     /// The height of the highest triangle over world `at`, or `None` off the mesh.
     fn height(&self, at: DVec2) -> Option<f64> {
+        self.heights(at).0
+    }
+
+    /// The highest and the lowest height of the triangles over world `at`.
+    fn heights(&self, at: DVec2) -> (Option<f64>, f64) {
         let q = at - self.grid.origin();
         let g = q / self.grid.spacing();
         let r = self.reach + 1.0;
@@ -66,6 +71,7 @@ impl<'a> Mesh<'a> {
         let lo = |v: f64| (v - r).floor().max(0.0) as i64;
         let hi = |v: f64, n: i64| ((v + r).floor() as i64).min(n - 2);
         let mut best: Option<f64> = None;
+        let mut lowest = f64::INFINITY;
         for j in lo(g.y)..=hi(g.y, nz) {
             for i in lo(g.x)..=hi(g.x, nx) {
                 let (i, j) = (i as usize, j as usize);
@@ -89,10 +95,11 @@ impl<'a> Mesh<'a> {
                     let y = |(i, j): (usize, usize)| f64::from(self.pos[j * self.grid.nx() + i].y);
                     let h = y(tri[0]) + u * (y(tri[1]) - y(tri[0])) + v * (y(tri[2]) - y(tri[0]));
                     best = Some(best.map_or(h, |b: f64| b.max(h)));
+                    lowest = lowest.min(h);
                 }
             }
         }
-        best
+        (best, lowest)
     }
 }
 
@@ -583,4 +590,49 @@ fn drawn_answers_do_not_depend_on_batch_mesh_or_threads() {
     assert!(mesh.height_at(DVec2::new(0.0, f64::INFINITY)).is_err());
     let mut short = vec![DrawnSample::default(); 3];
     assert!(frame.drawn_heights(&at[..4], &mut short).is_err());
+}
+
+/// Where the mesh folds over itself (two overlapping boxes whose trains sum past the
+/// trochoid's limit, Σ k·A = 1.7), a vertical line meets several triangles and the drawn query
+/// answers for the highest, as the brute force does.
+#[test]
+fn drawn_queries_take_the_highest_triangle_where_the_mesh_folds() {
+    let grid = WaterGrid::new(DVec2::ZERO, 1.0, 64, 64).unwrap();
+    let mut scene = Scene::new(grid, Terrain::deep(&grid)).unwrap();
+    for (k, origin) in [DVec2::new(-4.0, -4.0), DVec2::new(8.0, 6.0)]
+        .into_iter()
+        .enumerate()
+    {
+        let train = WaveDesc {
+            amplitude: 0.85 * 12.0 / std::f64::consts::TAU,
+            wavelength: 12.0,
+            direction: DVec2::new(1.0, 0.1),
+            phase: k as f64,
+            depth: Depth::Deep,
+        };
+        scene
+            .add_box(BoxSpec {
+                wind: steady_wind(7.0, DVec2::new(1.0, 0.1), origin, 60.0, 60.0, 1, 1),
+                trains: TrainSource::Explicit(vec![train]),
+                smoothing: 0.0,
+                recovery: None,
+            })
+            .unwrap();
+    }
+    let boxes = box_frames(&scene, 2.0);
+    let frame = scene.frame(2.0, None).unwrap();
+    let pos = evaluate(&frame);
+    let at = sample_points(&boxes, &frame, &pos, 3);
+    let mesh = Mesh::new(frame.grid(), &pos);
+    // Points over two layers of the mesh at heights more than a centimetre apart.
+    let folded = at
+        .iter()
+        .filter(|p| match mesh.heights(**p) {
+            (Some(top), low) => top - low > 0.01,
+            (None, _) => false,
+        })
+        .count();
+    println!("{folded} of {} points under a fold", at.len());
+    assert!(folded > 1000, "the scene does not fold: {folded}");
+    check_drawn(&frame, &pos, &at, "folded");
 }
