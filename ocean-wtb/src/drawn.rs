@@ -31,7 +31,7 @@
 //! triangle lies over the point and the water is at rest there, as it is everywhere beyond
 //! the grid: height 0, normal +y, [`DrawnSample::triangle`] `None`.
 
-// Lane-free code, but the triangle tables index several arrays in step.
+// The triangle loops index corners, weights and normals in step.
 #![allow(clippy::needless_range_loop)]
 
 use alloc::vec;
@@ -100,7 +100,7 @@ impl DrawnSample {
 const TILE: usize = 16;
 const TILE_SHIFT: u32 = TILE.trailing_zeros();
 
-/// No tile evaluated in this slot.
+/// A tile not evaluated.
 const NONE: u32 = u32::MAX;
 
 /// Triangle-to-triangle steps a walk may take before the query tests its whole window.
@@ -194,18 +194,15 @@ impl Frame<'_> {
                     .fill(true);
             }
         }
-        // Slots in row-major tile order, so that each run of wanted tiles along a tile row
-        // owns consecutive slots: one block evaluation a run, straight into its storage, which
-        // costs what those points cost in a whole-grid evaluation (row set-up is paid once a
-        // run, not once a tile).
-        let mut slot = vec![NONE; wanted.len()];
+        // The runs of wanted tiles along each tile row, in row-major order: one block
+        // evaluation a run, straight into its storage, which costs what those points cost in a
+        // whole-grid evaluation (row set-up is paid once a run, not once a tile).
         let mut runs: Vec<Run> = Vec::new();
-        let mut count = 0u32;
+        let mut count = 0usize;
         for (t, &w) in wanted.iter().enumerate() {
             if !w {
                 continue;
             }
-            slot[t] = count;
             let (tx, tz) = (t % tiles.0, t / tiles.0);
             match runs.last_mut() {
                 Some(r) if r.tz == tz && r.tx0 + r.len == tx => r.len += 1,
@@ -213,19 +210,19 @@ impl Frame<'_> {
                     tz,
                     tx0: tx,
                     len: 1,
-                    slot0: count as usize,
+                    slot0: count,
                 }),
             }
             count += 1;
         }
-        // Each run's block is stored row-major with its own width; each tile's vertex (0, 0)
-        // and row stride.
-        let mut place = vec![[0u32; 2]; count as usize];
+        // Each run's block is stored row-major with its own width: each tile's vertex (0, 0)
+        // and row stride (at most 4096² points, so u32 holds them).
+        let mut place = vec![[NONE, 0]; wanted.len()];
         let mut points = 0usize;
         for r in &runs {
             let b = r.block((nx, nz));
             for k in 0..r.len {
-                place[r.slot0 + k] = [(points + k * TILE) as u32, b.nx as u32];
+                place[r.tile(tiles.0) + k] = [(points + k * TILE) as u32, b.nx as u32];
             }
             points += b.len();
         }
@@ -237,7 +234,6 @@ impl Frame<'_> {
             self.height.as_deref(),
         )
         .map_err(WtbError::Eval)?;
-        let count = count as usize;
         let (mut pos, mut nrm) = (vec![Vec3::ZERO; points], vec![Vec3::ZERO; points]);
         let mut folds = vec![false; count];
         // Each run's share of the storage.
@@ -277,13 +273,11 @@ impl Frame<'_> {
                 .try_for_each(run)
                 .map_err(WtbError::Eval)?;
         }
-        // Indexed by tile from here: one load to find a vertex.
-        let (mut tile_place, mut tile_folds) =
-            (vec![[NONE, 0]; slot.len()], vec![false; slot.len()]);
-        for (t, &k) in slot.iter().enumerate() {
-            if k != NONE {
-                (tile_place[t], tile_folds[t]) = (place[k as usize], folds[k as usize]);
-            }
+        // Indexed by tile from here.
+        let mut tile_folds = vec![false; wanted.len()];
+        for r in &runs {
+            let t = r.tile(tiles.0);
+            tile_folds[t..t + r.len].copy_from_slice(&folds[r.slot0..r.slot0 + r.len]);
         }
         let mut mesh = DrawnMesh {
             origin,
@@ -293,7 +287,7 @@ impl Frame<'_> {
             nx,
             nz,
             tiles_x: tiles.0,
-            place: tile_place,
+            place,
             pos,
             nrm,
             folds: tile_folds,
@@ -301,16 +295,16 @@ impl Frame<'_> {
         // The cells across a run's far edges, whose vertices other runs hold.
         for r in &runs {
             if mesh.run_edge_folds(r) {
-                let first = r.tz * tiles.0 + r.tx0;
-                mesh.folds[first..first + r.len].fill(true);
+                let t = r.tile(tiles.0);
+                mesh.folds[t..t + r.len].fill(true);
             }
         }
         Ok(mesh)
     }
 }
 
-/// Consecutive wanted tiles along tile row `tz`: columns of tiles `tx0..tx0 + len`, in slots
-/// `slot0..slot0 + len`.
+/// Consecutive wanted tiles along tile row `tz`: columns of tiles `tx0..tx0 + len`, the
+/// `slot0`-th to the `slot0 + len`-th evaluated.
 #[derive(Clone, Copy, Debug)]
 struct Run {
     tz: usize,
@@ -320,6 +314,11 @@ struct Run {
 }
 
 impl Run {
+    /// Index of its first tile in a row-major array of tiles `tiles_x` wide.
+    fn tile(&self, tiles_x: usize) -> usize {
+        self.tz * tiles_x + self.tx0
+    }
+
     /// The run's grid points, clipped to a grid of `size` points.
     fn block(&self, (nx, nz): (usize, usize)) -> GridRect {
         let (i0, j0) = (self.tx0 * TILE, self.tz * TILE);
