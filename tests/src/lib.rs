@@ -256,6 +256,31 @@ impl std::fmt::Display for GridDiff {
     }
 }
 
+/// A one-level, single-sample 2D texture of `size` texels: the colour and depth targets of the
+/// tests that draw.
+pub fn texture_2d(
+    ctx: &GpuContext,
+    size: (u32, u32),
+    format: ocean_gpu::wgpu::TextureFormat,
+    usage: ocean_gpu::wgpu::TextureUsages,
+) -> ocean_gpu::wgpu::Texture {
+    use ocean_gpu::wgpu;
+    ctx.device().create_texture(&wgpu::TextureDescriptor {
+        label: None,
+        size: wgpu::Extent3d {
+            width: size.0,
+            height: size.1,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -21,7 +21,7 @@ use ocean_brdf::{
 };
 use ocean_core::{Camera, DepthConvention, Far, Projection};
 use ocean_gpu::{GpuContext, GpuError, OceanOptions, OceanRenderer, SeaColorInput, wgpu};
-use ocean_tests::gpu_context_or_skip;
+use ocean_tests::{gpu_context_or_skip, texture_2d};
 
 /// The default sea: 60 waves from 2 cm to 30 m under a 10 m/s wind, the paper's filter.
 fn surface() -> FilteredSurface {
@@ -852,22 +852,7 @@ fn render_into_caller_targets() {
         .expect("image");
 
     let device = ctx.device();
-    let texture = |format, usage| {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("caller target"),
-            size: wgpu::Extent3d {
-                width: 80,
-                height: 60,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
-    };
+    let texture = |format, usage| texture_2d(&ctx, (80, 60), format, usage);
     let color = texture(
         wgpu::TextureFormat::Rgba8Unorm,
         wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,

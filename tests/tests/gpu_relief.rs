@@ -33,7 +33,7 @@ use ocean_relief::{
     ConeMap, ConeParams, Edge, HeightMap, Hit, Method, QuadConeMap, QuadReliefMips,
     QuadReliefTexture, Ray, ReliefError, ReliefMips, ReliefTexture,
 };
-use ocean_tests::gpu_context_or_skip;
+use ocean_tests::{gpu_context_or_skip, texture_2d};
 
 /// Whether the adapter is a software rasteriser (Mesa's lavapipe or llvmpipe): there the GPU
 /// was measured to match the CPU bit for bit, and the tests hold it to that.
@@ -1483,23 +1483,7 @@ fn relief_depth_occludes_in_the_callers_targets() {
     depths.sort_by(f64::total_cmp);
     let level = depths[depths.len() / 2] as f32;
     let device = ctx.device();
-    let extent = wgpu::Extent3d {
-        width: size.0,
-        height: size.1,
-        depth_or_array_layers: 1,
-    };
-    let texture = |format, usage| {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: None,
-            size: extent,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
-    };
+    let texture = |format, usage| texture_2d(&ctx, size, format, usage);
     let color = texture(
         wgpu::TextureFormat::Rgba8Unorm,
         wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
@@ -1867,22 +1851,13 @@ fn draw_time() {
     let mut renderer = ReliefRenderer::new(&ctx, Default::default()).unwrap();
     renderer.set_texture(&ctx, &setup.texture).unwrap();
     let device = ctx.device();
-    let extent = wgpu::Extent3d {
-        width: 640,
-        height: 480,
-        depth_or_array_layers: 1,
-    };
     let texture = |format| {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: None,
-            size: extent,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
+        texture_2d(
+            &ctx,
+            (640, 480),
             format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
-        })
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        )
     };
     let color = texture(wgpu::TextureFormat::Rgba8Unorm).create_view(&Default::default());
     let depth = texture(wgpu::TextureFormat::Depth32Float).create_view(&Default::default());

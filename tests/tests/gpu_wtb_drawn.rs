@@ -12,7 +12,7 @@
 use glam::{DVec2, Vec3};
 use ocean_gpu::wgpu::util::DeviceExt;
 use ocean_gpu::{GpuContext, LayersPass, wgpu};
-use ocean_tests::{HEIGHT_RMS_TOL_M, gpu_context_or_skip};
+use ocean_tests::{HEIGHT_RMS_TOL_M, gpu_context_or_skip, texture_2d};
 use ocean_wtb::scenarios;
 use ocean_wtb::scene::{DrawnSample, Scene};
 
@@ -69,23 +69,7 @@ fn raster(
     size: (u32, u32),
 ) -> Vec<f32> {
     let device = ctx.device();
-    let extent = wgpu::Extent3d {
-        width: size.0,
-        height: size.1,
-        depth_or_array_layers: 1,
-    };
-    let texture = |format, usage| {
-        device.create_texture(&wgpu::TextureDescriptor {
-            label: None,
-            size: extent,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
-    };
+    let texture = |format, usage| texture_2d(ctx, size, format, usage);
     let color = texture(
         wgpu::TextureFormat::R32Uint,
         wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
