@@ -278,6 +278,30 @@
 #define OCEAN_SAO_ESTIMATOR_ALCHEMY 1
 
 /**
+ * `OceanSaoParams::normals`: the paper's Eq. 4, differences within each pixel's 2x2 quad (a
+ * silhouette pixel whose quad partner is on the background gets a normal across the edge).
+ */
+#define OCEAN_SAO_NORMALS_QUAD 0
+
+/**
+ * `OceanSaoParams::normals` (default): along each axis, the difference to whichever adjacent
+ * pixel is nearer in depth, so silhouette pixels keep their own surface's normal.
+ */
+#define OCEAN_SAO_NORMALS_NEAREST 1
+
+/**
+ * `OceanSaoBlurParams::weight`: the paper's, a tap's key against the centre's key (taps on
+ * surfaces sloped to the view are rejected and the sampling pattern stays visible there).
+ */
+#define OCEAN_SAO_BLUR_WEIGHT_DEPTH 0
+
+/**
+ * `OceanSaoBlurParams::weight` (default): a tap's key against the key the plane through the
+ * centre pixel predicts there, its slope from the adjacent pixel nearer in depth.
+ */
+#define OCEAN_SAO_BLUR_WEIGHT_PLANE 1
+
+/**
  * The camera-space z that `ocean_sao_view_z` stores for background pixels (depth at the far
  * end of the range): -1e9 m, a finite stand-in for infinity.
  */
@@ -308,7 +332,7 @@
  * Size in bytes of the uniform block `Params` that every `sao_*` shader reads at binding 0
  * (std140); `ocean_sao_uniforms` writes it.
  */
-#define OCEAN_SAO_UNIFORMS_SIZE 288
+#define OCEAN_SAO_UNIFORMS_SIZE 304
 
 /**
  * `OceanShaderBinding::glsl_binding` when the binding has no GLSL binding number: a sampler
@@ -1369,8 +1393,10 @@ typedef struct OceanReliefHit {
 /**
  * The bilateral reconstruction (paper section 2.4): a horizontal then a vertical pass of `taps`
  * taps `stride` pixels apart, weighted by exp(-t^2 / (2 sigma^2)) for tap t (counted in taps)
- * times max(0, 1 - depth_scale |key_t - key_c|), with key = z / z_min. Background pixels
- * neither change nor contribute.
+ * times max(0, 1 - depth_scale |key_t - key_ref|), with key = z / z_min and key_ref the
+ * centre's key (`OCEAN_SAO_BLUR_WEIGHT_DEPTH`) or its plane's prediction
+ * (`OCEAN_SAO_BLUR_WEIGHT_PLANE`, which also fades taps with their distance in metres).
+ * Background pixels neither change nor contribute.
  */
 typedef struct OceanSaoBlurParams {
   /**
@@ -1391,6 +1417,16 @@ typedef struct OceanSaoBlurParams {
    * taps weighs e^-2 of the centre).
    */
   float sigma;
+  /**
+   * `OCEAN_SAO_BLUR_WEIGHT_PLANE` (default) or `OCEAN_SAO_BLUR_WEIGHT_DEPTH` (the paper's);
+   * other values are refused.
+   */
+  uint32_t weight;
+  /**
+   * With the plane weight: the distance from the centre pixel, as a fraction of `radius`,
+   * at which a tap's weight fades to 0, in [0, 1e3] (default 0.5; 0: no fade).
+   */
+  float world_extent;
 } OceanSaoBlurParams;
 
 /**
@@ -1465,6 +1501,11 @@ typedef struct OceanSaoParams {
    * metres, in [0, 1e6] (default 0.02). Read only when `quad_filter` is 1.
    */
   float quad_depth_threshold;
+  /**
+   * `OCEAN_SAO_NORMALS_NEAREST` (default) or `OCEAN_SAO_NORMALS_QUAD` (the paper's Eq. 4);
+   * other values are refused.
+   */
+  uint32_t normals;
   /**
    * 1: treat pixels whose reconstructed normal is unreliable (a depth edge inside their 2x2
    * quad) as unoccluded; 0: the paper's behaviour (default). Other values are refused.

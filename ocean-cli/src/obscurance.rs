@@ -52,7 +52,7 @@ impl ObscuranceSection {
 pub enum Obscurance {
     Sao {
         pass: Box<SaoPass>,
-        sao: Sao,
+        sao: Box<Sao>,
     },
     /// A = 1 everywhere (R32Float, the frame's size).
     Off(wgpu::TextureView),
@@ -94,7 +94,7 @@ impl Obscurance {
         let pass = SaoPass::new(ctx).map_err(|e| e.to_string())?;
         Ok(Self::Sao {
             pass: Box::new(pass),
-            sao,
+            sao: Box::new(sao),
         })
     }
 

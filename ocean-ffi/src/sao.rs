@@ -9,7 +9,8 @@ use core::mem::{align_of, size_of};
 
 use ocean_core::camera::{Far, Projection};
 use ocean_sao::{
-    BlurParams, Estimator, MipFilter, NormalRejection, Sao, SaoError, SaoParams, Viewport,
+    BlurParams, BlurWeight, Estimator, MipFilter, NormalEstimate, NormalRejection, Sao, SaoError,
+    SaoParams, Viewport,
 };
 
 use crate::lighting::{borrow, destroy, read_in, write_handle};
@@ -37,6 +38,20 @@ pub const OCEAN_SAO_ESTIMATOR_FALLOFF: u32 = 0;
 /// A = max(0, 1 - (2 sigma / n) sum max(0, v.n + z_C beta)/(v.v + eps))^k.
 pub const OCEAN_SAO_ESTIMATOR_ALCHEMY: u32 = 1;
 
+/// `OceanSaoParams::normals`: the paper's Eq. 4, differences within each pixel's 2x2 quad (a
+/// silhouette pixel whose quad partner is on the background gets a normal across the edge).
+pub const OCEAN_SAO_NORMALS_QUAD: u32 = 0;
+/// `OceanSaoParams::normals` (default): along each axis, the difference to whichever adjacent
+/// pixel is nearer in depth, so silhouette pixels keep their own surface's normal.
+pub const OCEAN_SAO_NORMALS_NEAREST: u32 = 1;
+
+/// `OceanSaoBlurParams::weight`: the paper's, a tap's key against the centre's key (taps on
+/// surfaces sloped to the view are rejected and the sampling pattern stays visible there).
+pub const OCEAN_SAO_BLUR_WEIGHT_DEPTH: u32 = 0;
+/// `OceanSaoBlurParams::weight` (default): a tap's key against the key the plane through the
+/// centre pixel predicts there, its slope from the adjacent pixel nearer in depth.
+pub const OCEAN_SAO_BLUR_WEIGHT_PLANE: u32 = 1;
+
 /// The camera-space z that `ocean_sao_view_z` stores for background pixels (depth at the far
 /// end of the range): -1e9 m, a finite stand-in for infinity.
 pub const OCEAN_SAO_SKY_Z: f32 = -1.0e9;
@@ -48,8 +63,10 @@ const _: () = assert!(OCEAN_SAO_MAX_SIDE as usize == ocean_sao::MAX_SIDE);
 
 /// The bilateral reconstruction (paper section 2.4): a horizontal then a vertical pass of `taps`
 /// taps `stride` pixels apart, weighted by exp(-t^2 / (2 sigma^2)) for tap t (counted in taps)
-/// times max(0, 1 - depth_scale |key_t - key_c|), with key = z / z_min. Background pixels
-/// neither change nor contribute.
+/// times max(0, 1 - depth_scale |key_t - key_ref|), with key = z / z_min and key_ref the
+/// centre's key (`OCEAN_SAO_BLUR_WEIGHT_DEPTH`) or its plane's prediction
+/// (`OCEAN_SAO_BLUR_WEIGHT_PLANE`, which also fades taps with their distance in metres).
+/// Background pixels neither change nor contribute.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct OceanSaoBlurParams {
@@ -63,6 +80,12 @@ pub struct OceanSaoBlurParams {
     /// Gaussian standard deviation in taps, in [1e-3, 1e3] (default 1.5: the outermost of 7
     /// taps weighs e^-2 of the centre).
     pub sigma: f32,
+    /// `OCEAN_SAO_BLUR_WEIGHT_PLANE` (default) or `OCEAN_SAO_BLUR_WEIGHT_DEPTH` (the paper's);
+    /// other values are refused.
+    pub weight: u32,
+    /// With the plane weight: the distance from the centre pixel, as a fraction of `radius`,
+    /// at which a tap's weight fades to 0, in [0, 1e3] (default 0.5; 0: no fade).
+    pub world_extent: f32,
 }
 
 /// Every parameter of the passes. Start from `ocean_sao_params_default` and change what you
@@ -107,6 +130,9 @@ pub struct OceanSaoParams {
     /// The quad bilateral averages two neighbours when their z differ by less than this many
     /// metres, in [0, 1e6] (default 0.02). Read only when `quad_filter` is 1.
     pub quad_depth_threshold: f32,
+    /// `OCEAN_SAO_NORMALS_NEAREST` (default) or `OCEAN_SAO_NORMALS_QUAD` (the paper's Eq. 4);
+    /// other values are refused.
+    pub normals: u32,
     /// 1: treat pixels whose reconstructed normal is unreliable (a depth edge inside their 2x2
     /// quad) as unoccluded; 0: the paper's behaviour (default). Other values are refused.
     pub normal_rejection: u8,
@@ -175,6 +201,10 @@ impl OceanSaoParams {
             epsilon: d.epsilon,
             quad_filter,
             quad_depth_threshold,
+            normals: match d.normals {
+                NormalEstimate::Quad => OCEAN_SAO_NORMALS_QUAD,
+                NormalEstimate::Nearest => OCEAN_SAO_NORMALS_NEAREST,
+            },
             normal_rejection,
             normal_max_incidence,
             z_min: d.z_min,
@@ -183,6 +213,11 @@ impl OceanSaoParams {
                 stride: d.blur.stride,
                 depth_scale: d.blur.depth_scale,
                 sigma: d.blur.sigma,
+                weight: match d.blur.weight {
+                    BlurWeight::Depth => OCEAN_SAO_BLUR_WEIGHT_DEPTH,
+                    BlurWeight::Plane => OCEAN_SAO_BLUR_WEIGHT_PLANE,
+                },
+                world_extent: d.blur.world_extent,
             },
         }
     }
@@ -234,6 +269,32 @@ fn params_from(p: &OceanSaoParams) -> Result<SaoParams, Error> {
             ));
         }
     };
+    let normals = match p.normals {
+        OCEAN_SAO_NORMALS_QUAD => NormalEstimate::Quad,
+        OCEAN_SAO_NORMALS_NEAREST => NormalEstimate::Nearest,
+        v => {
+            return Err(Error::new(
+                OceanStatus::InvalidArgument,
+                format!(
+                    "params->normals = {v} is neither OCEAN_SAO_NORMALS_QUAD (0) nor \
+                     OCEAN_SAO_NORMALS_NEAREST (1)"
+                ),
+            ));
+        }
+    };
+    let weight = match p.blur.weight {
+        OCEAN_SAO_BLUR_WEIGHT_DEPTH => BlurWeight::Depth,
+        OCEAN_SAO_BLUR_WEIGHT_PLANE => BlurWeight::Plane,
+        v => {
+            return Err(Error::new(
+                OceanStatus::InvalidArgument,
+                format!(
+                    "params->blur.weight = {v} is neither OCEAN_SAO_BLUR_WEIGHT_DEPTH (0) nor \
+                     OCEAN_SAO_BLUR_WEIGHT_PLANE (1)"
+                ),
+            ));
+        }
+    };
     let quad_depth_threshold =
         flag("quad_filter", p.quad_filter)?.then_some(p.quad_depth_threshold);
     let normal_rejection =
@@ -250,6 +311,7 @@ fn params_from(p: &OceanSaoParams) -> Result<SaoParams, Error> {
         estimator,
         epsilon: p.epsilon,
         quad_depth_threshold,
+        normals,
         normal_rejection,
         z_min: p.z_min,
         blur: BlurParams {
@@ -257,6 +319,8 @@ fn params_from(p: &OceanSaoParams) -> Result<SaoParams, Error> {
             stride: p.blur.stride,
             depth_scale: p.blur.depth_scale,
             sigma: p.blur.sigma,
+            weight,
+            world_extent: p.blur.world_extent,
         },
     };
     params.validate().map_err(|e| sao_error("params: ", e))?;

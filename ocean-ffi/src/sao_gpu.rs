@@ -149,7 +149,7 @@ pub unsafe extern "C" fn ocean_sao_gpu_run(
 
 /// Size in bytes of the uniform block `Params` that every `sao_*` shader reads at binding 0
 /// (std140); `ocean_sao_uniforms` writes it.
-pub const OCEAN_SAO_UNIFORMS_SIZE: usize = 288;
+pub const OCEAN_SAO_UNIFORMS_SIZE: usize = 304;
 
 const _: () = assert!(size_of::<SaoUniforms>() == OCEAN_SAO_UNIFORMS_SIZE);
 

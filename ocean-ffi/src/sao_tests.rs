@@ -80,7 +80,8 @@ fn defaults() -> OceanSaoParams {
 }
 
 /// Every non-default choice at once: Eq. 1 with k = 2, harmonic-mean MIPs, the normal
-/// rejection, no quad filter, a 9-tap blur with stride 2.
+/// rejection, no quad filter, the paper's quad normals, a 9-tap blur with stride 2 and the
+/// paper's depth-keyed weight.
 fn custom() -> OceanSaoParams {
     OceanSaoParams {
         radius: 0.7,
@@ -95,11 +96,14 @@ fn custom() -> OceanSaoParams {
         quad_filter: 0,
         normal_rejection: 1,
         normal_max_incidence: 80f32.to_radians(),
+        normals: OCEAN_SAO_NORMALS_QUAD,
         blur: OceanSaoBlurParams {
             taps: 9,
             stride: 2,
             depth_scale: 2000.0,
             sigma: 2.0,
+            weight: OCEAN_SAO_BLUR_WEIGHT_DEPTH,
+            world_extent: 0.0,
         },
         ..defaults()
     }

@@ -17,7 +17,9 @@ use bytemuck::{Pod, Zeroable};
 
 use crate::SaoError;
 use crate::hierarchy::MipFilter;
+use crate::params::BlurWeight;
 use crate::pipeline::Sao;
+use crate::reconstruct::NormalEstimate;
 use crate::reconstruct::ZConstants;
 use crate::sample::EstimatorConstants;
 use crate::viewport::Viewport;
@@ -43,18 +45,10 @@ pub fn mip_filter_code(filter: MipFilter) -> u32 {
     }
 }
 
-/// Number of z levels [`ZHierarchy::build`](crate::ZHierarchy::build) makes for a
-/// `width × height` level 0 and `max_mip`: level 0 plus one per halving, stopping at `max_mip`
-/// or at the first 1×1 level, i.e. `1 + min(max_mip, ⌊log₂ max(width, height)⌋)` (the length
-/// of a full hardware MIP chain when `max_mip` does not cut it).
-pub fn level_count(width: usize, height: usize, max_mip: u32) -> u32 {
-    let side = width.max(height).max(1);
-    let halvings = usize::BITS - 1 - side.leading_zeros();
-    1 + max_mip.min(halvings)
-}
+pub use crate::hierarchy::level_count;
 
 /// Every constant of the five passes, byte for byte the WGSL `Params` block of ocean-gpu's SAO
-/// shaders (288 bytes). Built by [`SaoUniforms::new`] from a validated [`Sao`].
+/// shaders (304 bytes). Built by [`SaoUniforms::new`] from a validated [`Sao`].
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct SaoUniforms {
@@ -74,8 +68,8 @@ pub struct SaoUniforms {
     pub perspective: u32,
     /// Stored depth of the far end (the clear value), read as sky ([`ZConstants::far_depth`]).
     pub far_depth: f32,
-    /// Padding, 0.
-    pub _pad0: u32,
+    /// The level-0 pixel the MIP levels are anchored at ([`Sao::mip_origin`]).
+    pub mip_origin: u32,
     /// Eq. 5's numerator `r·S'`.
     pub radius_pixels: f32,
     /// `r²`.
@@ -122,10 +116,19 @@ pub struct SaoUniforms {
     pub blur_stride: u32,
     /// The blur's depth-difference scale.
     pub depth_scale: f32,
+    /// 1 for the blur's plane weight ([`crate::BlurWeight::Plane`]), 0 for the paper's.
+    pub blur_plane: u32,
+    /// 1 for normals from the nearer neighbours ([`crate::NormalEstimate::Nearest`]), 0 for
+    /// Eq. 4's quad differences.
+    pub normals_nearest: u32,
+    /// `1/(world_extent·r)` of the plane weight's fade, 0 when disabled.
+    pub inv_blur_extent: f32,
+    /// `z_min` of the key (metres), for the fade's depth differences.
+    pub z_min: f32,
+    /// Padding, 0.
+    pub _pad0: u32,
     /// Padding, 0.
     pub _pad1: u32,
-    /// Padding, 0.
-    pub _pad2: u32,
     /// The blur's Gaussian weights `gauss[t]` for `t = 0..=R` at `[t / 4][t % 4]`; the rest 0.
     pub gauss: [[f32; 4]; GAUSS_ROWS],
 }
@@ -162,7 +165,7 @@ impl SaoUniforms {
             guard: vp.guard() as u32,
             perspective: u32::from(info.perspective),
             far_depth: z.far_depth,
-            _pad0: 0,
+            mip_origin: sao.mip_origin() as u32,
             radius_pixels: k.radius_pixels,
             radius2: k.radius2,
             inv_radius2: k.inv_radius2,
@@ -185,8 +188,12 @@ impl SaoUniforms {
             blur_radius: params.blur.radius(),
             blur_stride: blur.stride,
             depth_scale: blur.depth_scale,
+            blur_plane: u32::from(blur.weight == BlurWeight::Plane),
+            normals_nearest: u32::from(k.normals == NormalEstimate::Nearest),
+            inv_blur_extent: blur.inv_extent,
+            z_min: blur.z_min,
+            _pad0: 0,
             _pad1: 0,
-            _pad2: 0,
             gauss,
         }
     }
@@ -261,8 +268,8 @@ mod tests {
 
     #[test]
     fn layout_is_std140_rows_without_implicit_padding() {
-        // 18 rows of 16 bytes; the arrays and vectors start on their std140 alignment.
-        assert_eq!(size_of::<SaoUniforms>(), 288);
+        // 19 rows of 16 bytes; the arrays and vectors start on their std140 alignment.
+        assert_eq!(size_of::<SaoUniforms>(), 304);
         assert_eq!(offset_of!(SaoUniforms, scale), 16);
         assert_eq!(offset_of!(SaoUniforms, input_size), 32);
         assert_eq!(offset_of!(SaoUniforms, guard), 48);
@@ -272,7 +279,8 @@ mod tests {
         assert_eq!(offset_of!(SaoUniforms, beta), 112);
         assert_eq!(offset_of!(SaoUniforms, normal_rejection), 128);
         assert_eq!(offset_of!(SaoUniforms, blur_stride), 144);
-        assert_eq!(offset_of!(SaoUniforms, gauss), 160);
+        assert_eq!(offset_of!(SaoUniforms, inv_blur_extent), 160);
+        assert_eq!(offset_of!(SaoUniforms, gauss), 176);
     }
 
     #[test]

@@ -5,6 +5,17 @@
 //! `(x', y')` of level `m + 1` is a filter of the 2×2 children `(2x' + i, 2y' + j)` of level `m`,
 //! each child coordinate clamped to the level's last column or row (odd sizes).
 //!
+//! ## The origin
+//!
+//! The levels can be anchored at an **origin** `o` (the same on both axes): level 1's children
+//! are then level-0 pixels `(o + 2x' + i, o + 2y' + j)`, and input pixel `x` lies in texel
+//! `(x − o) >> m` of level `m ≥ 1` (clamped: the `o` pixels left of the origin share texel 0).
+//! [`crate::Sao`] anchors the levels at the guard band modulo `2^M` (`M` the highest level
+//! built), so every texel boundary of every level falls where it would with a guard band that
+//! is a multiple of `2^M`: the output interior does not depend on the guard band's width.
+//! Without it a guard band of 5 px instead of 0 or 32 moved every texel by 5 px against the
+//! output and changed the interior by up to 67/255.
+//!
 //! Only levels up to `max_mip` are built: the sample pass never reads beyond it (Eq. 9 clamps).
 
 use alloc::vec;
@@ -56,6 +67,16 @@ impl MipFilter {
     }
 }
 
+/// Number of z levels [`ZHierarchy::build`] makes for a
+/// `width × height` level 0 and `max_mip`: level 0 plus one per halving, stopping at `max_mip`
+/// or at the first 1×1 level, i.e. `1 + min(max_mip, ⌊log₂ max(width, height)⌋)` (the length
+/// of a full hardware MIP chain when `max_mip` does not cut it).
+pub fn level_count(width: usize, height: usize, max_mip: u32) -> u32 {
+    let side = width.max(height).max(1);
+    let halvings = usize::BITS - 1 - side.leading_zeros();
+    1 + max_mip.min(halvings)
+}
+
 /// One level of the hierarchy: camera-space z, row-major.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ZLevel {
@@ -90,19 +111,24 @@ impl ZLevel {
 
     /// The next level under `filter`.
     pub fn downsample(&self, filter: MipFilter) -> ZLevel {
+        self.downsample_from(filter, 0)
+    }
+
+    /// The next level under `filter`, its children starting at `(origin, origin)`.
+    fn downsample_from(&self, filter: MipFilter, origin: i32) -> ZLevel {
         let width = (self.width >> 1).max(1);
         let height = (self.height >> 1).max(1);
         let mut z = vec![0.0f32; width * height];
         for_rows(&mut z, width, |y, row| {
             for (x, out) in row.iter_mut().enumerate() {
-                *out = self.filter_texel(filter, x as i32, y as i32);
+                *out = self.filter_texel(filter, x as i32, y as i32, origin);
             }
         });
         ZLevel { width, height, z }
     }
 
-    fn filter_texel(&self, filter: MipFilter, x: i32, y: i32) -> f32 {
-        let (x2, y2) = (2 * x, 2 * y);
+    fn filter_texel(&self, filter: MipFilter, x: i32, y: i32, origin: i32) -> f32 {
+        let (x2, y2) = (origin + 2 * x, origin + 2 * y);
         if filter == MipFilter::RotatedGrid {
             return self.fetch(x2 + ((y & 1) ^ 1), y2 + ((x & 1) ^ 1));
         }
@@ -132,6 +158,7 @@ impl ZLevel {
 pub struct ZHierarchy {
     levels: Vec<ZLevel>,
     filter: MipFilter,
+    origin: i32,
 }
 
 impl ZHierarchy {
@@ -149,6 +176,23 @@ impl ZHierarchy {
         filter: MipFilter,
         max_mip: u32,
     ) -> Result<Self, SaoError> {
+        Self::build_anchored(z0, width, height, filter, max_mip, 0)
+    }
+
+    /// [`ZHierarchy::build`] with the levels anchored at `origin` (see the module docs); an
+    /// origin outside level 0 is taken modulo its smaller side.
+    ///
+    /// # Errors
+    ///
+    /// As [`ZHierarchy::build`].
+    pub fn build_anchored(
+        z0: Vec<f32>,
+        width: usize,
+        height: usize,
+        filter: MipFilter,
+        max_mip: u32,
+        origin: usize,
+    ) -> Result<Self, SaoError> {
         if width == 0 || height == 0 {
             return Err(SaoError::ImageSize { width, height });
         }
@@ -165,15 +209,31 @@ impl ZHierarchy {
             height,
             z: z0,
         }];
-        for _ in 0..max_mip {
+        let origin = (origin % width.min(height)) as i32;
+        for m in 0..max_mip {
             let last = &levels[levels.len() - 1];
             if last.width == 1 && last.height == 1 {
                 break;
             }
-            let next = last.downsample(filter);
+            let next = last.downsample_from(filter, if m == 0 { origin } else { 0 });
             levels.push(next);
         }
-        Ok(Self { levels, filter })
+        Ok(Self {
+            levels,
+            filter,
+            origin,
+        })
+    }
+
+    /// The level-0 pixel at which level 1's texel 0 starts (see the module docs).
+    pub fn origin(&self) -> usize {
+        self.origin as usize
+    }
+
+    /// The texel of level `m` that input coordinate `x` lies in (unclamped).
+    #[inline]
+    fn texel_of(&self, m: u32, x: i32) -> i32 {
+        if m == 0 { x } else { (x - self.origin) >> m }
     }
 
     /// The levels, level 0 first.
@@ -197,15 +257,16 @@ impl ZHierarchy {
     }
 
     /// Eq. 10: z at full-resolution input pixel `(x, y)` read from level `m` (clamped to the
-    /// levels built): texel `(x >> m, y >> m)` (an arithmetic shift), clamped to the level.
+    /// levels built): texel `((x − o) >> m, (y − o) >> m)` for `m ≥ 1` (an arithmetic shift;
+    /// `o` the origin), clamped to the level.
     #[inline]
     pub fn fetch(&self, m: u32, x: i32, y: i32) -> f32 {
         let m = m.min(self.max_level());
-        self.levels[m as usize].fetch(x >> m, y >> m)
+        self.levels[m as usize].fetch(self.texel_of(m, x), self.texel_of(m, y))
     }
 
-    /// Eq. 10 with the screen position the value stands for: z of texel `(x >> m, y >> m)` of
-    /// level `m` (clamped, as [`ZHierarchy::fetch`]) and the continuous input position
+    /// Eq. 10 with the screen position the value stands for: z of the texel of level `m` that
+    /// [`ZHierarchy::fetch`] reads and the continuous input position
     /// `(u, v)` (pixel `(x', y')`'s centre is `(x' + ½, y' + ½)`) at which Eq. 3 must
     /// reconstruct it.
     ///
@@ -217,32 +278,35 @@ impl ZHierarchy {
     /// reconstructed where its value comes from:
     ///
     /// - rotated grid: the level-0 pixel the texel was copied from, found by descending
-    ///   `(x, y) ← clamp((2x + ((y & 1) ^ 1), 2y + ((x & 1) ^ 1)), 0, size_(l−1) − 1)` from level
-    ///   `m` to level 1. `Q_i` is then exactly a depth-buffer point;
+    ///   `(x, y) ← clamp((2x + ((y & 1) ^ 1), 2y + ((x & 1) ^ 1)) + o_l, 0, size_(l−1) − 1)`
+    ///   from level `m` to level 1, with `o_l` the origin when descending to level 0 and 0
+    ///   above. `Q_i` is then exactly a depth-buffer point;
     /// - the other filters: the centre of the texel's footprint,
-    ///   `(t_x·2^m + 2^m·½, t_y·2^m + 2^m·½)` (for `m = 0`, the pixel centre).
+    ///   `(o + t_x·2^m + 2^m·½, o + t_y·2^m + 2^m·½)` (for `m = 0`, the pixel centre).
     #[inline]
     pub fn sample(&self, m: u32, x: i32, y: i32) -> (f32, f32, f32) {
         let m = m.min(self.max_level());
         let level = &self.levels[m as usize];
-        let tx = (x >> m).clamp(0, level.width as i32 - 1);
-        let ty = (y >> m).clamp(0, level.height as i32 - 1);
+        let tx = self.texel_of(m, x).clamp(0, level.width as i32 - 1);
+        let ty = self.texel_of(m, y).clamp(0, level.height as i32 - 1);
         let z = level.z[ty as usize * level.width + tx as usize];
         if self.filter == MipFilter::RotatedGrid {
             let (mut sx, mut sy) = (tx, ty);
             for l in (0..m as usize).rev() {
                 let below = &self.levels[l];
-                let cx = (2 * sx + ((sy & 1) ^ 1)).min(below.width as i32 - 1);
-                let cy = (2 * sy + ((sx & 1) ^ 1)).min(below.height as i32 - 1);
+                let o = if l == 0 { self.origin } else { 0 };
+                let cx = (o + 2 * sx + ((sy & 1) ^ 1)).min(below.width as i32 - 1);
+                let cy = (o + 2 * sy + ((sx & 1) ^ 1)).min(below.height as i32 - 1);
                 (sx, sy) = (cx, cy);
             }
             (z, sx as f32 + 0.5, sy as f32 + 0.5)
         } else {
             let size = (1i32 << m) as f32;
+            let o = if m == 0 { 0 } else { self.origin };
             (
                 z,
-                (tx << m) as f32 + size * 0.5,
-                (ty << m) as f32 + size * 0.5,
+                (o + (tx << m)) as f32 + size * 0.5,
+                (o + (ty << m)) as f32 + size * 0.5,
             )
         }
     }

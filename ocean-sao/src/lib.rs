@@ -81,9 +81,11 @@ pub mod viewport;
 pub use error::SaoError;
 pub use gpu_params::SaoUniforms;
 pub use hierarchy::{MipFilter, ZHierarchy};
-pub use params::{BlurParams, Estimator, SaoParams};
+pub use params::{BlurParams, BlurWeight, Estimator, SaoParams};
 pub use pipeline::{Sao, Stages};
-pub use reconstruct::{DepthSource, NormalRejection, ProjectionInfo, SKY_Z, ZConstants};
+pub use reconstruct::{
+    DepthSource, NormalEstimate, NormalRejection, ProjectionInfo, SKY_Z, ZConstants,
+};
 pub use viewport::{MAX_SIDE, Viewport};
 
 pub(crate) use ocean_core::rows::for_rows;

@@ -73,7 +73,13 @@ impl Sao {
             info,
             params,
             sample,
-            blur: BlurConstants::new(&params.blur),
+            blur: BlurConstants::with_geometry(
+                &params.blur,
+                info.perspective,
+                [info.scale[0].abs(), info.scale[1].abs()],
+                params.z_min,
+                params.radius,
+            ),
         })
     }
 
@@ -128,6 +134,15 @@ impl Sao {
         &self.blur
     }
 
+    /// The level-0 pixel the MIP levels are anchored at: the guard band modulo `2^M`, `M` the
+    /// highest level built (see [`crate::hierarchy`]), so that any guard band gives the interior
+    /// an aligned one gives.
+    pub fn mip_origin(&self) -> usize {
+        let (w, h) = (self.viewport.input_width(), self.viewport.input_height());
+        let top = crate::hierarchy::level_count(w, h, self.params.max_mip) - 1;
+        self.viewport.guard() % (1usize << top)
+    }
+
     /// The z pass and the MIP levels.
     ///
     /// # Errors
@@ -135,12 +150,13 @@ impl Sao {
     /// As [`ZConstants::z_pass`].
     pub fn hierarchy(&self, depth: &[f32]) -> Result<ZHierarchy, SaoError> {
         let z0 = self.z.z_pass(&self.viewport, depth)?;
-        ZHierarchy::build(
+        ZHierarchy::build_anchored(
             z0,
             self.viewport.input_width(),
             self.viewport.input_height(),
             self.params.mip_filter,
             self.params.max_mip,
+            self.mip_origin(),
         )
     }
 

@@ -403,6 +403,19 @@ pub enum FaceNormal {
     Rejected,
 }
 
+/// How the sample pass reconstructs a pixel's face normal ([`face_normal`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum NormalEstimate {
+    /// Eq. 4: differences within the pixel's 2×2 quad (the paper's `ddx`/`ddy`). A pixel on a
+    /// silhouette whose quad partner lies on the background gets a normal spanning the depth
+    /// edge, which draws a dotted dark line along the silhouette.
+    Quad,
+    /// Along each axis, the difference to whichever adjacent pixel is nearer in z: both sides
+    /// agree on a plane, and at a depth edge the side on the pixel's own surface is taken.
+    #[default]
+    Nearest,
+}
+
 /// The option to reject unreliable reconstructed normals at depth edges.
 ///
 /// The length of Eq. 4's cross product, `|∂C/∂y' × ∂C/∂x'|`, is the camera-space area of the
@@ -421,13 +434,16 @@ pub struct NormalRejection {
     pub max_incidence: f32,
 }
 
-/// Eq. 4: the face normal of output pixel `(x, y)` from 2×2 quad differences of z.
+/// Eq. 4: the face normal of output pixel `(x, y)` from screen-space differences of z.
 ///
-/// The quad partner along x is `x ^ 1` (output coordinates; a fine screen-space derivative),
-/// or `x − 1` when `x ^ 1` falls outside the input image (only possible without guard band);
-/// likewise along y. With `C(·)` from Eq. 3 at input coordinates (output + guard) and `z` from
-/// level 0, `∂C/∂x' = C(right) − C(left)`, `∂C/∂y' = C(lower row) − C(upper row)`, and the
-/// normal is `normalize(∂C/∂y' × ∂C/∂x')`, which faces the camera for rows counted from the top.
+/// With [`NormalEstimate::Quad`] (the paper) the partner along x is the quad partner `x ^ 1`
+/// (output coordinates; a fine screen-space derivative), or `x − 1` when `x ^ 1` falls outside
+/// the input image (only possible without guard band); likewise along y. With
+/// [`NormalEstimate::Nearest`] it is whichever of the adjacent input pixels `x' ± 1` inside the
+/// input has the smaller `|z − z_C|` (`x' + 1` on a tie); likewise along y. With `C(·)` from
+/// Eq. 3 at input coordinates (output + guard) and `z` from level 0,
+/// `∂C/∂x' = C(right) − C(left)`, `∂C/∂y' = C(lower row) − C(upper row)`, and the normal is
+/// `normalize(∂C/∂y' × ∂C/∂x')`, which faces the camera for rows counted from the top.
 ///
 /// `limit` is `1/cos γ_max` of the rejection (or `None`).
 pub fn face_normal(
@@ -436,16 +452,38 @@ pub fn face_normal(
     z0: &[f32],
     x: usize,
     y: usize,
+    estimate: NormalEstimate,
     limit: Option<f32>,
 ) -> FaceNormal {
     let g = viewport.guard();
     let (w, h) = (viewport.input_width(), viewport.input_height());
-    let partner = |o: usize, len: usize| {
-        let p = o ^ 1;
-        if p + g < len { p } else { o - 1 }
-    };
     let (xi, yi) = (x + g, y + g);
-    let (xp, yp) = (partner(x, w) + g, partner(y, h) + g);
+    let z_c = z0[yi * w + xi];
+    let quad = |o: usize, len: usize| {
+        let p = o ^ 1;
+        (if p + g < len { p } else { o - 1 }) + g
+    };
+    // The adjacent pixel nearer in z along an axis; `zat(i)` is z at index `i` on that axis.
+    let nearest = |i: usize, len: usize, zat: &dyn Fn(usize) -> f32| {
+        if i + 1 >= len {
+            return i - 1;
+        }
+        if i == 0 {
+            return i + 1;
+        }
+        if (zat(i - 1) - z_c).abs() < (zat(i + 1) - z_c).abs() {
+            i - 1
+        } else {
+            i + 1
+        }
+    };
+    let (xp, yp) = match estimate {
+        NormalEstimate::Quad => (quad(x, w), quad(y, h)),
+        NormalEstimate::Nearest => (
+            nearest(xi, w, &|i| z0[yi * w + i]),
+            nearest(yi, h, &|j| z0[j * w + xi]),
+        ),
+    };
     let at = |xx: usize, yy: usize| info.position(xx as i32, yy as i32, z0[yy * w + xx]);
     let c = at(xi, yi);
     let cx = at(xp, yi);

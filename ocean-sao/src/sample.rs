@@ -9,7 +9,7 @@ use glam::Vec3;
 use crate::for_rows;
 use crate::hierarchy::ZHierarchy;
 use crate::params::{Estimator, SaoParams};
-use crate::reconstruct::{FaceNormal, ProjectionInfo, SKY_Z, face_normal};
+use crate::reconstruct::{FaceNormal, NormalEstimate, ProjectionInfo, SKY_Z, face_normal};
 use crate::spiral::{Spiral, hash_angle, mip_level};
 use crate::viewport::Viewport;
 
@@ -54,6 +54,8 @@ pub struct SampleConstants {
     pub max_mip: u32,
     /// The estimator's constants.
     pub estimator: EstimatorConstants,
+    /// How face normals are reconstructed.
+    pub normals: NormalEstimate,
     /// `1/cos γ_max` of the normal rejection, if enabled.
     pub normal_limit: Option<f32>,
 }
@@ -82,6 +84,7 @@ impl SampleConstants {
             mip_switch_log2: params.mip_switch_log2,
             max_mip: params.max_mip,
             estimator,
+            normals: params.normals,
             normal_limit: params
                 .normal_rejection
                 .map(|n| (1.0 / ocean_core::math::cos(f64::from(n.max_incidence))) as f32),
@@ -120,7 +123,7 @@ pub fn sample_pixel(
     if z_c == SKY_Z {
         return 1.0;
     }
-    let n_c = match face_normal(info, viewport, z0, x, y, k.normal_limit) {
+    let n_c = match face_normal(info, viewport, z0, x, y, k.normals, k.normal_limit) {
         FaceNormal::Valid(n) => n,
         FaceNormal::Undefined | FaceNormal::Rejected => return 1.0,
     };

@@ -110,8 +110,16 @@ fn assert_monotone(what: &str, bins: &[(f64, usize)], contact_max: f64, skip: us
         means[3..].iter().all(|&m| m >= means[0]),
         "{what}: {means:?}"
     );
+    // The final image passes through 8-bit A between the blur passes (§2.3's packing): a bin
+    // whose real obscurance is a few thousandths may come out a fraction of 1/255 below its
+    // brighter neighbour from the rounding alone (measured: 1.2e-4 at 0.9 m on the crease).
     for w in means[skip..].windows(2) {
-        assert!(w[1] >= w[0], "{what}: {} then {} ({means:?})", w[0], w[1]);
+        assert!(
+            w[1] >= w[0] - 0.5 / 255.0,
+            "{what}: {} then {} ({means:?})",
+            w[0],
+            w[1]
+        );
     }
 }
 
@@ -130,9 +138,11 @@ fn assert_monotone(what: &str, bins: &[(f64, usize)], contact_max: f64, skip: us
 ///   scale does not separate surfaces at equal depth; this is the paper's filter, reported, not
 ///   hidden. The contact bin stays at A ≤ 0.9 and darker than every bin from 0.3 m on.
 /// - Beyond the radius nothing can occlude (every wall point is farther than r from a floor
-///   point 1 m away, and the floor is coplanar), and the bilateral blur only mixes pixels whose
-///   depth differs by less than `200 m / 2¹¹ ≈ 0.1 m`: every pixel farther than 1.2 m from the
-///   crease is exactly 1.
+///   point 1 m away, and the floor is coplanar), and the plane-weighted blur only mixes taps
+///   less than `world_extent·r = 0.5 m` away: every pixel farther than 1.5 m from the crease is
+///   exactly 1. (With the paper's weight, which mixes only pixels whose depth differs by less
+///   than `200 m / 2¹¹ ≈ 0.1 m`, it was 1.2 m; the contact row's lift described above is gone
+///   with the plane weight: measured 0.07 against 0.18 in the next bin.)
 #[test]
 fn crease_darkens_monotonically_toward_the_contact() {
     let r = Render::standard(AnalyticView::crease(), SIZE);
@@ -185,7 +195,7 @@ fn crease_darkens_monotonically_toward_the_contact() {
             } else {
                 p.y
             };
-            if d >= 1.2 {
+            if d >= 1.5 {
                 assert_eq!(a, 1.0, "{name}: pixel {i} at {d} m");
             }
         }
@@ -248,16 +258,23 @@ fn report(what: &str, c: &Comparison) {
 /// (exact 3D visibility), and with 256 exact-depth samples over Eq. 5's disk (the estimator's
 /// own limit), on the crease, the box in the room and the spheres. Background pixels excluded.
 ///
-/// Measured (112 × 80 output; printed): against the disk limit MSE 0.0046–0.0081 and
-/// correlation 0.87–0.96 (0.91–0.96 with the normal rejection); against exact visibility over
-/// the ball MSE 0.025–0.057 and correlation 0.83–0.95: the screen-space estimator sees only
-/// the visible surface (no occluder behind it) and weighs occluders by screen area rather than
-/// solid angle, so it is systematically lighter (mean A 0.93–0.95 against 0.85–0.89).
+/// Measured (112 × 80 output; printed), with the paper's normals and blur: against the disk
+/// limit MSE 0.0046–0.0081 and correlation 0.87–0.96; against exact visibility over the ball
+/// MSE 0.025–0.053 and correlation 0.83–0.95. With the defaults (nearest-neighbour normals,
+/// plane-weighted blur): against the disk limit MSE 0.0046 / 0.0056 / 0.0040 (crease, box,
+/// spheres; the paper's 0.0046 / 0.0081 / 0.0058) and correlation 0.93–0.96; against the ball
+/// MSE 0.028–0.060, correlation 0.80–0.92. The disk limit is what a reconstruction filter can
+/// reach (the estimator's own answer without sampling noise); the ball differs from it by the
+/// estimator's bias: it sees only the visible surface (no occluder behind it) and weighs
+/// occluders by screen area rather than solid angle, so it is systematically lighter (mean A
+/// 0.93–0.95 against 0.85–0.89), and on the spheres the wider blur correlates less with it.
 ///
-/// Bounds: 1.25× the worst measured MSE and 0.03 below the worst correlation, and a floor that
-/// does not depend on the measurements: the passes must be at least 3× (disk limit) and 1.5×
-/// (ball) closer in MSE than the trivial answer "no obscurance" (A ≡ 1) is. A wrong sign, scale,
-/// radius or MIP level breaks both.
+/// Bounds: 1.25× the worst measured MSE and 0.03 below the worst correlation; the defaults'
+/// MSE against the disk limit at most 1% above the paper's on any view and 10% below it over
+/// the three; and a floor that does not depend
+/// on the measurements: the passes must be at least 3× (disk limit) and 1.5× (ball) closer in
+/// MSE than the trivial answer "no obscurance" (A ≡ 1) is. A wrong sign, scale, radius or MIP
+/// level breaks both.
 #[test]
 fn brute_force_references() {
     let views = [
@@ -265,6 +282,7 @@ fn brute_force_references() {
         AnalyticView::box_in_room(),
         AnalyticView::spheres(),
     ];
+    let mut totals = (0.0, 0.0);
     for view in views {
         let r = Render::standard(view, SIZE);
         let rays = CameraRays::new(&r.camera, SIZE.0, SIZE.1).unwrap();
@@ -279,7 +297,9 @@ fn brute_force_references() {
         report("A ≡ 1 vs disk limit", &trivial_disk);
         report("A ≡ 1 vs ball", &trivial_ball);
         report("disk limit vs ball", &compare(&disk, &ball, geometry));
+        let mut disk_mse = Vec::new();
         for (name, params) in [
+            ("paper", SaoParams::paper()),
             ("SAO", SaoParams::default()),
             ("SAO + rejection", rejecting()),
         ] {
@@ -288,12 +308,13 @@ fn brute_force_references() {
             let vs_ball = compare(&ao, &ball, geometry);
             report(&format!("{name} vs disk limit"), &vs_disk);
             report(&format!("{name} vs ball"), &vs_ball);
+            disk_mse.push(vs_disk.mse);
             assert!(
                 vs_disk.mse <= 0.010 && vs_disk.correlation >= 0.84,
                 "{name}: {vs_disk:?}"
             );
             assert!(
-                vs_ball.mse <= 0.071 && vs_ball.correlation >= 0.80,
+                vs_ball.mse <= 0.073 && vs_ball.correlation >= 0.76,
                 "{name}: {vs_ball:?}"
             );
             assert!(
@@ -305,7 +326,22 @@ fn brute_force_references() {
                 "{name}: {vs_ball:?} vs {trivial_ball:?}"
             );
         }
+        assert!(
+            disk_mse[1] <= disk_mse[0] * 1.01,
+            "{}: defaults {} vs paper {}",
+            r.view.name,
+            disk_mse[1],
+            disk_mse[0]
+        );
+        totals.0 += disk_mse[0];
+        totals.1 += disk_mse[1];
     }
+    assert!(
+        totals.1 < totals.0 * 0.9,
+        "defaults {} vs paper {}",
+        totals.1,
+        totals.0
+    );
 }
 
 /// The depth convention must not matter beyond its precision: the AO of the box in the room
@@ -314,7 +350,11 @@ fn brute_force_references() {
 /// (Eq. 10 truncates) or a pair across the quad filter's 2 cm threshold, so a few pixels differ
 /// by a sample's worth. Measured: at least 99.75% of pixels agree within 2/255 (the GPU parity
 /// tolerance; the worst is OpenGL window depth with a finite far plane) and the largest
-/// difference is 0.127; asserted: 99.7% and 0.15.
+/// difference is 0.166 (0.127 with the paper's normals and blur): at output pixels (30, 28–29)
+/// a quad pair's z differ by 2 cm give or take the convention's precision, so the quad
+/// bilateral's hard threshold averages the pair in one convention and not in the other (raw A
+/// 1.000 and 0.454 in both; after the quad filter 0.727 against 1.000), and the blur spreads the
+/// difference. Asserted: 99.7% and 0.17.
 #[test]
 fn conventions_agree() {
     let base = Render::standard(AnalyticView::box_in_room(), SIZE)
@@ -359,7 +399,7 @@ fn conventions_agree() {
                     share * 100.0
                 );
                 assert!(
-                    share >= 0.997 && worst <= 0.15,
+                    share >= 0.997 && worst <= 0.17,
                     "{name} {convention:?} {source:?} {format:?}"
                 );
             }

@@ -513,7 +513,7 @@ static void check_uniforms(const OceanSao *sao)
     OceanSaoInfo info;
     size_t i;
 
-    CHECK(OCEAN_SAO_UNIFORMS_SIZE == 288, "uniform block of %d bytes", OCEAN_SAO_UNIFORMS_SIZE);
+    CHECK(OCEAN_SAO_UNIFORMS_SIZE == 304, "uniform block of %d bytes", OCEAN_SAO_UNIFORMS_SIZE);
     if (!OK(ocean_sao_uniforms(sao, block, sizeof block, &levels)) ||
         !OK(ocean_sao_describe(sao, &info)))
         return;

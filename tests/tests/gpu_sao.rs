@@ -540,7 +540,8 @@ fn mip_filters_and_levels_match_the_cpu() {
 
 /// The options around the sample pass and the blur: Eq. 1 with k = 2 (the `pow` path), the
 /// normal rejection, no quad bilateral, the released shader's blur (9 taps, stride 2, 2000),
-/// the widest blur (63 taps), a spiral of 30 samples, q' = 1 and q' = 256.
+/// the paper's quad normals and depth-keyed blur, the plane weight without its fade, the widest
+/// blur (63 taps), a spiral of 30 samples, q' = 1 and q' = 256.
 #[test]
 fn options_match_the_cpu() {
     let Some(ctx) = gpu_context_or_skip() else {
@@ -576,10 +577,22 @@ fn options_match_the_cpu() {
                     stride: 2,
                     depth_scale: 2000.0,
                     sigma: 2.0,
+                    ..BlurParams::default()
                 },
                 ..SaoParams::default()
             },
             "blur 9 taps, stride 2, scale 2000",
+        ),
+        (SaoParams::paper(), "the paper's normals and blur weight"),
+        (
+            SaoParams {
+                blur: BlurParams {
+                    world_extent: 0.0,
+                    ..BlurParams::default()
+                },
+                ..SaoParams::default()
+            },
+            "plane weight without the world fade",
         ),
         (
             SaoParams {
@@ -1188,4 +1201,78 @@ fn gpu_sao_error(e: GpuError) -> SaoError {
         GpuError::Sao(e) => e,
         other => panic!("expected an SAO error, got {other:?}"),
     }
+}
+
+/// Any guard band gives the interior an aligned one gives, on the GPU as on the CPU
+/// (`ocean-sao/tests/guard.rs`, the same scene and comparison): every guard band from 0 to
+/// 300 px against the multiple of 32 below it, within 1/255 on every interior pixel, with the
+/// z levels anchored at the guard band modulo 32 (`SaoUniforms::mip_origin`).
+#[test]
+fn any_guard_band_gives_the_aligned_interior() {
+    let Some(ctx) = gpu_context_or_skip() else {
+        return;
+    };
+    let mut pass = SaoPass::new(&ctx).unwrap();
+    const OUT: (usize, usize) = (128, 80);
+    const MARGIN: usize = 25;
+    let mut interior = |g: usize| -> Vec<f32> {
+        let (w, h) = (OUT.0 + 2 * g, OUT.1 + 2 * g);
+        let projection = Projection::Perspective {
+            fov_y: 2.0 * (0.5f64.tan() * h as f64 / OUT.1 as f64).atan(),
+            aspect: w as f64 / h as f64,
+            near: 0.1,
+            far: Far::Infinite,
+        };
+        let v = AnalyticView::boxes(0.6, 0.7, 8.5);
+        let camera = v
+            .camera(projection, DepthConvention::ZERO_TO_ONE_REVERSED)
+            .unwrap();
+        let raster = v
+            .scene
+            .rasterise(&camera, w, h, DepthSource::Window, DepthFormat::F32)
+            .unwrap();
+        let params = SaoParams {
+            mip_switch_log2: 0,
+            ..SaoParams::default()
+        };
+        let sao = Sao::from_camera(
+            &camera,
+            DepthSource::Window,
+            Viewport::new(w, h, g).unwrap(),
+            params,
+        )
+        .unwrap();
+        let ao = pass.evaluate(&ctx, &sao, &raster.depth).unwrap();
+        (MARGIN..OUT.1 - MARGIN)
+            .flat_map(|y| (MARGIN..OUT.0 - MARGIN).map(move |x| y * OUT.0 + x))
+            .map(|i| ao[i])
+            .collect()
+    };
+    let aligned: Vec<Vec<f32>> = (0..=300 / 32).map(|k| interior(32 * k)).collect();
+    let mut worst = (0.0f32, 0);
+    for g in 0..=300 {
+        let d = interior(g)
+            .iter()
+            .zip(&aligned[g / 32])
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f32, f32::max);
+        if d > worst.0 {
+            worst = (d, g);
+        }
+    }
+    println!(
+        "worst interior difference: {:.2}/255 at g = {}",
+        worst.0 * 255.0,
+        worst.1
+    );
+    assert!(
+        worst.0 <= 1.0 / 255.0,
+        "{}/255 at g = {}",
+        worst.0 * 255.0,
+        worst.1
+    );
+    assert!(
+        aligned[0].iter().any(|&a| a < 0.8),
+        "the interior holds obscurance"
+    );
 }

@@ -454,7 +454,7 @@ mod tests {
             ("guard", offset_of!(SaoUniforms, guard)),
             ("perspective", offset_of!(SaoUniforms, perspective)),
             ("far_depth", offset_of!(SaoUniforms, far_depth)),
-            ("_pad0", offset_of!(SaoUniforms, _pad0)),
+            ("mip_origin", offset_of!(SaoUniforms, mip_origin)),
             ("radius_pixels", offset_of!(SaoUniforms, radius_pixels)),
             ("radius2", offset_of!(SaoUniforms, radius2)),
             ("inv_radius2", offset_of!(SaoUniforms, inv_radius2)),
@@ -480,8 +480,12 @@ mod tests {
             ("blur_radius", offset_of!(SaoUniforms, blur_radius)),
             ("blur_stride", offset_of!(SaoUniforms, blur_stride)),
             ("depth_scale", offset_of!(SaoUniforms, depth_scale)),
+            ("blur_plane", offset_of!(SaoUniforms, blur_plane)),
+            ("normals_nearest", offset_of!(SaoUniforms, normals_nearest)),
+            ("inv_blur_extent", offset_of!(SaoUniforms, inv_blur_extent)),
+            ("z_min", offset_of!(SaoUniforms, z_min)),
+            ("_pad0", offset_of!(SaoUniforms, _pad0)),
             ("_pad1", offset_of!(SaoUniforms, _pad1)),
-            ("_pad2", offset_of!(SaoUniforms, _pad2)),
             ("gauss", offset_of!(SaoUniforms, gauss)),
         ];
         for name in ["sao_z", "sao_mip", "sao_ao", "sao_blur"] {

@@ -170,22 +170,49 @@ fn screen_radius(z: f32) -> f32 {
 }
 
 // The quad partner of output coordinate o along an axis of `len` input pixels
-// (ocean_sao::reconstruct::face_normal): o ^ 1, or o − 1 when o ^ 1 falls outside the input.
-fn partner(o: u32, len: u32) -> u32 {
+// (ocean_sao::reconstruct::face_normal, NormalEstimate::Quad): o ^ 1, or o − 1 when o ^ 1 falls
+// outside the input. Returned as an input coordinate.
+fn partner(o: u32, len: u32) -> i32 {
     let p = o ^ 1u;
     if (p + params.guard < len) {
-        return p;
+        return i32(p + params.guard);
     }
-    return o - 1u;
+    return i32(o - 1u + params.guard);
 }
 
-// Eq. 4 (ocean_sao::reconstruct::face_normal): normalize(∂C/∂y' × ∂C/∂x') from 2×2 quad
-// differences of level-0 z, with the optional rejection at depth edges. w = 1 for a valid
-// normal, 0 for an undefined or rejected one.
+// The adjacent input coordinate nearer in z to z_c along an axis (NormalEstimate::Nearest):
+// i − 1 when it is inside and strictly nearer than i + 1, or when i + 1 is outside.
+fn nearest(i: i32, len: i32, z_c: f32, z_lo: f32, z_hi: f32) -> i32 {
+    if (i + 1 >= len) {
+        return i - 1;
+    }
+    if (i == 0) {
+        return i + 1;
+    }
+    if (abs(z_lo - z_c) < abs(z_hi - z_c)) {
+        return i - 1;
+    }
+    return i + 1;
+}
+
+// Eq. 4 (ocean_sao::reconstruct::face_normal): normalize(∂C/∂y' × ∂C/∂x') from differences of
+// level-0 z to the quad partners or the nearer neighbours, with the optional rejection at depth
+// edges. w = 1 for a valid normal, 0 for an undefined or rejected one.
 fn face_normal(o: vec2<u32>, pc: vec2<i32>, c: vec3<f32>) -> vec4<f32> {
-    let g = params.guard;
-    let px = vec2<i32>(i32(partner(o.x, params.input_size.x) + g), pc.y);
-    let py = vec2<i32>(pc.x, i32(partner(o.y, params.input_size.y) + g));
+    var px = vec2<i32>(partner(o.x, params.input_size.x), pc.y);
+    var py = vec2<i32>(pc.x, partner(o.y, params.input_size.y));
+    if (params.normals_nearest != 0u) {
+        let size = vec2<i32>(params.input_size);
+        let last = size - vec2<i32>(1, 1);
+        // Loads clamped into the input; a clamped value is never chosen (nearest checks the
+        // bounds first).
+        let zl = textureLoad(z0, vec2<i32>(max(pc.x - 1, 0), pc.y), 0).x;
+        let zr = textureLoad(z0, vec2<i32>(min(pc.x + 1, last.x), pc.y), 0).x;
+        let zu = textureLoad(z0, vec2<i32>(pc.x, max(pc.y - 1, 0)), 0).x;
+        let zd = textureLoad(z0, vec2<i32>(pc.x, min(pc.y + 1, last.y)), 0).x;
+        px = vec2<i32>(nearest(pc.x, size.x, c.z, zl, zr), pc.y);
+        py = vec2<i32>(pc.x, nearest(pc.y, size.y, c.z, zu, zd));
+    }
     let cx = position(px, textureLoad(z0, px, 0).x);
     let cy = position(py, textureLoad(z0, py, 0).x);
     var dx = c - cx;
@@ -266,28 +293,37 @@ fn mip_level(h: f32) -> u32 {
     return min(msb - params.mip_switch_log2, params.max_mip);
 }
 
-// Eq. 10 (ocean_sao::ZHierarchy::sample): z of texel (x >> m, y >> m) of level m, clamped to
-// the level, and the input position (u, v) Eq. 3 reconstructs it at: for the rotated grid the
-// level-0 pixel the value was copied from (descending the filter's choices), else the centre
-// of the texel's footprint. Returns (z, u, v).
+// Eq. 10 (ocean_sao::ZHierarchy::sample): z of texel ((x − o) >> m, (y − o) >> m) of level m
+// (o the MIP origin for m ≥ 1, 0 for level 0), clamped to the level, and the input position
+// (u, v) Eq. 3 reconstructs it at: for the rotated grid the level-0 pixel the value was copied
+// from (descending the filter's choices), else the centre of the texel's footprint. Returns
+// (z, u, v).
 fn sample_level(m: u32, x: i32, y: i32) -> vec3<f32> {
     let size = level_size(m);
-    let t = clamp(vec2<i32>(x >> m, y >> m), vec2<i32>(0, 0), size - vec2<i32>(1, 1));
+    var o = 0;
+    if (m > 0u) {
+        o = i32(params.mip_origin);
+    }
+    let t = clamp(vec2<i32>((x - o) >> m, (y - o) >> m), vec2<i32>(0, 0), size - vec2<i32>(1, 1));
     let z = load_z(m, t);
     if (params.mip_filter == FILTER_ROTATED_GRID) {
         var sx = t.x;
         var sy = t.y;
         for (var l = i32(m) - 1; l >= 0; l--) {
             let below = level_size(u32(l));
-            let cx = min(2 * sx + ((sy & 1) ^ 1), below.x - 1);
-            let cy = min(2 * sy + ((sx & 1) ^ 1), below.y - 1);
+            var ol = 0;
+            if (l == 0) {
+                ol = o;
+            }
+            let cx = min(ol + 2 * sx + ((sy & 1) ^ 1), below.x - 1);
+            let cy = min(ol + 2 * sy + ((sx & 1) ^ 1), below.y - 1);
             sx = cx;
             sy = cy;
         }
         return vec3<f32>(z, f32(sx) + 0.5, f32(sy) + 0.5);
     }
     let size_px = f32(1 << m);
-    return vec3<f32>(z, f32(t.x << m) + size_px * 0.5, f32(t.y << m) + size_px * 0.5);
+    return vec3<f32>(z, f32(o + (t.x << m)) + size_px * 0.5, f32(o + (t.y << m)) + size_px * 0.5);
 }
 
 // One sample's contribution, zero outside the ball (ocean_sao::sample's term).

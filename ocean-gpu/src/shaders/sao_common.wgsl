@@ -3,7 +3,7 @@
 // Every pass follows the CPU's arithmetic operation by operation; the comments name the CPU
 // function each piece mirrors.
 
-// Byte for byte ocean_sao::gpu_params::SaoUniforms (288 bytes, std140 rows).
+// Byte for byte ocean_sao::gpu_params::SaoUniforms (304 bytes, std140 rows).
 struct Params {
     // Eq. 2: z(d) = (c.x + c.w * d) / (c.y * d + c.z).
     z_c: vec4<f32>,
@@ -15,7 +15,7 @@ struct Params {
     guard: u32,
     perspective: u32,
     far_depth: f32,
-    _pad0: u32,
+    mip_origin: u32,
     radius_pixels: f32,
     radius2: f32,
     inv_radius2: f32,
@@ -38,8 +38,12 @@ struct Params {
     blur_radius: u32,
     blur_stride: u32,
     depth_scale: f32,
+    blur_plane: u32,
+    normals_nearest: u32,
+    inv_blur_extent: f32,
+    z_min: f32,
+    _pad0: u32,
     _pad1: u32,
-    _pad2: u32,
     gauss: array<vec4<f32>, 8>,
 }
 

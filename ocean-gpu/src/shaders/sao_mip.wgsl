@@ -1,6 +1,8 @@
 // SAO pass 2 (§2.2, Table 1): z MIP level m + 1 from level m, one dispatch per level. The twin
 // of ocean_sao::hierarchy::ZLevel::downsample: texel (x', y') filters the 2×2 children
-// (2x' + i, 2y' + j) of level m, each child clamped to the level's last column or row.
+// (o + 2x' + i, o + 2y' + j) of level m, each child clamped to the level's last column or row,
+// with o = params.mip_origin when level m is level 0 and 0 above (ocean_sao::hierarchy's
+// origin, which keeps the texel grid aligned with the output whatever the guard band).
 //
 // Every level is a texture of its own (one level each), so a dispatch reads one texture and
 // writes another: one storage texture per dispatch, and no texture is ever sampled and written
@@ -23,8 +25,13 @@ fn fetch(x: i32, y: i32, size: vec2<i32>) -> f32 {
 
 // ZLevel::filter_texel.
 fn filter_texel(x: i32, y: i32, size: vec2<i32>) -> f32 {
-    let x2 = 2 * x;
-    let y2 = 2 * y;
+    // Level 0 is the only level of the input's size (level 1 has at most half of a side ≥ 2).
+    var o = 0;
+    if (all(size == vec2<i32>(params.input_size))) {
+        o = i32(params.mip_origin);
+    }
+    let x2 = o + 2 * x;
+    let y2 = o + 2 * y;
     if (params.mip_filter == FILTER_ROTATED_GRID) {
         // Table 1: z^m(2x' + ((y' & 1) ^ 1), 2y' + ((x' & 1) ^ 1)); WGSL needs the parentheses
         // around ^.
