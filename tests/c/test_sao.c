@@ -357,7 +357,9 @@ static void test_create_errors(void)
     CHECK(p.radius == 1.0f && p.samples == 9 && p.spiral_turns == 7.0f &&
               p.mip_filter == OCEAN_SAO_MIP_FILTER_ROTATED_GRID &&
               p.estimator == OCEAN_SAO_ESTIMATOR_FALLOFF && p.quad_filter == 1 &&
-              p.normal_rejection == 0 && p.blur.taps == 7 && p.blur.stride == 3,
+              p.normal_rejection == 0 && p.blur.taps == 7 && p.blur.stride == 3 &&
+              p.normals == OCEAN_SAO_NORMALS_NEAREST &&
+              p.blur.weight == OCEAN_SAO_BLUR_WEIGHT_PLANE && p.blur.world_extent == 0.5f,
           "unexpected defaults");
 
     EXPECT(ocean_sao_create(W, H, GUARD, NULL, &p, &out), OCEAN_STATUS_NULL_POINTER);
@@ -441,6 +443,18 @@ static void test_create_errors(void)
     bad.quad_filter = 2;
     EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "quad_filter");
+    bad = p;
+    bad.normals = 2;
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+               "normals");
+    bad = p;
+    bad.blur.weight = 2;
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+               "blur.weight");
+    bad = p;
+    bad.blur.world_extent = -1.0f;
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+               "world_extent");
     bad = p;
     bad.z_min = 10.0f;
     EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
