@@ -433,9 +433,12 @@ pub unsafe extern "C" fn ocean_sao_params_default(out: *mut OceanSaoParams) -> O
 ///
 /// The paper renders depth larger than the screen so that geometry just outside the frame can
 /// still occlude: the AO image is the input inset by `guard` on every side,
-/// (input_width - 2 guard) x (input_height - 2 guard) pixels. `camera` describes the projection
-/// of the whole input, guard band included (see `OceanSaoCamera`); `params` the passes (see
-/// `OceanSaoParams`). Both are copied; neither is retained.
+/// (input_width - 2 guard) x (input_height - 2 guard) pixels. Any guard band is accepted and
+/// gives the interior an aligned one gives: the z MIP levels are anchored at guard modulo
+/// 2^max_mip (the uniform block of `ocean_sao_uniforms` carries the anchor to the GPU passes).
+/// `camera` describes the projection of the whole input, guard band included (see
+/// `OceanSaoCamera`); `params` the passes (see `OceanSaoParams`). Both are copied; neither is
+/// retained.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
 /// `OCEAN_STATUS_EMPTY` if `input_width` or `input_height` is 0, `OCEAN_STATUS_NON_FINITE` for
