@@ -538,3 +538,40 @@ impl AnalyticView {
         )?)
     }
 }
+
+/// A perspective over an `out` output plus a guard band of `guard` px on every side, with the
+/// output's vertical field of view `fov_y` for every guard band: the input's field of view grows
+/// with it, so output pixel `(x, y)` sees the same ray whatever the guard band (up to
+/// rounding). For guard-band studies.
+pub fn guarded_perspective(out: (usize, usize), guard: usize, fov_y: f64) -> Projection {
+    let (w, h) = (out.0 + 2 * guard, out.1 + 2 * guard);
+    Projection::Perspective {
+        fov_y: 2.0 * libm::atan(libm::tan(0.5 * fov_y) * h as f64 / out.1 as f64),
+        aspect: w as f64 / h as f64,
+        near: 0.1,
+        far: ocean_core::Far::Infinite,
+    }
+}
+
+/// The largest absolute difference between `interior(g)` and `interior(a)` for every guard
+/// band `g` in `0..=max`, `a` the multiple of `align` at or below `g`, and the `g` it occurs
+/// at (the first on ties; `(0, 0)` when all agree).
+pub fn worst_against_aligned(
+    max: usize,
+    align: usize,
+    mut interior: impl FnMut(usize) -> Vec<f32>,
+) -> (f32, usize) {
+    let aligned: Vec<Vec<f32>> = (0..=max / align).map(|k| interior(align * k)).collect();
+    let mut worst = (0.0f32, 0);
+    for g in 0..=max {
+        let d = interior(g)
+            .iter()
+            .zip(&aligned[g / align])
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f32, f32::max);
+        if d > worst.0 {
+            worst = (d, g);
+        }
+    }
+    worst
+}
