@@ -22,6 +22,8 @@
 //! - [`sky`]: the Sun, a default sky (CIE clear sky) and the stereographic parameterisation
 //!   (§5.2).
 //! - [`sky_map`]: the mip-mapped sky map and the filtered lookup of Eq. 27.
+//! - [`irradiance`]: the environment's irradiance on any normal (order-2 spherical
+//!   harmonics), the ambient light of solids lit by the sea's sky.
 //! - [`sea`]: Algorithm 5.1, the Sun's, the sky's and the refracted light for one pixel.
 //! - [`surface`]: the filtered surface (Eq. 2–4) at a screen point and the footprints it is
 //!   filtered on: the CPU twin of the GPU renderer's geometry.
@@ -45,6 +47,7 @@ pub mod error;
 pub mod filter;
 pub mod fresnel;
 pub mod fresnel_table;
+pub mod irradiance;
 pub mod local;
 mod quadrature;
 pub mod ross;
@@ -60,6 +63,7 @@ pub mod variance;
 
 pub use error::BrdfError;
 pub use filter::Filter;
+pub use irradiance::Irradiance;
 pub use local::{LocalPoint, LocalWaves};
 pub use sea::{Lighting, SeaLight, SeaParams};
 pub use sky::{Sky, SkyParams};
