@@ -378,10 +378,11 @@ fn fig4_face_normals_within_faces() {
 fn normal_rejection_flags_silhouettes_only() {
     let (w, h) = (160, 120);
     let limit = (1.0 / 85f64.to_radians().cos()) as f32;
-    for view in [
-        AnalyticView::box_in_room(),
-        AnalyticView::crease(),
-        AnalyticView::spheres(),
+    // Whether the view has occlusion gaps: the crease is one connected surface.
+    for (view, gaps) in [
+        (AnalyticView::box_in_room(), true),
+        (AnalyticView::crease(), false),
+        (AnalyticView::spheres(), true),
     ] {
         let r = Render::standard(view, (w, h, 0));
         let zc = ZConstants::from_camera(&r.camera, DepthSource::Window).unwrap();
@@ -446,16 +447,18 @@ fn normal_rejection_flags_silhouettes_only() {
 /// other neighbour on the sky or on another face farther than the rejection's gap (the test
 /// above: a real occlusion gap, not a crease) must get its analytic normal within Fig. 4's
 /// 0.2°. Among them are the silhouette pixels whose quad partner lies across the gap: Eq. 4's
-/// quad normal spans the gap there (printed, and required to fail on some pixel, so the set is
-/// known to hold the case the estimate exists for).
+/// quad normal spans the gap there (printed, and required to fail on some pixel of each view
+/// with gaps, so the set is known to hold the case the estimate exists for: 32 such pixels in
+/// the box in a room and 66 among the spheres at 160 × 120; the crease has none).
 #[test]
 fn nearest_normals_are_right_on_silhouettes() {
     let (w, h) = (160, 120);
     let limit = (1.0 / 85f64.to_radians().cos()) as f32;
-    for view in [
-        AnalyticView::box_in_room(),
-        AnalyticView::crease(),
-        AnalyticView::spheres(),
+    // Whether the view has occlusion gaps: the crease is one connected surface.
+    for (view, gaps) in [
+        (AnalyticView::box_in_room(), true),
+        (AnalyticView::crease(), false),
+        (AnalyticView::spheres(), true),
     ] {
         let r = Render::standard(view, (w, h, 0));
         let zc = ZConstants::from_camera(&r.camera, DepthSource::Window).unwrap();
@@ -505,9 +508,13 @@ fn nearest_normals_are_right_on_silhouettes() {
              {worst_nearest:.3}°, quad {worst_quad:.1}°",
             r.view.name
         );
-        assert!(silhouettes > 50, "{}", r.view.name);
         assert!(worst_nearest <= 0.2, "{}: {worst_nearest}°", r.view.name);
-        assert!(worst_quad > 10.0, "{}: {worst_quad}°", r.view.name);
+        if gaps {
+            assert!(silhouettes >= 20, "{}", r.view.name);
+            assert!(worst_quad > 10.0, "{}: {worst_quad}°", r.view.name);
+        } else {
+            assert_eq!(silhouettes, 0, "{}", r.view.name);
+        }
     }
 }
 
