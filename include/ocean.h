@@ -179,7 +179,7 @@
  * Size in bytes of the exported `relief` shader's uniform block `Relief` (binding 0, std140);
  * `ocean_relief_uniforms` writes it.
  */
-#define OCEAN_RELIEF_UNIFORMS_SIZE 256
+#define OCEAN_RELIEF_UNIFORMS_SIZE 416
 
 /**
  * Array layers of a quad-directional cone map: one per closed quadrant of the ray's horizontal
@@ -970,6 +970,20 @@ typedef struct OceanSeaParams {
 } OceanSeaParams;
 
 /**
+ * The environment's irradiance on a surface of any orientation, E(n) = sum_i k[i] Y_i(n)
+ * (order-2 real spherical harmonics, world space, y up), the nine Y_i in the order
+ * 1; x, y, z; xy, yz, 3y^2 - 1, xz, x^2 - z^2 with their orthonormal normalisations; linear
+ * RGB per coefficient. All zero: no environment light.
+ */
+typedef struct OceanIrradiance {
+  /**
+   * `k[i] = A_l L_i`: the environment's projection on `Y_i` times the clamped cosine's
+   * factor (pi, 2 pi / 3, pi / 4 for orders 0, 1, 2).
+   */
+  struct OceanRgb k[9];
+} OceanIrradiance;
+
+/**
  * A point on the sea plane in double precision: world x and z in metres.
  */
 typedef struct OceanDVec2 {
@@ -1318,6 +1332,11 @@ typedef struct OceanReliefScene {
    */
   float light_intensity;
   /**
+   * The light's linear colour, red, green, blue, multiplying `light_intensity` (each >= 0;
+   * the default: white, 1, 1, 1).
+   */
+  float light_color[3];
+  /**
    * Linear albedo, red, green, blue (each >= 0).
    */
   float albedo[3];
@@ -1325,6 +1344,13 @@ typedef struct OceanReliefScene {
    * Light that reaches every point whatever the light and shadows (>= 0).
    */
   float ambient;
+  /**
+   * The environment's irradiance E (`ocean_lighting_irradiance`), or all zero for none: the
+   * ambient term gains albedo E(n) / pi, a Lambertian surface's radiance under it, n the
+   * relief's normal at the hit in world space. `light_intensity` and `ambient` must then be
+   * in the same radiance units.
+   */
+  struct OceanIrradiance sky;
 } OceanReliefScene;
 
 /**
@@ -2340,6 +2366,23 @@ void ocean_lighting_destroy(struct OceanLighting *lighting);
  */
 OceanStatus ocean_lighting_sky_irradiance(const struct OceanLighting *lighting,
                                           struct OceanRgb *out);
+
+/**
+ * Stores the irradiance of the lighting's environment (the sky above the horizon without the
+ * Sun's disc, the sea's below-horizon radiance below it) on every orientation in `*out`: the
+ * ambient light of solids lit by the same sky as the sea (`OceanReliefScene::sky`). Within
+ * 3.1 % of the upward irradiance of a brute-force integration for every normal on the default
+ * sky and sea, the worst facing the horizon.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+ * written only on success.
+ *
+ * # Safety
+ *
+ * `lighting` must be a live handle and `out` writable.
+ */
+OceanStatus ocean_lighting_irradiance(const struct OceanLighting *lighting,
+                                      struct OceanIrradiance *out);
 
 /**
  * Stores L_sea = albedo (E_sun sin(elevation) + E_sky) / pi, the diffuse radiance leaving the
@@ -3465,7 +3508,7 @@ OceanStatus ocean_relief_mips_copy_level(const struct OceanReliefMips *mips,
  * Stores the default scene in `*out`: a unit quad in the xz plane facing +y (u along +x, v
  * along -z), one tile, 0.1 deep; relaxed cone stepping with 15 cone steps and 6 bisections of
  * the last step; self-shadowing with a bias of 0.02; a white light from (1, 2, 1), grey albedo
- * 0.8, ambient 0.2.
+ * 0.8, ambient 0.2, no sky.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
  * then left unchanged.

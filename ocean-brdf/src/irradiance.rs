@@ -97,6 +97,12 @@ impl Irradiance {
         Self { k }
     }
 
+    /// The irradiance of the coefficients `k_lm = Â_l L_lm` in [`sh_basis`]'s order (those of
+    /// [`Irradiance::coefficients`]).
+    pub fn from_coefficients(k: [DVec3; 9]) -> Self {
+        Self { k }
+    }
+
     /// `k_lm = Â_l L_lm`, in [`sh_basis`]'s order.
     pub fn coefficients(&self) -> &[DVec3; 9] {
         &self.k
@@ -115,6 +121,15 @@ impl Irradiance {
     /// The coefficients as nine `f32` RGB rows padded to `vec4` (std140), for a uniform
     /// block; a shader evaluates `max(Σ row_i.rgb · Y_i(n), 0)` with [`sh_basis`]'s functions.
     pub fn gpu_rows(&self) -> [[f32; 4]; 9] {
-        self.k.map(|c| [c.x as f32, c.y as f32, c.z as f32, 0.0])
+        self.scaled_rows(1.0)
+    }
+
+    /// [`Irradiance::gpu_rows`] times `scale` (`1/π`: the radiance of a white Lambertian
+    /// surface, `E/π`).
+    pub fn scaled_rows(&self, scale: f64) -> [[f32; 4]; 9] {
+        self.k.map(|c| {
+            let c = c * scale;
+            [c.x as f32, c.y as f32, c.z as f32, 0.0]
+        })
     }
 }

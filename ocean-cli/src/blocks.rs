@@ -83,8 +83,8 @@ impl Block {
             .collect()
     }
 
-    /// The relief quads of [`Block::quads`], lit by `light`: the sky's irradiance on a face is
-    /// the horizontal one times the share of the sky it sees, `(1 + m_y)/2`.
+    /// The relief quads of [`Block::quads`], lit by `light`: the Sun, and the environment's
+    /// irradiance on the relief's own normal at every hit (no constant ambient).
     ///
     /// # Errors
     ///
@@ -100,9 +100,11 @@ impl Block {
                     tiles: DVec2::new(q.edge_u.length(), q.edge_v.length()) / self.tile,
                     depth: self.depth,
                     light_dir: light.sun_dir,
-                    light_intensity: light.sun as f32,
+                    light_intensity: 1.0,
+                    light_color: light.sun.as_vec3().to_array(),
                     albedo: self.albedo,
-                    ambient: (light.sky * 0.5 * (1.0 + q.normal.y)) as f32,
+                    ambient: 0.0,
+                    sky: Some(light.sky),
                     ..ReliefScene::default()
                 };
                 face.tangent_frame().map_err(|e| e.to_string())?;
@@ -129,8 +131,8 @@ mod tests {
     fn light() -> FaceLight {
         FaceLight {
             sun_dir: DVec3::new(0.3, 0.8, -0.5),
-            sun: 0.3,
-            sky: 0.1,
+            sun: DVec3::new(0.3, 0.25, 0.2),
+            sky: ocean_brdf::Irradiance::from_radiance(|d| DVec3::splat(0.1 * d.y.max(0.0))),
         }
     }
 
@@ -175,7 +177,7 @@ mod tests {
     }
 
     #[test]
-    fn face_light_follows_the_sky_the_face_sees() {
+    fn faces_carry_the_sun_and_the_sky() {
         let b = Block {
             centre: DVec3::ZERO,
             right: DVec3::X,
@@ -189,16 +191,13 @@ mod tests {
             depth: 0.1,
             albedo: [0.5; 3],
         };
-        for f in b.faces(light()).unwrap() {
-            let m = f.edge_u.cross(f.edge_v).normalize();
-            // A top face sees the whole sky (0.1), a side half of it, a bottom none.
-            let expected = 0.1 * 0.5 * (1.0 + m.y);
-            assert!(
-                (f64::from(f.ambient) - expected).abs() < 1e-7,
-                "{m}: {}",
-                f.ambient
-            );
-            assert_eq!(f.light_intensity, 0.3);
+        let l = light();
+        for f in b.faces(l).unwrap() {
+            // The sky's light depends on the relief normal the shader finds, so the face
+            // carries the whole irradiance and no constant ambient of its own.
+            assert_eq!((f.ambient, f.sky), (0.0, Some(l.sky)));
+            assert_eq!((f.light_dir, f.light_intensity), (l.sun_dir, 1.0));
+            assert_eq!(f.light_color, [0.3, 0.25, 0.2]);
         }
     }
 }

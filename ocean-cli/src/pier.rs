@@ -194,8 +194,8 @@ mod tests {
     fn light() -> FaceLight {
         FaceLight {
             sun_dir: DVec3::Y,
-            sun: 0.3,
-            sky: 0.1,
+            sun: DVec3::splat(0.3),
+            sky: ocean_brdf::Irradiance::from_radiance(|d| DVec3::splat(0.1 * d.y.max(0.0))),
         }
     }
 

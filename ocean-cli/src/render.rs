@@ -20,7 +20,7 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use glam::DVec3;
-use ocean_brdf::{Filter, FilteredSurface, Lighting, Spectrum};
+use ocean_brdf::{Filter, FilteredSurface, Irradiance, Lighting, Spectrum};
 use ocean_core::Camera;
 use ocean_gpu::{
     ComposeInputs, ContextOptions, GpuContext, LightTargets, OceanOptions, OceanRenderer,
@@ -131,25 +131,23 @@ struct RockDraw {
 }
 
 /// The lighting of relief faces in the sea's radiance units (a Lambertian face's radiance is
-/// albedo × E/π): the Sun's direction and the luminance of its irradiance over π, and the
-/// luminance of the sky's irradiance on a horizontal surface over π. The relief shader takes
-/// scalar light levels, so the Sun's and the sky's colours reduce to their luminance (Rec. 709
-/// weights) on the rocks.
+/// albedo × E/π): the Sun's direction and its irradiance over π, and the environment's
+/// irradiance on every orientation (`ocean_brdf::Irradiance`: the sky above the horizon, the
+/// sea below it), in linear RGB, as the terrain is lit.
 #[derive(Clone, Copy, Debug)]
 pub struct FaceLight {
     pub sun_dir: DVec3,
-    pub sun: f64,
-    pub sky: f64,
+    pub sun: DVec3,
+    pub sky: Irradiance,
 }
 
 impl FaceLight {
     pub fn new(lighting: &Lighting) -> Self {
         let sky = lighting.sky();
-        let lum = |c: DVec3| (0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z) / std::f64::consts::PI;
         Self {
             sun_dir: sky.sun_direction(),
-            sun: lum(sky.sun_radiance() * sky.sun_solid_angle()),
-            sky: lum(sky.sky_irradiance()),
+            sun: sky.sun_radiance() * sky.sun_solid_angle() / std::f64::consts::PI,
+            sky: Irradiance::new(lighting),
         }
     }
 }
@@ -288,6 +286,8 @@ struct Dressing<'a> {
     terrain: Option<&'a TerrainRenderer>,
     obscurance: &'a mut Obscurance,
     lighting: &'a Lighting,
+    /// The environment's irradiance on every orientation, once per run.
+    sky: &'a Irradiance,
     rocks: &'a [RockDraw],
     solids: Option<&'a SolidRenderer>,
 }
@@ -378,7 +378,7 @@ fn draw_frame(
     if let Some(terrain) = dressing.terrain {
         let started = Instant::now();
         let mut e = encoder();
-        terrain.draw(ctx, &mut e, camera, dressing.lighting, &light);
+        terrain.draw(ctx, &mut e, camera, dressing.lighting, dressing.sky, &light);
         submit(e, &mut times[2], started)?;
     }
 
@@ -399,7 +399,7 @@ fn draw_frame(
                 .render_layers(ctx, &mut e, camera, &faces, &light, size)?;
         }
         if let Some(solids) = dressing.solids {
-            solids.draw(ctx, &mut e, camera, dressing.lighting, &light);
+            solids.draw(ctx, &mut e, camera, dressing.lighting, dressing.sky, &light);
         }
         submit(e, &mut times[3], started)?;
     }
@@ -502,7 +502,8 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     };
     times.island = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let rocks = rock_draws(&ctx, &scene, FaceLight::new(&lighting))?;
+    let face_light = FaceLight::new(&lighting);
+    let rocks = rock_draws(&ctx, &scene, face_light)?;
     let solids = match &scene.pier {
         Some(pier) => Some(SolidRenderer::new(&ctx, &pier.posts())?),
         None => None,
@@ -536,6 +537,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             terrain: terrain.as_ref(),
             obscurance: &mut obscurance,
             lighting: &lighting,
+            sky: &face_light.sky,
             rocks: &rocks,
             solids: solids.as_ref(),
         };

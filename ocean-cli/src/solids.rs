@@ -5,7 +5,7 @@
 //! on a software adapter.
 
 use glam::DVec3;
-use ocean_brdf::Lighting;
+use ocean_brdf::{Irradiance, Lighting};
 use ocean_core::Camera;
 use ocean_gpu::wgpu::util::DeviceExt;
 use ocean_gpu::{GpuContext, LightTargets, wgpu};
@@ -70,7 +70,7 @@ impl SolidRenderer {
         let device = ctx.device();
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("solids shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("terrain.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(crate::terrain::shader_source().into()),
         });
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("solids uniform"),
@@ -162,9 +162,10 @@ impl SolidRenderer {
         encoder: &mut wgpu::CommandEncoder,
         camera: &Camera,
         lighting: &Lighting,
+        sky: &Irradiance,
         targets: &LightTargets<'_>,
     ) {
-        let u = Uniform::new(camera, lighting, DVec3::ZERO, 0.0, (0, 0));
+        let u = Uniform::new(camera, lighting, sky, DVec3::ZERO, 0.0, (0, 0));
         ctx.queue()
             .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&u));
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {

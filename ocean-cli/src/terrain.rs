@@ -7,12 +7,12 @@
 //! depth the obscurance pass reads, and look like land.
 
 use glam::{DMat4, DVec2, DVec3};
-use ocean_brdf::Lighting;
+use ocean_brdf::{Irradiance, Lighting};
 use ocean_core::Camera;
 use ocean_gpu::wgpu::util::DeviceExt;
 use ocean_gpu::{GpuContext, LightTargets, wgpu};
 
-/// `terrain.wgsl`'s `Terrain` block (std140, 144 bytes).
+/// `terrain.wgsl`'s `Terrain` block (std140, 272 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 pub(crate) struct Uniform {
@@ -21,15 +21,16 @@ pub(crate) struct Uniform {
     counts: [u32; 4],
     sun_dir: [f32; 4],
     sun: [f32; 4],
-    sky: [f32; 4],
+    irradiance: [[f32; 4]; 9],
 }
 
 impl Uniform {
-    /// The block for `camera` and `lighting`, with `origin` (a world point, whose position
+    /// The block for `camera`, `lighting`'s Sun and the environment's irradiance `sky`, with `origin` (a world point, whose position
     /// relative to the eye the block holds), `spacing` and `counts` as the entry points read them.
     pub(crate) fn new(
         camera: &Camera,
         lighting: &Lighting,
+        sky_irradiance: &Irradiance,
         origin: DVec3,
         spacing: f64,
         counts: (u32, u32),
@@ -44,9 +45,18 @@ impl Uniform {
             counts: [counts.0, counts.1, 0, 0],
             sun_dir: rgb(sky.sun_direction(), 0.0),
             sun: rgb(sky.sun_radiance() * sky.sun_solid_angle(), 0.0),
-            sky: rgb(sky.sky_irradiance(), 0.0),
+            irradiance: sky_irradiance.gpu_rows(),
         }
     }
+}
+
+/// `terrain.wgsl` after the library's spherical-harmonic irradiance (`sh_irradiance`).
+pub(crate) fn shader_source() -> String {
+    format!(
+        "{}{}",
+        ocean_gpu::shaders::IRRADIANCE_WGSL,
+        include_str!("terrain.wgsl")
+    )
 }
 
 /// A height field ready to draw.
@@ -93,7 +103,7 @@ impl TerrainRenderer {
         }
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("terrain shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("terrain.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(shader_source().into()),
         });
         let texture = device.create_texture_with_data(
             ctx.queue(),
@@ -231,11 +241,13 @@ impl TerrainRenderer {
         encoder: &mut wgpu::CommandEncoder,
         camera: &Camera,
         lighting: &Lighting,
+        sky: &Irradiance,
         targets: &LightTargets<'_>,
     ) {
         let u = Uniform::new(
             camera,
             lighting,
+            sky,
             DVec3::new(self.origin.x, 0.0, self.origin.y),
             self.spacing,
             self.size,

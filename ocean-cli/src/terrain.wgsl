@@ -1,6 +1,7 @@
 // The island's terrain in `ocean render`: a height field drawn as a grid of triangles, lit by
 // the same Sun and sky as the sea (Lambert: albedo/π times the Sun's irradiance on the facet
-// plus the sky's, the latter times the share of the sky the facet sees, (1 + n_y)/2), written
+// plus the environment's, from its order-2 spherical harmonics: sh_irradiance, prepended from
+// ocean-gpu's irradiance.wgsl), written
 // as linear radiance into the frame's split light targets (`ocean_gpu::LightTargets`): the
 // Sun's part and the sky's part, which the ambient obscurance darkens before the sea's
 // `compose_fs` tone maps the frame. Positions are relative to the eye, so the numbers stay
@@ -20,8 +21,9 @@ struct Terrain {
     sun_dir: vec4<f32>,
     // rgb: the Sun's irradiance on a surface facing it (L_sun Ω_sun).
     sun: vec4<f32>,
-    // rgb: the sky's irradiance on a horizontal surface.
-    sky: vec4<f32>,
+    // The environment's irradiance (sky above the horizon, sea below): order-2 spherical
+    // harmonic rows, rgb (ocean_brdf::Irradiance::gpu_rows).
+    irradiance: array<vec4<f32>, 9>,
 }
 
 @group(0) @binding(0) var<uniform> terrain: Terrain;
@@ -72,7 +74,7 @@ fn albedo(height: f32, n: vec3<f32>) -> vec3<f32> {
 struct Light {
     // albedo/π × the Sun's irradiance on the facet: direct light, alpha 1.
     @location(0) direct: vec4<f32>,
-    // albedo/π × the sky's irradiance on the facet: ambient light, alpha 1, what the ambient
+    // albedo/π × the environment's irradiance on the facet: ambient light, alpha 1, what the ambient
     // obscurance darkens.
     @location(1) ambient: vec4<f32>,
 }
@@ -82,7 +84,7 @@ fn lambert(albedo: vec3<f32>, n: vec3<f32>) -> Light {
     let a = albedo / 3.14159265;
     var out: Light;
     out.direct = vec4<f32>(a * terrain.sun.rgb * max(dot(n, terrain.sun_dir.xyz), 0.0), 1.0);
-    out.ambient = vec4<f32>(a * terrain.sky.rgb * (0.5 + 0.5 * n.y), 1.0);
+    out.ambient = vec4<f32>(a * sh_irradiance(terrain.irradiance, n), 1.0);
     return out;
 }
 

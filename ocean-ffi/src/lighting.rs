@@ -439,6 +439,62 @@ pub unsafe extern "C" fn ocean_lighting_sky_irradiance(
     }
 }
 
+/// The environment's irradiance on a surface of any orientation, E(n) = sum_i k[i] Y_i(n)
+/// (order-2 real spherical harmonics, world space, y up), the nine Y_i in the order
+/// 1; x, y, z; xy, yz, 3y^2 - 1, xz, x^2 - z^2 with their orthonormal normalisations; linear
+/// RGB per coefficient. All zero: no environment light.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanIrradiance {
+    /// `k[i] = A_l L_i`: the environment's projection on `Y_i` times the clamped cosine's
+    /// factor (pi, 2 pi / 3, pi / 4 for orders 0, 1, 2).
+    pub k: [OceanRgb; 9],
+}
+
+impl OceanIrradiance {
+    pub(crate) fn from_irradiance(e: &ocean_brdf::Irradiance) -> Self {
+        Self {
+            k: e.coefficients().map(OceanRgb::from_dvec3),
+        }
+    }
+
+    /// The irradiance, or none for all-zero coefficients; an error for a non-finite one.
+    pub(crate) fn irradiance(&self, what: &str) -> Result<Option<ocean_brdf::Irradiance>, Error> {
+        let mut k = [DVec3::ZERO; 9];
+        for (i, (out, c)) in k.iter_mut().zip(&self.k).enumerate() {
+            *out = finite_rgb(&format!("{what}.k[{i}]"), c)?;
+        }
+        Ok((k != [DVec3::ZERO; 9]).then(|| ocean_brdf::Irradiance::from_coefficients(k)))
+    }
+}
+
+/// Stores the irradiance of the lighting's environment (the sky above the horizon without the
+/// Sun's disc, the sea's below-horizon radiance below it) on every orientation in `*out`: the
+/// ambient light of solids lit by the same sky as the sea (`OceanReliefScene::sky`). Within
+/// 3.1 % of the upward irradiance of a brute-force integration for every normal on the default
+/// sky and sea, the worst facing the horizon.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out` is
+/// written only on success.
+///
+/// # Safety
+///
+/// `lighting` must be a live handle and `out` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_lighting_irradiance(
+    lighting: *const OceanLighting,
+    out: *mut OceanIrradiance,
+) -> OceanStatus {
+    guard("ocean_lighting_irradiance", || {
+        // SAFETY: forwarded from this function's contract.
+        let l = unsafe { borrow(lighting, "lighting") }?;
+        check_ptr(out.cast_const(), "out")?;
+        let e = OceanIrradiance::from_irradiance(&ocean_brdf::Irradiance::new(&l.lighting));
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out, "out", e) }
+    })
+}
+
 /// Stores L_sea = albedo (E_sun sin(elevation) + E_sky) / pi, the diffuse radiance leaving the
 /// water body (paper section 5.3), linear RGB, in `*out`.
 ///

@@ -12,7 +12,7 @@ use ocean_relief::Method;
 use ocean_relief::gpu_params::ReliefUniforms;
 
 use crate::gpu::gpu_error;
-use crate::lighting::{finite_dvec3, read_in};
+use crate::lighting::{OceanIrradiance, finite_dvec3, read_in};
 use crate::lighting_spectrum::{OceanCameraDesc, camera_from};
 use crate::relief::edge_from;
 use crate::relief_trace::{OceanReliefMethod, method_from};
@@ -22,7 +22,7 @@ use crate::wtb::OceanDVec3;
 
 /// Size in bytes of the exported `relief` shader's uniform block `Relief` (binding 0, std140);
 /// `ocean_relief_uniforms` writes it.
-pub const OCEAN_RELIEF_UNIFORMS_SIZE: usize = 256;
+pub const OCEAN_RELIEF_UNIFORMS_SIZE: usize = 416;
 
 const _: () = assert!(size_of::<ReliefUniforms>() == OCEAN_RELIEF_UNIFORMS_SIZE);
 
@@ -59,10 +59,18 @@ pub struct OceanReliefScene {
     pub light_dir: OceanDVec3,
     /// Light intensity (>= 0).
     pub light_intensity: f32,
+    /// The light's linear colour, red, green, blue, multiplying `light_intensity` (each >= 0;
+    /// the default: white, 1, 1, 1).
+    pub light_color: [f32; 3],
     /// Linear albedo, red, green, blue (each >= 0).
     pub albedo: [f32; 3],
     /// Light that reaches every point whatever the light and shadows (>= 0).
     pub ambient: f32,
+    /// The environment's irradiance E (`ocean_lighting_irradiance`), or all zero for none: the
+    /// ambient term gains albedo E(n) / pi, a Lambertian surface's radiance under it, n the
+    /// relief's normal at the hit in world space. `light_intensity` and `ambient` must then be
+    /// in the same radiance units.
+    pub sky: OceanIrradiance,
 }
 
 fn method_to(m: &Method) -> OceanReliefMethod {
@@ -94,6 +102,9 @@ fn scene_from(s: &OceanReliefScene) -> Result<ReliefScene, Error> {
             ("depth", s.depth),
             ("shadow_bias", f64::from(s.shadow_bias)),
             ("light_intensity", f64::from(s.light_intensity)),
+            ("light_color[0]", f64::from(s.light_color[0])),
+            ("light_color[1]", f64::from(s.light_color[1])),
+            ("light_color[2]", f64::from(s.light_color[2])),
             ("albedo[0]", f64::from(s.albedo[0])),
             ("albedo[1]", f64::from(s.albedo[1])),
             ("albedo[2]", f64::from(s.albedo[2])),
@@ -111,15 +122,17 @@ fn scene_from(s: &OceanReliefScene) -> Result<ReliefScene, Error> {
         shadow_bias: s.shadow_bias,
         light_dir: finite_dvec3("scene->light_dir", &s.light_dir)?,
         light_intensity: s.light_intensity,
+        light_color: s.light_color,
         albedo: s.albedo,
         ambient: s.ambient,
+        sky: s.sky.irradiance("scene->sky")?,
     })
 }
 
 /// Stores the default scene in `*out`: a unit quad in the xz plane facing +y (u along +x, v
 /// along -z), one tile, 0.1 deep; relaxed cone stepping with 15 cone steps and 6 bisections of
 /// the last step; self-shadowing with a bias of 0.02; a white light from (1, 2, 1), grey albedo
-/// 0.8, ambient 0.2.
+/// 0.8, ambient 0.2, no sky.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
 /// then left unchanged.
@@ -143,8 +156,10 @@ pub unsafe extern "C" fn ocean_relief_scene_default(out: *mut OceanReliefScene) 
             shadow_bias: d.shadow_bias,
             light_dir: OceanDVec3::from_dvec3(d.light_dir),
             light_intensity: d.light_intensity,
+            light_color: d.light_color,
             albedo: d.albedo,
             ambient: d.ambient,
+            sky: OceanIrradiance::default(),
         };
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out, "out", s) }
@@ -329,7 +344,10 @@ mod tests {
     #[test]
     fn the_block_is_the_renderers() {
         let (desc, camera) = camera();
-        let s = scene();
+        let mut s = scene();
+        // A sky whose irradiance grows with the normal's y: E(n) = 3 + 2 n_y (red).
+        s.sky.k[0].r = 3.0 / 0.282_094_791_773_878_14;
+        s.sky.k[2].r = 2.0 / 0.488_602_511_902_919_9;
         let mut out = [0xAAu8; OCEAN_RELIEF_UNIFORMS_SIZE + 4];
         // SAFETY: readable inputs, `out` holds `len` writable bytes.
         let status = unsafe {
@@ -369,6 +387,22 @@ mod tests {
         assert_eq!((u.tangent[3], u.normal[3]), (0.2, 25.6));
         // The level count, 128 down to 2: 7 levels.
         assert_eq!(u.shading[3], 7.0);
+        // The sky's rows are E/π: a white Lambertian surface's radiance.
+        let pi = std::f64::consts::PI;
+        assert_eq!(
+            u.irradiance[0],
+            [(3.0 / 0.282_094_791_773_878_14 / pi) as f32, 0.0, 0.0, 0.0]
+        );
+        assert_eq!(
+            u.irradiance[2],
+            [(2.0 / 0.488_602_511_902_919_9 / pi) as f32, 0.0, 0.0, 0.0]
+        );
+        assert!(
+            u.irradiance[3..]
+                .iter()
+                .chain(&u.irradiance[1..2])
+                .all(|r| *r == [0.0; 4])
+        );
     }
 
     #[test]
@@ -377,7 +411,7 @@ mod tests {
         let good = scene();
         let call_levels =
             |desc: &OceanCameraDesc, s: &OceanReliefScene, size, edge, levels, srgb, len| {
-                let mut out = [7u8; 300];
+                let mut out = [7u8; 500];
                 // SAFETY: readable inputs, `out` holds at least `len` writable bytes.
                 let status = unsafe {
                     ocean_relief_uniforms(desc, s, size, edge, levels, srgb, out.as_mut_ptr(), len)
@@ -391,49 +425,59 @@ mod tests {
         let with = |f: &dyn Fn(&mut OceanReliefScene)| {
             let mut s = good;
             f(&mut s);
-            call(&desc, &s, 64, 0, 0, 256)
+            call(&desc, &s, 64, 0, 0, 416)
         };
-        let cases: [(OceanStatus, &str, (OceanStatus, String)); 13] = [
+        let cases: [(OceanStatus, &str, (OceanStatus, String)); 15] = [
             // 64 texels hold 6 levels (64 down to 2); a side that is not a power of two, one.
             (
                 OceanStatus::InvalidArgument,
                 "mip levels",
-                call_levels(&desc, &good, 64, 0, 0, 0, 256),
+                call_levels(&desc, &good, 64, 0, 0, 0, 416),
             ),
             (
                 OceanStatus::InvalidArgument,
                 "mip levels",
-                call_levels(&desc, &good, 64, 0, 7, 0, 256),
+                call_levels(&desc, &good, 64, 0, 7, 0, 416),
             ),
             (
                 OceanStatus::InvalidArgument,
                 "mip levels",
-                call_levels(&desc, &good, 48, 0, 2, 0, 256),
+                call_levels(&desc, &good, 48, 0, 2, 0, 416),
             ),
             (
                 OceanStatus::BufferTooSmall,
-                "needs 256",
-                call(&desc, &good, 64, 0, 0, 255),
+                "needs 416",
+                call(&desc, &good, 64, 0, 0, 415),
             ),
             (
                 OceanStatus::InvalidArgument,
                 "size",
-                call(&desc, &good, 1, 0, 0, 256),
+                call(&desc, &good, 1, 0, 0, 416),
             ),
             (
                 OceanStatus::InvalidArgument,
                 "edge",
-                call(&desc, &good, 64, 2, 0, 256),
+                call(&desc, &good, 64, 2, 0, 416),
             ),
             (
                 OceanStatus::InvalidArgument,
                 "srgb_encode",
-                call(&desc, &good, 64, 0, 2, 256),
+                call(&desc, &good, 64, 0, 2, 416),
             ),
             (
                 OceanStatus::NonFinite,
                 "scene->edge_u.y",
                 with(&|s| s.edge_u.y = f64::NAN),
+            ),
+            (
+                OceanStatus::NonFinite,
+                "scene->light_color[1]",
+                with(&|s| s.light_color[1] = f32::NAN),
+            ),
+            (
+                OceanStatus::NonFinite,
+                "scene->sky.k[4]",
+                with(&|s| s.sky.k[4].g = f64::INFINITY),
             ),
             (
                 OceanStatus::InvalidArgument,
@@ -470,7 +514,7 @@ mod tests {
                     64,
                     0,
                     0,
-                    256,
+                    416,
                 ),
             ),
         ];
@@ -485,22 +529,22 @@ mod tests {
             binary: 6,
             search: 7,
         };
-        let (got, message) = call(&desc, &method, 64, 0, 0, 256);
+        let (got, message) = call(&desc, &method, 64, 0, 0, 416);
         assert_eq!(got, OceanStatus::InvalidArgument, "{message}");
         assert!(message.contains("method->search"), "{message}");
-        let mut out = [0u8; 256];
+        let mut out = [0u8; 416];
         // SAFETY: NULL pointers are refused before anything is read or written.
         unsafe {
             assert_eq!(
-                ocean_relief_uniforms(null(), &good, 64, 0, 1, 0, out.as_mut_ptr(), 256),
+                ocean_relief_uniforms(null(), &good, 64, 0, 1, 0, out.as_mut_ptr(), 416),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_relief_uniforms(&desc, null(), 64, 0, 1, 0, out.as_mut_ptr(), 256),
+                ocean_relief_uniforms(&desc, null(), 64, 0, 1, 0, out.as_mut_ptr(), 416),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_relief_uniforms(&desc, &good, 64, 0, 1, 0, null_mut(), 256),
+                ocean_relief_uniforms(&desc, &good, 64, 0, 1, 0, null_mut(), 416),
                 OceanStatus::NullPointer
             );
         }

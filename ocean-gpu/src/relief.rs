@@ -75,6 +75,7 @@
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use glam::{DMat4, DVec2, DVec3, DVec4, Vec2, Vec3};
+use ocean_brdf::Irradiance;
 use ocean_core::{Camera, DepthDirection, DepthRange, Projection};
 use ocean_relief::gpu_params::{FLAG_SHADOWS, FLAG_SRGB_ENCODE, ReliefUniforms};
 use ocean_relief::lod::atlas_size;
@@ -153,17 +154,25 @@ pub struct ReliefScene {
     pub light_dir: DVec3,
     /// The light's intensity (`≥ 0`).
     pub light_intensity: f32,
+    /// The light's linear colour, multiplying `light_intensity` (each `≥ 0`; white by
+    /// default).
+    pub light_color: [f32; 3],
     /// Linear albedo (each `≥ 0`).
     pub albedo: [f32; 3],
     /// Light that reaches every point regardless of the light and shadows (`≥ 0`).
     pub ambient: f32,
+    /// The environment's irradiance `E` (world space, y up), or none: the ambient term gains
+    /// `albedo × E(n)/π`, a Lambertian surface's radiance under it, `n` the relief's normal at
+    /// the hit in world space, so faces turned to the sky are lit more than faces turned to
+    /// the sea. `light_intensity` and `ambient` must then be in the same radiance units.
+    pub sky: Option<Irradiance>,
 }
 
 impl Default for ReliefScene {
     /// A unit quad in the `xz` plane facing `+y` (`u` along `+x`, `v` along `−z`), one tile,
     /// 0.1 deep; relaxed cone stepping with 15 cone steps and 6 bisections of the last step;
     /// self-shadowing with a bias of 0.02; a white light from `(1, 2, 1)`, grey albedo 0.8,
-    /// ambient 0.2.
+    /// ambient 0.2, no sky.
     fn default() -> Self {
         Self {
             origin: DVec3::ZERO,
@@ -180,8 +189,10 @@ impl Default for ReliefScene {
             shadow_bias: 0.02,
             light_dir: DVec3::new(1.0, 2.0, 1.0),
             light_intensity: 1.0,
+            light_color: [1.0; 3],
             albedo: [0.8, 0.8, 0.8],
             ambient: 0.2,
+            sky: None,
         }
     }
 }
@@ -292,10 +303,25 @@ impl ReliefScene {
 
     fn check_shading(&self) -> Result<(), GpuError> {
         let ok = |v: f32| v.is_finite() && v >= 0.0;
-        if !(ok(self.light_intensity) && ok(self.ambient) && self.albedo.iter().all(|&a| ok(a))) {
+        if !(ok(self.light_intensity)
+            && ok(self.ambient)
+            && self.albedo.iter().chain(&self.light_color).all(|&a| ok(a)))
+        {
             return Err(invalid(
                 "relief shading",
-                "light intensity, albedo and ambient must be finite and >= 0",
+                "light intensity and colour, albedo and ambient must be finite and >= 0",
+            ));
+        }
+        let sky = self.sky.is_none_or(|e| {
+            e.scaled_rows(std::f64::consts::FRAC_1_PI)
+                .iter()
+                .flatten()
+                .all(|v| v.is_finite())
+        });
+        if !sky {
+            return Err(invalid(
+                "relief sky",
+                "its irradiance coefficients must be finite in f32",
             ));
         }
         Ok(())
@@ -401,6 +427,15 @@ pub fn scene_uniforms(
             scene.albedo[2],
             scene.ambient,
         ],
+        light_color: [
+            scene.light_color[0],
+            scene.light_color[1],
+            scene.light_color[2],
+            0.0,
+        ],
+        irradiance: scene.sky.map_or([[0.0; 4]; 9], |e| {
+            e.scaled_rows(std::f64::consts::FRAC_1_PI)
+        }),
         ..Default::default()
     };
     if !(u.quad_origin.iter().all(|v| v.is_finite())
@@ -1551,8 +1586,8 @@ mod tests {
     #[test]
     fn uniform_blocks_match_the_wgsl_structs() {
         let b = shaders::get("relief").unwrap().bindings().unwrap();
-        assert_eq!((b[0].name.as_str(), b[0].size as usize), ("relief", 256));
-        assert_eq!(size_of::<ReliefUniforms>(), 256);
+        assert_eq!((b[0].name.as_str(), b[0].size as usize), ("relief", 416));
+        assert_eq!(size_of::<ReliefUniforms>(), 416);
         let offsets: Vec<(&str, u32)> = b[0]
             .members
             .iter()
@@ -1575,6 +1610,8 @@ mod tests {
                 ("trace", o(offset_of!(ReliefUniforms, trace))),
                 ("steps", o(offset_of!(ReliefUniforms, steps))),
                 ("shading", o(offset_of!(ReliefUniforms, shading))),
+                ("irradiance", o(offset_of!(ReliefUniforms, irradiance))),
+                ("light_color", o(offset_of!(ReliefUniforms, light_color))),
             ]
         );
         // The probe and the quadrant variants declare the same block; the quadrant variants'

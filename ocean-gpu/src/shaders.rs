@@ -169,6 +169,11 @@ pub const SAO_BLUR_WGSL: &str = concat!(
     include_str!("shaders/sao_blur.wgsl")
 );
 
+/// The order-2 spherical-harmonic irradiance of an environment (`sh_irradiance`, from
+/// `ocean_brdf::Irradiance::gpu_rows`): part of the relief draw passes, and a snippet for an
+/// engine's own shaders that light solids with the sea's sky.
+pub const IRRADIANCE_WGSL: &str = include_str!("shaders/irradiance.wgsl");
+
 /// Source of the relief-mapping draw pass (Policarpo & Oliveira, GPU Gems 3 ch. 18): the quad's
 /// vertex stage and the fragment stage that traces, shades, self-shadows and writes the hit's
 /// depth; after the shared tracer `relief_common.wgsl` and the isotropic texture
@@ -176,6 +181,7 @@ pub const SAO_BLUR_WGSL: &str = concat!(
 pub const RELIEF_WGSL: &str = concat!(
     include_str!("shaders/relief_common.wgsl"),
     include_str!("shaders/relief_texture.wgsl"),
+    include_str!("shaders/irradiance.wgsl"),
     include_str!("shaders/relief_draw.wgsl")
 );
 
@@ -185,6 +191,7 @@ pub const RELIEF_WGSL: &str = concat!(
 pub const RELIEF_QUAD_WGSL: &str = concat!(
     include_str!("shaders/relief_common.wgsl"),
     include_str!("shaders/relief_texture_quad.wgsl"),
+    include_str!("shaders/irradiance.wgsl"),
     include_str!("shaders/relief_draw.wgsl")
 );
 
@@ -421,6 +428,7 @@ static SHADERS: [ShaderEntry; 15] = [
         files: &[
             "relief_common.wgsl",
             "relief_texture.wgsl",
+            "irradiance.wgsl",
             "relief_draw.wgsl",
         ],
         source: RELIEF_WGSL,
@@ -472,6 +480,7 @@ static SHADERS: [ShaderEntry; 15] = [
         files: &[
             "relief_common.wgsl",
             "relief_texture_quad.wgsl",
+            "irradiance.wgsl",
             "relief_draw.wgsl",
         ],
         source: RELIEF_QUAD_WGSL,

@@ -77,7 +77,7 @@ pub fn method_codes(method: &Method) -> [u32; 4] {
 }
 
 /// Everything the relief-mapping shaders read, byte for byte the WGSL `Relief` block of
-/// ocean-gpu's `relief_common.wgsl` (256 bytes).
+/// ocean-gpu's `relief_common.wgsl` (416 bytes).
 ///
 /// World positions are relative to the eye (camera-relative rendering: the host subtracts the
 /// eye in `f64`). Tangent space is the tracers' ([`crate::trace`]): `x` along the texture's `u`,
@@ -121,6 +121,15 @@ pub struct ReliefUniforms {
     /// reassociate the tracer's arithmetic), the texture's mip levels as a whole number (the
     /// levels [`crate::lod::mip_level`] chooses among; 0 reads as 1, level 0 only).
     pub shading: [f32; 4],
+    /// The environment light on the relief's normal: nine order-2 spherical-harmonic rows
+    /// (`rgb`; `a` unused) in world space, y up, in the basis order of ocean-brdf's
+    /// `irradiance::sh_basis`. The shader adds `albedo × max(Σ rowᵢ Yᵢ(n), 0)` to the ambient
+    /// term, `n` the relief normal in world space; all zero (the default) adds nothing. For a
+    /// Lambertian surface under an environment of irradiance `E`, the rows of `E/π`.
+    pub irradiance: [[f32; 4]; 9],
+    /// `rgb`: the light's colour, multiplying `light.w` (white: `1, 1, 1`; all zero leaves
+    /// the directional light black); `a`: unused.
+    pub light_color: [f32; 4],
 }
 
 impl ReliefUniforms {
@@ -294,7 +303,7 @@ mod tests {
 
     #[test]
     fn sizes_are_whole_std140_rows() {
-        assert_eq!(core::mem::size_of::<ReliefUniforms>(), 256);
+        assert_eq!(core::mem::size_of::<ReliefUniforms>(), 416);
         assert_eq!(core::mem::size_of::<ConeGenUniforms>(), 128);
     }
 

@@ -876,6 +876,28 @@ static void test_lighting(void)
             for (c = 0; c < 3; c++)
                 NEAR(rgb_at(eu, c), PI * rgb_at(u.zenith_radiance, c), 1e-13, 0.0,
                      "uniform sky E = pi L, channel %d", c);
+            /* Its environment is L above the horizon and the sea's L_b below: the order-2
+             * irradiance coefficients k_i = A_l * integral of L Y_i are
+             * k_0 = pi * C0 * 2 pi (L + L_b), k_y = (2 pi / 3) * C1 * pi (L - L_b) (the integral
+             * of y over the upper hemisphere is pi), and the x and z ones 0 by symmetry. */
+            {
+                OceanIrradiance e;
+                OceanRgb lb;
+                const double c0 = 0.28209479177387814, c1 = 0.4886025119029199;
+                OK(ocean_lighting_below_horizon_radiance(uniform, &lb));
+                if (OK(ocean_lighting_irradiance(uniform, &e)))
+                    for (c = 0; c < 3; c++) {
+                        double l = rgb_at(u.zenith_radiance, c), b = rgb_at(lb, c);
+                        NEAR(rgb_at(e.k[0], c), PI * c0 * 2.0 * PI * (l + b), 1e-10, 0.0,
+                             "uniform sky k_0, channel %d", c);
+                        NEAR(rgb_at(e.k[2], c), 2.0 * PI / 3.0 * c1 * PI * (l - b), 1e-10, 0.0,
+                             "uniform sky k_y, channel %d", c);
+                        NEAR(rgb_at(e.k[1], c), 0.0, 0.0, 1e-12 * l, "k_x %d", c);
+                        NEAR(rgb_at(e.k[3], c), 0.0, 0.0, 1e-12 * l, "k_z %d", c);
+                    }
+                EXPECT(ocean_lighting_irradiance(NULL, &e), OCEAN_STATUS_NULL_POINTER);
+                EXPECT(ocean_lighting_irradiance(uniform, NULL), OCEAN_STATUS_NULL_POINTER);
+            }
             if (OK(ocean_lighting_sky_map_create(uniform, 8, &um))) {
                 float t[8 * 8 * 4];
                 int i, j, bad = 0;

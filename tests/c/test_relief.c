@@ -752,7 +752,8 @@ static void test_uniforms(void)
     if (!OK(ocean_relief_scene_default(&scene)))
         return;
     CHECK(scene.method.method == OCEAN_RELIEF_METHOD_RELAXED && scene.method.steps == 15 &&
-          scene.method.binary == 6 && scene.shadows == 1,
+          scene.method.binary == 6 && scene.shadows == 1 && scene.light_color[0] == 1.0f &&
+              scene.light_color[1] == 1.0f && scene.light_color[2] == 1.0f,
           "default scene");
     memset(&camera, 0, sizeof camera);
     /* World to view: a translation by -eye, column-major (element [4 * column + row]). */
@@ -765,9 +766,18 @@ static void test_uniforms(void)
     camera.aspect = 16.0 / 9.0;
     camera.z_near = 0.1;
     camera.z_far = 100.0;
+    /* A sky: its coefficients reach the block as E / pi, a Lambertian surface's radiance. */
+    scene.sky.k[2].g = 3.0;
     if (!OK(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 8, 1, block,
                                   sizeof block)))
         return;
+    {
+        float row[4];
+        memcpy(row, block + 256 + 2 * 16, sizeof row);
+        CHECK(row[0] == 0.0f && row[1] == (float)(3.0 / 3.14159265358979323846) &&
+                  row[2] == 0.0f && row[3] == 0.0f,
+              "sky row 2: %g %g %g %g", row[0], row[1], row[2], row[3]);
+    }
     /* Offsets of the std140 block: quad_origin at 64, trace at 208, steps at 224. */
     memcpy(origin, block + 64, sizeof origin);
     CHECK(origin[0] == -0.5f && origin[1] == -2.0f && origin[2] == 0.5f && origin[3] == 0.0f,
@@ -791,6 +801,11 @@ static void test_uniforms(void)
     EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, 1, small,
                                  sizeof small),
            OCEAN_STATUS_BUFFER_TOO_SMALL);
+    scene.sky.k[8].b = NAN;
+    EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, 1, block,
+                                 sizeof block),
+           OCEAN_STATUS_NON_FINITE);
+    scene.sky.k[8].b = 0.0;
     scene.tiles_u = 0.0;
     EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, 1, small,
                                  sizeof block),

@@ -19,6 +19,7 @@
 use std::time::Instant;
 
 use glam::{DVec2, DVec3, Vec2, Vec3};
+use ocean_brdf::Irradiance;
 use ocean_core::{Camera, DepthConvention, Far, Projection};
 use ocean_gpu::relief::window_depth;
 use ocean_gpu::{
@@ -914,6 +915,8 @@ struct Truth {
     shadow: bool,
     /// `max(N·L, 0)` with the relief normal at the hit.
     diffuse: f32,
+    /// The relief normal at the hit in world space.
+    world_normal: DVec3,
     /// How much the window depth changes from the polygon to the relief's bottom along this
     /// pixel's ray: the scale the depth tolerance is measured against.
     relief_span: f64,
@@ -991,8 +994,10 @@ impl Setup {
             shadow_bias: 0.01,
             light_dir: DVec3::new(1.0, 0.35, 0.3),
             light_intensity: 1.0,
+            light_color: [0.9, 1.0, 1.1],
             albedo: [0.9, 0.9, 0.9],
-            ambient: 0.1,
+            ambient: 0.05,
+            sky: Some(test_sky()),
         };
         let frame = scene.tangent_frame().unwrap();
         Self {
@@ -1123,13 +1128,19 @@ impl Setup {
         let light =
             f.to_tangent(s.light().unwrap()).as_vec3() + Vec3::new(nudge[2], nudge[3], 0.0) * 0.5;
         let shadow = in_shadow(texture, &s.method, hit.pos, light, scale, s.shadow_bias).unwrap();
-        let diffuse = self.normal(level, hit.pos.x, hit.pos.y).dot(light).max(0.0);
+        let normal = self.normal(level, hit.pos.x, hit.pos.y);
+        let diffuse = normal.dot(light).max(0.0);
+        let world_normal = (f.tangent * f64::from(normal.x)
+            + f.bitangent * f64::from(normal.y)
+            + f.normal * f64::from(normal.z))
+        .normalize();
         Some(Truth {
             level,
             hit,
             depth: window_depth(camera, ndc_depth),
             shadow,
             diffuse,
+            world_normal,
             relief_span,
         })
     }
@@ -1137,8 +1148,13 @@ impl Setup {
     /// The colour the draw pass writes for a truth, sRGB-encoded to 8 bits.
     fn color(&self, t: &Truth) -> u8 {
         let s = &self.scene;
-        let lit = t.diffuse * s.light_intensity * if t.shadow { 0.0 } else { 1.0 };
-        let c = f64::from(s.albedo[0] * (s.ambient + lit)).clamp(0.0, 1.0);
+        let lit =
+            t.diffuse * s.light_intensity * s.light_color[0] * if t.shadow { 0.0 } else { 1.0 };
+        // The sky's light on the relief normal, a Lambertian surface's E/π.
+        let sky = s
+            .sky
+            .map_or(0.0, |e| e.at(t.world_normal).x / std::f64::consts::PI);
+        let c = (f64::from(s.albedo[0]) * (f64::from(s.ambient + lit) + sky)).clamp(0.0, 1.0);
         let e = if c <= 0.0031308 {
             c * 12.92
         } else {
@@ -1146,6 +1162,13 @@ impl Setup {
         };
         (e * 255.0).round() as u8
     }
+}
+
+/// A grey sky whose irradiance changes along every world axis (so a relief normal taken to
+/// world space with a wrong frame shows): a radiance `0.5 + 0.3 x + 0.4 y − 0.2 z`, clamped
+/// at 0, projected on order-2 spherical harmonics.
+fn test_sky() -> Irradiance {
+    Irradiance::from_radiance(|d| DVec3::splat((0.5 + 0.3 * d.x + 0.4 * d.y - 0.2 * d.z).max(0.0)))
 }
 
 /// Nudges of the CPU twin's inputs (texture coordinates in texture widths, then the tangent view

@@ -56,6 +56,11 @@ struct Relief {
     // depth scale (texture widths), shadow bias, 0 (the opaque zero of relief_opq), mip
     // levels (a whole number; 0 reads as 1)
     shading: vec4<f32>,
+    // the environment's light on the relief normal: order-2 spherical-harmonic rows (rgb) in
+    // world space, evaluated by irradiance.wgsl's sh_irradiance; all zero adds nothing
+    irradiance: array<vec4<f32>, 9>,
+    // rgb: the light's colour, multiplying light.w
+    light_color: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> relief: Relief;

@@ -93,8 +93,12 @@ fn relief_shade(in: VsOut) -> ReliefShade {
         shadow = relief_shadow(hit.pos, light, depth_scale, relief.shading.y).x;
     }
     let diffuse = max(dot(normal, light), 0.0) * relief.light.w * (1.0 - shadow);
-    out.direct = relief.albedo.rgb * diffuse;
-    out.ambient = relief.albedo.rgb * relief.albedo.a;
+    out.direct = relief.albedo.rgb * relief.light_color.rgb * diffuse;
+    // The environment's light on the relief normal taken to world space, plus the constant
+    // ambient.
+    let world_normal = normalize(t * normal.x + b * normal.y + n * normal.z);
+    let sky = sh_irradiance(relief.irradiance, world_normal);
+    out.ambient = relief.albedo.rgb * (relief.albedo.a + sky);
     return out;
 }
 
