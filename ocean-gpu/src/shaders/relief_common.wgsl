@@ -428,12 +428,22 @@ fn relief_shadow(point: vec3<f32>, light: vec3<f32>, depth_scale: f32, bias: f32
     if light.z <= 0.0 {
         return vec3<f32>(1.0, 0.0, 0.0);
     }
+    let hit = relief_trace(relief_shadow_start(point, light, depth_scale), relief_view_ray(-light, depth_scale));
+    return relief_shadow_of(hit, point, bias);
+}
+
+// Where the light ray towards `point` enters the relief (light.z > 0): the point moved back
+// along the light's direction to the polygon.
+fn relief_shadow_start(point: vec3<f32>, light: vec3<f32>, depth_scale: f32) -> vec2<f32> {
     let per_depth = vec2<f32>(-light.x, -light.y) * relief_div(depth_scale, light.z);
-    let start = vec2<f32>(
+    return vec2<f32>(
         point.x - relief_mul(per_depth.x, point.z),
         point.y - relief_mul(per_depth.y, point.z),
     );
-    let hit = relief_trace(start, relief_view_ray(-light, depth_scale));
+}
+
+// relief_shadow's result from the light ray's hit.
+fn relief_shadow_of(hit: Hit, point: vec3<f32>, bias: f32) -> vec3<f32> {
     return vec3<f32>(select(0.0, 1.0, hit.pos.z < point.z - bias), hit.pos.z, f32(hit.fetches));
 }
 

@@ -73,7 +73,33 @@ fn relief_shade(in: VsOut) -> ReliefShade {
         discard;
     }
     let depth_scale = relief.shading.x;
-    let hit = relief_trace(in.uv, relief_view_ray(view, depth_scale));
+    let l = relief.light.xyz;
+    let light = vec3<f32>(dot(l, t), dot(l, b), dot(l, n));
+    let shadows = (relief_ctl(relief.steps.z) & FLAG_SHADOWS) != 0u;
+    // The viewing ray, then (self-shadowing) the light ray to its hit, through one call site
+    // of the tracer: shader compilers inline every call, and the tracer is most of the shader,
+    // so a second call site would double its compile time (seconds on a software rasteriser).
+    // relief_shadow, split around its trace.
+    var hit: Hit;
+    var shadow = 0.0;
+    var start = in.uv;
+    var ray = relief_view_ray(view, depth_scale);
+    var rays = 1u;
+    for (var k = 0u; k < rays; k++) {
+        let h = relief_trace(start, ray);
+        if k == 0u {
+            hit = h;
+            if shadows && light.z <= 0.0 {
+                shadow = 1.0;
+            } else if shadows {
+                rays = 2u;
+                start = relief_shadow_start(h.pos, light, depth_scale);
+                ray = relief_view_ray(-light, depth_scale);
+            }
+        } else {
+            shadow = relief_shadow_of(h, hit.pos, relief.shading.y).x;
+        }
+    }
     // occlusion::view_distance: the hit lies d depth_world / cos(theta) beyond the polygon.
     let cos_theta = -view.z / length(view);
     let distance = hit.pos.z * relief.bitangent.w / cos_theta;
@@ -82,16 +108,10 @@ fn relief_shade(in: VsOut) -> ReliefShade {
     var out: ReliefShade;
     out.depth = clamp(clip.z / clip.w, 0.0, 1.0);
 
-    let l = relief.light.xyz;
-    let light = vec3<f32>(dot(l, t), dot(l, b), dot(l, n));
     // normal.w is the depth in level-0 texels; a level-l texel is 2^l of them. The factor
     // 2^-l is built from its exponent bits (GLSL 330 has no ldexp), so the product is exact.
     let texel_scale = bitcast<f32>(u32(127 - relief_level) << 23u);
     let normal = relief_normal(hit.pos.x, hit.pos.y, relief.normal.w * texel_scale);
-    var shadow = 0.0;
-    if (relief_ctl(relief.steps.z) & FLAG_SHADOWS) != 0u {
-        shadow = relief_shadow(hit.pos, light, depth_scale, relief.shading.y).x;
-    }
     let diffuse = max(dot(normal, light), 0.0) * relief.light.w * (1.0 - shadow);
     out.direct = relief.albedo.rgb * relief.light_color.rgb * diffuse;
     // The environment's light on the relief normal taken to world space, plus the constant
