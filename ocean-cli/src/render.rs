@@ -23,8 +23,8 @@ use glam::DVec3;
 use ocean_brdf::{Filter, FilteredSurface, Irradiance, Lighting, Spectrum};
 use ocean_core::Camera;
 use ocean_gpu::{
-    ComposeInputs, ContextOptions, GpuContext, LightTargets, OceanOptions, OceanRenderer,
-    RADIANCE_FORMAT, ReliefOptions, ReliefRenderer, ReliefScene,
+    ComposeInputs, ContextOptions, DepthResolve, GpuContext, LightTargets, OceanOptions,
+    OceanRenderer, RADIANCE_FORMAT, ReliefOptions, ReliefRenderer, ReliefScene,
 };
 use ocean_relief::{ConeParams, Edge, ReliefMips, ReliefTexture};
 
@@ -67,6 +67,9 @@ pub struct RenderArgs {
     /// gets a four-digit frame number before its extension (ocean.png: ocean-0000.png, ...).
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_FRAMES)))]
     frames: u32,
+    /// Samples per pixel, 1 or 4 (overrides the scene's; 4 antialiases the edges).
+    #[arg(long)]
+    samples: Option<u32>,
     /// Camera preset (overrides the scene's).
     #[arg(long, value_enum)]
     camera: Option<Preset>,
@@ -76,6 +79,11 @@ pub struct RenderArgs {
     /// Output PNG.
     #[arg(long, default_value = "ocean.png")]
     out: PathBuf,
+    /// Also write each frame's depth as a 16-bit grayscale PNG (numbered as OUT is): the window
+    /// depth d in [0, 1] (WebGPU's forward range; 1 on the far plane, the sky) times 65535,
+    /// rounded. The depth the obscurance reads: with 4 samples, each pixel's nearest.
+    #[arg(long)]
+    depth_out: Option<PathBuf>,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
@@ -217,21 +225,28 @@ fn rock_draws(
     Ok(draws)
 }
 
-/// The targets of the frames: split light and depth (what every renderer draws into) and the
-/// composed display colour (what is read back).
+/// The targets of the frames: split light and depth (what every renderer draws into, with
+/// `samples` samples per pixel), the single-sampled depth the obscurance reads (the resolve of
+/// a multisampled depth) and the composed display colour (what is read back).
 struct Targets {
     direct: ocean_gpu::wgpu::TextureView,
     ambient: ocean_gpu::wgpu::TextureView,
     depth: ocean_gpu::wgpu::Texture,
     depth_view: ocean_gpu::wgpu::TextureView,
+    /// With multisampled targets, the resolve pass and the depth it writes.
+    resolved: Option<(
+        DepthResolve,
+        ocean_gpu::wgpu::Texture,
+        ocean_gpu::wgpu::TextureView,
+    )>,
     color: ocean_gpu::wgpu::Texture,
     color_view: ocean_gpu::wgpu::TextureView,
 }
 
 impl Targets {
-    fn new(ctx: &GpuContext, width: u32, height: u32) -> Self {
+    fn new(ctx: &GpuContext, width: u32, height: u32, samples: u32) -> Result<Self, String> {
         use ocean_gpu::wgpu;
-        let texture = |label, format, usage| {
+        let texture = |label, format, usage, sample_count| {
             ctx.device().create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
                 size: wgpu::Extent3d {
@@ -240,7 +255,7 @@ impl Targets {
                     depth_or_array_layers: 1,
                 },
                 mip_level_count: 1,
-                sample_count: 1,
+                sample_count,
                 dimension: wgpu::TextureDimension::D2,
                 format,
                 usage,
@@ -250,26 +265,54 @@ impl Targets {
         let drawn_and_read =
             wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
         let view = |t: &wgpu::Texture| t.create_view(&wgpu::TextureViewDescriptor::default());
-        let direct = texture("ocean render direct", RADIANCE_FORMAT, drawn_and_read);
-        let ambient = texture("ocean render ambient", RADIANCE_FORMAT, drawn_and_read);
-        let depth = texture(
-            "ocean render depth",
-            wgpu::TextureFormat::Depth32Float,
+        let direct = texture(
+            "ocean render direct",
+            RADIANCE_FORMAT,
             drawn_and_read,
+            samples,
         );
+        let ambient = texture(
+            "ocean render ambient",
+            RADIANCE_FORMAT,
+            drawn_and_read,
+            samples,
+        );
+        let depth_format = wgpu::TextureFormat::Depth32Float;
+        // Copied too when the single-sampled depth is written out.
+        let copied = drawn_and_read | wgpu::TextureUsages::COPY_SRC;
+        let depth = if samples > 1 {
+            texture("ocean render depth", depth_format, drawn_and_read, samples)
+        } else {
+            texture("ocean render depth", depth_format, copied, 1)
+        };
+        let resolved = if samples > 1 {
+            let pass = DepthResolve::new(ctx, depth_format).map_err(|e| e.to_string())?;
+            let t = texture("ocean render resolved depth", depth_format, copied, 1);
+            let v = view(&t);
+            Some((pass, t, v))
+        } else {
+            None
+        };
         let color = texture(
             "ocean render colour",
             OceanOptions::default().color_format,
             wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            1,
         );
-        Self {
+        Ok(Self {
             direct: view(&direct),
             ambient: view(&ambient),
             depth_view: view(&depth),
             color_view: view(&color),
             depth,
+            resolved,
             color,
-        }
+        })
+    }
+
+    /// The single-sampled depth: the resolved one with multisampled targets.
+    fn single_depth(&self) -> &ocean_gpu::wgpu::Texture {
+        self.resolved.as_ref().map_or(&self.depth, |(_, t, _)| t)
     }
 
     fn light(&self) -> LightTargets<'_> {
@@ -304,15 +347,29 @@ const PASSES: [(&str, &str); 7] = [
         "rocks, pier",
         "relief mapping by relaxed cone stepping, self-shadowed; posts",
     ),
-    ("obscurance", "SAO: z, MIP levels, samples, two blurs"),
-    ("compose", "direct + A x ambient, sky, tone mapping"),
+    (
+        "obscurance",
+        "SAO: depth resolve, z, MIP levels, samples, two blurs",
+    ),
+    (
+        "compose",
+        "direct + A x ambient, sky, tone mapping, sample average",
+    ),
     ("readback", "copy to the CPU"),
 ];
 
+/// One frame read back: RGBA8 rows from the top, and the single-sampled window depth when
+/// asked for.
+struct FrameImage {
+    rgba: Vec<u8>,
+    depth: Option<Vec<f32>>,
+}
+
 /// Draws one frame (the sea, the island, the rocks, their obscurance and the composition) and
-/// reads it back: RGBA8 rows from the top. Each pass is submitted and waited for alone, and its
-/// wall time added to `times` (in `PASSES` order): the figures are then per pass on every
-/// backend, timestamp queries or not.
+/// reads it back (the depth too with `read_depth`). Each pass is submitted and waited for
+/// alone, and its wall time added to `times` (in `PASSES` order): the figures are then per pass
+/// on every backend, timestamp queries or not.
+#[allow(clippy::too_many_arguments)]
 fn draw_frame(
     ctx: &GpuContext,
     ocean: &OceanRenderer,
@@ -320,8 +377,9 @@ fn draw_frame(
     camera: &Camera,
     time: f64,
     t: &Targets,
+    read_depth: bool,
     times: &mut [f64; PASSES.len()],
-) -> Result<Vec<u8>, ocean_gpu::GpuError> {
+) -> Result<FrameImage, ocean_gpu::GpuError> {
     use ocean_gpu::wgpu;
     let size = (t.color.width(), t.color.height());
     let encoder = || {
@@ -406,7 +464,10 @@ fn draw_frame(
 
     let started = Instant::now();
     let mut e = encoder();
-    let obscurance = dressing.obscurance.encode(ctx, &mut e, &t.depth)?;
+    if let Some((pass, _, view)) = &t.resolved {
+        pass.encode(ctx, &mut e, &t.depth_view, view, camera.depth().direction())?;
+    }
+    let obscurance = dressing.obscurance.encode(ctx, &mut e, t.single_depth())?;
     submit(e, &mut times[4], started)?;
 
     let started = Instant::now();
@@ -421,8 +482,30 @@ fn draw_frame(
 
     let started = Instant::now();
     let rgba = ocean_gpu::readback::read_texture(ctx, &t.color, 0)?.data;
+    let depth = if read_depth {
+        let bytes = ocean_gpu::readback::read_texture(ctx, t.single_depth(), 0)?.data;
+        Some(bytemuck::pod_collect_to_vec(&bytes))
+    } else {
+        None
+    };
     times[6] += started.elapsed().as_secs_f64();
-    Ok(rgba)
+    Ok(FrameImage { rgba, depth })
+}
+
+/// A 16-bit grayscale PNG of window depths in `[0, 1]`: 65535 d, rounded (big-endian samples,
+/// as PNG stores them).
+fn depth_png(width: u32, height: u32, depth: &[f32]) -> Result<Vec<u8>, String> {
+    let samples: Vec<u8> = depth
+        .iter()
+        .flat_map(|d| ((d.clamp(0.0, 1.0) * 65535.0).round() as u16).to_be_bytes())
+        .collect();
+    crate::png::encode(
+        width,
+        height,
+        ::png::ColorType::Grayscale,
+        ::png::BitDepth::Sixteen,
+        &samples,
+    )
 }
 
 /// Seconds spent per stage, summed over the frames.
@@ -457,9 +540,16 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     if let Some(t) = args.time {
         scene.render.time = t;
     }
+    if let Some(n) = args.samples {
+        scene.render.samples = n;
+    }
     scene.check_overrides()?;
     check_writable(&args.out)?;
+    if let Some(path) = &args.depth_out {
+        check_writable(path)?;
+    }
     let (width, height) = (scene.render.width, scene.render.height);
+    let mut samples = scene.render.samples;
     let mut times = Times::default();
 
     let t = Instant::now();
@@ -472,6 +562,21 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         ..ContextOptions::default()
     })
     .map_err(|e| e.to_string())?;
+    if args.depth_out.is_some()
+        && ctx.adapter_info().map(|i| i.backend) == Some(ocean_gpu::wgpu::Backend::Gl)
+    {
+        return Err(format!(
+            "--depth-out: {} cannot copy a depth texture to memory (wgpu's \
+             DEPTH_TEXTURE_AND_BUFFER_COPIES, absent on OpenGL); try --backend vulkan",
+            ctx.describe()
+        ));
+    }
+    // Where multisampled targets are lost (wgpu's GL backend), one sample per pixel, said in
+    // the summary.
+    let single_only = samples > 1 && !ctx.supports_multisampled_light();
+    if single_only {
+        samples = 1;
+    }
     times.device = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -497,6 +602,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             (i.grid.nx(), i.grid.nz()),
             i.grid.origin(),
             i.grid.spacing(),
+            samples,
         )?),
         None => None,
     };
@@ -505,11 +611,11 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let face_light = FaceLight::new(&lighting);
     let rocks = rock_draws(&ctx, &scene, face_light)?;
     let solids = match &scene.pier {
-        Some(pier) => Some(SolidRenderer::new(&ctx, &pier.posts())?),
+        Some(pier) => Some(SolidRenderer::new(&ctx, &pier.posts(), samples)?),
         None => None,
     };
     times.rocks = t.elapsed().as_secs_f64();
-    let targets = Targets::new(&ctx, width, height);
+    let targets = Targets::new(&ctx, width, height, samples)?;
     let mut obscurance = Obscurance::new(
         &ctx,
         &scene.obscurance,
@@ -541,13 +647,14 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             rocks: &rocks,
             solids: solids.as_ref(),
         };
-        let rgba = draw_frame(
+        let image = draw_frame(
             &ctx,
             &renderer,
             &mut dressing,
             &camera,
             time,
             &targets,
+            args.depth_out.is_some(),
             &mut times.passes,
         )
         .map_err(gpu)?;
@@ -565,11 +672,19 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             height,
             ::png::ColorType::Rgba,
             ::png::BitDepth::Eight,
-            &rgba,
+            &image.rgba,
         )?;
+        let depth_png = match (&args.depth_out, &image.depth) {
+            (Some(path), Some(depth)) => Some((path, depth_png(width, height, depth)?)),
+            _ => None,
+        };
         times.encode += t.elapsed().as_secs_f64();
         let t = Instant::now();
-        if let Err(e) = write_atomically(&frame_path(&args.out, k, frames), &png) {
+        let mut written_ok = write_atomically(&frame_path(&args.out, k, frames), &png);
+        if let (Ok(()), Some((path, bytes))) = (&written_ok, &depth_png) {
+            written_ok = write_atomically(&frame_path(path, k, frames), bytes);
+        }
+        if let Err(e) = written_ok {
             // Interrupted during the write: this frame was removed, the others are whole.
             if crate::interrupt::requested() {
                 break;
@@ -604,7 +719,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     }
     let per = |s: f64| 1e3 * s / f64::from(written);
     println!(
-        "{}: {width}x{height}, {written} frame{}, {} waves, on {}",
+        "{}: {width}x{height}, {samples} sample{} per pixel{}, {written} frame{}, {} waves, on {}",
         if frames == 1 {
             args.out.display().to_string()
         } else {
@@ -613,6 +728,12 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
                 frame_path(&args.out, 0, frames).display(),
                 frame_path(&args.out, frames - 1, frames).display()
             )
+        },
+        if samples == 1 { "" } else { "s" },
+        if single_only {
+            " (multisampling is not available on this backend)"
+        } else {
+            ""
         },
         if written == 1 { "" } else { "s" },
         surface.wave_set().waves().len(),

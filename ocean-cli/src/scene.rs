@@ -146,6 +146,8 @@ pub struct RenderSection {
     pub height: u32,
     pub time: f64,
     pub fps: f64,
+    /// Samples per pixel: 1, or `ocean_gpu::MSAA_SAMPLES` for antialiased edges.
+    pub samples: u32,
 }
 
 impl Default for RenderSection {
@@ -155,6 +157,7 @@ impl Default for RenderSection {
             height: 720,
             time: 0.0,
             fps: 30.0,
+            samples: ocean_gpu::MSAA_SAMPLES,
         }
     }
 }
@@ -343,6 +346,16 @@ impl SceneFile {
         }
         finite("render.time", r.time)?;
         range("render.fps", r.fps, 1e-3, 1e4)?;
+        if r.samples != 1 && r.samples != ocean_gpu::MSAA_SAMPLES {
+            return Err((
+                "render.samples",
+                format!(
+                    "= {} is neither 1 nor {} (the sample counts every adapter renders)",
+                    r.samples,
+                    ocean_gpu::MSAA_SAMPLES
+                ),
+            ));
+        }
         let c = &self.camera;
         range("camera.fov_y", c.fov_y, 1.0, 170.0)?;
         range("camera.near", c.near, 1e-4, 1e4)?;

@@ -56,13 +56,13 @@ fn triangles(blocks: &[Block]) -> Vec<Vertex> {
 }
 
 impl SolidRenderer {
-    /// Uploads the faces of `blocks` (at least one face), for split light targets and
-    /// `Depth32Float` tested `Less` (WebGPU's forward range).
+    /// Uploads the faces of `blocks` (at least one face), for split light targets of
+    /// `samples` samples per pixel and `Depth32Float` tested `Less` (WebGPU's forward range).
     ///
     /// # Errors
     ///
     /// A message when the blocks have no face to draw.
-    pub fn new(ctx: &GpuContext, blocks: &[Block]) -> Result<Self, String> {
+    pub fn new(ctx: &GpuContext, blocks: &[Block], samples: u32) -> Result<Self, String> {
         let vertices = triangles(blocks);
         if vertices.is_empty() {
             return Err("solids: no face to draw".to_owned());
@@ -126,7 +126,10 @@ impl SolidRenderer {
                 stencil: wgpu::StencilState::default(),
                 bias: wgpu::DepthBiasState::default(),
             }),
-            multisample: wgpu::MultisampleState::default(),
+            multisample: wgpu::MultisampleState {
+                count: samples,
+                ..wgpu::MultisampleState::default()
+            },
             fragment: Some(wgpu::FragmentState {
                 module: &module,
                 entry_point: Some("solid_fs"),

@@ -79,7 +79,8 @@ fn rgb(v: DVec3, w: f32) -> [f32; 4] {
 impl TerrainRenderer {
     /// Uploads `heights` (row-major, `size.0` per row, metres above the sea at rest) of a grid
     /// whose point (0, 0) is at world `(x, z)` = `origin`, `spacing` metres apart, for split
-    /// light targets and `Depth32Float`, depth tested `Less` (WebGPU's forward range).
+    /// light targets of `samples` samples per pixel and `Depth32Float`, depth tested `Less`
+    /// (WebGPU's forward range).
     ///
     /// # Errors
     ///
@@ -91,6 +92,7 @@ impl TerrainRenderer {
         size: (usize, usize),
         origin: DVec2,
         spacing: f64,
+        samples: u32,
     ) -> Result<Self, String> {
         let device = ctx.device();
         let side = device.limits().max_texture_dimension_2d as usize;
@@ -193,7 +195,10 @@ impl TerrainRenderer {
                 stencil: wgpu::StencilState::default(),
                 bias: wgpu::DepthBiasState::default(),
             }),
-            multisample: wgpu::MultisampleState::default(),
+            multisample: wgpu::MultisampleState {
+                count: samples,
+                ..wgpu::MultisampleState::default()
+            },
             fragment: Some(wgpu::FragmentState {
                 module: &module,
                 entry_point: Some("terrain_fs"),

@@ -263,6 +263,17 @@ impl GpuContext {
             .contains(wgpu::Features::TIMESTAMP_QUERY)
     }
 
+    /// Whether multisampled [`crate::LightTargets`] work here: textures of
+    /// [`crate::MSAA_SAMPLES`] samples rendered to and then read by shaders. wgpu's GL
+    /// backend attaches such textures through the multisampled render-to-texture extension
+    /// meant for single-sampled ones, and the draws into them are lost (seen on Mesa's
+    /// llvmpipe): false there. True for a caller's device, whose backend is not known.
+    pub fn supports_multisampled_light(&self) -> bool {
+        self.adapter_info
+            .as_ref()
+            .is_none_or(|i| i.backend != wgpu::Backend::Gl)
+    }
+
     /// Waits until the GPU has finished all submitted work.
     pub fn wait_idle(&self) -> Result<(), GpuError> {
         self.device.poll(wgpu::PollType::wait_indefinitely())?;

@@ -51,6 +51,7 @@
 #![warn(missing_docs)]
 
 pub mod context;
+mod depth_resolve;
 pub mod layers;
 mod light_targets;
 pub mod ocean;
@@ -64,8 +65,9 @@ pub mod trochoid;
 pub mod wtb;
 
 pub use context::{ContextOptions, GpuContext};
+pub use depth_resolve::DepthResolve;
 pub use layers::{DeviceLayer, LayerDesc, LayersInput, LayersParams, LayersPass, LayersStats};
-pub use light_targets::{LightTargets, RADIANCE_FORMAT};
+pub use light_targets::{LightTargets, MSAA_SAMPLES, RADIANCE_FORMAT};
 pub use ocean::{
     ComposeInputs, FrameUniform, MeshGeometry, MeshGrid, OceanOptions, OceanRenderer,
     SeaColorInput, SurfaceProbe, WaveTexels, frame_uniform, fresnel_table_texels,

@@ -12,7 +12,11 @@
 //! [`crate::OceanRenderer::compose`] fills with the sky.
 
 use crate::GpuError;
-use crate::pipeline::check_render_target;
+use crate::pipeline::check_render_target_samples;
+
+/// Samples per pixel of multisampled [`LightTargets`]: 4, the one count besides 1 that WebGPU
+/// guarantees for every renderable format.
+pub const MSAA_SAMPLES: u32 = 4;
 
 /// Format of both radiance targets. WebGPU's downlevel limits cannot render to `rgba32float`;
 /// `f16`'s 3 significant digits are below what an 8-bit tone-mapped result shows, and
@@ -27,6 +31,13 @@ pub const RADIANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Floa
 ///
 /// Clear the radiance targets to transparent black (`wgpu::Color::TRANSPARENT`) and the depth
 /// to the camera's far end before the first draw; each draw loads them.
+///
+/// The three targets have one sample per pixel, or [`MSAA_SAMPLES`] for a multisampled
+/// (antialiased) frame: the renderers then rasterise every edge at that many coverage samples,
+/// [`crate::OceanRenderer::compose`] resolves the radiance, tone-mapping each sample before it
+/// averages them, and [`crate::DepthResolve`] gives an obscurance pass a single-sampled depth.
+/// Multisampled targets need [`crate::GpuContext::supports_multisampled_light`] (not wgpu's GL
+/// backend); the renderers refuse them elsewhere with [`GpuError::UnsuitableAdapter`].
 #[derive(Clone, Copy, Debug)]
 pub struct LightTargets<'a> {
     /// Direct (Sun) radiance, linear, alpha 1 where drawn.
@@ -38,15 +49,41 @@ pub struct LightTargets<'a> {
 }
 
 impl LightTargets<'_> {
-    /// Checks formats, usages and sizes against a `size` viewport and `depth_format`.
+    /// Samples per pixel of the targets (the depth target's; [`check`](Self::check) holds the
+    /// others to it).
+    pub fn sample_count(&self) -> u32 {
+        self.depth.texture().sample_count()
+    }
+
+    /// Checks formats, usages, sizes and sample counts (1 or [`MSAA_SAMPLES`], the same for
+    /// all three) against a `size` viewport and `depth_format`; returns the sample count.
     pub(crate) fn check(
         &self,
         depth_format: wgpu::TextureFormat,
         size: (u32, u32),
-    ) -> Result<(), GpuError> {
-        check_radiance("direct light target", self.direct, size)?;
-        check_radiance("ambient light target", self.ambient, size)?;
-        check_render_target("depth target", self.depth.texture(), depth_format, size)
+    ) -> Result<u32, GpuError> {
+        let samples = self.sample_count();
+        if samples != 1 && samples != MSAA_SAMPLES {
+            return Err(GpuError::InvalidResource {
+                what: "depth target",
+                reason: format!(
+                    "{samples} samples per pixel: light targets have 1 or {MSAA_SAMPLES}"
+                ),
+            });
+        }
+        let radiance = |what, view: &wgpu::TextureView| {
+            check_render_target_samples(what, view.texture(), RADIANCE_FORMAT, size, samples)
+        };
+        radiance("direct light target", self.direct)?;
+        radiance("ambient light target", self.ambient)?;
+        check_render_target_samples(
+            "depth target",
+            self.depth.texture(),
+            depth_format,
+            size,
+            samples,
+        )?;
+        Ok(samples)
     }
 
     /// The two radiance attachments, loaded and stored: for a caller's own pass that draws
@@ -80,19 +117,34 @@ impl LightTargets<'_> {
     }
 }
 
+/// Refuses `samples` > 1 where multisampled light targets do not work
+/// ([`crate::GpuContext::supports_multisampled_light`]).
+pub(crate) fn check_multisampling(ctx: &crate::GpuContext, samples: u32) -> Result<(), GpuError> {
+    if samples > 1 && !ctx.supports_multisampled_light() {
+        return Err(GpuError::UnsuitableAdapter {
+            adapter: ctx.describe(),
+            reason: format!(
+                "multisampled light targets ({samples} samples) are lost on wgpu's GL backend; \
+                 use 1 sample per pixel or another backend"
+            ),
+        });
+    }
+    Ok(())
+}
+
 /// The two colour target states of a pipeline that draws into [`LightTargets`].
 pub(crate) fn radiance_targets() -> [Option<wgpu::ColorTargetState>; 2] {
     let t = Some(wgpu::ColorTargetState::from(RADIANCE_FORMAT));
     [t.clone(), t]
 }
 
-/// A radiance target or input: [`RADIANCE_FORMAT`], fits the viewport.
-fn check_radiance(
-    what: &'static str,
-    view: &wgpu::TextureView,
-    size: (u32, u32),
-) -> Result<(), GpuError> {
-    check_render_target(what, view.texture(), RADIANCE_FORMAT, size)
+/// The multisample state of a pipeline that draws into [`LightTargets`] of `samples` samples
+/// per pixel (every sample a fragment covers gets its one shaded value).
+pub(crate) fn multisample(samples: u32) -> wgpu::MultisampleState {
+    wgpu::MultisampleState {
+        count: samples,
+        ..wgpu::MultisampleState::default()
+    }
 }
 
 /// Checks a texture read by the composition: `format` (up to sRGB), `TEXTURE_BINDING`, at least

@@ -354,9 +354,10 @@ pub struct OceanRenderer {
     module: wgpu::ShaderModule,
     pipelines: Mutex<Vec<DrawPipelines>>,
     /// The split-light sea pipelines, per depth direction ([`OceanRenderer::render_layers`]).
-    layer_pipelines: Mutex<Vec<(DepthDirection, wgpu::RenderPipeline)>>,
+    layer_pipelines: Mutex<Vec<((DepthDirection, u32), wgpu::RenderPipeline)>>,
     /// The composition's pipeline and bind group layout, built on first use.
-    compose: Mutex<Option<layers::ComposePipeline>>,
+    /// The compose pipelines, by the light targets' sample count.
+    compose: Mutex<Vec<(u32, layers::ComposePipeline)>>,
     probes: Mutex<Option<ProbePipelines>>,
     indices: Mutex<Option<GridIndices>>,
     uniform: wgpu::Buffer,
@@ -734,7 +735,7 @@ impl OceanRenderer {
                 module,
                 pipelines: Mutex::new(Vec::new()),
                 layer_pipelines: Mutex::new(Vec::new()),
-                compose: Mutex::new(None),
+                compose: Mutex::new(Vec::new()),
                 probes: Mutex::new(None),
                 indices: Mutex::new(None),
                 uniform,

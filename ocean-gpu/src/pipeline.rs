@@ -180,6 +180,17 @@ pub(crate) fn check_render_target(
     format: wgpu::TextureFormat,
     size: (u32, u32),
 ) -> Result<(), GpuError> {
+    check_render_target_samples(what, texture, format, size, 1)
+}
+
+/// As [`check_render_target`], for a target of `samples` samples per pixel.
+pub(crate) fn check_render_target_samples(
+    what: &'static str,
+    texture: &wgpu::Texture,
+    format: wgpu::TextureFormat,
+    size: (u32, u32),
+    samples: u32,
+) -> Result<(), GpuError> {
     let t = texture;
     if t.format().remove_srgb_suffix() != format.remove_srgb_suffix() {
         return Err(GpuError::InvalidResource {
@@ -193,16 +204,17 @@ pub(crate) fn check_render_target(
             reason: "needs RENDER_ATTACHMENT usage".to_owned(),
         });
     }
-    if t.sample_count() != 1 || t.width() < size.0 || t.height() < size.1 {
+    if t.sample_count() != samples || t.width() < size.0 || t.height() < size.1 {
         return Err(GpuError::InvalidResource {
             what,
             reason: format!(
-                "{} x {} with {} samples cannot hold a single-sampled {} x {} viewport",
+                "{} x {} with {} samples cannot hold a {} x {} viewport of {samples} sample{}",
                 t.width(),
                 t.height(),
                 t.sample_count(),
                 size.0,
-                size.1
+                size.1,
+                if samples == 1 { "" } else { "s" }
             ),
         });
     }

@@ -204,7 +204,8 @@ pub struct TextureData {
 }
 
 /// Reads mip level `mip` of every layer of `texture` (which needs
-/// [`wgpu::TextureUsages::COPY_SRC`] and an uncompressed colour format).
+/// [`wgpu::TextureUsages::COPY_SRC`] and an uncompressed colour format, or a depth format
+/// whose depth aspect can be copied, such as `Depth32Float`: its depth is read).
 pub fn read_texture(
     ctx: &GpuContext,
     texture: &wgpu::Texture,
@@ -224,11 +225,21 @@ pub fn read_texture(
         )));
     }
     let format = texture.format();
-    let bytes_per_texel = match (format.block_dimensions(), format.block_copy_size(None)) {
-        ((1, 1), Some(b)) => b,
+    let aspect = if format.has_depth_aspect() {
+        wgpu::TextureAspect::DepthOnly
+    } else {
+        wgpu::TextureAspect::All
+    };
+    let bytes_per_texel = match (
+        format.block_dimensions(),
+        format.block_copy_size(Some(aspect)),
+    ) {
+        ((1, 1), Some(b)) if texture.sample_count() == 1 => b,
         _ => {
             return Err(invalid(format!(
-                "format {format:?} is compressed or depth/stencil; read an aspect explicitly"
+                "format {format:?} with {} samples: compressed, multisampled, stencil or a \
+                 depth that cannot be copied",
+                texture.sample_count()
             )));
         }
     };
@@ -256,7 +267,7 @@ pub fn read_texture(
                 texture,
                 mip_level: mip,
                 origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
+                aspect,
             },
             wgpu::TexelCopyBufferInfo {
                 buffer: &staging,

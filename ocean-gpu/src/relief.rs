@@ -509,7 +509,8 @@ pub struct ReliefImage {
 
 #[derive(Debug)]
 struct Pipelines {
-    key: (DepthDirection, Output, ReliefLayout),
+    /// Depth direction, output, texture layout, samples per pixel.
+    key: (DepthDirection, Output, ReliefLayout, u32),
     pipeline: wgpu::RenderPipeline,
 }
 
@@ -945,9 +946,9 @@ impl ReliefRenderer {
     fn pipeline(
         &self,
         device: &wgpu::Device,
-        key: (DepthDirection, Output, ReliefLayout),
+        key: (DepthDirection, Output, ReliefLayout, u32),
     ) -> Result<wgpu::RenderPipeline, GpuError> {
-        let (direction, output, layout) = key;
+        let (direction, output, layout, samples) = key;
         let variant = &self.variants[layout.index()];
         let color_targets = [Some(self.options.color_format.into())];
         let layer_targets = crate::light_targets::radiance_targets();
@@ -986,7 +987,7 @@ impl ReliefRenderer {
                         stencil: wgpu::StencilState::default(),
                         bias: wgpu::DepthBiasState::default(),
                     }),
-                    multisample: wgpu::MultisampleState::default(),
+                    multisample: crate::light_targets::multisample(samples),
                     fragment: Some(wgpu::FragmentState {
                         module: &variant.module,
                         entry_point: Some(entry_point),
@@ -1062,7 +1063,8 @@ impl ReliefRenderer {
         size: (u32, u32),
     ) -> Result<(), GpuError> {
         self.check_viewport(ctx, size.0, size.1)?;
-        targets.check(self.options.depth_format, size)?;
+        let samples = targets.check(self.options.depth_format, size)?;
+        crate::light_targets::check_multisampling(ctx, samples)?;
         self.record(
             ctx,
             encoder,
@@ -1089,9 +1091,9 @@ impl ReliefRenderer {
     ) -> Result<(), GpuError> {
         let tex = self.texture_state()?;
         self.check_viewport(ctx, size.0, size.1)?;
-        let output = match targets {
-            Targets::Color { .. } => Output::Color,
-            Targets::Layers(_) => Output::Layers,
+        let (output, samples) = match targets {
+            Targets::Color { .. } => (Output::Color, 1),
+            Targets::Layers(t) => (Output::Layers, t.sample_count()),
         };
         let encode = output == Output::Color && !self.options.color_format.is_srgb();
         let blocks = scenes
@@ -1102,7 +1104,8 @@ impl ReliefRenderer {
             return Ok(());
         }
         let device = ctx.device();
-        let pipeline = self.pipeline(device, (camera.depth().direction(), output, tex.layout))?;
+        let key = (camera.depth().direction(), output, tex.layout, samples);
+        let pipeline = self.pipeline(device, key)?;
         // One buffer for every draw's block, each at an offset the device can bind.
         let align = u64::from(device.limits().min_uniform_buffer_offset_alignment);
         let block = std::mem::size_of::<ReliefUniforms>() as u64;

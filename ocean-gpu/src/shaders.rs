@@ -214,7 +214,10 @@ pub const RELIEF_QUAD_PROBE_WGSL: &str = concat!(
 /// over a min-depth pyramid of `ocean_relief::ConeMap::generate`, in double-`f32` arithmetic.
 pub const RELIEF_CONE_WGSL: &str = include_str!("shaders/relief_cone.wgsl");
 
-static SHADERS: [ShaderEntry; 15] = [
+/// Source of the depth resolve of a multisampled frame: each pixel's nearest sample.
+pub const DEPTH_RESOLVE_WGSL: &str = include_str!("shaders/depth_resolve.wgsl");
+
+static SHADERS: [ShaderEntry; 16] = [
     ShaderEntry {
         name: "trochoid",
         files: &["surface.wgsl", "trochoid.wgsl"],
@@ -326,6 +329,10 @@ static SHADERS: [ShaderEntry; 15] = [
             },
             EntryPoint {
                 name: "compose_fs",
+                stage: Stage::Fragment,
+            },
+            EntryPoint {
+                name: "compose_ms_fs",
                 stage: Stage::Fragment,
             },
             EntryPoint {
@@ -552,6 +559,28 @@ static SHADERS: [ShaderEntry; 15] = [
         description: "relaxed and conservative cone maps: per-cell bounds, the min-depth \
                       pyramid and the branch-and-bound search per apex cell in double-f32 \
                       arithmetic (GPU Gems 3 ch. 18; ocean_relief::ConeMap::generate)",
+    },
+    ShaderEntry {
+        name: "depth_resolve",
+        files: &["depth_resolve.wgsl"],
+        source: DEPTH_RESOLVE_WGSL,
+        kind: ShaderKind::Draw,
+        entry_points: &[
+            EntryPoint {
+                name: "resolve_vs",
+                stage: Stage::Vertex,
+            },
+            EntryPoint {
+                name: "nearest_forward_fs",
+                stage: Stage::Fragment,
+            },
+            EntryPoint {
+                name: "nearest_reversed_fs",
+                stage: Stage::Fragment,
+            },
+        ],
+        description: "the depth of a multisampled (4x) frame for single-sampled readers: each \
+                      pixel's nearest sample",
     },
 ];
 

@@ -10,24 +10,58 @@
 use ocean_core::{Camera, DepthDirection};
 
 use super::{OceanRenderer, common_layout_entries, invalid, lock};
-use crate::light_targets::{LightTargets, RADIANCE_FORMAT, check_input, radiance_targets};
+use crate::light_targets::{
+    LightTargets, MSAA_SAMPLES, RADIANCE_FORMAT, check_input, check_multisampling, multisample,
+    radiance_targets,
+};
 use crate::{GpuContext, GpuError};
 
-/// Bindings of `compose_fs`'s inputs (ocean.wgsl).
+/// Bindings of `compose_fs`'s inputs (ocean.wgsl), and of `compose_ms_fs`'s multisampled
+/// direct and ambient radiances.
 pub(super) const DIRECT_BINDING: u32 = 9;
 pub(super) const AMBIENT_BINDING: u32 = 10;
 pub(super) const OBSCURANCE_BINDING: u32 = 11;
+pub(super) const DIRECT_MS_BINDING: u32 = 12;
+pub(super) const AMBIENT_MS_BINDING: u32 = 13;
 
 /// The composition's inputs: the split light of a frame and its obscurance.
+///
+/// The radiances have one sample per pixel, or both [`crate::MSAA_SAMPLES`]: an antialiased
+/// frame, which [`OceanRenderer::compose`] resolves (each sample tone-mapped, then averaged).
 #[derive(Clone, Copy, Debug)]
 pub struct ComposeInputs<'a> {
     /// Direct radiance ([`RADIANCE_FORMAT`], `TEXTURE_BINDING`).
     pub direct: &'a wgpu::TextureView,
     /// Ambient radiance ([`RADIANCE_FORMAT`], `TEXTURE_BINDING`); alpha 0 where nothing drew.
     pub ambient: &'a wgpu::TextureView,
-    /// The obscurance A per pixel (`R32Float`, `TEXTURE_BINDING`, 1 = unoccluded; values are
-    /// clamped to `[0, 1]`), such as [`crate::SaoPass::ao_view`].
+    /// The obscurance A per pixel (`R32Float`, `TEXTURE_BINDING`, one sample per pixel,
+    /// 1 = unoccluded; values are clamped to `[0, 1]`), such as [`crate::SaoPass::ao_view`].
     pub obscurance: &'a wgpu::TextureView,
+}
+
+impl ComposeInputs<'_> {
+    /// Samples per pixel of the radiances: 1 or [`MSAA_SAMPLES`], the same for both, and one
+    /// for the obscurance.
+    fn sample_count(&self) -> Result<u32, GpuError> {
+        let samples = self.ambient.texture().sample_count();
+        let direct = self.direct.texture().sample_count();
+        let obscurance = self.obscurance.texture().sample_count();
+        if (samples != 1 && samples != MSAA_SAMPLES) || direct != samples {
+            return Err(GpuError::InvalidResource {
+                what: "direct and ambient light",
+                reason: format!(
+                    "{direct} and {samples} samples per pixel: both 1 or both {MSAA_SAMPLES}"
+                ),
+            });
+        }
+        if obscurance != 1 {
+            return Err(GpuError::InvalidResource {
+                what: "obscurance",
+                reason: format!("{obscurance} samples per pixel, 1 is read"),
+            });
+        }
+        Ok(samples)
+    }
 }
 
 /// The compose pipeline and its bind group layout (the renderer's bindings and 9–11).
@@ -68,13 +102,14 @@ impl OceanRenderer {
             ));
         };
         self.check_viewport(ctx, size.0, size.1)?;
-        targets.check(depth_format, size)?;
+        let samples = targets.check(depth_format, size)?;
+        check_multisampling(ctx, samples)?;
         let (u, phases, o) = self.frame(camera, time, size.0, size.1, 0)?;
         let local_phases = self.local.phases(o, time);
         self.lighting_set()?;
         let device = ctx.device();
         let direction = camera.depth().direction();
-        let pipeline = self.layer_pipeline(device, depth_format, direction)?;
+        let pipeline = self.layer_pipeline(device, depth_format, (direction, samples))?;
         let (indices, index_count) = self.grid_index_buffer(ctx, &u)?;
         crate::scoped(device, || {
             self.write_frame(ctx, &u, &phases, &local_phases);
@@ -99,7 +134,10 @@ impl OceanRenderer {
     /// Records the composition of a frame into `out` (the options' colour format, cleared
     /// and written whole): `display(direct + A · ambient)` (tone-mapped, encoded as
     /// [`render`](Self::render) encodes) where the ambient alpha is non-zero, and the sky
-    /// (as [`render`](Self::render) draws it) elsewhere.
+    /// (as [`render`](Self::render) draws it) elsewhere. With multisampled radiances each
+    /// sample is composed so and tone-mapped, and a pixel is the mean of its samples' display
+    /// values (the image a supersampled render shows, which a resolve of the radiances before
+    /// the tone map is not at edges against bright light).
     ///
     /// It reads the frame's uniform block (camera and lighting) that the last
     /// [`render_layers`](Self::render_layers) (or [`render`](Self::render)) wrote: record
@@ -120,6 +158,8 @@ impl OceanRenderer {
         size: (u32, u32),
     ) -> Result<(), GpuError> {
         self.check_viewport(ctx, size.0, size.1)?;
+        let samples = inputs.sample_count()?;
+        check_multisampling(ctx, samples)?;
         check_input("direct light", inputs.direct, RADIANCE_FORMAT, size)?;
         check_input("ambient light", inputs.ambient, RADIANCE_FORMAT, size)?;
         check_input(
@@ -137,16 +177,18 @@ impl OceanRenderer {
         let device = ctx.device();
         let (pipeline, layout) = {
             let mut compose = lock(&self.compose);
-            if compose.is_none() {
-                *compose = Some(crate::scoped(device, || Ok(self.compose_pipeline(device)))?);
-            }
-            match compose.as_ref() {
-                Some(c) => (c.pipeline.clone(), c.layout.clone()),
-                None => return Err(GpuError::Wgpu("ocean compose pipeline missing".to_owned())),
-            }
+            let built = match compose.iter().find(|(n, _)| *n == samples) {
+                Some((_, c)) => c,
+                None => {
+                    let c = crate::scoped(device, || Ok(self.compose_pipeline(device, samples)))?;
+                    compose.push((samples, c));
+                    &compose[compose.len() - 1].1
+                }
+            };
+            (built.pipeline.clone(), built.layout.clone())
         };
         crate::scoped(device, || {
-            let group = self.compose_bind_group(device, &layout, inputs);
+            let group = self.compose_bind_group(device, &layout, inputs, samples);
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("ocean compose"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -172,13 +214,16 @@ impl OceanRenderer {
         })
     }
 
-    /// The bind group of `compose_fs`: the renderer's resources and `inputs`.
+    /// The bind group of `compose_fs` (or `compose_ms_fs` for multisampled radiances): the
+    /// renderer's resources and `inputs`.
     pub(super) fn compose_bind_group(
         &self,
         device: &wgpu::Device,
         layout: &wgpu::BindGroupLayout,
         inputs: &ComposeInputs<'_>,
+        samples: u32,
     ) -> wgpu::BindGroup {
+        let (direct, ambient) = radiance_bindings(samples);
         let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
         let tex = wgpu::BindingResource::TextureView;
         device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -192,22 +237,24 @@ impl OceanRenderer {
                 entry(super::FRESNEL_BINDING, tex(&self.fresnel_view)),
                 entry(super::LOCAL_FIELDS_BINDING, tex(&self.local.fields_view)),
                 entry(super::LOCAL_TRAINS_BINDING, tex(&self.local.trains_view)),
-                entry(DIRECT_BINDING, tex(inputs.direct)),
-                entry(AMBIENT_BINDING, tex(inputs.ambient)),
+                entry(direct, tex(inputs.direct)),
+                entry(ambient, tex(inputs.ambient)),
                 entry(OBSCURANCE_BINDING, tex(inputs.obscurance)),
             ],
         })
     }
 
-    /// The split-light sea pipeline for a depth direction, built on first use.
+    /// The split-light sea pipeline for a depth direction and a sample count, built on first
+    /// use.
     fn layer_pipeline(
         &self,
         device: &wgpu::Device,
         depth_format: wgpu::TextureFormat,
-        direction: DepthDirection,
+        key: (DepthDirection, u32),
     ) -> Result<wgpu::RenderPipeline, GpuError> {
+        let (direction, samples) = key;
         let mut pipelines = lock(&self.layer_pipelines);
-        if let Some((_, p)) = pipelines.iter().find(|(d, _)| *d == direction) {
+        if let Some((_, p)) = pipelines.iter().find(|(k, _)| *k == key) {
             return Ok(p.clone());
         }
         let pipeline = crate::scoped(device, || {
@@ -228,7 +275,7 @@ impl OceanRenderer {
                         ..Default::default()
                     },
                     depth_stencil: Some(depth_state(depth_format, direction)),
-                    multisample: wgpu::MultisampleState::default(),
+                    multisample: multisample(samples),
                     fragment: Some(wgpu::FragmentState {
                         module: &self.module,
                         entry_point: Some("ocean_layers_fs"),
@@ -240,28 +287,30 @@ impl OceanRenderer {
                 }),
             )
         })?;
-        pipelines.push((direction, pipeline.clone()));
+        pipelines.push((key, pipeline.clone()));
         Ok(pipeline)
     }
 
-    /// The compose pipeline (`sky_vs`, `compose_fs`; bindings 9–11 added, no depth).
-    pub(super) fn compose_pipeline(&self, device: &wgpu::Device) -> ComposePipeline {
+    /// The compose pipeline for radiances of `samples` samples per pixel (`sky_vs`, then
+    /// `compose_fs` with bindings 9–11 added, or `compose_ms_fs` with 11–13; no depth).
+    pub(super) fn compose_pipeline(&self, device: &wgpu::Device, samples: u32) -> ComposePipeline {
         let stages = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
-        let input = |binding| wgpu::BindGroupLayoutEntry {
+        let input = |binding, multisampled| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: stages,
             ty: wgpu::BindingType::Texture {
                 sample_type: wgpu::TextureSampleType::Float { filterable: false },
                 view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
+                multisampled,
             },
             count: None,
         };
+        let (direct, ambient) = radiance_bindings(samples);
         let mut entries = common_layout_entries(stages).to_vec();
         entries.extend([
-            input(DIRECT_BINDING),
-            input(AMBIENT_BINDING),
-            input(OBSCURANCE_BINDING),
+            input(direct, samples > 1),
+            input(ambient, samples > 1),
+            input(OBSCURANCE_BINDING, false),
         ]);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ocean compose bind group layout"),
@@ -286,7 +335,11 @@ impl OceanRenderer {
             multisample: wgpu::MultisampleState::default(),
             fragment: Some(wgpu::FragmentState {
                 module: &self.module,
-                entry_point: Some("compose_fs"),
+                entry_point: Some(if samples > 1 {
+                    "compose_ms_fs"
+                } else {
+                    "compose_fs"
+                }),
                 compilation_options: wgpu::PipelineCompilationOptions::default(),
                 targets: &[Some(self.options.color_format.into())],
             }),
@@ -294,6 +347,15 @@ impl OceanRenderer {
             cache: None,
         });
         ComposePipeline { pipeline, layout }
+    }
+}
+
+/// The bindings of the direct and ambient radiances for `samples` samples per pixel.
+fn radiance_bindings(samples: u32) -> (u32, u32) {
+    if samples > 1 {
+        (DIRECT_MS_BINDING, AMBIENT_MS_BINDING)
+    } else {
+        (DIRECT_BINDING, AMBIENT_BINDING)
     }
 }
 

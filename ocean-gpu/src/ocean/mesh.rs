@@ -248,7 +248,7 @@ impl OceanRenderer {
             let (depth_view, color_view) = (view(&depth), view(&color));
 
             let mesh_pipeline = self.mesh_pipeline(device, depth_format, direction);
-            let compose = self.compose_pipeline(device);
+            let compose = self.compose_pipeline(device, 1);
             let compose_group = self.compose_bind_group(
                 device,
                 &compose.layout,
@@ -257,6 +257,7 @@ impl OceanRenderer {
                     ambient: &ambient_view,
                     obscurance: &ao_view,
                 },
+                1,
             );
 
             let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {

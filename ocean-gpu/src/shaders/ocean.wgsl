@@ -24,6 +24,8 @@
 // - `sky_vs`/`compose_fs`: after the mesh pass (and the obscurance), the full-screen triangle
 //   that writes each pixel's final colour: display(direct + A · ambient) where the mesh drew
 //   (ambient alpha 1), the sky (as `sky_fs`) elsewhere. No depth test.
+// - `sky_vs`/`compose_ms_fs`: `compose_fs` over multisampled (4×) targets: each sample's
+//   radiance composed and tone-mapped, the four averaged, then encoded.
 //
 // Output: tone-mapped colour, sRGB-encoded by the shader when frame.counts.w bit 0 is set (a
 // non-sRGB target such as rgba8unorm), linear otherwise (an sRGB target encodes it).
@@ -134,6 +136,10 @@ fn sky_radiance(pixel: vec2<f32>) -> vec3<f32> {
 @group(0) @binding(9) var mesh_direct: texture_2d<f32>;
 @group(0) @binding(10) var mesh_ambient: texture_2d<f32>;
 @group(0) @binding(11) var obscurance: texture_2d<f32>;
+// The same direct and ambient radiances in multisampled targets (4 samples per pixel, WebGPU's
+// one multisample count), read by `compose_ms_fs` sample by sample.
+@group(0) @binding(12) var mesh_direct_ms: texture_multisampled_2d<f32>;
+@group(0) @binding(13) var mesh_ambient_ms: texture_multisampled_2d<f32>;
 
 struct MeshVertex {
     @builtin(position) clip: vec4<f32>,
@@ -240,4 +246,23 @@ fn compose_fs(in: SkyVertex) -> @location(0) vec4<f32> {
     let direct = textureLoad(mesh_direct, p, 0).rgb;
     let a = clamp(textureLoad(obscurance, p, 0).x, 0.0, 1.0);
     return display(direct + a * ambient.rgb);
+}
+
+// The resolve of an antialiased frame. Each sample is composed as `compose_fs` composes a
+// pixel (the sky where nothing covered it, A of the pixel: the obscurance is computed once per
+// pixel) and tone-mapped on its own, and the display values are averaged before the encoding:
+// what a supersampled image shows. Averaging the radiances first would let a Sun glint or a
+// bright sky that covers one sample of an edge pixel saturate the whole pixel.
+@fragment
+fn compose_ms_fs(in: SkyVertex) -> @location(0) vec4<f32> {
+    let p = vec2<i32>(in.clip.xy);
+    let a = clamp(textureLoad(obscurance, p, 0).x, 0.0, 1.0);
+    let sky = sky_radiance(in.clip.xy);
+    var sum = vec3<f32>(0.0);
+    for (var i = 0; i < 4; i++) {
+        let ambient = textureLoad(mesh_ambient_ms, p, i);
+        let direct = textureLoad(mesh_direct_ms, p, i).rgb;
+        sum += tone_map(select(direct + a * ambient.rgb, sky, ambient.a == 0.0));
+    }
+    return encode_display(0.25 * sum);
 }

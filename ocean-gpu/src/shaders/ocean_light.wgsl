@@ -383,10 +383,14 @@ fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
     return select(hi, 12.92 * x, x <= vec3<f32>(0.0031308));
 }
 
-// What a pixel of radiance `radiance` writes: tone mapped, then sRGB-encoded by the shader when
-// the target is not an sRGB format (flag bit 0), else left for the hardware to encode.
+// What a pixel of radiance `radiance` writes: tone mapped, then encoded (`encode_display`).
 fn display(radiance: vec3<f32>) -> vec4<f32> {
-    let c = tone_map(radiance);
+    return encode_display(tone_map(radiance));
+}
+
+// What a pixel of tone-mapped colour `c` writes: sRGB-encoded by the shader when the target is
+// not an sRGB format (flag bit 0), else left for the hardware to encode.
+fn encode_display(c: vec3<f32>) -> vec4<f32> {
     let encoded = select(c, linear_to_srgb(c), (frame.counts.w & 1u) != 0u);
     return vec4<f32>(encoded, 1.0);
 }
