@@ -89,7 +89,10 @@ fn renders_sky_above_the_sea() {
     assert!(o.status.success(), "{stderr}");
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(
-        stdout.contains("96x54, 1 frame, 60 waves") && stdout.contains("frame "),
+        stdout.contains("96x54, ")
+            && stdout.contains(" per pixel")
+            && stdout.contains("1 frame, 60 waves")
+            && stdout.contains("frame "),
         "{stdout}"
     );
     let (w, h, px) = read_png(&out);

@@ -26,7 +26,10 @@ fn render(scene: Option<&str>, d: &Path, name: &str) -> Option<Vec<[u8; 4]>> {
         "OCEAN_CACHE_DIR",
         Path::new(env!("CARGO_TARGET_TMPDIR")).join("render-cone-cache"),
     );
+    // One sample per pixel: the image is then the same on every backend (multisampling,
+    // which wgpu's GL backend lacks, is measured in antialiasing.rs).
     cmd.args(["render", "--quiet", "--width", "192", "--height", "108"]);
+    cmd.args(["--samples", "1"]);
     if let Some(text) = scene {
         let path = d.join(format!("{name}.toml"));
         std::fs::write(&path, text).unwrap();
