@@ -181,7 +181,7 @@ fn multisampling_halves_the_edge_error_against_a_supersampled_render() {
     let mask = edges(&depth);
     let count = mask.iter().filter(|&&e| e).count();
     // The horizon alone crosses 320 pixels; the silhouettes add more.
-    assert!(count >= W && count <= W * H / 10, "{count} edge pixels");
+    assert!((W..=W * H / 10).contains(&count), "{count} edge pixels");
 
     let mut floors = Vec::new();
     let mut excess = Vec::new();
