@@ -349,7 +349,7 @@ const PASSES: [(&str, &str); 7] = [
     ),
     (
         "obscurance",
-        "SAO: depth resolve, z, MIP levels, samples, two blurs",
+        "SAO: depth resolve at 4 samples, z, MIP levels, samples, two blurs",
     ),
     (
         "compose",

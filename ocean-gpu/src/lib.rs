@@ -25,6 +25,10 @@
 //!   displaced by filtered trochoids, per-pixel filtered normals and slope variances lit by the
 //!   Sun, the sky and the sea (Algorithm 5.1), and a sky background, into the caller's targets
 //!   or a headless image; the GPU twin of `ocean_brdf`'s surface and sea colour.
+//! - [`LightTargets`]: the split direct and ambient light of a frame that several renderers
+//!   share, with one sample per pixel or [`MSAA_SAMPLES`] (antialiased; composed by
+//!   [`OceanRenderer::compose`], which tone-maps each sample before averaging), and
+//!   [`DepthResolve`], each pixel's nearest depth sample for single-sampled readers.
 //! - [`ReliefRenderer`]: relief mapping by relaxed cone stepping (Policarpo & Oliveira, *GPU
 //!   Gems 3* ch. 18): a relief-mapped quad traced per pixel (linear, cone step or relaxed cone
 //!   stepping with the three binary searches), self-shadowed and writing the hit's depth, into

@@ -49,8 +49,8 @@ pub struct LightTargets<'a> {
 }
 
 impl LightTargets<'_> {
-    /// Samples per pixel of the targets (the depth target's; [`check`](Self::check) holds the
-    /// others to it).
+    /// Samples per pixel of the targets (the depth target's; the renderers refuse radiance
+    /// targets of another count).
     pub fn sample_count(&self) -> u32 {
         self.depth.texture().sample_count()
     }
