@@ -7,7 +7,7 @@ use std::process::{Command, Output};
 
 mod common;
 
-use common::files;
+use common::{files, no_adapter};
 
 /// A fresh, empty directory for one test.
 fn dir(name: &str) -> PathBuf {
@@ -26,20 +26,6 @@ fn ocean(args: &[&str]) -> Output {
         .args(args)
         .output()
         .expect("run the ocean binary")
-}
-
-/// Whether a failed render failed for want of an adapter; panics on that under
-/// `OCEAN_REQUIRE_GPU=1`.
-fn no_adapter(out: &Output) -> bool {
-    let msg = String::from_utf8_lossy(&out.stderr);
-    let missing = !out.status.success() && msg.contains("no GPU adapter found");
-    if missing && std::env::var("OCEAN_REQUIRE_GPU").as_deref() == Ok("1") {
-        panic!("OCEAN_REQUIRE_GPU=1 but no adapter: {msg}");
-    }
-    if missing {
-        eprintln!("skipped: {msg}");
-    }
-    missing
 }
 
 /// Decodes an RGBA8 PNG: (width, height, pixels).

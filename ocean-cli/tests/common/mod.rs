@@ -1,6 +1,7 @@
 //! Helpers shared by the command's end-to-end tests.
 
 use std::path::{Path, PathBuf};
+use std::process::Output;
 
 /// A fresh, empty directory `group/name` under Cargo's temporary directory for the tests.
 pub fn dir(group: &str, name: &str) -> PathBuf {
@@ -22,4 +23,20 @@ pub fn files(d: &Path) -> Vec<String> {
         .collect();
     v.sort();
     v
+}
+
+/// Whether a failed render failed for want of an adapter (then skipped, with the reason on
+/// stderr); panics on that under `OCEAN_REQUIRE_GPU=1`.
+// Each test binary compiles this module; not all of them render.
+#[allow(dead_code)]
+pub fn no_adapter(out: &Output) -> bool {
+    let msg = String::from_utf8_lossy(&out.stderr);
+    let missing = !out.status.success() && msg.contains("no GPU adapter found");
+    if missing && std::env::var("OCEAN_REQUIRE_GPU").as_deref() == Ok("1") {
+        panic!("OCEAN_REQUIRE_GPU=1 but no adapter: {msg}");
+    }
+    if missing {
+        eprintln!("skipped: {msg}");
+    }
+    missing
 }
