@@ -70,15 +70,16 @@ const _: () = assert!(OCEAN_SAO_MAX_SIDE as usize == ocean_sao::MAX_SIDE);
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct OceanSaoBlurParams {
-    /// Tap count, odd, 1 to 63 (the paper: 7; its released shader: 9). 1 disables the blur.
+    /// Tap count, odd, 1 to 63 (default 13; the paper: 7; its released shader: 9). 1 disables
+    /// the blur.
     pub taps: u32,
-    /// Pixels between taps, 1 to 64 (the paper: 3; its released shader: 2).
+    /// Pixels between taps, 1 to 64 (default 1; the paper: 3; its released shader: 2).
     pub stride: u32,
     /// Depth-difference scale, in [0, 1e9] (the paper: 2^11 = 2048): with z_min = -200 m,
     /// pixels more than 200/2048 m (about 0.1 m) apart in depth do not mix.
     pub depth_scale: f32,
-    /// Gaussian standard deviation in taps, in [1e-3, 1e3] (default 1.5: the outermost of 7
-    /// taps weighs e^-2 of the centre).
+    /// Gaussian standard deviation in taps, in [1e-3, 1e3] (default 3: the outermost of 13
+    /// taps weighs e^-2 of the centre; the paper's 7 taps: 1.5).
     pub sigma: f32,
     /// `OCEAN_SAO_BLUR_WEIGHT_PLANE` (default) or `OCEAN_SAO_BLUR_WEIGHT_DEPTH` (the paper's);
     /// other values are refused.
@@ -409,9 +410,11 @@ pub struct OceanSaoInfo {
 
 /// Stores ocean-sao's default parameters in `*out` (the paper's set-up: r = 1 m, 9 samples,
 /// 7 spiral turns, MIP levels 0 to 5 by rotated grid subsampling from q' = 8, the appendix's
-/// falloff with beta = 1 cm, the 2x2 quad filter at 2 cm, no normal rejection, z_min = -200 m,
-/// a 7-tap blur with stride 3 and depth scale 2048). The members of the estimator not chosen
-/// hold that estimator's defaults too.
+/// falloff with beta = 1 cm, the 2x2 quad filter at 2 cm, no normal rejection, z_min = -200 m;
+/// beyond it: nearest-neighbour normals and a blur of 13 adjacent taps, sigma 3, weighed by the
+/// plane through the centre, depth scale 2048, world extent 0.5. The paper's blur is taps 7,
+/// stride 3, sigma 1.5, `OCEAN_SAO_BLUR_WEIGHT_DEPTH`). The members of the estimator not
+/// chosen hold that estimator's defaults too.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
 /// then left unchanged.

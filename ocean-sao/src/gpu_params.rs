@@ -364,7 +364,11 @@ mod tests {
         assert_eq!((d.strength, d.beta, d.k), (5.0, 0.01, 1.0));
         assert_eq!((d.quad_filter, d.quad_threshold), (1, 0.02));
         assert_eq!((d.normal_rejection, d.normal_limit), (0, 0.0));
-        assert_eq!(d.gauss[1], [0.0; 4], "7 taps: 4 weights, one row");
+        assert_eq!(
+            (d.gauss[1][3], d.gauss[2]),
+            (0.0, [0.0; 4]),
+            "13 taps: 7 weights, two rows"
+        );
         assert_eq!(d.max_mip, 5);
     }
 

@@ -82,14 +82,14 @@ pub enum BlurWeight {
 /// `key_ref` the centre's key or the centre plane's prediction ([`BlurWeight`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BlurParams {
-    /// Tap count (odd): 7 in the paper (the released shader used 9).
+    /// Tap count (odd): 7 in the paper (the released shader used 9), 13 by default.
     pub taps: u32,
-    /// Pixels between taps: 3 in the paper (the released shader used 2).
+    /// Pixels between taps: 3 in the paper (the released shader used 2), 1 by default.
     pub stride: u32,
     /// Depth-difference scale: 2¹¹ in the paper (the released shader used 2000).
     pub depth_scale: f32,
-    /// Gaussian standard deviation in taps. The paper does not print it; 1.5 (= R/2 for 7 taps)
-    /// gives the outermost taps e⁻² of the centre's weight.
+    /// Gaussian standard deviation in taps. The paper does not print it; R/2 (1.5 for 7 taps,
+    /// 3 for the default 13) gives the outermost taps e⁻² of the centre's weight.
     pub sigma: f32,
     /// What a tap's key is compared with (default [`BlurWeight::Plane`]; the paper:
     /// [`BlurWeight::Depth`]).
@@ -97,7 +97,7 @@ pub struct BlurParams {
     /// With [`BlurWeight::Plane`]: the distance from the centre, as a fraction of the
     /// obscurance radius, at which a tap's weight fades to 0 ([`crate::blur`]), in `[0, 10³]`;
     /// 0 disables the fade. Default 0.5: a compromise measured on boxes on a floor and the
-    /// analytic scenes at 640 × 360: larger values leave less of the sampling pattern on faces
+    /// analytic scenes at 640 × 360, with the paper's 7 taps of stride 3: larger values leave less of the sampling pattern on faces
     /// seen at grazing angles (RMS against the 7 × 7 mean beyond 70°: 5.3–5.7/255 at 0.5,
     /// 4.4–4.7 without the fade, 11–12 with the paper's weight) and spread contact obscurance
     /// farther (error against the estimator's 256-sample limit: 0.5 gives 14–20% more MSE than
@@ -107,13 +107,35 @@ pub struct BlurParams {
 }
 
 impl Default for BlurParams {
+    /// 13 adjacent taps (σ = 3 taps, the outermost e⁻² of the centre as in the paper's) with
+    /// the plane weight. The paper's 7 taps 3 pixels apart average only pixels whose
+    /// coordinates agree modulo 3: on surfaces obscured everywhere and uneven at the scale of
+    /// a pixel (a relief-mapped rock), where the sample pass's per-pixel rotation leaves its
+    /// strongest residue, each pixel of a 3 × 3 cell keeps its own average, and the result is
+    /// a lattice of that period. Adjacent taps over a 13-pixel span average every pixel with
+    /// its neighbours and leave none.
     fn default() -> Self {
+        Self {
+            taps: 13,
+            stride: 1,
+            depth_scale: 2048.0,
+            sigma: 3.0,
+            weight: BlurWeight::Plane,
+            world_extent: 0.5,
+        }
+    }
+}
+
+impl BlurParams {
+    /// The paper's blur (§2.4): 7 taps 3 pixels apart, σ = 1.5 taps, weighed by the centre's
+    /// depth key with scale 2¹¹.
+    pub fn paper() -> Self {
         Self {
             taps: 7,
             stride: 3,
             depth_scale: 2048.0,
             sigma: 1.5,
-            weight: BlurWeight::Plane,
+            weight: BlurWeight::Depth,
             world_extent: 0.5,
         }
     }
@@ -225,16 +247,14 @@ impl Default for SaoParams {
 }
 
 impl SaoParams {
-    /// The defaults with the paper's own normals (Eq. 4's quad differences) and blur weight
-    /// (the centre's depth key): the reference the fidelity tests and comparisons use.
+    /// The defaults with the paper's own normals (Eq. 4's quad differences) and blur (§2.4: 7
+    /// taps 3 pixels apart, weighed by the centre's depth key): the reference the fidelity
+    /// tests and comparisons use.
     pub fn paper() -> Self {
         let d = Self::default();
         Self {
             normals: NormalEstimate::Quad,
-            blur: BlurParams {
-                weight: BlurWeight::Depth,
-                ..d.blur
-            },
+            blur: BlurParams::paper(),
             ..d
         }
     }

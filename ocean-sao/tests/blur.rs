@@ -20,7 +20,7 @@ fn image(w: usize, h: usize, f: impl Fn(usize, usize) -> (f32, f32)) -> Vec<Texe
 /// The paper's weights: Gaussian `exp(−t²/(2σ²))` with σ = 1.5 taps for taps 0..=3 of 7.
 #[test]
 fn gaussian_weights() {
-    let g = BlurParams::default().gaussian();
+    let g = BlurParams::paper().gaussian();
     let want = [
         1.0,
         (-1.0f64 / 4.5).exp(),
@@ -34,24 +34,31 @@ fn gaussian_weights() {
 }
 
 /// A single dark pixel (A = 0) in a field of A = 1 at one depth: after the horizontal pass, the
-/// pixel `3k` away (stride 3) reads `1 − g_k/Σg` (every tap in range, all depth weights 1), and
-/// pixels not on the stride lattice stay 1.
+/// pixel `s·k` away (stride s) reads `1 − g_k/Σg` (every tap in range, all depth weights 1), and
+/// pixels not on the stride lattice stay 1: the paper's 7 taps of stride 3, and the default 13
+/// of stride 1, which reach every pixel within 6.
 #[test]
 fn impulse_response() {
     let (w, h) = (41, 3);
     let img = image(w, h, |x, _| (if x == 20 { 0.0 } else { 1.0 }, -4.0));
-    let blur = BlurConstants::new(&BlurParams::default(), true);
-    let g = &blur.gauss;
-    let sum: f32 = g[0] + 2.0 * (g[1] + g[2] + g[3]);
-    for x in 10..31usize {
-        let got = blur.blur_pixel(&img, w, h, x, 1, Axis::Horizontal);
-        let d = x as i64 - 20;
-        let want = if d % 3 == 0 && d.abs() <= 9 {
-            1.0 - g[(d.abs() / 3) as usize] / sum
-        } else {
-            1.0
-        };
-        assert!((got - want).abs() < 1e-6, "x {x}: {got} vs {want}");
+    for params in [BlurParams::paper(), BlurParams::default()] {
+        let blur = BlurConstants::new(&params, true);
+        let g = &blur.gauss;
+        let sum: f32 = g[0] + 2.0 * g[1..].iter().sum::<f32>();
+        let (stride, r) = (i64::from(params.stride), g.len() as i64 - 1);
+        for x in 5..36usize {
+            let got = blur.blur_pixel(&img, w, h, x, 1, Axis::Horizontal);
+            let d = x as i64 - 20;
+            let want = if d % stride == 0 && d.abs() <= r * stride {
+                1.0 - g[(d.abs() / stride) as usize] / sum
+            } else {
+                1.0
+            };
+            assert!(
+                (got - want).abs() < 1e-6,
+                "stride {stride}, x {x}: {got} vs {want}"
+            );
+        }
     }
 }
 
@@ -121,14 +128,15 @@ fn one_tap_and_borders() {
 }
 
 /// The horizontal response at `x = 20 + d` to a dark pixel at `x = 20` on a row whose z is
-/// `z(x)`, for a blur weight and projection kind.
+/// `z(x)`, for a blur weight and projection kind, with the paper's taps (7, stride 3: the
+/// farthest 9 px away, where a sloped plane strays farthest from the centre's depth).
 fn impulse_on(z: impl Fn(usize) -> f32, weight: BlurWeight, perspective: bool) -> Vec<f32> {
     let (w, h) = (41, 3);
     let img = image(w, h, |x, _| (if x == 20 { 0.0 } else { 1.0 }, z(x)));
     let blur = BlurConstants::new(
         &BlurParams {
             weight,
-            ..BlurParams::default()
+            ..BlurParams::paper()
         },
         perspective,
     );
@@ -137,9 +145,10 @@ fn impulse_on(z: impl Fn(usize) -> f32, weight: BlurWeight, perspective: bool) -
         .collect()
 }
 
-/// The flat-surface response of `impulse_response` at lattice distance `d` (pixels).
+/// The flat-surface response of `impulse_response` at lattice distance `d` (pixels) with the
+/// paper's taps.
 fn flat_response(d: i64) -> f32 {
-    let g = BlurParams::default().gaussian();
+    let g = BlurParams::paper().gaussian();
     let sum: f32 = g[0] + 2.0 * (g[1] + g[2] + g[3]);
     1.0 - g[(d.abs() / 3) as usize] / sum
 }

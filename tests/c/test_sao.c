@@ -357,7 +357,8 @@ static void test_create_errors(void)
     CHECK(p.radius == 1.0f && p.samples == 9 && p.spiral_turns == 7.0f &&
               p.mip_filter == OCEAN_SAO_MIP_FILTER_ROTATED_GRID &&
               p.estimator == OCEAN_SAO_ESTIMATOR_FALLOFF && p.quad_filter == 1 &&
-              p.normal_rejection == 0 && p.blur.taps == 7 && p.blur.stride == 3 &&
+              p.normal_rejection == 0 && p.blur.taps == 13 && p.blur.stride == 1 &&
+              p.blur.sigma == 3.0f &&
               p.normals == OCEAN_SAO_NORMALS_NEAREST &&
               p.blur.weight == OCEAN_SAO_BLUR_WEIGHT_PLANE && p.blur.world_extent == 0.5f,
           "unexpected defaults");

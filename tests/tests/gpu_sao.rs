@@ -216,6 +216,8 @@ impl std::fmt::Display for TexelDiff {
 struct Report {
     /// The darkest final A of the CPU (1 where nothing occludes).
     darkest: f32,
+    /// The darkest A of the CPU's sample pass, before the filters.
+    darkest_raw: f32,
     levels: Vec<FloatDiff>,
     raw: FloatDiff,
     quad: FloatDiff,
@@ -238,6 +240,7 @@ fn compare(gpu: &SaoStages, cpu: &Stages) -> Report {
         .collect();
     Report {
         darkest: cpu.ao.iter().copied().fold(1.0f32, f32::min),
+        darkest_raw: cpu.raw.iter().copied().fold(1.0f32, f32::min),
         levels,
         raw: FloatDiff::new(&gpu.raw, &cpu.raw, STAGE_TOL, false),
         quad: FloatDiff::new(&gpu.quad, &cpu.quad, STAGE_TOL, false),
@@ -410,12 +413,23 @@ fn analytic_scenes_match_the_cpu() {
                 "forward Z, finite far, Eq. 1",
             ),
         );
-        // The scenes with contacts darken somewhere (measured darkest A: 0.00–0.19 with the
-        // falloff, 0.61–0.75 with Eq. 1), so the comparison covers real obscurance; the open
-        // plane occludes nothing (A = 1 everywhere, as on the CPU).
+        // The scenes with contacts darken somewhere, so the comparison, which holds every
+        // stage to the CPU's bits, covers real obscurance: the sample pass's darkest A is
+        // below 0.8 (measured 0.00 with the falloff, 0.46–0.67 with Eq. 1; after the default
+        // 13-tap blur 0.11–0.26 and 0.74–0.80, where the paper's 7 taps left 0.00–0.19 and
+        // 0.61–0.75). The open plane occludes nothing (A = 1 everywhere, as on the CPU).
+        println!(
+            "{}: darkest A falloff {:.3}, Eq. 1 {:.3} (raw {:.3}, {:.3})",
+            view.name, falloff.darkest, alchemy.darkest, falloff.darkest_raw, alchemy.darkest_raw
+        );
         for r in [falloff, alchemy] {
             if occludes {
-                assert!(r.darkest < 0.8, "{}: darkest A {}", view.name, r.darkest);
+                assert!(
+                    r.darkest_raw < 0.8,
+                    "{}: darkest raw A {}",
+                    view.name,
+                    r.darkest_raw
+                );
             } else {
                 assert_eq!(r.darkest, 1.0, "open plane");
             }
