@@ -113,11 +113,13 @@ fn the_built_in_scene_matches_the_stored_image() {
 ///   far plane) changes, and the water where the rock and the pier stand in it loses on
 ///   average more than 1 % of its light and more than 5 times what the open water loses.
 ///
-/// Measured at 192 × 108: 1.6 % in the row of water below a rock or pier pixel against 0.14 %
+/// Measured at 192 × 108: 1.7 % in the row of water below a rock or pier pixel against 0.15 %
 /// in the open. The water is seen 8° from grazing, so the 2 m radius spans about one row of it
 /// beyond the objects' base (the next rows lose 0.01–0.1 %), and the obscurance scales only
 /// the ambient part of the water's light, a small share of it beside the sky's reflection.
-/// The objects' own bottom rows lose 3.6 %. With the paper's 2 × 2-quad normals (Eq. 4) those
+/// With the blur of the paper's 7 taps of stride 3 (before the 13 adjacent taps of the
+/// defaults): 1.6 % and 0.14 %, the objects' own bottom rows 3.6 %; with the paper's 2 × 2-quad
+/// normals (Eq. 4) those
 /// rows lose 15.7 % and the water row 3.8 %: a dark line along the silhouettes from the normals
 /// of quads straddling them, not contact obscurance, which the nearest-neighbour normals
 /// (`NormalEstimate::Nearest`) remove.

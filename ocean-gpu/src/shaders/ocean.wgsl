@@ -249,20 +249,35 @@ fn compose_fs(in: SkyVertex) -> @location(0) vec4<f32> {
 }
 
 // The resolve of an antialiased frame. Each sample is composed as `compose_fs` composes a
-// pixel (the sky where nothing covered it, A of the pixel: the obscurance is computed once per
-// pixel) and tone-mapped on its own, and the display values are averaged before the encoding:
-// what a supersampled image shows. Averaging the radiances first would let a Sun glint or a
-// bright sky that covers one sample of an edge pixel saturate the whole pixel.
+// pixel (A of the pixel: the obscurance is computed once per pixel; the sky towards the
+// sample's own position where nothing covered it) and tone-mapped on its own, and the display
+// values are averaged before the encoding: what a supersampled image shows. Averaging the
+// radiances first would let a Sun glint or a bright sky that covers one sample of an edge
+// pixel saturate the whole pixel. The sky is looked up per sample because the horizon crosses
+// pixels: a pixel whose centre lies just below it has samples above it that the sea does not
+// cover, and the sky towards the centre is the radiance below the horizon (a grey line).
 @fragment
 fn compose_ms_fs(in: SkyVertex) -> @location(0) vec4<f32> {
     let p = vec2<i32>(in.clip.xy);
     let a = clamp(textureLoad(obscurance, p, 0).x, 0.0, 1.0);
-    let sky = sky_radiance(in.clip.xy);
+    // WebGPU's (and Vulkan's, D3D's) standard positions of 4 samples, from the pixel's centre
+    // in pixels, y down.
+    var offsets = array<vec2<f32>, 4>(
+        vec2<f32>(-0.125, -0.375),
+        vec2<f32>(0.375, -0.125),
+        vec2<f32>(-0.375, 0.125),
+        vec2<f32>(0.125, 0.375),
+    );
     var sum = vec3<f32>(0.0);
     for (var i = 0; i < 4; i++) {
         let ambient = textureLoad(mesh_ambient_ms, p, i);
-        let direct = textureLoad(mesh_direct_ms, p, i).rgb;
-        sum += tone_map(select(direct + a * ambient.rgb, sky, ambient.a == 0.0));
+        var radiance: vec3<f32>;
+        if ambient.a == 0.0 {
+            radiance = sky_radiance(in.clip.xy + offsets[i]);
+        } else {
+            radiance = textureLoad(mesh_direct_ms, p, i).rgb + a * ambient.rgb;
+        }
+        sum += tone_map(radiance);
     }
     return encode_display(0.25 * sum);
 }
