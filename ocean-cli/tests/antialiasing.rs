@@ -15,9 +15,9 @@
 //! the pixels no edge crosses, where the render at 320 × 180 differs from the reference only
 //! because the reference resolves finer detail (the sea's filtered waves, the relief's mip
 //! level, the obscurance's pixel-sized taps) and the antialiasing changes nothing. Measured
-//! on lavapipe: edge pixels 16.6 levels with one sample, 8.6 with four; elsewhere 6.0 and 5.9.
+//! on lavapipe: edge pixels 16.6 levels with one sample, 8.4 with four; elsewhere 5.9 and 5.9.
 //! The criterion is on the edge error above that floor: four samples must leave at most half
-//! of what one sample leaves (measured: 2.7 against 10.6 levels).
+//! of what one sample leaves (measured: 2.5 against 10.7 levels).
 //!
 //! The depth is copied from the GPU, which wgpu's GL backend cannot do, and multisampling is
 //! not available there either: these renders ask for Vulkan (lavapipe on a machine without a
