@@ -167,7 +167,9 @@ pub struct SurfaceProbe {
     pub rest: DVec2,
     /// `L`, the grid-cell footprint: `cell_px` times the pixel footprint, metres.
     pub cell_footprint: f64,
-    /// Eq. 2: the displaced position for `L`.
+    /// Eq. 2: the displaced position for `L`. Beyond the distance cap the vertex stage draws
+    /// the point higher, on its pixel's ray (at most at the eye's height), so the sea reaches
+    /// the horizon (`cap_lift` in `ocean.wgsl`); this is the position before that lift.
     pub position: DVec3,
     /// How many waves the vertex stage summed (those with `w_p > 0`).
     pub position_waves: u32,

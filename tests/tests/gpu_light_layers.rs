@@ -46,9 +46,13 @@ fn camera_towards(z_sign: f64) -> Camera {
 }
 
 fn sea(ctx: &GpuContext) -> OceanRenderer {
+    sea_with(ctx, OceanOptions::default())
+}
+
+fn sea_with(ctx: &GpuContext, options: OceanOptions) -> OceanRenderer {
     let spectrum = Spectrum::new(ocean_brdf::SpectrumParams::default()).expect("spectrum");
     let surface = FilteredSurface::new(&spectrum, Filter::PAPER).expect("surface");
-    let mut r = OceanRenderer::new(ctx, OceanOptions::default()).expect("renderer");
+    let mut r = OceanRenderer::new(ctx, options).expect("renderer");
     r.set_surface(ctx, &surface).expect("surface");
     let lighting = Lighting::new(SkyParams::default(), SeaParams::default()).expect("lighting");
     r.set_lighting(ctx, &lighting).expect("lighting");
@@ -301,6 +305,51 @@ fn multisampled_targets_compose_to_the_single_sampled_image_but_at_edges() {
         })
     });
     assert!(blended, "no horizon pixel blends the sky and the sea");
+}
+
+/// The sea reaches the horizon: every pixel whose centre's view ray descends is drawn (ambient
+/// alpha 1), however near the horizon. With a 400 m distance cap, 5 m up, the cap's circle
+/// lies atan(5/400) = 0.72° below the horizon, 0.95 px at 80 rows over 60°: the horizon of
+/// [`camera`] crosses the image at y = 40 − 40 tan 10°/tan 30° = 27.79, so row 28's centres
+/// (y = 28.5) look below the horizon but above the cap. The grid's vertices beyond the cap are
+/// drawn on their own rays (`cap_lift`); projected onto the sea plane at the cap, as their rest
+/// positions are, they would leave row 28 to the sky below the horizon, a dark line beside the
+/// Sun's glitter. Above the horizon nothing is drawn.
+#[test]
+fn the_sea_reaches_the_horizon() {
+    let Some(ctx) = gpu_context_or_skip() else {
+        return;
+    };
+    let sea = sea_with(
+        &ctx,
+        OceanOptions {
+            max_distance: 400.0,
+            ..OceanOptions::default()
+        },
+    );
+    let c = camera();
+    let frame = Frame::new(&ctx, 1.0);
+    frame
+        .draw(&ctx, |e, t| sea.render_layers(&ctx, e, &c, 3.0, t, (W, H)))
+        .expect("layers");
+    let bytes = ocean_gpu::readback::read_texture(&ctx, &frame.ambient, 0)
+        .expect("read")
+        .data;
+    let alpha = |x: u32, y: u32| {
+        let k = 8 * (y * W + x) as usize + 6;
+        f16_to_f32(u16::from_le_bytes([bytes[k], bytes[k + 1]]))
+    };
+    let horizon = 40.0 - 40.0 * 10f64.to_radians().tan() / 30f64.to_radians().tan();
+    for y in 0..H {
+        let below = f64::from(y) + 0.5 > horizon;
+        for x in 0..W {
+            assert_eq!(
+                alpha(x, y),
+                if below { 1.0 } else { 0.0 },
+                "pixel ({x}, {y}), horizon at {horizon:.2}"
+            );
+        }
+    }
 }
 
 /// The obscurance scales the sea's ambient light alone: with A = 0 only the Sun's reflection

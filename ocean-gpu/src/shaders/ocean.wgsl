@@ -38,12 +38,32 @@ struct OceanVertex {
     @location(1) position: vec3<f32>,
 }
 
+// How far above the sea plane a grid vertex is drawn: 0 where its pixel's ray meets the sea
+// within the distance cap; beyond it, the height of the ray at the cap, at most the eye's
+// height (rays along or above the horizon). `sea_plane_hit` stops those rays at the cap and
+// projects the point onto the plane, which the eye sees below its pixel: the grid's far row
+// would end a fraction of a pixel short of the horizon (0.25 px at 2160 rows from 6 m with the
+// 50 km cap), and that band would show the sky's radiance below the horizon, a dark line
+// beside the Sun's glitter. Lifted back onto its ray, the vertex projects onto its own pixel
+// and the sea reaches the horizon. The rest position, and so the waves (filtered out at the
+// cap's footprint) and the lighting, are `grid_point`'s.
+fn cap_lift(ray: Ray) -> f32 {
+    let height = ray.origin.y + frame.camera.x;
+    let down = -ray.dir.y;
+    if down > MIN_DEPRESSION && max(height, 0.0) <= down * frame.camera.y {
+        return 0.0;
+    }
+    return clamp(height - down * frame.camera.y, 0.0, max(height, 0.0));
+}
+
 @vertex
 fn ocean_vs(@builtin(vertex_index) index: u32) -> OceanVertex {
     let nx = frame.counts.x;
     let ij = vec2<f32>(f32(index % nx), f32(index / nx));
-    let g = grid_point(frame.viewport.zw + ij * frame.grid.x);
-    let relative = vec3<f32>(g.position.x, g.position.y - frame.camera.x, g.position.z);
+    let pixel = frame.viewport.zw + ij * frame.grid.x;
+    let g = grid_point(pixel);
+    let lift = cap_lift(pixel_ray(pixel));
+    let relative = vec3<f32>(g.position.x, g.position.y + lift - frame.camera.x, g.position.z);
     var out: OceanVertex;
     out.clip = frame.view_proj * vec4<f32>(relative, 1.0);
     out.rest = g.rest;
