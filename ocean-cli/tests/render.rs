@@ -132,6 +132,67 @@ fn a_sequence_writes_numbered_frames() {
     assert_ne!(a.2, b.2);
 }
 
+/// `--depth-out`: a 16-bit grayscale PNG of the window depth, 65535 on the far plane (the sky
+/// of the horizon view's top row, forward range) and below it on the sea (its bottom row, 4 m
+/// under the eye). wgpu's GL backend cannot copy depth to memory: there the option is refused
+/// with the reason, and no file is written.
+#[test]
+fn depth_out_writes_the_window_depth() {
+    let d = dir("depth-out");
+    let (out, depth) = (d.join("c.png"), d.join("d.png"));
+    let run = |backend: &str| {
+        ocean(&[
+            "--width",
+            "96",
+            "--height",
+            "54",
+            "--camera",
+            "horizon",
+            "--backend",
+            backend,
+            "--out",
+            out.to_str().unwrap(),
+            "--depth-out",
+            depth.to_str().unwrap(),
+        ])
+    };
+    let o = run("vulkan");
+    if no_adapter(&o) {
+        return;
+    }
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let file = std::fs::File::open(&depth).unwrap();
+    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .unwrap();
+    let mut buf = vec![0u8; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(
+        (info.width, info.height, info.color_type, info.bit_depth),
+        (96, 54, png::ColorType::Grayscale, png::BitDepth::Sixteen)
+    );
+    let at =
+        |x: usize, y: usize| u16::from_be_bytes([buf[2 * (y * 96 + x)], buf[2 * (y * 96 + x) + 1]]);
+    for x in 0..96 {
+        assert_eq!(at(x, 0), 65535, "sky at ({x}, 0)");
+        let sea = at(x, 53);
+        assert!(sea > 0 && sea < 65535, "sea at ({x}, 53): {sea}");
+    }
+    std::fs::remove_file(&out).unwrap();
+    std::fs::remove_file(&depth).unwrap();
+    let o = run("gl");
+    if no_adapter(&o) {
+        return;
+    }
+    let msg = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{msg}");
+    assert!(
+        msg.contains("--depth-out") && msg.contains("DEPTH_TEXTURE_AND_BUFFER_COPIES"),
+        "{msg}"
+    );
+    assert!(files(&d).is_empty());
+}
+
 /// A malformed scene names the file, the line and the key; nothing is written.
 #[test]
 fn a_malformed_scene_names_the_line_and_the_key() {
@@ -139,6 +200,7 @@ fn a_malformed_scene_names_the_line_and_the_key() {
     let cases = [
         ("[sun]\nelevation = 30.0\nglow = 2.0\n", "line 3", "glow"),
         ("[render]\nwidth = 0\n", "line 2", "render.width"),
+        ("[render]\nsamples = 2\n", "line 2", "render.samples"),
         ("[spectrum]\nwaves = \"many\"\n", "line 2", "waves"),
     ];
     for (text, line, key) in cases {
@@ -178,6 +240,12 @@ fn an_unwritable_output_fails_before_rendering() {
     assert!(!String::from_utf8_lossy(&o.stdout).contains("device"));
     let o = ocean(&["--width", "0", "--out", d.join("y.png").to_str().unwrap()]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("render.width"));
+    let o = ocean(&["--samples", "8", "--out", d.join("y.png").to_str().unwrap()]);
+    let msg = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        msg.contains("render.samples") && msg.contains("neither 1 nor 4"),
+        "{msg}"
+    );
     assert!(files(&d).is_empty());
 }
 
