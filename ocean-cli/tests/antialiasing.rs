@@ -24,7 +24,7 @@
 //! GPU) whatever `WGPU_BACKEND` says. Skipped without that adapter unless
 //! `OCEAN_REQUIRE_GPU=1`.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 mod common;
@@ -60,22 +60,10 @@ fn render(d: &Path, name: &str, (w, h): (usize, usize), samples: u32, depth: boo
 }
 
 /// The samples of a PNG (8-bit RGBA or 16-bit grayscale) as numbers, with its size.
-fn read_png(path: &PathBuf) -> (usize, usize, Vec<f64>) {
-    let file = std::fs::File::open(path).unwrap();
-    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
-        .read_info()
-        .unwrap();
-    let mut buf = vec![0u8; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    buf.truncate(info.buffer_size());
-    let samples = match info.bit_depth {
-        png::BitDepth::Sixteen => buf
-            .chunks(2)
-            .map(|c| f64::from(u16::from_be_bytes([c[0], c[1]])))
-            .collect(),
-        _ => buf.iter().map(|&v| f64::from(v)).collect(),
-    };
-    (info.width as usize, info.height as usize, samples)
+fn read_png(path: &Path) -> (usize, usize, Vec<f64>) {
+    let (w, h, _, _, samples) = common::read_png(path);
+    let samples = samples.into_iter().map(f64::from).collect();
+    (w as usize, h as usize, samples)
 }
 
 fn srgb_to_linear(v: f64) -> f64 {

@@ -11,7 +11,7 @@ use ocean_relief::{ConeMap, ConeParams, Edge, HeightMap};
 
 mod common;
 
-use common::files;
+use common::{files, read_png};
 
 /// A fresh, empty directory for one test.
 fn dir(name: &str) -> PathBuf {
@@ -39,31 +39,6 @@ fn write_png(
     let mut writer = enc.write_header().unwrap();
     writer.write_image_data(data).unwrap();
     writer.finish().unwrap();
-}
-
-/// Decodes a PNG: (width, height, colour type, bit depth, samples as u16).
-fn read_png(path: &Path) -> (u32, u32, png::ColorType, png::BitDepth, Vec<u16>) {
-    let file = std::fs::File::open(path).unwrap();
-    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
-        .read_info()
-        .unwrap();
-    let mut buf = vec![0u8; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    buf.truncate(info.buffer_size());
-    let samples = match info.bit_depth {
-        png::BitDepth::Sixteen => buf
-            .chunks(2)
-            .map(|b| u16::from_be_bytes([b[0], b[1]]))
-            .collect(),
-        _ => buf.iter().map(|&b| u16::from(b)).collect(),
-    };
-    (
-        info.width,
-        info.height,
-        info.color_type,
-        info.bit_depth,
-        samples,
-    )
 }
 
 /// A 24 x 24 height field: two bumps and a ridge, 8 bits.

@@ -161,18 +161,12 @@ fn depth_out_writes_the_window_depth() {
         return;
     }
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let file = std::fs::File::open(&depth).unwrap();
-    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
-        .read_info()
-        .unwrap();
-    let mut buf = vec![0u8; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut buf).unwrap();
+    let (w, h, color, bits, samples) = common::read_png(&depth);
     assert_eq!(
-        (info.width, info.height, info.color_type, info.bit_depth),
+        (w, h, color, bits),
         (96, 54, png::ColorType::Grayscale, png::BitDepth::Sixteen)
     );
-    let at =
-        |x: usize, y: usize| u16::from_be_bytes([buf[2 * (y * 96 + x)], buf[2 * (y * 96 + x) + 1]]);
+    let at = |x: usize, y: usize| samples[y * 96 + x];
     for x in 0..96 {
         assert_eq!(at(x, 0), 65535, "sky at ({x}, 0)");
         let sea = at(x, 53);

@@ -40,3 +40,30 @@ pub fn no_adapter(out: &Output) -> bool {
     }
     missing
 }
+
+/// Decodes a PNG: (width, height, colour type, bit depth, samples as u16).
+// Each test binary compiles this module; not all of them read PNGs.
+#[allow(dead_code)]
+pub fn read_png(path: &Path) -> (u32, u32, png::ColorType, png::BitDepth, Vec<u16>) {
+    let file = std::fs::File::open(path).unwrap();
+    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .unwrap();
+    let mut buf = vec![0u8; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    buf.truncate(info.buffer_size());
+    let samples = match info.bit_depth {
+        png::BitDepth::Sixteen => buf
+            .chunks(2)
+            .map(|b| u16::from_be_bytes([b[0], b[1]]))
+            .collect(),
+        _ => buf.iter().map(|&b| u16::from(b)).collect(),
+    };
+    (
+        info.width,
+        info.height,
+        info.color_type,
+        info.bit_depth,
+        samples,
+    )
+}
