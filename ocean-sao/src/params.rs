@@ -97,8 +97,9 @@ pub struct BlurParams {
     /// With [`BlurWeight::Plane`]: the distance from the centre, as a fraction of the
     /// obscurance radius, at which a tap's weight fades to 0 ([`crate::blur`]), in `[0, 10³]`;
     /// 0 disables the fade. Default 0.5: a compromise measured on boxes on a floor and the
-    /// analytic scenes at 640 × 360, with the paper's 7 taps of stride 3: larger values leave less of the sampling pattern on faces
-    /// seen at grazing angles (RMS against the 7 × 7 mean beyond 70°: 5.3–5.7/255 at 0.5,
+    /// analytic scenes at 640 × 360 with the paper's 7 taps of stride 3: larger values leave
+    /// less of the sampling pattern on faces seen at grazing angles (RMS against the 7 × 7
+    /// mean beyond 70°: 5.3–5.7/255 at 0.5,
     /// 4.4–4.7 without the fade, 11–12 with the paper's weight) and spread contact obscurance
     /// farther (error against the estimator's 256-sample limit: 0.5 gives 14–20% more MSE than
     /// the paper's weight on the crease and the box in a room, 5% less on the spheres; 0.3
