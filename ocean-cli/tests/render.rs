@@ -30,19 +30,13 @@ fn ocean(args: &[&str]) -> Output {
 
 /// Decodes an RGBA8 PNG: (width, height, pixels).
 fn read_png(path: &Path) -> (u32, u32, Vec<[u8; 4]>) {
-    let file = std::fs::File::open(path).unwrap();
-    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
-        .read_info()
-        .unwrap();
-    let mut buf = vec![0u8; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    assert_eq!(
-        (info.color_type, info.bit_depth),
-        (png::ColorType::Rgba, png::BitDepth::Eight)
-    );
-    buf.truncate(info.buffer_size());
-    let px = buf.chunks(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
-    (info.width, info.height, px)
+    let (w, h, color, bits, samples) = common::read_png(path);
+    assert_eq!((color, bits), (png::ColorType::Rgba, png::BitDepth::Eight));
+    let px = samples
+        .chunks(4)
+        .map(|c| [c[0], c[1], c[2], c[3]].map(|v| v as u8))
+        .collect();
+    (w, h, px)
 }
 
 fn luminance(p: [u8; 4]) -> f64 {

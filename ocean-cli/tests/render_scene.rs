@@ -44,15 +44,13 @@ fn render(scene: Option<&str>, d: &Path, name: &str) -> Option<Vec<[u8; 4]>> {
 }
 
 fn read_png(path: &Path) -> Vec<[u8; 4]> {
-    let file = std::fs::File::open(path).unwrap();
-    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
-        .read_info()
-        .unwrap();
-    let mut buf = vec![0u8; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    assert_eq!((info.width as usize, info.height as usize), (W, H));
-    buf.truncate(info.buffer_size());
-    buf.chunks(4).map(|c| [c[0], c[1], c[2], c[3]]).collect()
+    let (w, h, color, bits, samples) = common::read_png(path);
+    assert_eq!((color, bits), (png::ColorType::Rgba, png::BitDepth::Eight));
+    assert_eq!((w as usize, h as usize), (W, H));
+    samples
+        .chunks(4)
+        .map(|c| [c[0], c[1], c[2], c[3]].map(|v| v as u8))
+        .collect()
 }
 
 fn luminance(p: [u8; 4]) -> f64 {
