@@ -179,7 +179,7 @@
  * Size in bytes of the exported `relief` shader's uniform block `Relief` (binding 0, std140);
  * `ocean_relief_uniforms` writes it.
  */
-#define OCEAN_RELIEF_UNIFORMS_SIZE 416
+#define OCEAN_RELIEF_UNIFORMS_SIZE 448
 
 /**
  * Array layers of a quad-directional cone map: one per closed quadrant of the ray's horizontal
@@ -1277,7 +1277,7 @@ typedef struct OceanReliefMethod {
 } OceanReliefMethod;
 
 /**
- * A relief-mapped quad, how it is traced and how it is lit.
+ * A relief-mapped polygon, how it is traced and how it is lit.
  *
  * The quad is the rectangle with a corner at `origin` (texture coordinates (0, 0)) and edges
  * `edge_u` (along the texture's u) and `edge_v` (along v, the rows), spanning `tiles_u` and
@@ -1285,6 +1285,9 @@ typedef struct OceanReliefMethod {
  * edge_u x edge_v out of the polygon, towards its front; the relief lies `depth` world units
  * under it. The edges must be orthogonal and a texture width must have one world length along
  * both (relative tolerance 1e-6), so the relief is not sheared.
+ *
+ * What is drawn is the convex polygon `corners` in the quad's plane: the whole quad, or a
+ * triangle or quadrilateral of a mesh (its texture then continues beyond the quad's edges).
  */
 typedef struct OceanReliefScene {
   /**
@@ -1351,6 +1354,13 @@ typedef struct OceanReliefScene {
    * in the same radiance units.
    */
   struct OceanIrradiance sky;
+  /**
+   * The polygon drawn: corners `{s, t}`, the points `origin + s edge_u + t edge_v`,
+   * counter-clockwise seen from the front, convex, enclosing an area, each coordinate within
+   * 1e6; a triangle repeats its last corner. The default, `{0, 0}, {1, 0}, {1, 1}, {0, 1}`,
+   * is the whole quad; all zero (a zeroed struct) is refused.
+   */
+  double corners[4][2];
 } OceanReliefScene;
 
 /**
@@ -3507,7 +3517,7 @@ OceanStatus ocean_relief_mips_copy_level(const struct OceanReliefMips *mips,
 
 /**
  * Stores the default scene in `*out`: a unit quad in the xz plane facing +y (u along +x, v
- * along -z), one tile, 0.1 deep; relaxed cone stepping with 15 cone steps and 6 bisections of
+ * along -z), all of it drawn, one tile, 0.1 deep; relaxed cone stepping with 15 cone steps and 6 bisections of
  * the last step; self-shadowing with a bias of 0.02; a white light from (1, 2, 1), grey albedo
  * 0.8, ambient 0.2, no sky.
  *

@@ -105,6 +105,7 @@ impl Block {
                     albedo: self.albedo,
                     ambient: 0.0,
                     sky: Some(light.sky),
+                    corners: ReliefScene::QUAD,
                     ..ReliefScene::default()
                 };
                 face.tangent_frame().map_err(|e| e.to_string())?;

@@ -22,11 +22,11 @@ use crate::wtb::OceanDVec3;
 
 /// Size in bytes of the exported `relief` shader's uniform block `Relief` (binding 0, std140);
 /// `ocean_relief_uniforms` writes it.
-pub const OCEAN_RELIEF_UNIFORMS_SIZE: usize = 416;
+pub const OCEAN_RELIEF_UNIFORMS_SIZE: usize = 448;
 
 const _: () = assert!(size_of::<ReliefUniforms>() == OCEAN_RELIEF_UNIFORMS_SIZE);
 
-/// A relief-mapped quad, how it is traced and how it is lit.
+/// A relief-mapped polygon, how it is traced and how it is lit.
 ///
 /// The quad is the rectangle with a corner at `origin` (texture coordinates (0, 0)) and edges
 /// `edge_u` (along the texture's u) and `edge_v` (along v, the rows), spanning `tiles_u` and
@@ -34,6 +34,9 @@ const _: () = assert!(size_of::<ReliefUniforms>() == OCEAN_RELIEF_UNIFORMS_SIZE)
 /// edge_u x edge_v out of the polygon, towards its front; the relief lies `depth` world units
 /// under it. The edges must be orthogonal and a texture width must have one world length along
 /// both (relative tolerance 1e-6), so the relief is not sheared.
+///
+/// What is drawn is the convex polygon `corners` in the quad's plane: the whole quad, or a
+/// triangle or quadrilateral of a mesh (its texture then continues beyond the quad's edges).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct OceanReliefScene {
@@ -71,6 +74,11 @@ pub struct OceanReliefScene {
     /// relief's normal at the hit in world space. `light_intensity` and `ambient` must then be
     /// in the same radiance units.
     pub sky: OceanIrradiance,
+    /// The polygon drawn: corners `{s, t}`, the points `origin + s edge_u + t edge_v`,
+    /// counter-clockwise seen from the front, convex, enclosing an area, each coordinate within
+    /// 1e6; a triangle repeats its last corner. The default, `{0, 0}, {1, 0}, {1, 1}, {0, 1}`,
+    /// is the whole quad; all zero (a zeroed struct) is refused.
+    pub corners: [[f64; 2]; 4],
 }
 
 fn method_to(m: &Method) -> OceanReliefMethod {
@@ -109,6 +117,14 @@ fn scene_from(s: &OceanReliefScene) -> Result<ReliefScene, Error> {
             ("albedo[1]", f64::from(s.albedo[1])),
             ("albedo[2]", f64::from(s.albedo[2])),
             ("ambient", f64::from(s.ambient)),
+            ("corners[0][0]", s.corners[0][0]),
+            ("corners[0][1]", s.corners[0][1]),
+            ("corners[1][0]", s.corners[1][0]),
+            ("corners[1][1]", s.corners[1][1]),
+            ("corners[2][0]", s.corners[2][0]),
+            ("corners[2][1]", s.corners[2][1]),
+            ("corners[3][0]", s.corners[3][0]),
+            ("corners[3][1]", s.corners[3][1]),
         ],
     )?;
     Ok(ReliefScene {
@@ -126,11 +142,12 @@ fn scene_from(s: &OceanReliefScene) -> Result<ReliefScene, Error> {
         albedo: s.albedo,
         ambient: s.ambient,
         sky: s.sky.irradiance("scene->sky")?,
+        corners: s.corners.map(DVec2::from_array),
     })
 }
 
 /// Stores the default scene in `*out`: a unit quad in the xz plane facing +y (u along +x, v
-/// along -z), one tile, 0.1 deep; relaxed cone stepping with 15 cone steps and 6 bisections of
+/// along -z), all of it drawn, one tile, 0.1 deep; relaxed cone stepping with 15 cone steps and 6 bisections of
 /// the last step; self-shadowing with a bias of 0.02; a white light from (1, 2, 1), grey albedo
 /// 0.8, ambient 0.2, no sky.
 ///
@@ -160,6 +177,7 @@ pub unsafe extern "C" fn ocean_relief_scene_default(out: *mut OceanReliefScene) 
             albedo: d.albedo,
             ambient: d.ambient,
             sky: OceanIrradiance::default(),
+            corners: d.corners.map(|c| c.to_array()),
         };
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out, "out", s) }
@@ -348,6 +366,8 @@ mod tests {
         // A sky whose irradiance grows with the normal's y: E(n) = 3 + 2 n_y (red).
         s.sky.k[0].r = 3.0 / 0.282_094_791_773_878_14;
         s.sky.k[2].r = 2.0 / 0.488_602_511_902_919_9;
+        // A triangle reaching beyond the quad, counter-clockwise.
+        s.corners = [[0.0, 0.0], [1.5, 0.25], [0.5, 1.0], [0.5, 1.0]];
         let mut out = [0xAAu8; OCEAN_RELIEF_UNIFORMS_SIZE + 4];
         // SAFETY: readable inputs, `out` holds `len` writable bytes.
         let status = unsafe {
@@ -387,6 +407,7 @@ mod tests {
         assert_eq!((u.tangent[3], u.normal[3]), (0.2, 25.6));
         // The level count, 128 down to 2: 7 levels.
         assert_eq!(u.shading[3], 7.0);
+        assert_eq!(u.polygon, [[0.0, 0.0, 1.5, 0.25], [0.5, 1.0, 0.5, 1.0]]);
         // The sky's rows are E/π: a white Lambertian surface's radiance.
         let pi = std::f64::consts::PI;
         assert_eq!(
@@ -425,44 +446,44 @@ mod tests {
         let with = |f: &dyn Fn(&mut OceanReliefScene)| {
             let mut s = good;
             f(&mut s);
-            call(&desc, &s, 64, 0, 0, 416)
+            call(&desc, &s, 64, 0, 0, 448)
         };
-        let cases: [(OceanStatus, &str, (OceanStatus, String)); 15] = [
+        let cases: [(OceanStatus, &str, (OceanStatus, String)); 18] = [
             // 64 texels hold 6 levels (64 down to 2); a side that is not a power of two, one.
             (
                 OceanStatus::InvalidArgument,
                 "mip levels",
-                call_levels(&desc, &good, 64, 0, 0, 0, 416),
+                call_levels(&desc, &good, 64, 0, 0, 0, 448),
             ),
             (
                 OceanStatus::InvalidArgument,
                 "mip levels",
-                call_levels(&desc, &good, 64, 0, 7, 0, 416),
+                call_levels(&desc, &good, 64, 0, 7, 0, 448),
             ),
             (
                 OceanStatus::InvalidArgument,
                 "mip levels",
-                call_levels(&desc, &good, 48, 0, 2, 0, 416),
+                call_levels(&desc, &good, 48, 0, 2, 0, 448),
             ),
             (
                 OceanStatus::BufferTooSmall,
-                "needs 416",
-                call(&desc, &good, 64, 0, 0, 415),
+                "needs 448",
+                call(&desc, &good, 64, 0, 0, 447),
             ),
             (
                 OceanStatus::InvalidArgument,
                 "size",
-                call(&desc, &good, 1, 0, 0, 416),
+                call(&desc, &good, 1, 0, 0, 448),
             ),
             (
                 OceanStatus::InvalidArgument,
                 "edge",
-                call(&desc, &good, 64, 2, 0, 416),
+                call(&desc, &good, 64, 2, 0, 448),
             ),
             (
                 OceanStatus::InvalidArgument,
                 "srgb_encode",
-                call(&desc, &good, 64, 0, 2, 416),
+                call(&desc, &good, 64, 0, 2, 448),
             ),
             (
                 OceanStatus::NonFinite,
@@ -506,6 +527,22 @@ mod tests {
                 with(&|s| s.shadows = 2),
             ),
             (
+                OceanStatus::NonFinite,
+                "scene->corners[2][1]",
+                with(&|s| s.corners[2][1] = f64::NAN),
+            ),
+            // A zeroed polygon, and the quad's corners clockwise (its back).
+            (
+                OceanStatus::InvalidArgument,
+                "enclose no area",
+                with(&|s| s.corners = [[0.0; 2]; 4]),
+            ),
+            (
+                OceanStatus::InvalidArgument,
+                "enclose no area",
+                with(&|s| s.corners.reverse()),
+            ),
+            (
                 OceanStatus::InvalidArgument,
                 "camera",
                 call(
@@ -514,7 +551,7 @@ mod tests {
                     64,
                     0,
                     0,
-                    416,
+                    448,
                 ),
             ),
         ];
@@ -529,22 +566,22 @@ mod tests {
             binary: 6,
             search: 7,
         };
-        let (got, message) = call(&desc, &method, 64, 0, 0, 416);
+        let (got, message) = call(&desc, &method, 64, 0, 0, 448);
         assert_eq!(got, OceanStatus::InvalidArgument, "{message}");
         assert!(message.contains("method->search"), "{message}");
-        let mut out = [0u8; 416];
+        let mut out = [0u8; 448];
         // SAFETY: NULL pointers are refused before anything is read or written.
         unsafe {
             assert_eq!(
-                ocean_relief_uniforms(null(), &good, 64, 0, 1, 0, out.as_mut_ptr(), 416),
+                ocean_relief_uniforms(null(), &good, 64, 0, 1, 0, out.as_mut_ptr(), 448),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_relief_uniforms(&desc, null(), 64, 0, 1, 0, out.as_mut_ptr(), 416),
+                ocean_relief_uniforms(&desc, null(), 64, 0, 1, 0, out.as_mut_ptr(), 448),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_relief_uniforms(&desc, &good, 64, 0, 1, 0, null_mut(), 416),
+                ocean_relief_uniforms(&desc, &good, 64, 0, 1, 0, null_mut(), 448),
                 OceanStatus::NullPointer
             );
         }

@@ -11,7 +11,7 @@
 //! [`ocean_relief::occlusion::occlusion_depth`] computes; the generator computes
 //! [`ocean_relief::ConeMap::generate`]'s bound and search.
 //!
-//! ## The quad
+//! ## The quad and the polygon
 //!
 //! [`ReliefScene`] places a rectangle in the world: the corner at texture coordinates `(0, 0)`,
 //! its edges along `u` and `v` and how many texture widths each spans. Tangent space is the
@@ -19,6 +19,12 @@
 //! `edge_u × edge_v`, and the relief lies under it, [`ReliefScene::depth`] world units deep. The
 //! edges must be orthogonal and a texture width must have the same world length along both, so
 //! the relief is not sheared and its depth scale is one number ([`TangentFrame`]).
+//!
+//! What is drawn is a convex polygon of up to four corners in the rectangle's plane
+//! ([`ReliefScene::corners`], in units of its edges): the whole rectangle by default, or a
+//! triangle or quadrilateral of a mesh. [`ReliefScene::on_polygon`] relief-maps a mesh face: its
+//! texture coordinates are the world position projected on the face's plane, so neighbouring
+//! faces of nearly one plane continue each other's relief.
 //!
 //! ## Depth
 //!
@@ -88,6 +94,7 @@ use crate::readback::{read_buffer_as, read_texture};
 use crate::{GpuContext, GpuError, shaders};
 
 mod cone;
+mod polygon;
 
 pub use cone::{ConeGenTimes, ConeMapGenerator};
 
@@ -166,6 +173,11 @@ pub struct ReliefScene {
     /// the hit in world space, so faces turned to the sky are lit more than faces turned to
     /// the sea. `light_intensity` and `ambient` must then be in the same radiance units.
     pub sky: Option<Irradiance>,
+    /// The polygon drawn: its corners `(s, t)`, the points `origin + s·edge_u + t·edge_v`,
+    /// counter-clockwise seen from the front, convex, enclosing an area; a triangle repeats
+    /// its last corner. [`ReliefScene::QUAD`] (the default) draws the whole rectangle.
+    /// Corners may lie outside the rectangle: the texture repeats (or clamps) beyond it.
+    pub corners: [DVec2; 4],
 }
 
 impl Default for ReliefScene {
@@ -193,6 +205,7 @@ impl Default for ReliefScene {
             albedo: [0.8, 0.8, 0.8],
             ambient: 0.2,
             sky: None,
+            corners: Self::QUAD,
         }
     }
 }
@@ -228,6 +241,14 @@ impl TangentFrame {
 pub const SHAPE_TOLERANCE: f64 = 1.0e-6;
 
 impl ReliefScene {
+    /// [`ReliefScene::corners`] of the whole rectangle.
+    pub const QUAD: [DVec2; 4] = [
+        DVec2::new(0.0, 0.0),
+        DVec2::new(1.0, 0.0),
+        DVec2::new(1.0, 1.0),
+        DVec2::new(0.0, 1.0),
+    ];
+
     /// The tangent frame, after checking the quad (module documentation).
     ///
     /// # Errors
@@ -391,6 +412,7 @@ pub fn scene_uniforms(
     let frame = scene.tangent_frame()?;
     let light = scene.light()?;
     scene.check_shading()?;
+    polygon::check_corners(&scene.corners)?;
     let eye = camera.eye();
     let view_proj =
         depth_remap(camera) * camera.view_projection_f64() * DMat4::from_translation(eye);
@@ -416,6 +438,7 @@ pub fn scene_uniforms(
         quad_origin: f4(scene.origin - eye, 0.0),
         quad_u: f4(scene.edge_u, scene.tiles.x as f32),
         quad_v: f4(scene.edge_v, scene.tiles.y as f32),
+        polygon: polygon::corner_block(&scene.corners),
         tangent: f4(frame.tangent, 0.0),
         bitangent: f4(frame.bitangent, scene.depth as f32),
         normal: f4(frame.normal, 0.0),
@@ -1589,8 +1612,8 @@ mod tests {
     #[test]
     fn uniform_blocks_match_the_wgsl_structs() {
         let b = shaders::get("relief").unwrap().bindings().unwrap();
-        assert_eq!((b[0].name.as_str(), b[0].size as usize), ("relief", 416));
-        assert_eq!(size_of::<ReliefUniforms>(), 416);
+        assert_eq!((b[0].name.as_str(), b[0].size as usize), ("relief", 448));
+        assert_eq!(size_of::<ReliefUniforms>(), 448);
         let offsets: Vec<(&str, u32)> = b[0]
             .members
             .iter()
@@ -1615,6 +1638,7 @@ mod tests {
                 ("shading", o(offset_of!(ReliefUniforms, shading))),
                 ("irradiance", o(offset_of!(ReliefUniforms, irradiance))),
                 ("light_color", o(offset_of!(ReliefUniforms, light_color))),
+                ("polygon", o(offset_of!(ReliefUniforms, polygon))),
             ]
         );
         // The probe and the quadrant variants declare the same block; the quadrant variants'

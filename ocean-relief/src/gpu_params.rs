@@ -77,7 +77,7 @@ pub fn method_codes(method: &Method) -> [u32; 4] {
 }
 
 /// Everything the relief-mapping shaders read, byte for byte the WGSL `Relief` block of
-/// ocean-gpu's `relief_common.wgsl` (416 bytes).
+/// ocean-gpu's `relief_common.wgsl` (448 bytes).
 ///
 /// World positions are relative to the eye (camera-relative rendering: the host subtracts the
 /// eye in `f64`). Tangent space is the tracers' ([`crate::trace`]): `x` along the texture's `u`,
@@ -130,6 +130,11 @@ pub struct ReliefUniforms {
     /// `rgb`: the light's colour, multiplying `light.w` (white: `1, 1, 1`; all zero leaves
     /// the directional light black); `a`: unused.
     pub light_color: [f32; 4],
+    /// The polygon drawn: four corners `(s, t)` in the plane of the quad, the point
+    /// `quad_origin + s·quad_u + t·quad_v`, as `(s₀, t₀, s₁, t₁)` and `(s₂, t₂, s₃, t₃)`,
+    /// counter-clockwise seen from the front, convex (a triangle repeats its last corner). The
+    /// vertex stage draws the fan `(0, 1, 2)`, `(0, 2, 3)`; the whole quad is the unit square.
+    pub polygon: [[f32; 4]; 2],
 }
 
 impl ReliefUniforms {
@@ -303,7 +308,7 @@ mod tests {
 
     #[test]
     fn sizes_are_whole_std140_rows() {
-        assert_eq!(core::mem::size_of::<ReliefUniforms>(), 416);
+        assert_eq!(core::mem::size_of::<ReliefUniforms>(), 448);
         assert_eq!(core::mem::size_of::<ConeGenUniforms>(), 128);
     }
 

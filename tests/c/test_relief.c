@@ -793,6 +793,24 @@ static void test_uniforms(void)
     /* shading at 240: depth scale, bias, 0, mip levels (256 down to 2: 8). */
     memcpy(origin, block + 240, sizeof origin);
     CHECK(origin[2] == 0.0f && origin[3] == 8.0f, "shading %g %g", origin[2], origin[3]);
+    /* The polygon at 416: the default draws the whole quad, (0,0) (1,0) (1,1) (0,1). */
+    {
+        float corners[8];
+        memcpy(corners, block + 416, sizeof corners);
+        CHECK(corners[0] == 0.0f && corners[1] == 0.0f && corners[2] == 1.0f &&
+                  corners[3] == 0.0f && corners[4] == 1.0f && corners[5] == 1.0f &&
+                  corners[6] == 0.0f && corners[7] == 1.0f,
+              "default polygon %g %g %g %g %g %g %g %g", corners[0], corners[1], corners[2],
+              corners[3], corners[4], corners[5], corners[6], corners[7]);
+    }
+    /* A zeroed polygon encloses nothing: refused, not drawn as nothing. */
+    {
+        OceanReliefScene zeroed = scene;
+        memset(zeroed.corners, 0, sizeof zeroed.corners);
+        EXPECT(ocean_relief_uniforms(&camera, &zeroed, 256, OCEAN_RELIEF_EDGE_WRAP, 8, 1, block,
+                                     sizeof block),
+               OCEAN_STATUS_INVALID_ARGUMENT);
+    }
     EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 9, 1, block,
                                  sizeof block),
            OCEAN_STATUS_INVALID_ARGUMENT);

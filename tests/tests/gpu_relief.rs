@@ -998,6 +998,7 @@ impl Setup {
             albedo: [0.9, 0.9, 0.9],
             ambient: 0.05,
             sky: Some(test_sky()),
+            corners: ReliefScene::QUAD,
         };
         let frame = scene.tangent_frame().unwrap();
         Self {
@@ -1454,6 +1455,108 @@ fn headless_mip_render_reads_each_pixels_level() {
             "{name}: only level 0 {:?}",
             v.per_level
         );
+    }
+}
+
+/// Whether point `q` (quad coordinates) lies inside the convex, counter-clockwise `polygon`.
+fn inside(polygon: &[DVec2; 4], q: DVec2) -> bool {
+    (0..4).all(|i| {
+        let (a, b) = (polygon[i], polygon[(i + 1) % 4]);
+        a == b || (b - a).perp_dot(q - a) > 0.0
+    })
+}
+
+/// A triangle and a quadrilateral cut from the quad ([`ReliefScene::corners`]) draw exactly
+/// their own pixels, with the relief the whole quad draws there: for the four cameras, every
+/// pixel whose centre and eight neighbours at ±1 pixel all meet the quad's plane inside the
+/// polygon has the whole quad's colour (within [`COLOR_TOL`]) and depth (within
+/// [`DEPTH_TOL`]), and every pixel whose nine points all fall outside it keeps the clear colour
+/// and depth. Pixels along the polygon's edges are not compared: the rasteriser decides them.
+#[test]
+fn a_polygon_draws_its_own_pixels() {
+    let Some(ctx) = gpu_context_or_skip() else {
+        return;
+    };
+    let setup = Setup::new(RELAXED_15_6);
+    let mut renderer = ReliefRenderer::new(&ctx, Default::default()).unwrap();
+    renderer.set_texture(&ctx, &setup.texture).unwrap();
+    let size = (96u32, 72u32);
+    let polygons = [
+        [
+            DVec2::new(0.1, 0.05),
+            DVec2::new(0.95, 0.3),
+            DVec2::new(0.4, 0.9),
+            DVec2::new(0.4, 0.9),
+        ],
+        [
+            DVec2::new(0.2, 0.1),
+            DVec2::new(0.9, 0.2),
+            DVec2::new(0.8, 0.95),
+            DVec2::new(0.05, 0.6),
+        ],
+    ];
+    for (name, camera) in cameras() {
+        let whole = renderer
+            .render_image(&ctx, &camera, &setup.scene, size.0, size.1)
+            .unwrap();
+        let clear = window_depth(&camera, camera.depth().clear_depth()) as f32;
+        for (p, corners) in polygons.iter().enumerate() {
+            let scene = ReliefScene {
+                corners: *corners,
+                ..setup.scene
+            };
+            let image = renderer
+                .render_image(&ctx, &camera, &scene, size.0, size.1)
+                .unwrap();
+            let (mut inner, mut outer, mut differ) = (0, 0, 0);
+            for py in 0..size.1 {
+                for px in 0..size.0 {
+                    let k = (py * size.0 + px) as usize;
+                    let mut seen = [0usize; 2];
+                    for dy in [-1.0, 0.0, 1.0] {
+                        for dx in [-1.0, 0.0, 1.0] {
+                            let (x, y) = (f64::from(px) + 0.5 + dx, f64::from(py) + 0.5 + dy);
+                            match setup.plane_hit(&camera, x, y, size) {
+                                Some((_, _, q)) => seen[usize::from(inside(corners, q))] += 1,
+                                None => seen[0] += 1,
+                            }
+                        }
+                    }
+                    if seen[1] == 9 {
+                        inner += 1;
+                        let rgba = &image.rgba[4 * k..4 * k + 4];
+                        let want = &whole.rgba[4 * k..4 * k + 4];
+                        let dd = f64::from((image.depth[k] - whole.depth[k]).abs());
+                        let dc = rgba.iter().zip(want).map(|(a, b)| a.abs_diff(*b)).max();
+                        if rgba != want || dd > 0.0 {
+                            differ += 1;
+                        }
+                        assert!(
+                            dc <= Some(COLOR_TOL) && dd <= DEPTH_TOL,
+                            "{name} polygon {p} ({px}, {py}): {rgba:?} depth {} against the \
+                             quad's {want:?} depth {}",
+                            image.depth[k],
+                            whole.depth[k]
+                        );
+                    } else if seen[0] == 9 {
+                        outer += 1;
+                        assert_eq!(
+                            (&image.rgba[4 * k..4 * k + 4], image.depth[k]),
+                            (&[0u8, 0, 0, 255][..], clear),
+                            "{name} polygon {p} ({px}, {py}): drawn outside the polygon"
+                        );
+                    }
+                }
+            }
+            eprintln!(
+                "{name} polygon {p}: {inner} pixels inside ({differ} not bit-identical to the \
+                 quad's), {outer} outside"
+            );
+            assert!(
+                inner >= 200 && outer >= 200,
+                "{name} polygon {p}: {inner}, {outer}"
+            );
+        }
     }
 }
 

@@ -61,6 +61,9 @@ struct Relief {
     irradiance: array<vec4<f32>, 9>,
     // rgb: the light's colour, multiplying light.w
     light_color: vec4<f32>,
+    // the polygon drawn: corners (s, t) in units of quad_u and quad_v, (s0, t0, s1, t1) and
+    // (s2, t2, s3, t3), a convex fan counter-clockwise from the front
+    polygon: array<vec4<f32>, 2>,
 }
 
 @group(0) @binding(0) var<uniform> relief: Relief;

@@ -1,4 +1,4 @@
-// The relief-mapped quad (after relief_common.wgsl): the vertex stage places the quad, the
+// The relief-mapped polygon (after relief_common.wgsl): the vertex stage places the polygon, the
 // fragment stage traces the viewing ray through the relief texture with the uniform's method,
 // shades the hit with the relief normal and a directional light (self-shadowed by tracing the
 // light ray with the same cone map), and writes the hit's depth, so the relief occludes and is
@@ -12,18 +12,14 @@ struct VsOut {
     @location(1) uv: vec2<f32>,
 }
 
-// Two triangles over the quad: 6 vertices, no vertex buffer.
+// The polygon as a fan of two triangles, (0, 1, 2) and (0, 2, 3): 6 vertices, no vertex buffer.
+// A triangle repeats its last corner, so the second triangle has no area.
 @vertex
 fn relief_vs(@builtin(vertex_index) index: u32) -> VsOut {
-    var corners = array<vec2<f32>, 6>(
-        vec2<f32>(0.0, 0.0),
-        vec2<f32>(1.0, 0.0),
-        vec2<f32>(0.0, 1.0),
-        vec2<f32>(0.0, 1.0),
-        vec2<f32>(1.0, 0.0),
-        vec2<f32>(1.0, 1.0),
-    );
-    let c = corners[min(index, 5u)];
+    var fan = array<u32, 6>(0u, 1u, 2u, 0u, 2u, 3u);
+    let k = fan[min(index, 5u)];
+    let pair = relief.polygon[k >> 1u];
+    let c = select(pair.xy, pair.zw, (k & 1u) == 1u);
     let p = relief.quad_origin.xyz + c.x * relief.quad_u.xyz + c.y * relief.quad_v.xyz;
     var out: VsOut;
     out.clip = relief.view_proj * vec4<f32>(p, 1.0);
