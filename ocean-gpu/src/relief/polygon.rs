@@ -40,7 +40,8 @@ pub(super) fn check_corners(corners: &[DVec2; 4]) -> Result<(), GpuError> {
         .iter()
         .map(|c| (*c - corners[0]).length_squared())
         .fold(0.0, f64::max);
-    if !(area > 1e-12 * scale) {
+    // Finite: every corner is finite and bounded.
+    if area <= 1e-12 * scale {
         return Err(invalid(
             "relief polygon",
             format!(
