@@ -1,4 +1,4 @@
-//! Relief-mapped blocks: the rocks and the pier of `ocean render` as boxes whose faces are
+//! Relief-mapped blocks: the pier of `ocean render` as boxes whose faces are
 //! quads relief-mapped by relaxed cone stepping (`ocean_gpu::ReliefRenderer`), each face's
 //! relief carved inwards from it and writing its hit's depth, so that blocks occlude each other,
 //! the sea and the terrain correctly and the obscurance pass sees their true shape.
@@ -35,13 +35,6 @@ pub struct Block {
 }
 
 impl Block {
-    /// The unit horizontal vector `facing` degrees from +z towards +x: a face looking that way
-    /// has `right` = [`Block::right_of`]`(facing)`.
-    pub fn right_of(facing_degrees: f64) -> DVec3 {
-        let f = facing_degrees.to_radians();
-        DVec3::new(f.cos(), 0.0, -f.sin())
-    }
-
     /// The drawn faces of non-zero area, in the order front (the face whose outward normal is
     /// `forward`), back, right, left, top, bottom.
     ///
@@ -93,25 +86,33 @@ impl Block {
         self.quads()
             .into_iter()
             .map(|q| {
-                let face = ReliefScene {
+                let quad = ReliefScene {
                     origin: q.origin,
                     edge_u: q.edge_u,
                     edge_v: q.edge_v,
                     tiles: DVec2::new(q.edge_u.length(), q.edge_v.length()) / self.tile,
-                    depth: self.depth,
-                    light_dir: light.sun_dir,
-                    light_intensity: 1.0,
-                    light_color: light.sun.as_vec3().to_array(),
-                    albedo: self.albedo,
-                    ambient: 0.0,
-                    sky: Some(light.sky),
-                    corners: ReliefScene::QUAD,
                     ..ReliefScene::default()
                 };
+                let face = lit(quad, light, self.depth, self.albedo);
                 face.tangent_frame().map_err(|e| e.to_string())?;
                 Ok(face)
             })
             .collect()
+    }
+}
+
+/// `face` with a relief `depth` metres deep and `albedo`, lit by `light`: the Sun, and the
+/// environment's irradiance on the relief's own normal at every hit (no constant ambient).
+pub fn lit(face: ReliefScene, light: FaceLight, depth: f64, albedo: [f32; 3]) -> ReliefScene {
+    ReliefScene {
+        depth,
+        light_dir: light.sun_dir,
+        light_intensity: 1.0,
+        light_color: light.sun.as_vec3().to_array(),
+        albedo,
+        ambient: 0.0,
+        sky: Some(light.sky),
+        ..face
     }
 }
 
@@ -144,7 +145,8 @@ mod tests {
         // and its area is the product of the two sizes it spans.
         let b = Block {
             centre: DVec3::new(1.0, 2.0, 3.0),
-            right: Block::right_of(30.0),
+            // Turned 30°.
+            right: DVec3::new(0.866_025_403_784_438_6, 0.0, -0.5),
             size: DVec3::new(4.0, 2.0, 6.0),
             faces: Faces {
                 sides: true,

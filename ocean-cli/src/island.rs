@@ -5,8 +5,9 @@
 //! their slope variance feeds the same lighting and near and far water look like one sea. The
 //! open sea's own spectrum fades out over the shallows, where the boxes take over.
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use ocean_brdf::{FilteredSurface, LocalWaves};
+use ocean_scene::RockMesh;
 use ocean_wtb::effects::Effects;
 use ocean_wtb::scenarios::steady_wind;
 use ocean_wtb::scene::{BoxSpec, Scene};
@@ -99,6 +100,33 @@ impl IslandSection {
         let base = (peak + shelf) / (1.0 + (peak / shelf) * d2 * d2) - shelf;
         let hills = 0.25 * peak * (fbm(q * 4.0, self.seed ^ 0x9e37) - 0.5);
         base + hills * smoothstep(0.0, 2.0, base)
+    }
+
+    /// The outermost point of the shoreline (height 0) along the unit direction `dir` from the
+    /// centre: stepping inwards from three radii (beyond the coast's reach: the noise moves it
+    /// at most by a factor `1 ± roughness`) by 1/256 of the radius to the first point on land,
+    /// then bisecting that step to 1e-9 of the radius. `None` if the ray meets no land.
+    pub fn shore(&self, dir: DVec2) -> Option<DVec2> {
+        let c = DVec2::from_array(self.centre);
+        let at = |r: f64| c + dir * (r * self.radius);
+        let step = 1.0 / 256.0;
+        let mut outside = 3.0;
+        while self.height(at(outside - step)) < 0.0 {
+            outside -= step;
+            if outside <= step {
+                return None;
+            }
+        }
+        let mut inside = outside - step;
+        while outside - inside > 1e-9 {
+            let mid = 0.5 * (inside + outside);
+            if self.height(at(mid)) < 0.0 {
+                outside = mid;
+            } else {
+                inside = mid;
+            }
+        }
+        Some(at(0.5 * (inside + outside)))
     }
 
     /// The water grid: `grid_size²` points around the centre.
@@ -212,16 +240,38 @@ pub struct Island {
 }
 
 impl Island {
-    /// Builds the terrain and adds the boxes.
+    /// Builds the terrain and adds the boxes. The wave trains meet the `rocks` too: their
+    /// terrain is the island's raised to the top of every rock (`RockMesh::top_at`), so the
+    /// trains break on the rocks and leave shadow zones behind them; the drawn terrain is
+    /// the island's alone (the rocks draw themselves).
     ///
     /// # Errors
     ///
     /// A message naming the box the wave train model refuses.
-    pub fn new(section: &IslandSection, boxes: &[WaveBox]) -> Result<Self, String> {
+    pub fn new(
+        section: &IslandSection,
+        boxes: &[WaveBox],
+        rocks: &[RockMesh],
+    ) -> Result<Self, String> {
         let grid = section.grid()?;
-        let terrain = Terrain::from_fn(&grid, |p| section.height(p) as f32)
+        let ground = Terrain::from_fn(&grid, |p| section.height(p) as f32)
             .map_err(|e| format!("island terrain: {e}"))?;
-        let heights = terrain.heights().map(<[f32]>::to_vec).unwrap_or_default();
+        let heights = ground.heights().map(<[f32]>::to_vec).unwrap_or_default();
+        let bounds: Vec<[DVec3; 2]> = rocks.iter().map(RockMesh::bounds).collect();
+        let with_rocks = |p: DVec2| {
+            let mut h = section.height(p);
+            for (rock, [lo, hi]) in rocks.iter().zip(&bounds) {
+                if (lo.x..=hi.x).contains(&p.x) && (lo.z..=hi.z).contains(&p.y) {
+                    h = rock.top_at(p.x, p.y).map_or(h, |top| h.max(top));
+                }
+            }
+            h as f32
+        };
+        let terrain = if rocks.is_empty() {
+            ground
+        } else {
+            Terrain::from_fn(&grid, with_rocks).map_err(|e| format!("island terrain: {e}"))?
+        };
         let mut scene = Scene::new(grid, terrain).map_err(|e| format!("island: {e}"))?;
         scene
             .set_effects(Effects::default())
@@ -357,7 +407,7 @@ mod tests {
             ..IslandSection::default()
         };
         let boxes = [WaveBox::default()];
-        let mut island = Island::new(&s, &boxes).unwrap();
+        let mut island = Island::new(&s, &boxes, &[]).unwrap();
         let spectrum = ocean_brdf::Spectrum::new(ocean_brdf::SpectrumParams::default()).unwrap();
         let sea = FilteredSurface::new(&spectrum, ocean_brdf::Filter::PAPER).unwrap();
         let local = island.local_waves(&sea, 10.0).unwrap();
@@ -371,5 +421,19 @@ mod tests {
         let mu = local.modulation_at(0, open_water);
         assert!(mu[0].hypot(mu[1]) > 0.3, "{mu:?}");
         assert_eq!(local.open_scale_at(open_water), 1.0);
+
+        // A rock standing there is land to the wave trains (μ = 0 on it) but not to the drawn
+        // terrain, which stays the island's.
+        let rock = ocean_scene::RockShape {
+            size: DVec3::new(12.0, 6.0, 12.0),
+            ..Default::default()
+        }
+        .mesh()
+        .unwrap()
+        .placed(DVec3::new(open_water.x, 1.0, open_water.y), 0.0);
+        let mut rocky = Island::new(&s, &boxes, &[rock]).unwrap();
+        assert_eq!(rocky.heights, island.heights);
+        let local = rocky.local_waves(&sea, 10.0).unwrap();
+        assert_eq!(local.modulation_at(0, open_water), [0.0, 0.0]);
     }
 }

@@ -16,6 +16,7 @@ mod obscurance;
 mod pier;
 mod png;
 mod render;
+mod rocks;
 mod scene;
 mod shaders;
 mod solids;

@@ -130,7 +130,8 @@ fn check_writable(out: &Path) -> Result<(), String> {
     Ok(())
 }
 
-/// Relief-mapped blocks that share one relief texture: their renderer and their faces.
+/// Relief-mapped faces (of rocks, or of the pier's blocks) that share one relief texture: their
+/// renderer and their faces.
 struct RockDraw {
     renderer: ReliefRenderer,
     faces: Vec<ReliefScene>,
@@ -204,13 +205,26 @@ fn rock_draws(
     light: FaceLight,
 ) -> Result<Vec<RockDraw>, String> {
     let mut draws = Vec::new();
+    // Rocks with the same height map share one texture and one renderer, in the order of
+    // their first rock.
+    let mut maps: Vec<(usize, u64)> = Vec::new();
     for rock in &scene.rocks {
-        let n = rock.map_size;
-        let heights = ocean_relief::maps::value_noise(n, (n / 32).max(2), 5, rock.seed);
+        if !maps.contains(&(rock.map_size, rock.map_seed)) {
+            maps.push((rock.map_size, rock.map_seed));
+        }
+    }
+    for (n, seed) in maps {
+        let heights = ocean_relief::maps::value_noise(n, (n / 32).max(2), 5, seed);
         let (renderer, cones) = relief_renderer(ctx, n, &heights)?;
+        let mut faces = Vec::new();
+        for rock in &scene.rocks {
+            if (rock.map_size, rock.map_seed) == (n, seed) {
+                faces.extend(rock.faces(scene.island.as_ref(), light)?);
+            }
+        }
         draws.push(RockDraw {
             renderer,
-            faces: rock.faces(light)?,
+            faces,
             cones,
         });
     }
@@ -592,7 +606,14 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     times.setup = t.elapsed().as_secs_f64();
     let t = Instant::now();
     let mut island = match &scene.island {
-        Some(section) => Some(Island::new(section, &scene.boxes)?),
+        Some(section) => {
+            let rocks = scene
+                .rocks
+                .iter()
+                .map(|r| r.mesh(Some(section)))
+                .collect::<Result<Vec<_>, _>>()?;
+            Some(Island::new(section, &scene.boxes, &rocks)?)
+        }
         None => None,
     };
     let terrain = match &island {

@@ -12,11 +12,10 @@ use ocean_brdf::{Lighting, SeaParams, SkyParams, SpectrumParams};
 use ocean_core::{Camera, DepthConvention, Far, Projection};
 use serde::Deserialize;
 
-use crate::blocks::{Block, Faces};
 use crate::island::{IslandSection, WaveBox};
 use crate::obscurance::ObscuranceSection;
 use crate::pier::PierSection;
-use crate::render::FaceLight;
+use crate::rocks::Rock;
 
 /// The built-in scene.
 pub const DEFAULT_SCENE: &str = include_str!("../scenes/default.toml");
@@ -39,103 +38,6 @@ pub struct SceneFile {
     pub pier: Option<PierSection>,
     /// `[obscurance]`: ambient obscurance over the whole frame.
     pub obscurance: ObscuranceSection,
-}
-
-/// `[[rocks]]`: a rock standing in the water, a block whose faces are relief-mapped by relaxed
-/// cone stepping (`ocean_gpu::ReliefRenderer`) over a procedural height map
-/// ([`crate::blocks`]); with `thickness = 0`, its front face alone.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(default, deny_unknown_fields)]
-pub struct Rock {
-    /// Centre of the face, metres.
-    pub centre: [f64; 3],
-    /// Width and height of the face, metres.
-    pub width: f64,
-    pub height: f64,
-    /// Extent of the block behind its front face, metres (0: the front face alone).
-    pub thickness: f64,
-    /// Direction the face looks towards, degrees from +z towards +x (0 faces the presets).
-    pub facing: f64,
-    /// Depth of the relief behind the face, metres.
-    pub relief_depth: f64,
-    /// World size of one tile of the height map, metres.
-    pub tile: f64,
-    /// Height-map side, texels (a power of two, 16 to 1024).
-    pub map_size: usize,
-    /// Seed of the height map (value noise, 5 octaves).
-    pub seed: u64,
-    /// Linear albedo.
-    pub albedo: [f32; 3],
-}
-
-impl Rock {
-    fn check(&self) -> Result<(), (&'static str, String)> {
-        if let Some(x) = self.centre.iter().find(|x| !x.is_finite()) {
-            return Err(("rocks.centre", format!("holds {x}, which is not finite")));
-        }
-        range("rocks.width", self.width, 1e-3, 1e4)?;
-        range("rocks.height", self.height, 1e-3, 1e4)?;
-        range("rocks.thickness", self.thickness, 0.0, 1e4)?;
-        finite("rocks.facing", self.facing)?;
-        range("rocks.relief_depth", self.relief_depth, 0.0, 1e3)?;
-        range("rocks.tile", self.tile, 1e-3, 1e4)?;
-        if !(self.map_size.is_power_of_two() && (16..=1024).contains(&self.map_size)) {
-            return Err((
-                "rocks.map_size",
-                format!("= {} is not a power of two from 16 to 1024", self.map_size),
-            ));
-        }
-        rgb("rocks.albedo", self.albedo.map(f64::from))
-    }
-}
-
-impl Rock {
-    /// The relief quads of the rock: its front face, and with a thickness its back, sides and
-    /// top.
-    ///
-    /// # Errors
-    ///
-    /// A message for a face the relief renderer refuses.
-    pub fn faces(&self, light: FaceLight) -> Result<Vec<ocean_gpu::ReliefScene>, String> {
-        let right = Block::right_of(self.facing);
-        let front = DVec3::from_array(self.centre);
-        let block = Block {
-            centre: front + 0.5 * self.thickness * DVec3::Y.cross(right),
-            right,
-            size: DVec3::new(self.width, self.height, self.thickness),
-            faces: Faces {
-                sides: true,
-                top: self.thickness > 0.0,
-                bottom: false,
-            },
-            tile: self.tile,
-            depth: self.relief_depth,
-            albedo: self.albedo,
-        };
-        let mut faces = block.faces(light)?;
-        if self.thickness == 0.0 {
-            // The front face alone (the first of the sides).
-            faces.truncate(1);
-        }
-        Ok(faces)
-    }
-}
-
-impl Default for Rock {
-    fn default() -> Self {
-        Self {
-            centre: [-14.0, 2.0, -38.0],
-            width: 16.0,
-            height: 8.0,
-            thickness: 10.0,
-            facing: 75.0,
-            relief_depth: 1.5,
-            tile: 8.0,
-            map_size: 256,
-            seed: 1,
-            albedo: [0.32, 0.29, 0.26],
-        }
-    }
 }
 
 /// `[render]`.
@@ -331,7 +233,7 @@ impl SceneFile {
             ));
         }
         for (i, r) in self.rocks.iter().enumerate() {
-            r.check()
+            r.check(self.island.as_ref())
                 .map_err(|(key, why)| (key, i, format!("(rock {}) {why}", i + 1)))?;
         }
         Ok(())
@@ -549,15 +451,30 @@ mod tests {
     #[test]
     fn the_built_in_file_is_the_defaults() {
         let scene = SceneFile::parse(DEFAULT_SCENE, "default.toml").unwrap();
-        // The defaults of every key, and one rock with the defaults of its keys.
+        // The defaults of every key; the first rock lists the defaults of its keys, the
+        // others differ in place, size and shape alone.
         let want = SceneFile {
             island: Some(IslandSection::default()),
             boxes: vec![WaveBox::default()],
-            rocks: vec![Rock::default()],
+            rocks: scene.rocks.clone(),
             pier: Some(PierSection::default()),
             ..SceneFile::default()
         };
         assert_eq!(scene, want);
+        assert_eq!(scene.rocks.len(), 3);
+        assert_eq!(scene.rocks[0], Rock::default());
+        for r in &scene.rocks[1..] {
+            let same = Rock {
+                shore: r.shore,
+                offset: r.offset,
+                elevation: r.elevation,
+                size: r.size,
+                heading: r.heading,
+                seed: r.seed,
+                ..Rock::default()
+            };
+            assert_eq!(*r, same);
+        }
         assert_eq!(scene.spectrum(), SpectrumParams::default());
         // Elevation 25°, azimuth 35° from −z towards +x.
         let sun = scene.lighting().unwrap().sky().sun_direction();
@@ -584,8 +501,9 @@ mod tests {
             ("[render\nwidth = 3\n", "line 1", ""),
             // The second rock's key, not the first's.
             (
-                "[[rocks]]\nmap_size = 64\n[[rocks]]\nseed = 2\nmap_size = 100\n",
-                "line 5",
+                "[[rocks]]\ncentre = [0.0, 0.0, 0.0]\nmap_size = 64\n[[rocks]]\n\
+                 centre = [1.0, 0.0, 0.0]\nmap_size = 100\n",
+                "line 6",
                 "(rock 2)",
             ),
         ];

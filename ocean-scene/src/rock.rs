@@ -140,6 +140,15 @@ impl RockMesh {
         self.faces().map(|[a, b, c]| a.dot(b.cross(c)) / 6.0).sum()
     }
 
+    /// The corners of the axis-aligned box around the mesh, lowest then highest
+    /// (`[+∞, −∞]` for an empty mesh).
+    pub fn bounds(&self) -> [DVec3; 2] {
+        self.positions.iter().fold(
+            [DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)],
+            |[lo, hi], &p| [lo.min(p), hi.max(p)],
+        )
+    }
+
     /// The highest point of the mesh straight above or below world `(x, z)`, or `None` where
     /// the mesh does not cover it: the rock's top surface, for terrain that carries it.
     pub fn top_at(&self, x: f64, z: f64) -> Option<f64> {
@@ -399,6 +408,17 @@ mod tests {
         let top = mesh.top_at(0.0, 0.0).unwrap();
         assert!((1.0 + 2.0 * 0.7..=1.0 + 2.0 * 1.3).contains(&top), "{top}");
         assert_eq!(mesh.top_at(20.0, 0.0), None);
+        // Every vertex lies in the bounds, and each bound is some vertex's coordinate.
+        let [lo, hi] = mesh.bounds();
+        assert!(
+            mesh.positions
+                .iter()
+                .all(|p| p.cmpge(lo).all() && p.cmple(hi).all())
+        );
+        assert!(
+            mesh.positions.iter().any(|p| p.y == hi.y)
+                && mesh.positions.iter().any(|p| p.x == lo.x)
+        );
         // A vertex of the top half is its own top where no other face lies above it: the
         // highest vertex.
         let high = mesh
