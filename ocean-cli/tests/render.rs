@@ -288,13 +288,16 @@ fn an_interrupted_sequence_leaves_only_complete_frames() {
     }
 }
 
-/// The built-in scene's rock and pier are drawn: against the same scene with no `[[rocks]]`
-/// and no `[pier]` table, more than 2 % of the pixels change by more than 8 levels, none of
+/// The built-in scene's rocks and pier are drawn: against the same scene with no `[[rocks]]`
+/// and no `[pier]` table, more than 0.5 % of the pixels change by more than 8 levels, none of
 /// them above the horizon (row 26 of 72 for the shore preset: 0.5 − tan 8°/(2 tan 27.5°) ≈
-/// 0.365 of the height; the rock's top, 6 m up, is at the camera's height, so it lies on the
-/// horizon; two rows of margin for rasterisation).
+/// 0.365 of the height; the largest rock, 105–115 m away, reaches at most 1.3 × 4.5 m above
+/// its centre 1 m up, under 1 m above the camera's 6 m: half a row; two rows of margin for
+/// rasterisation). Their silhouettes cover about 1.2 % of the 128 × 72 pixels (the rocks'
+/// ellipses 14 × 9, 7 × 5 and 4 × 3 m at 105–115 m: about 64 pixels; the deck about 40 and
+/// the posts 10), less what the pier hides of the rocks: measured 0.98 %.
 #[test]
-fn the_rock_face_is_drawn() {
+fn the_rocks_and_the_pier_are_drawn() {
     let d = dir("rock");
     let size = ["--width", "128", "--height", "72"];
     let with = d.join("with.png");
@@ -342,8 +345,8 @@ fn the_rock_face_is_drawn() {
     }
     let share = changed as f64 / a.len() as f64;
     assert!(
-        share > 0.02,
-        "{share} of the pixels changed with the rock and the pier"
+        share > 0.005,
+        "{share} of the pixels changed with the rocks and the pier"
     );
 }
 

@@ -57,9 +57,20 @@ fn luminance(p: [u8; 4]) -> f64 {
     0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2])
 }
 
-/// The built-in scene text with `from` replaced by `to` (which must occur).
-fn default_with(from: &str, to: &str) -> String {
-    let text = include_str!("../scenes/default.toml");
+/// The built-in scene with one more rock, placed by `centre` 40 m in front of the camera where
+/// it fills enough of a 192 × 108 image for its contact obscurance to be measured (the
+/// built-in rocks stand on the island's shore, 105–115 m away, where the 2 m radius spans
+/// about two pixels).
+fn foreground() -> String {
+    format!(
+        "{}\n[[rocks]]\ncentre = [-14.0, 1.0, -38.0]\nsize = [12.0, 8.0, 10.0]\nseed = 4\n",
+        include_str!("../scenes/default.toml")
+    )
+}
+
+/// [`foreground`]'s text with `from` replaced by `to` (which must occur).
+fn foreground_with(from: &str, to: &str) -> String {
+    let text = foreground();
     assert!(text.contains(from), "{from}");
     text.replacen(from, to, 1)
 }
@@ -102,38 +113,40 @@ fn the_built_in_scene_matches_the_stored_image() {
     assert!(mean <= 1.5 && share <= 0.03, "mean {mean}, share {share}");
 }
 
-/// Each technique shows in the image:
+/// Each technique shows in the image of the built-in scene with a [`foreground`] rock:
 /// - the island's wave train boxes (Yrjölä & Larsson, drawn as local waves, Bruneton et al. §6)
 ///   change the water near the island: without the box, at least 2 % of the pixels differ by
 ///   more than 8 levels, all of them below the horizon;
 /// - the obscurance (McGuire et al.) darkens the image only: no pixel is brighter with it, at
 ///   least 0.5 % of the pixels are darker by more than 6 %, none of the sky's (A = 1 on the
-///   far plane) changes, and the water where the rock and the pier stand in it loses on
-///   average more than 1 % of its light and more than 5 times what the open water loses.
+///   far plane) changes, and the water in the row below the foreground rock's silhouette
+///   loses on average more than 1 % of its light and more than 5 times what the open water
+///   loses.
 ///
-/// Measured at 192 × 108: 1.7 % in the row of water below a rock or pier pixel against 0.15 %
-/// in the open. The water is seen 8° from grazing, so the 2 m radius spans about one row of it
-/// beyond the objects' base (the next rows lose 0.01–0.1 %), and the obscurance scales only
-/// the ambient part of the water's light, a small share of it beside the sky's reflection.
-/// With the blur of the paper's 7 taps of stride 3 (before the 13 adjacent taps of the
-/// defaults): 1.6 % and 0.14 %, the objects' own bottom rows 3.6 %; with the paper's 2 × 2-quad
-/// normals (Eq. 4) those
-/// rows lose 15.7 % and the water row 3.8 %: a dark line along the silhouettes from the normals
+/// Measured at 192 × 108: 1.21 % below the foreground rock against 0.15 % in the open. The
+/// water is seen 8° from grazing, so the 2 m radius spans about one row of it beyond the
+/// rock's base, and the obscurance scales only the ambient part of the water's light, a small
+/// share of it beside the sky's reflection. Below the pier and the shore's rocks, 105–115 m
+/// away, the radius spans two pixels and the loss is 0.01 %. (With the block-shaped rock the
+/// scene had before, whose vertical face met the water along a straight base: 1.7 %. A
+/// rounded rock hides less of the sky from the water at its foot.) The paper's 2 × 2-quad
+/// normals (Eq. 4) darkened those rows by a dark line along the silhouettes from the normals
 /// of quads straddling them, not contact obscurance, which the nearest-neighbour normals
 /// (`NormalEstimate::Nearest`) remove.
 #[test]
 fn each_technique_contributes() {
     let d = dir("techniques");
-    let Some(full) = render(None, &d, "full") else {
+    let Some(full) = render(Some(&foreground()), &d, "full") else {
         return;
     };
     // The horizon of the shore preset (6 m up, looking 8° down, 55° field of view) lies at
     // 0.5 − tan 8°/(2 tan 27.5°) ≈ 0.365 of the height from the top; the sky is above row 30.
     let sky_rows = 0..30;
-    // The built-in scene without its [[boxes]] table.
+    // Without its [[boxes]] table.
     let no_box = {
-        let text = include_str!("../scenes/default.toml");
-        let start = text.find("[[boxes]]").unwrap();
+        let text = foreground();
+        // The table's header, not the island's comment that names it.
+        let start = text.find("\n[[boxes]]").unwrap() + 1;
         let end = text[start..].find("\n# Scalable").unwrap() + start;
         format!("{}{}", &text[..start], &text[end..])
     };
@@ -150,7 +163,7 @@ fn each_technique_contributes() {
     assert!(share >= 0.02, "{share}");
 
     let without_ao = render(
-        Some(&default_with("enabled = true", "enabled = false")),
+        Some(&foreground_with("enabled = true", "enabled = false")),
         &d,
         "no-ao",
     )
@@ -179,7 +192,7 @@ fn each_technique_contributes() {
     // obscurance, when the scene loses its rock and pier (the last tables of the file): the
     // sea and the island do not depend on them.
     let no_objects = {
-        let text = default_with("enabled = true", "enabled = false");
+        let text = foreground_with("enabled = true", "enabled = false");
         let start = text.find("# Rocks:").unwrap();
         text[..start].to_owned()
     };
@@ -190,7 +203,9 @@ fn each_technique_contributes() {
         .map(|(a, b)| (0..3).any(|c| a[c].abs_diff(b[c]) > 8))
         .collect();
     let loss = |k: usize| 1.0 - luminance(full[k]) / luminance(without_ao[k]).max(1e-6);
-    let (mut contact, mut open) = (Vec::new(), Vec::new());
+    // The foreground rock fills columns 38–74; the pier and the shore's rocks start beyond.
+    let near = 0..75;
+    let (mut contact, mut far, mut open) = (Vec::new(), Vec::new(), Vec::new());
     for y in sky_rows.end..H {
         for x in 0..W {
             let k = y * W + x;
@@ -198,18 +213,25 @@ fn each_technique_contributes() {
                 continue;
             }
             if y >= 1 && object[k - W] {
-                contact.push(loss(k));
+                if near.contains(&x) {
+                    contact.push(loss(k));
+                } else {
+                    far.push(loss(k));
+                }
             } else if y >= 3 * H / 4 {
                 open.push(loss(k));
             }
         }
     }
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
-    let (c, o) = (mean(&contact), mean(&open));
+    let (c, f, o) = (mean(&contact), mean(&far), mean(&open));
     println!(
-        "obscurance: {:.1} % darker at {} contact pixels, {:.2} % in {} open ones",
+        "obscurance: {:.2} % darker at {} contact pixels of the foreground rock, {:.2} % at {} \
+         of the pier and the shore's rocks, {:.2} % in {} open ones",
         100.0 * c,
         contact.len(),
+        100.0 * f,
+        far.len(),
         100.0 * o,
         open.len()
     );
