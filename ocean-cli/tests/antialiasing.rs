@@ -7,7 +7,7 @@
 //! when its 4 × 4 block holds both sky (window depth 1) and a surface, or when the window depth
 //! has a second difference above 16/65535 along a row or a column anywhere in the block.
 //! Window depth is affine in screen space over any plane, so only a discontinuity (a
-//! silhouette: the rock, the pier's deck and posts, the island, wave crests hiding troughs)
+//! silhouette: the rocks, the pier's deck and posts, the island, wave crests hiding troughs)
 //! or a strong curvature makes one; its 16-bit quantisation moves a second difference by at
 //! most 2.
 //!
@@ -15,9 +15,9 @@
 //! the pixels no edge crosses, where the render at 320 × 180 differs from the reference only
 //! because the reference resolves finer detail (the sea's filtered waves, the relief's mip
 //! level, the obscurance's pixel-sized taps) and the antialiasing changes nothing. Measured
-//! on lavapipe: edge pixels 16.6 levels with one sample, 8.4 with four; elsewhere 5.9 and 5.9.
+//! on lavapipe: edge pixels 14.0 levels with one sample, 7.7 with four; elsewhere 5.5 and 5.5.
 //! The criterion is on the edge error above that floor: four samples must leave at most half
-//! of what one sample leaves (measured: 2.5 against 10.7 levels).
+//! of what one sample leaves (measured: 2.3 against 8.4 levels).
 //!
 //! The depth is copied from the GPU, which wgpu's GL backend cannot do, and multisampling is
 //! not available there either: these renders ask for Vulkan (lavapipe on a machine without a
