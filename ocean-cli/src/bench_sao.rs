@@ -21,7 +21,9 @@
 //! 5. **Quality**: the paper's normals and blur against the defaults (plane-weighted blur,
 //!    nearest-neighbour normals), each against the estimator's own 256-sample limit on the
 //!    same depth buffer, on the box in a room and on boxes on a floor seen from 12° above,
-//!    at 640×360: mean absolute error, MSE and correlation.
+//!    at 640×360: mean absolute error, MSE and correlation; and on the built-in scene of
+//!    `ocean render`, its first frame's depth drawn on the GPU (skipped without a Vulkan
+//!    adapter or with `--no-gpu`), against the estimator's limit on that depth buffer.
 //!
 //! GPU times come from timestamps around each pass where the adapter has them; otherwise each
 //! pass is submitted on its own and its wall time (record, submit, wait) is taken, which
@@ -418,7 +420,7 @@ const QUALITY: (usize, usize, usize) = (640, 360, 32);
 /// defaults against the estimator's own limit on the same depth buffer (ocean-sao's
 /// `reference::screen_obscurance`: the same falloff, 256 exact-depth samples over Eq. 5's disk
 /// per pixel), over the geometry pixels: mean absolute error, MSE and correlation.
-fn quality() -> Result<Value, String> {
+fn quality(no_gpu: bool) -> Result<Value, String> {
     use ocean_sao::reference::{self, ReferenceParams, compare};
     use ocean_sao::scene::{CameraRays, NO_FACE};
     let (w, h, guard) = QUALITY;
@@ -457,17 +459,9 @@ fn quality() -> Result<Value, String> {
             let mut ao = vec![0.0f32; viewport.output_len()];
             sao.run(&raster.depth, &mut ao).map_err(err)?;
             let c = compare(&ao, &disk, geometry);
-            let mae = ao
-                .iter()
-                .zip(&disk)
-                .enumerate()
-                .filter(|&(i, _)| geometry(i))
-                .map(|(_, (a, b))| f64::from((a - b).abs()))
-                .sum::<f64>()
-                / c.pixels.max(1) as f64;
             cases.push(json!({
                 "blur": name,
-                "mae": mae,
+                "mae": mae(&ao, &disk, geometry, c.pixels),
                 "mse": c.mse,
                 "correlation": c.correlation,
                 "pixels": c.pixels,
@@ -475,7 +469,66 @@ fn quality() -> Result<Value, String> {
         }
         rows.push(json!({ "scene": view.name, "cases": cases }));
     }
+    rows.push(if no_gpu {
+        json!({ "scene": "built-in", "skipped": "--no-gpu" })
+    } else {
+        match built_in_quality() {
+            Ok(cases) => json!({ "scene": "built-in", "cases": cases }),
+            Err(why) => json!({ "scene": "built-in", "skipped": why }),
+        }
+    });
     Ok(json!({ "size": [w, h], "guard": guard, "reference_samples": 256, "scenes": rows }))
+}
+
+/// Figure 5 on the built-in scene's own depth: the first frame of `ocean render`'s scene at
+/// the figure's size plus its guard band, drawn on the GPU (Vulkan, one sample), its depth read
+/// back in `f32`; the reference is the estimator's limit on that depth buffer
+/// (`reference::buffer_obscurance`: 256 samples over Eq. 5's disk, occluders and normals from
+/// the buffer's own texels).
+fn built_in_quality() -> Result<Vec<Value>, String> {
+    use ocean_sao::reference::{self, ReferenceParams, compare};
+    use ocean_sao::scene::CameraRays;
+    let (w, h, guard) = QUALITY;
+    let (iw, ih) = (w + 2 * guard, h + 2 * guard);
+    let mut scene = crate::scene::SceneFile::parse(crate::scene::DEFAULT_SCENE, "built-in")?;
+    scene.render.width = iw as u32;
+    scene.render.height = ih as u32;
+    let (camera, depth) = crate::render::scene_depth(&scene)?;
+    let viewport = Viewport::new(iw, ih, guard).map_err(err)?;
+    let rays = CameraRays::new(&camera, iw, ih).map_err(err)?;
+    let rp = ReferenceParams::from_params(&SaoParams::default(), 16).map_err(err)?;
+    let positions = reference::view_positions(&camera, &depth, iw, ih);
+    let limit = reference::buffer_obscurance(&positions, &rays, &viewport, &rp);
+    let geometry = |i: usize| positions[(i / w + guard) * iw + i % w + guard].is_some();
+    let mut cases = Vec::new();
+    for (name, params) in [
+        ("paper", SaoParams::paper()),
+        ("defaults", SaoParams::default()),
+    ] {
+        let sao = Sao::from_camera(&camera, DepthSource::Window, viewport, params).map_err(err)?;
+        let mut ao = vec![0.0f32; viewport.output_len()];
+        sao.run(&depth, &mut ao).map_err(err)?;
+        let c = compare(&ao, &limit, geometry);
+        cases.push(json!({
+            "blur": name,
+            "mae": mae(&ao, &limit, geometry, c.pixels),
+            "mse": c.mse,
+            "correlation": c.correlation,
+            "pixels": c.pixels,
+        }));
+    }
+    Ok(cases)
+}
+
+/// Mean absolute difference over the `pixels` pixels `keep` selects.
+fn mae(a: &[f32], b: &[f32], keep: impl Fn(usize) -> bool, pixels: usize) -> f64 {
+    a.iter()
+        .zip(b)
+        .enumerate()
+        .filter(|&(i, _)| keep(i))
+        .map(|(_, (a, b))| f64::from((a - b).abs()))
+        .sum::<f64>()
+        / pixels.max(1) as f64
 }
 
 /// Figure 4.
@@ -527,7 +580,7 @@ pub fn sao(args: &BenchArgs) -> Result<Value, String> {
         "runs": runs,
         "gpu": gpu_doc,
         "cpu_reference": cpu_reference(runs)?,
-        "quality": quality()?,
+        "quality": quality(args.no_gpu)?,
     });
     Ok(doc)
 }
@@ -636,6 +689,12 @@ fn print_table(doc: &Value) {
         q["reference_samples"], q["size"][0], q["size"][1], q["guard"]
     );
     for s in q["scenes"].as_array().into_iter().flatten() {
+        if let Some(why) = s["skipped"].as_str() {
+            println!(
+                "   {:>12}: skipped ({why})",
+                s["scene"].as_str().unwrap_or("?")
+            );
+        }
         for c in s["cases"].as_array().into_iter().flatten() {
             println!(
                 "   {:>12} {:>9}: {:.4}  {:.5}  {:.4}",

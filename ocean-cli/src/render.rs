@@ -506,6 +506,212 @@ fn draw_frame(
     Ok(FrameImage { rgba, depth })
 }
 
+/// Everything a scene's frames are drawn with, built once: the device, the renderers and
+/// their textures, the island's wave trains and the targets.
+pub struct Session {
+    ctx: GpuContext,
+    renderer: OceanRenderer,
+    surface: FilteredSurface,
+    lighting: Lighting,
+    island: Option<Island>,
+    terrain: Option<TerrainRenderer>,
+    face_light: FaceLight,
+    rocks: Vec<RockDraw>,
+    solids: Option<SolidRenderer>,
+    targets: Targets,
+    obscurance: Obscurance,
+    /// Samples per pixel drawn (1 where multisampling is not available).
+    samples: u32,
+    /// Whether the scene asked for more samples than the backend draws.
+    single_only: bool,
+    width: u32,
+    height: u32,
+}
+
+impl Session {
+    /// Builds the session of `scene` at its `[render]` size with `samples` per pixel on
+    /// `backend`; with `read_depth` the frames can read their depth back (refused on GL).
+    /// Stage times go to `times`.
+    ///
+    /// # Errors
+    ///
+    /// A message for a device, scene or renderer that fails.
+    fn build(
+        scene: &SceneFile,
+        backend: Backend,
+        preset: Option<Preset>,
+        samples: u32,
+        read_depth: bool,
+        times: &mut Times,
+    ) -> Result<Self, String> {
+        let (width, height) = (scene.render.width, scene.render.height);
+        let t = Instant::now();
+        let ctx = GpuContext::headless_with(&ContextOptions {
+            backends: match backend {
+                Backend::Auto => None,
+                Backend::Vulkan => Some(ocean_gpu::wgpu::Backends::VULKAN),
+                Backend::Gl => Some(ocean_gpu::wgpu::Backends::GL),
+            },
+            ..ContextOptions::default()
+        })
+        .map_err(|e| e.to_string())?;
+        if read_depth && ctx.adapter_info().map(|i| i.backend) == Some(ocean_gpu::wgpu::Backend::Gl)
+        {
+            return Err(format!(
+                "--depth-out: {} cannot copy a depth texture to memory (wgpu's \
+                 DEPTH_TEXTURE_AND_BUFFER_COPIES, absent on OpenGL); try --backend vulkan",
+                ctx.describe()
+            ));
+        }
+        // Where multisampled targets are lost (wgpu's GL backend), one sample per pixel, said in
+        // the summary.
+        let single_only = samples > 1 && !ctx.supports_multisampled_light();
+        let samples = if single_only { 1 } else { samples };
+        times.device = t.elapsed().as_secs_f64();
+
+        let t = Instant::now();
+        let spectrum = Spectrum::new(scene.spectrum()).map_err(|e| format!("spectrum: {e}"))?;
+        let surface =
+            FilteredSurface::new(&spectrum, Filter::PAPER).map_err(|e| format!("spectrum: {e}"))?;
+        let lighting = scene.lighting()?;
+        let gpu = |e: ocean_gpu::GpuError| e.to_string();
+        let mut renderer = OceanRenderer::new(&ctx, OceanOptions::default()).map_err(gpu)?;
+        renderer.set_surface(&ctx, &surface).map_err(gpu)?;
+        renderer.set_lighting(&ctx, &lighting).map_err(gpu)?;
+        ctx.wait_idle().map_err(gpu)?;
+        times.setup = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let island = match &scene.island {
+            Some(section) => {
+                let rocks = scene
+                    .rocks
+                    .iter()
+                    .map(|r| r.mesh(Some(section)))
+                    .collect::<Result<Vec<_>, _>>()?;
+                Some(Island::new(section, &scene.boxes, &rocks)?)
+            }
+            None => None,
+        };
+        let terrain = match &island {
+            Some(i) => Some(TerrainRenderer::new(
+                &ctx,
+                &i.heights,
+                (i.grid.nx(), i.grid.nz()),
+                i.grid.origin(),
+                i.grid.spacing(),
+                samples,
+            )?),
+            None => None,
+        };
+        times.island = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let face_light = FaceLight::new(&lighting);
+        let rocks = rock_draws(&ctx, scene, face_light)?;
+        let solids = match &scene.pier {
+            Some(pier) => Some(SolidRenderer::new(&ctx, &pier.posts(), samples)?),
+            None => None,
+        };
+        times.rocks = t.elapsed().as_secs_f64();
+        let targets = Targets::new(&ctx, width, height, samples)?;
+        let obscurance = Obscurance::new(
+            &ctx,
+            &scene.obscurance,
+            &scene.camera(preset, scene.render.time, width, height)?,
+            (width, height),
+        )?;
+
+        Ok(Self {
+            ctx,
+            renderer,
+            surface,
+            lighting,
+            island,
+            terrain,
+            face_light,
+            rocks,
+            solids,
+            targets,
+            obscurance,
+            samples,
+            single_only,
+            width,
+            height,
+        })
+    }
+
+    /// The session `ocean render` draws `scene` with, as `args` ask.
+    fn new(scene: &SceneFile, args: &RenderArgs, times: &mut Times) -> Result<Self, String> {
+        Self::build(
+            scene,
+            args.backend,
+            args.camera,
+            scene.render.samples,
+            args.depth_out.is_some(),
+            times,
+        )
+    }
+
+    /// Draws the frame at scene `time` seen from `preset` (or the scene's camera) and reads it
+    /// back, its depth too with `read_depth`; the passes' times go to `times`. Also returns
+    /// when the drawing started, after the wave trains were marched.
+    fn frame(
+        &mut self,
+        scene: &SceneFile,
+        preset: Option<Preset>,
+        time: f64,
+        read_depth: bool,
+        times: &mut Times,
+    ) -> Result<(FrameImage, Instant), String> {
+        let gpu = |e: ocean_gpu::GpuError| e.to_string();
+        let camera = scene.camera(preset, time, self.width, self.height)?;
+        let t = Instant::now();
+        if let Some(island) = self.island.as_mut() {
+            let local = island.local_waves(&self.surface, time)?;
+            self.renderer
+                .set_local_waves(&self.ctx, Some(&local))
+                .map_err(gpu)?;
+        }
+        times.waves += t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let mut dressing = Dressing {
+            terrain: self.terrain.as_ref(),
+            obscurance: &mut self.obscurance,
+            lighting: &self.lighting,
+            sky: &self.face_light.sky,
+            rocks: &self.rocks,
+            solids: self.solids.as_ref(),
+        };
+        let image = draw_frame(
+            &self.ctx,
+            &self.renderer,
+            &mut dressing,
+            &camera,
+            time,
+            &self.targets,
+            read_depth,
+            &mut times.passes,
+        )
+        .map_err(gpu)?;
+        Ok((image, t))
+    }
+}
+
+/// The built-in scene's (or `scene`'s) first frame at its `[render]` size, one sample per
+/// pixel, on the Vulkan backend: its camera and its window depth, rows from the top, what the
+/// obscurance pass reads.
+///
+/// # Errors
+///
+/// A message where no Vulkan adapter exists or the scene fails.
+pub fn scene_depth(scene: &SceneFile) -> Result<(Camera, Vec<f32>), String> {
+    let mut times = Times::default();
+    let mut session = Session::build(scene, Backend::Vulkan, None, 1, true, &mut times)?;
+    let camera = scene.camera(None, scene.render.time, session.width, session.height)?;
+    let (image, _) = session.frame(scene, None, scene.render.time, true, &mut times)?;
+    let depth = image.depth.ok_or("the frame's depth was not read back")?;
+    Ok((camera, depth))
+}
+
 /// A 16-bit grayscale PNG of window depths in `[0, 1]`: 65535 d, rounded (big-endian samples,
 /// as PNG stores them).
 fn depth_png(width: u32, height: u32, depth: &[f32]) -> Result<Vec<u8>, String> {
@@ -563,87 +769,9 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         check_writable(path)?;
     }
     let (width, height) = (scene.render.width, scene.render.height);
-    let mut samples = scene.render.samples;
     let mut times = Times::default();
-
-    let t = Instant::now();
-    let ctx = GpuContext::headless_with(&ContextOptions {
-        backends: match args.backend {
-            Backend::Auto => None,
-            Backend::Vulkan => Some(ocean_gpu::wgpu::Backends::VULKAN),
-            Backend::Gl => Some(ocean_gpu::wgpu::Backends::GL),
-        },
-        ..ContextOptions::default()
-    })
-    .map_err(|e| e.to_string())?;
-    if args.depth_out.is_some()
-        && ctx.adapter_info().map(|i| i.backend) == Some(ocean_gpu::wgpu::Backend::Gl)
-    {
-        return Err(format!(
-            "--depth-out: {} cannot copy a depth texture to memory (wgpu's \
-             DEPTH_TEXTURE_AND_BUFFER_COPIES, absent on OpenGL); try --backend vulkan",
-            ctx.describe()
-        ));
-    }
-    // Where multisampled targets are lost (wgpu's GL backend), one sample per pixel, said in
-    // the summary.
-    let single_only = samples > 1 && !ctx.supports_multisampled_light();
-    if single_only {
-        samples = 1;
-    }
-    times.device = t.elapsed().as_secs_f64();
-
-    let t = Instant::now();
-    let spectrum = Spectrum::new(scene.spectrum()).map_err(|e| format!("spectrum: {e}"))?;
-    let surface =
-        FilteredSurface::new(&spectrum, Filter::PAPER).map_err(|e| format!("spectrum: {e}"))?;
-    let lighting = scene.lighting()?;
-    let gpu = |e: ocean_gpu::GpuError| e.to_string();
-    let mut renderer = OceanRenderer::new(&ctx, OceanOptions::default()).map_err(gpu)?;
-    renderer.set_surface(&ctx, &surface).map_err(gpu)?;
-    renderer.set_lighting(&ctx, &lighting).map_err(gpu)?;
-    ctx.wait_idle().map_err(gpu)?;
-    times.setup = t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    let mut island = match &scene.island {
-        Some(section) => {
-            let rocks = scene
-                .rocks
-                .iter()
-                .map(|r| r.mesh(Some(section)))
-                .collect::<Result<Vec<_>, _>>()?;
-            Some(Island::new(section, &scene.boxes, &rocks)?)
-        }
-        None => None,
-    };
-    let terrain = match &island {
-        Some(i) => Some(TerrainRenderer::new(
-            &ctx,
-            &i.heights,
-            (i.grid.nx(), i.grid.nz()),
-            i.grid.origin(),
-            i.grid.spacing(),
-            samples,
-        )?),
-        None => None,
-    };
-    times.island = t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    let face_light = FaceLight::new(&lighting);
-    let rocks = rock_draws(&ctx, &scene, face_light)?;
-    let solids = match &scene.pier {
-        Some(pier) => Some(SolidRenderer::new(&ctx, &pier.posts(), samples)?),
-        None => None,
-    };
-    times.rocks = t.elapsed().as_secs_f64();
-    let targets = Targets::new(&ctx, width, height, samples)?;
-    let mut obscurance = Obscurance::new(
-        &ctx,
-        &scene.obscurance,
-        &scene.camera(args.camera, scene.render.time, width, height)?,
-        (width, height),
-    )?;
-
+    let mut session = Session::new(&scene, args, &mut times)?;
+    let samples = session.samples;
     let bar = !args.quiet && std::io::stderr().is_terminal();
     let frames = args.frames;
     let mut written = 0u32;
@@ -652,33 +780,13 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             break;
         }
         let time = scene.render.time + f64::from(k) / scene.render.fps;
-        let camera = scene.camera(args.camera, time, width, height)?;
-        let t = Instant::now();
-        if let Some(island) = island.as_mut() {
-            let local = island.local_waves(&surface, time)?;
-            renderer.set_local_waves(&ctx, Some(&local)).map_err(gpu)?;
-        }
-        times.waves += t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let mut dressing = Dressing {
-            terrain: terrain.as_ref(),
-            obscurance: &mut obscurance,
-            lighting: &lighting,
-            sky: &face_light.sky,
-            rocks: &rocks,
-            solids: solids.as_ref(),
-        };
-        let image = draw_frame(
-            &ctx,
-            &renderer,
-            &mut dressing,
-            &camera,
+        let (image, t) = session.frame(
+            &scene,
+            args.camera,
             time,
-            &targets,
             args.depth_out.is_some(),
-            &mut times.passes,
-        )
-        .map_err(gpu)?;
+            &mut times,
+        )?;
         if k == 0 && frames > 1 {
             // The first frame builds the pipelines (and the driver compiles their shaders):
             // reported apart, so the per-pass figures are those of a running sequence.
@@ -751,14 +859,14 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             )
         },
         if samples == 1 { "" } else { "s" },
-        if single_only {
+        if session.single_only {
             " (multisampling is not available on this backend)"
         } else {
             ""
         },
         if written == 1 { "" } else { "s" },
-        surface.wave_set().waves().len(),
-        ctx.describe()
+        session.surface.wave_set().waves().len(),
+        session.ctx.describe()
     );
     println!("  device           {:9.1} ms", 1e3 * times.device);
     println!(
@@ -766,7 +874,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         1e3 * times.setup
     );
     println!(
-        "  island           {:9.1} ms  (terrain, wave train boxes, terrain mesh upload)",
+        "  island           {:9.1} ms  (terrain, wave train boxes, session.terrain mesh upload)",
         1e3 * times.island
     );
     println!(
@@ -774,12 +882,12 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         per(times.waves),
         scene.boxes.len()
     );
-    let generated: usize = rocks.iter().map(|r| r.cones.0).sum();
-    let cached: usize = rocks.iter().map(|r| r.cones.1).sum();
+    let generated: usize = session.rocks.iter().map(|r| r.cones.0).sum();
+    let cached: usize = session.rocks.iter().map(|r| r.cones.1).sum();
     println!(
-        "  relief maps      {:9.1} ms  ({} relief textures for the rocks and the pier with {} levels down to 8 x 8, relaxed cones: {generated} generated on the CPU, {cached} from the cache{})",
+        "  relief maps      {:9.1} ms  ({} relief textures for the session.rocks and the pier with {} levels down to 8 x 8, relaxed cones: {generated} generated on the CPU, {cached} from the cache{})",
         1e3 * times.rocks,
-        rocks.len(),
+        session.rocks.len(),
         generated + cached,
         cone_cache::dir().map_or_else(
             || " (none: no cache directory)".to_owned(),
@@ -805,9 +913,9 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     );
     for ((name, what), s) in PASSES.iter().zip(times.passes) {
         let skipped = match *name {
-            "island" => terrain.is_none(),
-            "rocks, pier" => rocks.is_empty() && solids.is_none(),
-            "obscurance" => !obscurance.enabled(),
+            "island" => session.terrain.is_none(),
+            "rocks, pier" => session.rocks.is_empty() && session.solids.is_none(),
+            "obscurance" => !session.obscurance.enabled(),
             _ => false,
         };
         if skipped {

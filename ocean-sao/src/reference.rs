@@ -19,6 +19,11 @@
 //!   with infinitely many samples, exact depth and no MIP levels, so its difference from the
 //!   passes measures their discretisation (9 samples, MIP levels, depth precision, quad
 //!   normals, the blur) rather than the screen-space model.
+//! - [`buffer_obscurance`]: **the estimator's limit on a depth buffer**, for scenes known only
+//!   by their depth (a renderer's frame): as [`screen_obscurance`], but `C`, its normal and
+//!   every occluder come from the buffer's own texels (the occluder is the texel under the
+//!   sample, at full resolution, no MIP level; the normal is the nearest-neighbour one, from
+//!   the smaller of the two one-sided differences along each axis, facing the eye).
 
 use alloc::vec;
 use alloc::vec::Vec;
@@ -178,6 +183,124 @@ pub fn screen_obscurance(
                     count += 1;
                     if let Some(hit) = rays.trace(scene, px, py) {
                         sum += params.falloff(hit.point - c, normal);
+                    }
+                }
+            }
+            *a = params.visibility(sum, count);
+        }
+    });
+    out
+}
+
+/// View-space positions of a `width × height` window-depth buffer (rows from the top) seen by
+/// `camera`: each texel's centre taken back through the inverse view-projection; `None` where
+/// the depth lies on the far plane or at infinity (the background).
+pub fn view_positions(
+    camera: &ocean_core::Camera,
+    depth: &[f32],
+    width: usize,
+    height: usize,
+) -> Vec<Option<DVec3>> {
+    let convention = camera.depth();
+    let clear = convention.clear_depth();
+    let view = camera.view_f64();
+    depth
+        .iter()
+        .enumerate()
+        .map(|(i, &d)| {
+            let d = f64::from(d);
+            let window_clear = match convention.range() {
+                ocean_core::DepthRange::NegOneToOne => 0.5 * clear + 0.5,
+                ocean_core::DepthRange::ZeroToOne => clear,
+            };
+            if d == window_clear {
+                return None;
+            }
+            let ndc_z = match convention.range() {
+                ocean_core::DepthRange::NegOneToOne => 2.0 * d - 1.0,
+                ocean_core::DepthRange::ZeroToOne => d,
+            };
+            let (x, y) = ((i % width) as f64 + 0.5, (i / width) as f64 + 0.5);
+            let ndc = DVec3::new(
+                2.0 * x / width as f64 - 1.0,
+                1.0 - 2.0 * y / height as f64,
+                ndc_z,
+            );
+            let p = camera.ndc_to_world(ndc).ok()?;
+            let v = view.transform_point3(p);
+            v.is_finite().then_some(v)
+        })
+        .collect()
+}
+
+/// The converged screen-space estimator on a depth buffer (see the module doc), output size:
+/// `positions` are the input image's view-space positions ([`view_positions`]), `rays` give the
+/// projection's scale.
+pub fn buffer_obscurance(
+    positions: &[Option<DVec3>],
+    rays: &CameraRays,
+    viewport: &Viewport,
+    params: &ReferenceParams,
+) -> Vec<f32> {
+    let ow = viewport.output_width();
+    let (iw, ih) = (viewport.input_width(), viewport.input_height());
+    let g = viewport.guard();
+    let n = params.strata;
+    let s_prime = rays.pixels_per_metre();
+    let at = |x: i64, y: i64| {
+        if x < 0 || y < 0 || x >= iw as i64 || y >= ih as i64 {
+            None
+        } else {
+            positions[y as usize * iw + x as usize]
+        }
+    };
+    // The one-sided difference of smaller depth change, or the other where one is missing.
+    let nearest = |c: DVec3, a: Option<DVec3>, b: Option<DVec3>| match (a, b) {
+        (Some(a), Some(b)) if (a.z - c.z).abs() < (b.z - c.z).abs() => Some(c - a),
+        (_, Some(b)) => Some(b - c),
+        (Some(a), None) => Some(c - a),
+        (None, None) => None,
+    };
+    let mut out = vec![1.0f32; viewport.output_len()];
+    for_rows(&mut out, ow, |y, row| {
+        for (x, a) in row.iter_mut().enumerate() {
+            let (ix, iy) = ((x + g) as i64, (y + g) as i64);
+            let Some(c) = at(ix, iy) else {
+                continue;
+            };
+            let dx = nearest(c, at(ix - 1, iy), at(ix + 1, iy));
+            let dy = nearest(c, at(ix, iy - 1), at(ix, iy + 1));
+            let (Some(dx), Some(dy)) = (dx, dy) else {
+                continue;
+            };
+            // Rows run downwards: x × (−y) faces the eye for a surface facing it.
+            let mut normal = dy.cross(dx).normalize_or_zero();
+            let to_eye = if rays.is_perspective() { -c } else { DVec3::Z };
+            if normal.dot(to_eye) < 0.0 {
+                normal = -normal;
+            }
+            if normal == DVec3::ZERO {
+                continue;
+            }
+            let r_px = if rays.is_perspective() {
+                params.radius * s_prime / -c.z
+            } else {
+                params.radius * s_prime
+            };
+            let (cx, cy) = (ix as f64 + 0.5, iy as f64 + 0.5);
+            let mut sum = 0.0;
+            let mut count = 0;
+            for i in 0..n {
+                let hp = r_px * (i as f64 + 0.5) / n as f64;
+                for j in 0..n {
+                    let theta = TAU * (j as f64 + 0.5) / n as f64;
+                    let (px, py) = (cx + hp * cos(theta), cy + hp * sin(theta));
+                    if !(px >= 0.0 && py >= 0.0 && px < iw as f64 && py < ih as f64) {
+                        continue;
+                    }
+                    count += 1;
+                    if let Some(q) = at(px as i64, py as i64) {
+                        sum += params.falloff(q - c, normal);
                     }
                 }
             }

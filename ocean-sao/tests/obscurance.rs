@@ -504,3 +504,35 @@ fn snapshots() {
         hex_grid(&st.ao, r.viewport.output_width())
     );
 }
+
+/// The depth-buffer reference (`reference::buffer_obscurance`, for frames known only by their
+/// depth) converges to the exact-depth one (`screen_obscurance`) on the analytic views: both
+/// take 256 samples over Eq. 5's disk with the same falloff, and differ only where the buffer
+/// snaps each sample to its texel and estimates the normal from its neighbours. Measured
+/// (printed): MSE 0.0001 / 0.0007 / 0.0005 (crease, box, spheres) and correlation
+/// 0.990–0.999 between the two, an order of magnitude closer than any pass is to either (MSE
+/// 0.004–0.008 above). Bounds: MSE 0.0015, correlation 0.95. With the normal facing away from
+/// the eye (a sign error) the crease gives MSE 0.049 and fails.
+#[test]
+fn the_depth_buffer_reference_converges_to_the_exact_one() {
+    for view in [
+        AnalyticView::crease(),
+        AnalyticView::box_in_room(),
+        AnalyticView::spheres(),
+    ] {
+        let r = Render::standard(view, SIZE);
+        let (iw, ih) = (r.viewport.input_width(), r.viewport.input_height());
+        let rays = CameraRays::new(&r.camera, iw, ih).unwrap();
+        let rp = ReferenceParams::from_params(&SaoParams::default(), 16).unwrap();
+        let exact = reference::screen_obscurance(&r.view.scene, &rays, &r.viewport, &rp);
+        let positions = reference::view_positions(&r.camera, &r.raster.depth, iw, ih);
+        let buffer = reference::buffer_obscurance(&positions, &rays, &r.viewport, &rp);
+        let c = compare(&buffer, &exact, |i| r.is_geometry(i));
+        report(&format!("{}: depth buffer vs exact depth", r.view.name), &c);
+        assert!(
+            c.mse <= 0.0015 && c.correlation >= 0.95,
+            "{}: {c:?}",
+            r.view.name
+        );
+    }
+}
