@@ -874,7 +874,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         1e3 * times.setup
     );
     println!(
-        "  island           {:9.1} ms  (terrain, wave train boxes, session.terrain mesh upload)",
+        "  island           {:9.1} ms  (terrain, wave train boxes, terrain mesh upload)",
         1e3 * times.island
     );
     println!(
@@ -885,7 +885,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let generated: usize = session.rocks.iter().map(|r| r.cones.0).sum();
     let cached: usize = session.rocks.iter().map(|r| r.cones.1).sum();
     println!(
-        "  relief maps      {:9.1} ms  ({} relief textures for the session.rocks and the pier with {} levels down to 8 x 8, relaxed cones: {generated} generated on the CPU, {cached} from the cache{})",
+        "  relief maps      {:9.1} ms  ({} relief textures for the rocks and the pier with {} levels down to 8 x 8, relaxed cones: {generated} generated on the CPU, {cached} from the cache{})",
         1e3 * times.rocks,
         session.rocks.len(),
         generated + cached,
