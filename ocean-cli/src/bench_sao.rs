@@ -38,7 +38,7 @@
 
 use std::time::Instant;
 
-use ocean_core::{DepthConvention, Far, Projection};
+use ocean_core::{Camera, DepthConvention, Far, Projection};
 use ocean_gpu::{GpuContext, GpuError, SaoPass, SaoStage, SaoTimer, wgpu};
 use ocean_sao::scene::{AnalyticView, DepthFormat};
 use ocean_sao::{DepthSource, Sao, SaoParams, Viewport};
@@ -421,7 +421,7 @@ const QUALITY: (usize, usize, usize) = (640, 360, 32);
 /// `reference::screen_obscurance`: the same falloff, 256 exact-depth samples over Eq. 5's disk
 /// per pixel), over the geometry pixels: mean absolute error, MSE and correlation.
 fn quality(no_gpu: bool) -> Result<Value, String> {
-    use ocean_sao::reference::{self, ReferenceParams, compare};
+    use ocean_sao::reference::{self, ReferenceParams};
     use ocean_sao::scene::{CameraRays, NO_FACE};
     let (w, h, guard) = QUALITY;
     let (iw, ih) = (w + 2 * guard, h + 2 * guard);
@@ -449,24 +449,7 @@ fn quality(no_gpu: bool) -> Result<Value, String> {
         let rp = ReferenceParams::from_params(&SaoParams::default(), 16).map_err(err)?;
         let disk = reference::screen_obscurance(&view.scene, &rays, &viewport, &rp);
         let geometry = |i: usize| raster.face[(i / w + guard) * iw + i % w + guard] != NO_FACE;
-        let mut cases = Vec::new();
-        for (name, params) in [
-            ("paper", SaoParams::paper()),
-            ("defaults", SaoParams::default()),
-        ] {
-            let sao =
-                Sao::from_camera(&camera, DepthSource::Window, viewport, params).map_err(err)?;
-            let mut ao = vec![0.0f32; viewport.output_len()];
-            sao.run(&raster.depth, &mut ao).map_err(err)?;
-            let c = compare(&ao, &disk, geometry);
-            cases.push(json!({
-                "blur": name,
-                "mae": mae(&ao, &disk, geometry, c.pixels),
-                "mse": c.mse,
-                "correlation": c.correlation,
-                "pixels": c.pixels,
-            }));
-        }
+        let cases = blur_cases(&camera, viewport, &raster.depth, &disk, geometry)?;
         rows.push(json!({ "scene": view.name, "cases": cases }));
     }
     rows.push(if no_gpu {
@@ -486,7 +469,7 @@ fn quality(no_gpu: bool) -> Result<Value, String> {
 /// (`reference::buffer_obscurance`: 256 samples over Eq. 5's disk, occluders and normals from
 /// the buffer's own texels).
 fn built_in_quality() -> Result<Vec<Value>, String> {
-    use ocean_sao::reference::{self, ReferenceParams, compare};
+    use ocean_sao::reference::{self, ReferenceParams};
     use ocean_sao::scene::CameraRays;
     let (w, h, guard) = QUALITY;
     let (iw, ih) = (w + 2 * guard, h + 2 * guard);
@@ -500,18 +483,30 @@ fn built_in_quality() -> Result<Vec<Value>, String> {
     let positions = reference::view_positions(&camera, &depth, iw, ih);
     let limit = reference::buffer_obscurance(&positions, &rays, &viewport, &rp);
     let geometry = |i: usize| positions[(i / w + guard) * iw + i % w + guard].is_some();
+    blur_cases(&camera, viewport, &depth, &limit, geometry)
+}
+
+/// The final A of the paper's blur and of the defaults on window `depth` seen by `camera`,
+/// each against `limit` over the output pixels `geometry` selects: MAE, MSE, correlation.
+fn blur_cases(
+    camera: &Camera,
+    viewport: Viewport,
+    depth: &[f32],
+    limit: &[f32],
+    geometry: impl Fn(usize) -> bool + Copy,
+) -> Result<Vec<Value>, String> {
     let mut cases = Vec::new();
     for (name, params) in [
         ("paper", SaoParams::paper()),
         ("defaults", SaoParams::default()),
     ] {
-        let sao = Sao::from_camera(&camera, DepthSource::Window, viewport, params).map_err(err)?;
+        let sao = Sao::from_camera(camera, DepthSource::Window, viewport, params).map_err(err)?;
         let mut ao = vec![0.0f32; viewport.output_len()];
-        sao.run(&depth, &mut ao).map_err(err)?;
-        let c = compare(&ao, &limit, geometry);
+        sao.run(depth, &mut ao).map_err(err)?;
+        let c = ocean_sao::reference::compare(&ao, limit, geometry);
         cases.push(json!({
             "blur": name,
-            "mae": mae(&ao, &limit, geometry, c.pixels),
+            "mae": mae(&ao, limit, geometry, c.pixels),
             "mse": c.mse,
             "correlation": c.correlation,
             "pixels": c.pixels,

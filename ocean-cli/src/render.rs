@@ -151,6 +151,17 @@ pub struct FaceLight {
 }
 
 impl FaceLight {
+    /// A Sun from above and in front, and a sky brighter towards the zenith: the light of the
+    /// unit tests.
+    #[cfg(test)]
+    pub fn for_tests() -> Self {
+        Self {
+            sun_dir: DVec3::new(0.3, 0.8, -0.5),
+            sun: DVec3::new(0.3, 0.25, 0.2),
+            sky: Irradiance::from_radiance(|d| DVec3::splat(0.1 * d.y.max(0.0))),
+        }
+    }
+
     pub fn new(lighting: &Lighting) -> Self {
         let sky = lighting.sky();
         Self {

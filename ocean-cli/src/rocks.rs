@@ -204,11 +204,7 @@ mod tests {
     use super::*;
 
     fn light() -> FaceLight {
-        FaceLight {
-            sun_dir: DVec3::new(0.3, 0.8, -0.5),
-            sun: DVec3::new(0.3, 0.25, 0.2),
-            sky: ocean_brdf::Irradiance::from_radiance(|d| DVec3::splat(0.1 * d.y.max(0.0))),
-        }
+        FaceLight::for_tests()
     }
 
     /// A rock on the shore: its centre is on the shoreline (terrain height 0 there, land

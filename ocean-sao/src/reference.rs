@@ -86,6 +86,39 @@ impl ReferenceParams {
         f * f * f * ((v.dot(n) - self.beta) / (vv + self.epsilon)).max(0.0)
     }
 
+    /// The visibility of `c` (normal `normal`) from Eq. 5's disk of `r_px` pixels around
+    /// pixel position `centre`, sampled in `N × N` strata as the spiral samples it (radius
+    /// `r_px·α` with `α` uniform, direction uniform); samples outside a `size` image are
+    /// skipped, and each other sample's occluder is `occluder(px, py)` (none: no surface).
+    fn disk(
+        &self,
+        r_px: f64,
+        (cx, cy): (f64, f64),
+        (w, h): (f64, f64),
+        c: DVec3,
+        normal: DVec3,
+        occluder: impl Fn(f64, f64) -> Option<DVec3>,
+    ) -> f32 {
+        let n = self.strata;
+        let mut sum = 0.0;
+        let mut count = 0;
+        for i in 0..n {
+            let hp = r_px * (i as f64 + 0.5) / n as f64;
+            for j in 0..n {
+                let theta = TAU * (j as f64 + 0.5) / n as f64;
+                let (px, py) = (cx + hp * cos(theta), cy + hp * sin(theta));
+                if !(px >= 0.0 && py >= 0.0 && px < w && py < h) {
+                    continue;
+                }
+                count += 1;
+                if let Some(q) = occluder(px, py) {
+                    sum += self.falloff(q - c, normal);
+                }
+            }
+        }
+        self.visibility(sum, count)
+    }
+
     fn visibility(&self, sum: f64, count: usize) -> f32 {
         if count == 0 {
             return 1.0;
@@ -155,7 +188,6 @@ pub fn screen_obscurance(
         viewport.input_height() as f64,
     );
     let g = viewport.guard() as f64;
-    let n = params.strata;
     let s_prime = rays.pixels_per_metre();
     let mut out = vec![1.0f32; viewport.output_len()];
     for_rows(&mut out, ow, |y, row| {
@@ -169,24 +201,10 @@ pub fn screen_obscurance(
             } else {
                 params.radius * s_prime
             };
-            let (cx, cy) = (x as f64 + g + 0.5, y as f64 + g + 0.5);
-            let mut sum = 0.0;
-            let mut count = 0;
-            for i in 0..n {
-                let hp = r_px * (i as f64 + 0.5) / n as f64;
-                for j in 0..n {
-                    let theta = TAU * (j as f64 + 0.5) / n as f64;
-                    let (px, py) = (cx + hp * cos(theta), cy + hp * sin(theta));
-                    if !(px >= 0.0 && py >= 0.0 && px < w && py < h) {
-                        continue;
-                    }
-                    count += 1;
-                    if let Some(hit) = rays.trace(scene, px, py) {
-                        sum += params.falloff(hit.point - c, normal);
-                    }
-                }
-            }
-            *a = params.visibility(sum, count);
+            let centre = (x as f64 + g + 0.5, y as f64 + g + 0.5);
+            *a = params.disk(r_px, centre, (w, h), c, normal, |px, py| {
+                rays.trace(scene, px, py).map(|hit| hit.point)
+            });
         }
     });
     out
@@ -245,7 +263,6 @@ pub fn buffer_obscurance(
     let ow = viewport.output_width();
     let (iw, ih) = (viewport.input_width(), viewport.input_height());
     let g = viewport.guard();
-    let n = params.strata;
     let s_prime = rays.pixels_per_metre();
     let at = |x: i64, y: i64| {
         if x < 0 || y < 0 || x >= iw as i64 || y >= ih as i64 {
@@ -287,24 +304,11 @@ pub fn buffer_obscurance(
             } else {
                 params.radius * s_prime
             };
-            let (cx, cy) = (ix as f64 + 0.5, iy as f64 + 0.5);
-            let mut sum = 0.0;
-            let mut count = 0;
-            for i in 0..n {
-                let hp = r_px * (i as f64 + 0.5) / n as f64;
-                for j in 0..n {
-                    let theta = TAU * (j as f64 + 0.5) / n as f64;
-                    let (px, py) = (cx + hp * cos(theta), cy + hp * sin(theta));
-                    if !(px >= 0.0 && py >= 0.0 && px < iw as f64 && py < ih as f64) {
-                        continue;
-                    }
-                    count += 1;
-                    if let Some(q) = at(px as i64, py as i64) {
-                        sum += params.falloff(q - c, normal);
-                    }
-                }
-            }
-            *a = params.visibility(sum, count);
+            let centre = (ix as f64 + 0.5, iy as f64 + 0.5);
+            let size = (iw as f64, ih as f64);
+            *a = params.disk(r_px, centre, size, c, normal, |px, py| {
+                at(px as i64, py as i64)
+            });
         }
     });
     out
