@@ -251,13 +251,13 @@ impl Island {
     pub fn new(
         section: &IslandSection,
         boxes: &[WaveBox],
-        rocks: &[RockMesh],
+        rocks: &[&RockMesh],
     ) -> Result<Self, String> {
         let grid = section.grid()?;
         let ground = Terrain::from_fn(&grid, |p| section.height(p) as f32)
             .map_err(|e| format!("island terrain: {e}"))?;
         let heights = ground.heights().map(<[f32]>::to_vec).unwrap_or_default();
-        let bounds: Vec<[DVec3; 2]> = rocks.iter().map(RockMesh::bounds).collect();
+        let bounds: Vec<[DVec3; 2]> = rocks.iter().map(|r| r.bounds()).collect();
         let with_rocks = |p: DVec2| {
             let mut h = section.height(p);
             for (rock, [lo, hi]) in rocks.iter().zip(&bounds) {
@@ -431,7 +431,7 @@ mod tests {
         .mesh()
         .unwrap()
         .placed(DVec3::new(open_water.x, 1.0, open_water.y), 0.0);
-        let mut rocky = Island::new(&s, &boxes, &[rock]).unwrap();
+        let mut rocky = Island::new(&s, &boxes, &[&rock]).unwrap();
         assert_eq!(rocky.heights, island.heights);
         let local = rocky.local_waves(&sea, 10.0).unwrap();
         assert_eq!(local.modulation_at(0, open_water), [0.0, 0.0]);

@@ -27,6 +27,7 @@ use ocean_gpu::{
     OceanRenderer, RADIANCE_FORMAT, ReliefOptions, ReliefRenderer, ReliefScene,
 };
 use ocean_relief::{ConeParams, Edge, ReliefMips, ReliefTexture};
+use ocean_scene::RockMesh;
 
 use crate::cone_cache;
 use crate::island::Island;
@@ -209,10 +210,12 @@ fn relief_renderer(
     Ok((renderer, (generated, cached)))
 }
 
-/// The rocks and the pier of `scene`: their relief textures and faces.
+/// The rocks and the pier of `scene`: their relief textures and faces; `rocks` holds each
+/// rock's centre and mesh ([`crate::rocks::Rock::mesh`]), in the scene's order.
 fn rock_draws(
     ctx: &GpuContext,
     scene: &SceneFile,
+    rocks: &[(DVec3, RockMesh)],
     light: FaceLight,
 ) -> Result<Vec<RockDraw>, String> {
     let mut draws = Vec::new();
@@ -228,9 +231,9 @@ fn rock_draws(
         let heights = ocean_relief::maps::value_noise(n, (n / 32).max(2), 5, seed);
         let (renderer, cones) = relief_renderer(ctx, n, &heights)?;
         let mut faces = Vec::new();
-        for rock in &scene.rocks {
+        for (rock, (centre, mesh)) in scene.rocks.iter().zip(rocks) {
             if (rock.map_size, rock.map_seed) == (n, seed) {
-                faces.extend(rock.faces(scene.island.as_ref(), light)?);
+                faces.extend(rock.faces(*centre, mesh, light)?);
             }
         }
         draws.push(RockDraw {
@@ -592,14 +595,15 @@ impl Session {
         ctx.wait_idle().map_err(gpu)?;
         times.setup = t.elapsed().as_secs_f64();
         let t = Instant::now();
+        let rock_meshes = scene
+            .rocks
+            .iter()
+            .map(|r| r.mesh(scene.island.as_ref()))
+            .collect::<Result<Vec<_>, _>>()?;
         let island = match &scene.island {
             Some(section) => {
-                let rocks = scene
-                    .rocks
-                    .iter()
-                    .map(|r| r.mesh(Some(section)))
-                    .collect::<Result<Vec<_>, _>>()?;
-                Some(Island::new(section, &scene.boxes, &rocks)?)
+                let meshes: Vec<&RockMesh> = rock_meshes.iter().map(|(_, m)| m).collect();
+                Some(Island::new(section, &scene.boxes, &meshes)?)
             }
             None => None,
         };
@@ -617,7 +621,7 @@ impl Session {
         times.island = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let face_light = FaceLight::new(&lighting);
-        let rocks = rock_draws(&ctx, scene, face_light)?;
+        let rocks = rock_draws(&ctx, scene, &rock_meshes, face_light)?;
         let solids = match &scene.pier {
             Some(pier) => Some(SolidRenderer::new(&ctx, &pier.posts(), samples)?),
             None => None,
@@ -664,7 +668,7 @@ impl Session {
 
     /// Draws the frame at scene `time` seen from `preset` (or the scene's camera) and reads it
     /// back, its depth too with `read_depth`; the passes' times go to `times`. Also returns
-    /// when the drawing started, after the wave trains were marched.
+    /// the camera and when the drawing started, after the wave trains were marched.
     fn frame(
         &mut self,
         scene: &SceneFile,
@@ -672,7 +676,7 @@ impl Session {
         time: f64,
         read_depth: bool,
         times: &mut Times,
-    ) -> Result<(FrameImage, Instant), String> {
+    ) -> Result<(FrameImage, Camera, Instant), String> {
         let gpu = |e: ocean_gpu::GpuError| e.to_string();
         let camera = scene.camera(preset, time, self.width, self.height)?;
         let t = Instant::now();
@@ -703,7 +707,7 @@ impl Session {
             &mut times.passes,
         )
         .map_err(gpu)?;
-        Ok((image, t))
+        Ok((image, camera, t))
     }
 }
 
@@ -717,8 +721,7 @@ impl Session {
 pub fn scene_depth(scene: &SceneFile) -> Result<(Camera, Vec<f32>), String> {
     let mut times = Times::default();
     let mut session = Session::build(scene, Backend::Vulkan, None, 1, true, &mut times)?;
-    let camera = scene.camera(None, scene.render.time, session.width, session.height)?;
-    let (image, _) = session.frame(scene, None, scene.render.time, true, &mut times)?;
+    let (image, camera, _) = session.frame(scene, None, scene.render.time, true, &mut times)?;
     let depth = image.depth.ok_or("the frame's depth was not read back")?;
     Ok((camera, depth))
 }
@@ -791,7 +794,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             break;
         }
         let time = scene.render.time + f64::from(k) / scene.render.fps;
-        let (image, t) = session.frame(
+        let (image, _, t) = session.frame(
             &scene,
             args.camera,
             time,

@@ -11,6 +11,7 @@ use serde::Deserialize;
 use crate::blocks::lit;
 use crate::island::IslandSection;
 use crate::render::FaceLight;
+use crate::scene::range;
 
 /// `[[rocks]]`: one rock.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
@@ -70,14 +71,6 @@ impl Default for Rock {
 }
 
 type Bad = (&'static str, String);
-
-fn range(key: &'static str, v: f64, min: f64, max: f64) -> Result<(), Bad> {
-    if v.is_finite() && (min..=max).contains(&v) {
-        Ok(())
-    } else {
-        Err((key, format!("= {v} is outside {min} to {max}")))
-    }
-}
 
 impl Rock {
     /// Checks every key's range, and that a rock on the shore has an island.
@@ -160,12 +153,12 @@ impl Rock {
         Ok(DVec3::new(p.x, self.elevation, p.y))
     }
 
-    /// The rock's mesh in the world.
+    /// The rock's centre ([`Rock::position`]) and its mesh in the world.
     ///
     /// # Errors
     ///
     /// A message for a shape the generator refuses or a shore not found.
-    pub fn mesh(&self, island: Option<&IslandSection>) -> Result<RockMesh, String> {
+    pub fn mesh(&self, island: Option<&IslandSection>) -> Result<(DVec3, RockMesh), String> {
         let shape = RockShape {
             size: DVec3::from_array(self.size),
             roughness: self.roughness,
@@ -173,25 +166,25 @@ impl Rock {
             seed: self.seed,
         };
         let mesh = shape.mesh().map_err(|e| e.to_string())?;
-        Ok(mesh.placed(self.position(island)?, self.heading.to_radians()))
+        let centre = self.position(island)?;
+        Ok((centre, mesh.placed(centre, self.heading.to_radians())))
     }
 
-    /// The rock's relief-mapped triangles, lit by `light`, their texture coordinates anchored
-    /// at the rock's centre.
+    /// The relief-mapped triangles of the rock's `mesh` ([`Rock::mesh`]), lit by `light`,
+    /// their texture coordinates anchored at its `centre`.
     ///
     /// # Errors
     ///
-    /// As [`Rock::mesh`], and a message for a face the relief renderer refuses.
+    /// A message for a face the relief renderer refuses.
     pub fn faces(
         &self,
-        island: Option<&IslandSection>,
+        centre: DVec3,
+        mesh: &RockMesh,
         light: FaceLight,
     ) -> Result<Vec<ReliefScene>, String> {
-        let mesh = self.mesh(island)?;
-        let anchor = self.position(island)?;
         mesh.faces()
             .map(|t| {
-                let face = ReliefScene::on_polygon(&t, anchor, self.tile)
+                let face = ReliefScene::on_polygon(&t, centre, self.tile)
                     .map_err(|e| format!("rock face: {e}"))?;
                 Ok(lit(face, light, self.relief_depth, self.albedo))
             })
@@ -231,7 +224,9 @@ mod tests {
         };
         let m = moved.position(Some(&island)).unwrap();
         assert!((DVec2::new(m.x, m.z) - (p + 4.0 * out)).length() < 1e-9);
-        let faces = rock.faces(Some(&island), light()).unwrap();
+        let (centre, mesh) = rock.mesh(Some(&island)).unwrap();
+        assert_eq!(centre, c);
+        let faces = rock.faces(centre, &mesh, light()).unwrap();
         assert_eq!(faces.len(), 320);
         for f in &faces {
             let n = f.edge_u.cross(f.edge_v);

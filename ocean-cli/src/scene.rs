@@ -394,7 +394,12 @@ fn finite(key: &'static str, v: f64) -> Result<(), (&'static str, String)> {
     }
 }
 
-fn range(key: &'static str, v: f64, min: f64, max: f64) -> Result<(), (&'static str, String)> {
+pub(crate) fn range(
+    key: &'static str,
+    v: f64,
+    min: f64,
+    max: f64,
+) -> Result<(), (&'static str, String)> {
     if v.is_finite() && (min..=max).contains(&v) {
         Ok(())
     } else {

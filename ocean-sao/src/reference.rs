@@ -221,23 +221,18 @@ pub fn view_positions(
 ) -> Vec<Option<DVec3>> {
     let convention = camera.depth();
     let clear = convention.clear_depth();
+    let gl = convention.range() == ocean_core::DepthRange::NegOneToOne;
+    let window_clear = if gl { 0.5 * clear + 0.5 } else { clear };
     let view = camera.view_f64();
     depth
         .iter()
         .enumerate()
         .map(|(i, &d)| {
             let d = f64::from(d);
-            let window_clear = match convention.range() {
-                ocean_core::DepthRange::NegOneToOne => 0.5 * clear + 0.5,
-                ocean_core::DepthRange::ZeroToOne => clear,
-            };
             if d == window_clear {
                 return None;
             }
-            let ndc_z = match convention.range() {
-                ocean_core::DepthRange::NegOneToOne => 2.0 * d - 1.0,
-                ocean_core::DepthRange::ZeroToOne => d,
-            };
+            let ndc_z = if gl { 2.0 * d - 1.0 } else { d };
             let (x, y) = ((i % width) as f64 + 0.5, (i / width) as f64 + 0.5);
             let ndc = DVec3::new(
                 2.0 * x / width as f64 - 1.0,

@@ -329,7 +329,7 @@ mod tests {
     /// outward, every vertex within the roughness band of its ellipsoid.
     #[test]
     fn rocks_are_closed_outward_and_within_their_band() {
-        for detail in 0..=3 {
+        for detail in 0..=MAX_DETAIL {
             for seed in 0..200 {
                 let shape = RockShape {
                     size: DVec3::new(8.0, 3.0, 5.0),
