@@ -7,15 +7,35 @@
  *   directions are (x, z) pairs on it.
  * - Errors: every fallible function returns an OceanStatus. OCEAN_STATUS_OK (0) is success; on
  *   any other value no output parameter has been written (but for the size that
- *   OCEAN_STATUS_BUFFER_TOO_SMALL reports), and ocean_last_error_message() gives a detailed,
- *   thread-local message. ocean_status_message() gives a fixed text per code.
+ *   OCEAN_STATUS_BUFFER_TOO_SMALL reports in `needed`). When several errors apply, the first
+ *   in this order is reported: (1) handles, in parameter order (NULL: NULL_POINTER; another
+ *   kind, destroyed or never made: INVALID_HANDLE); (2) other pointers, in parameter order
+ *   (NULL_POINTER, then MISALIGNED_POINTER); (3) counts (EMPTY, then LENGTH_OVERFLOW, then
+ *   INVALID_ARGUMENT for overlapping buffers or inconsistent lengths); (4) values, in parameter
+ *   and field order (NON_FINITE, then range: INVALID_ARGUMENT, TOO_STEEP); (5) the handle's
+ *   state (NOT_FOUND, NOT_EVALUATED, OUTSIDE_GRID) and the work itself (INVALID_ARGUMENT when a
+ *   result would not be finite, BUFFER_TOO_SMALL, CANCELLED, GPU_FAILURE).
+ * - The last-error message: ocean_last_error_message() is the calling thread's message of its
+ *   most recent failure, naming the function, the argument and the value ("" after a success).
+ *   Every status-returning function sets it on failure and clears it on success. The destroy
+ *   functions return nothing: they leave it alone, but for misuse (a handle of another kind,
+ *   destroyed or never made), which they refuse and describe there. ocean_version,
+ *   ocean_status_message and ocean_last_error_message never change it. The text stays valid
+ *   until the thread's next call of a status-returning function. ocean_status_message()
+ *   gives a fixed text per code.
  * - Every pointer is checked for NULL and alignment, every count for 0 and for overflow, every
  *   float for NaN and infinity; no call can crash the process on such input. What cannot be
- *   checked (that a non-NULL pointer really points to enough memory, that a handle is live) is
- *   stated in each function's Safety section.
- * - Handles are opaque; each _create has a NULL-safe _destroy.
- * - Threads: every function may be called from any thread. A const handle may be used by many
- *   threads at once; _destroy must not race with any other use of the same handle.
+ *   checked (that a non-NULL pointer really points to enough memory) is stated in each
+ *   function's Safety section.
+ * - Handles are opaque ids, not addresses: the library never reads through one. Each is
+ *   registered with its kind while alive, and ids are never reused, so a handle of the wrong
+ *   kind, a destroyed handle, a second destroy or a value the library never returned is
+ *   refused with OCEAN_STATUS_INVALID_HANDLE (SQLite's SQLITE_MISUSE is the model). Each
+ *   _create has a _destroy; destroying NULL does nothing.
+ * - Threads: every function may be called from any thread, and every handle may be used by
+ *   many threads at once (the mutable ones lock inside). A handle destroyed while another
+ *   thread is inside a call on it stays alive until that call returns; calls made after the
+ *   destroy are refused.
  */
 
 #ifndef OCEAN_H
@@ -448,6 +468,13 @@ enum OceanStatus
    * train filter). Evaluate it again first.
    */
   OCEAN_STATUS_NOT_EVALUATED = 15,
+  /**
+   * A handle argument is not a live handle of its kind: it is of another kind (an
+   * `OceanSpectrum *` passed as an `OceanLighting *`), was destroyed, or is a value no
+   * function of this library returned (zeroed or freed memory). Nothing was read through
+   * it. A destroy function given such a handle frees nothing and sets this message.
+   */
+  OCEAN_STATUS_INVALID_HANDLE = 16,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -2134,14 +2161,10 @@ extern "C" {
 OceanStatus ocean_gpu_context_create(struct OceanGpuContext **out);
 
 /**
- * Frees a context. NULL is ignored, and so is a pointer that is not even aligned. Never
- * fails; leaves the last-error message alone. Renderers created on it keep the device alive
- * until they are destroyed, but can no longer be used (every renderer call needs the context).
- *
- * # Safety
- *
- * `ctx` must be NULL or a handle from `ocean_gpu_context_create` not yet destroyed, and no
- * other thread may be using it.
+ * Frees a context. NULL does nothing; a handle of another kind or already destroyed frees nothing
+ * and sets the last-error message (see the header's notes on handles). Renderers created on it
+ * keep the device alive until they are destroyed, but can no longer be used (every renderer call
+ * needs the context).
  */
 void ocean_gpu_context_destroy(struct OceanGpuContext *ctx);
 
@@ -2167,7 +2190,7 @@ void ocean_gpu_context_destroy(struct OceanGpuContext *ctx);
  *
  * # Safety
  *
- * `ctx` must be a live handle, `buf` NULL or `len` writable bytes that no other thread
+ * `buf` NULL or `len` writable bytes that no other thread
  * touches during the call, and `needed` writable.
  */
 OceanStatus ocean_gpu_context_describe(const struct OceanGpuContext *ctx,
@@ -2200,7 +2223,7 @@ OceanStatus ocean_renderer_options_default(struct OceanRendererOptions *out);
  *
  * # Safety
  *
- * `ctx` must be a live handle, `options` point to a readable `OceanRendererOptions` and `out`
+ * `options` point to a readable `OceanRendererOptions` and `out`
  * to a writable pointer; `options` is not retained.
  */
 OceanStatus ocean_renderer_create(const struct OceanGpuContext *ctx,
@@ -2208,13 +2231,9 @@ OceanStatus ocean_renderer_create(const struct OceanGpuContext *ctx,
                                   struct OceanRenderer **out);
 
 /**
- * Frees a renderer and its GPU resources. NULL is ignored, and so is a pointer that is not
- * even aligned. Never fails; leaves the last-error message alone. It may outlive its context.
- *
- * # Safety
- *
- * `renderer` must be NULL or a handle from `ocean_renderer_create` not yet destroyed, and no
- * other thread may be using it.
+ * Frees a renderer and its GPU resources. NULL does nothing; a handle of another kind or already
+ * destroyed frees nothing and sets the last-error message (see the header's notes on handles). It
+ * may outlive its context.
  */
 void ocean_renderer_destroy(struct OceanRenderer *renderer);
 
@@ -2230,10 +2249,6 @@ void ocean_renderer_destroy(struct OceanRenderer *renderer);
  * unless 0 < n_min < n_max <= 1e6, for more waves than the device's largest texture is wide,
  * or for a context other than the renderer's; `OCEAN_STATUS_GPU_FAILURE` for a device error.
  * On failure the renderer keeps its previous spectrum.
- *
- * # Safety
- *
- * `renderer`, `ctx` and `spectrum` must be live handles.
  */
 OceanStatus ocean_renderer_set_spectrum(struct OceanRenderer *renderer,
                                         const struct OceanGpuContext *ctx,
@@ -2251,10 +2266,6 @@ OceanStatus ocean_renderer_set_spectrum(struct OceanRenderer *renderer,
  * `OCEAN_STATUS_INVALID_ARGUMENT` for a context other than the renderer's or a radiance beyond
  * binary16's range (65504: scale the radiance unit down), `OCEAN_STATUS_GPU_FAILURE` for a
  * device error. On failure the renderer keeps its previous lighting.
- *
- * # Safety
- *
- * `renderer`, `ctx` and `lighting` must be live handles.
  */
 OceanStatus ocean_renderer_set_lighting(struct OceanRenderer *renderer,
                                         const struct OceanGpuContext *ctx,
@@ -2288,7 +2299,7 @@ OceanStatus ocean_renderer_set_lighting(struct OceanRenderer *renderer,
  *
  * # Safety
  *
- * `renderer` and `ctx` must be live handles, `camera` readable, and `out` point to `len`
+ * `camera` readable, and `out` point to `len`
  * writable bytes that no other thread touches during the call.
  */
 OceanStatus ocean_renderer_render_rgba8(const struct OceanRenderer *renderer,
@@ -2354,13 +2365,9 @@ OceanStatus ocean_lighting_create(const struct OceanSkyParams *sky,
                                   struct OceanLighting **out);
 
 /**
- * Frees a lighting. NULL is ignored, and so is a pointer that is not even aligned. Never
- * fails; leaves the last-error message alone. Sky maps made from it stay valid.
- *
- * # Safety
- *
- * `lighting` must be NULL or a handle from `ocean_lighting_create` not yet destroyed, and no
- * other thread may be using it.
+ * Frees a lighting. NULL does nothing; a handle of another kind or already destroyed frees nothing
+ * and sets the last-error message (see the header's notes on handles). Sky maps made from it stay
+ * valid.
  */
 void ocean_lighting_destroy(struct OceanLighting *lighting);
 
@@ -2373,7 +2380,7 @@ void ocean_lighting_destroy(struct OceanLighting *lighting);
  *
  * # Safety
  *
- * `lighting` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_lighting_sky_irradiance(const struct OceanLighting *lighting,
                                           struct OceanRgb *out);
@@ -2390,7 +2397,7 @@ OceanStatus ocean_lighting_sky_irradiance(const struct OceanLighting *lighting,
  *
  * # Safety
  *
- * `lighting` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_lighting_irradiance(const struct OceanLighting *lighting,
                                       struct OceanIrradiance *out);
@@ -2404,7 +2411,7 @@ OceanStatus ocean_lighting_irradiance(const struct OceanLighting *lighting,
  *
  * # Safety
  *
- * `lighting` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_lighting_sea_radiance(const struct OceanLighting *lighting, struct OceanRgb *out);
 
@@ -2418,7 +2425,7 @@ OceanStatus ocean_lighting_sea_radiance(const struct OceanLighting *lighting, st
  *
  * # Safety
  *
- * `lighting` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_lighting_below_horizon_radiance(const struct OceanLighting *lighting,
                                                   struct OceanRgb *out);
@@ -2432,7 +2439,7 @@ OceanStatus ocean_lighting_below_horizon_radiance(const struct OceanLighting *li
  *
  * # Safety
  *
- * `lighting` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_lighting_sun_radiance(const struct OceanLighting *lighting, struct OceanRgb *out);
 
@@ -2445,7 +2452,7 @@ OceanStatus ocean_lighting_sun_radiance(const struct OceanLighting *lighting, st
  *
  * # Safety
  *
- * `lighting` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_lighting_sun_solid_angle(const struct OceanLighting *lighting, double *out);
 
@@ -2462,7 +2469,7 @@ OceanStatus ocean_lighting_sun_solid_angle(const struct OceanLighting *lighting,
  *
  * # Safety
  *
- * `lighting` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_lighting_environment_radiance(const struct OceanLighting *lighting,
                                                 struct OceanDVec3 dir,
@@ -2489,20 +2496,15 @@ OceanStatus ocean_lighting_environment_radiance(const struct OceanLighting *ligh
  *
  * # Safety
  *
- * `lighting` must be a live handle and `out` point to a writable pointer.
+ * `out` must point to a writable pointer.
  */
 OceanStatus ocean_lighting_sky_map_create(const struct OceanLighting *lighting,
                                           uint32_t size,
                                           struct OceanSkyMap **out);
 
 /**
- * Frees a sky map. NULL is ignored, and so is a pointer that is not even aligned. Never
- * fails; leaves the last-error message alone.
- *
- * # Safety
- *
- * `sky_map` must be NULL or a handle from `ocean_lighting_sky_map_create` not yet destroyed,
- * and no other thread may be using it.
+ * Frees a sky map. NULL does nothing; a handle of another kind or already destroyed frees nothing
+ * and sets the last-error message (see the header's notes on handles).
  */
 void ocean_sky_map_destroy(struct OceanSkyMap *sky_map);
 
@@ -2514,7 +2516,7 @@ void ocean_sky_map_destroy(struct OceanSkyMap *sky_map);
  *
  * # Safety
  *
- * `sky_map` must be a live handle and `out_count` writable.
+ * `out_count` must be writable.
  */
 OceanStatus ocean_sky_map_level_count(const struct OceanSkyMap *sky_map, uint32_t *out_count);
 
@@ -2528,7 +2530,7 @@ OceanStatus ocean_sky_map_level_count(const struct OceanSkyMap *sky_map, uint32_
  *
  * # Safety
  *
- * `sky_map` must be a live handle and `out_size` writable.
+ * `out_size` must be writable.
  */
 OceanStatus ocean_sky_map_level_info(const struct OceanSkyMap *sky_map,
                                      uint32_t level,
@@ -2547,7 +2549,7 @@ OceanStatus ocean_sky_map_level_info(const struct OceanSkyMap *sky_map,
  *
  * # Safety
  *
- * `sky_map` must be a live handle and `rgba` point to `len` writable floats that no other
+ * `rgba` must point to `len` writable floats that no other
  * thread touches during the call.
  */
 OceanStatus ocean_sky_map_copy_level(const struct OceanSkyMap *sky_map,
@@ -2582,7 +2584,7 @@ OceanStatus ocean_sky_map_copy_level(const struct OceanSkyMap *sky_map,
  *
  * # Safety
  *
- * `lighting` and `sky_map` must be live handles and `out` writable.
+ * `out` writable.
  */
 OceanStatus ocean_sea_color(const struct OceanLighting *lighting,
                             const struct OceanSkyMap *sky_map,
@@ -2607,7 +2609,7 @@ OceanStatus ocean_sea_color(const struct OceanLighting *lighting,
  *
  * # Safety
  *
- * `lighting` and `sky_map` must be live handles, `inputs` point to `n` readable
+ * `inputs` point to `n` readable
  * `OceanSeaColorInput`s and `out` to `n` writable `OceanSeaLight`s, none modified by another
  * thread during the call.
  */
@@ -2833,13 +2835,8 @@ OceanStatus ocean_spectrum_create(const struct OceanSpectrumParams *params,
                                   struct OceanSpectrum **out);
 
 /**
- * Frees a spectrum. NULL is ignored, and so is a pointer that is not even aligned. Never
- * fails; leaves the last-error message alone.
- *
- * # Safety
- *
- * `spectrum` must be NULL or a handle from `ocean_spectrum_create` not yet destroyed, and no
- * other thread may be using it.
+ * Frees a spectrum. NULL does nothing; a handle of another kind or already destroyed frees nothing
+ * and sets the last-error message (see the header's notes on handles).
  */
 void ocean_spectrum_destroy(struct OceanSpectrum *spectrum);
 
@@ -2851,7 +2848,7 @@ void ocean_spectrum_destroy(struct OceanSpectrum *spectrum);
  *
  * # Safety
  *
- * `spectrum` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_spectrum_wave_count(const struct OceanSpectrum *spectrum, size_t *out);
 
@@ -2867,7 +2864,7 @@ OceanStatus ocean_spectrum_wave_count(const struct OceanSpectrum *spectrum, size
  *
  * # Safety
  *
- * `spectrum` must be a live handle and `out` point to `n` writable `OceanWaveDesc`s that no
+ * `out` must point to `n` writable `OceanWaveDesc`s that no
  * other thread touches during the call.
  */
 OceanStatus ocean_spectrum_waves(const struct OceanSpectrum *spectrum,
@@ -2882,7 +2879,7 @@ OceanStatus ocean_spectrum_waves(const struct OceanSpectrum *spectrum,
  *
  * # Safety
  *
- * `spectrum` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_spectrum_wind_direction(const struct OceanSpectrum *spectrum,
                                           struct OceanDVec2 *out);
@@ -2895,7 +2892,7 @@ OceanStatus ocean_spectrum_wind_direction(const struct OceanSpectrum *spectrum,
  *
  * # Safety
  *
- * `spectrum` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_spectrum_clamped_count(const struct OceanSpectrum *spectrum, size_t *out);
 
@@ -2908,7 +2905,7 @@ OceanStatus ocean_spectrum_clamped_count(const struct OceanSpectrum *spectrum, s
  *
  * # Safety
  *
- * `spectrum` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_spectrum_max_amplitude(const struct OceanSpectrum *spectrum, double *out);
 
@@ -2921,7 +2918,7 @@ OceanStatus ocean_spectrum_max_amplitude(const struct OceanSpectrum *spectrum, d
  *
  * # Safety
  *
- * `spectrum` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_spectrum_steepness_sum(const struct OceanSpectrum *spectrum, double *out);
 
@@ -2935,7 +2932,7 @@ OceanStatus ocean_spectrum_steepness_sum(const struct OceanSpectrum *spectrum, d
  *
  * # Safety
  *
- * `spectrum` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_spectrum_mean_height_shift(const struct OceanSpectrum *spectrum, double *out);
 
@@ -2948,7 +2945,7 @@ OceanStatus ocean_spectrum_mean_height_shift(const struct OceanSpectrum *spectru
  *
  * # Safety
  *
- * `spectrum` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_spectrum_height_variance(const struct OceanSpectrum *spectrum, double *out);
 
@@ -2962,7 +2959,7 @@ OceanStatus ocean_spectrum_height_variance(const struct OceanSpectrum *spectrum,
  *
  * # Safety
  *
- * `spectrum` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_spectrum_total_slope_variance(const struct OceanSpectrum *spectrum,
                                                 struct OceanSlopeVariance *out);
@@ -2984,7 +2981,7 @@ OceanStatus ocean_spectrum_total_slope_variance(const struct OceanSpectrum *spec
  *
  * # Safety
  *
- * `spectrum` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_spectrum_slope_variance(const struct OceanSpectrum *spectrum,
                                           double n_min,
@@ -3220,13 +3217,8 @@ OceanStatus ocean_relief_map_create_u16(const uint16_t *heights,
                                         struct OceanReliefMap **out);
 
 /**
- * Frees a height map. NULL is ignored, and so is a pointer that is not even aligned. Never
- * fails; leaves the last-error message alone.
- *
- * # Safety
- *
- * `map` must be NULL or a handle from an `ocean_relief_map_create_*` function not yet
- * destroyed, and no other thread may be using it.
+ * Frees a height map. NULL does nothing; a handle of another kind or already destroyed frees
+ * nothing and sets the last-error message (see the header's notes on handles).
  */
 void ocean_relief_map_destroy(struct OceanReliefMap *map);
 
@@ -3238,7 +3230,7 @@ void ocean_relief_map_destroy(struct OceanReliefMap *map);
  *
  * # Safety
  *
- * `map` must be a live handle and `out_size` writable.
+ * `out_size` must be writable.
  */
 OceanStatus ocean_relief_map_size(const struct OceanReliefMap *map, uint32_t *out_size);
 
@@ -3252,7 +3244,7 @@ OceanStatus ocean_relief_map_size(const struct OceanReliefMap *map, uint32_t *ou
  *
  * # Safety
  *
- * `map` must be a live handle and `depths` point to `len` writable floats that no other thread
+ * `depths` must point to `len` writable floats that no other thread
  * touches during the call.
  */
 OceanStatus ocean_relief_map_depths(const struct OceanReliefMap *map, float *depths, size_t len);
@@ -3269,7 +3261,7 @@ OceanStatus ocean_relief_map_depths(const struct OceanReliefMap *map, float *dep
  *
  * # Safety
  *
- * `map` must be a live handle and `xyz` point to `len` writable floats that no other thread
+ * `xyz` must point to `len` writable floats that no other thread
  * touches during the call.
  */
 OceanStatus ocean_relief_normals(const struct OceanReliefMap *map,
@@ -3311,7 +3303,7 @@ OceanStatus ocean_relief_cone_params_default(struct OceanReliefConeParams *out);
  *
  * # Safety
  *
- * `map` must be a live handle, `params` readable, `out` writable; `progress`, if not NULL,
+ * `params` readable, `out` writable; `progress`, if not NULL,
  * must be safe to call with `user` from this thread.
  */
 OceanStatus ocean_relief_cones_create(const struct OceanReliefMap *map,
@@ -3321,13 +3313,8 @@ OceanStatus ocean_relief_cones_create(const struct OceanReliefMap *map,
                                       struct OceanReliefCones **out);
 
 /**
- * Frees a cone map. NULL is ignored, and so is a pointer that is not even aligned. Never
- * fails; leaves the last-error message alone.
- *
- * # Safety
- *
- * `cones` must be NULL or a handle from `ocean_relief_cones_create` or
- * `ocean_relief_cones_quantize` not yet destroyed, and no other thread may be using it.
+ * Frees a cone map. NULL does nothing; a handle of another kind or already destroyed frees nothing
+ * and sets the last-error message (see the header's notes on handles).
  */
 void ocean_relief_cones_destroy(struct OceanReliefCones *cones);
 
@@ -3339,7 +3326,7 @@ void ocean_relief_cones_destroy(struct OceanReliefCones *cones);
  *
  * # Safety
  *
- * `cones` must be a live handle and `out_size` writable.
+ * `out_size` must be writable.
  */
 OceanStatus ocean_relief_cones_size(const struct OceanReliefCones *cones, uint32_t *out_size);
 
@@ -3353,7 +3340,7 @@ OceanStatus ocean_relief_cones_size(const struct OceanReliefCones *cones, uint32
  *
  * # Safety
  *
- * `cones` must be a live handle and `rgba` point to `len` writable floats that no other thread
+ * `rgba` must point to `len` writable floats that no other thread
  * touches during the call.
  */
 OceanStatus ocean_relief_cones_texels(const struct OceanReliefCones *cones,
@@ -3374,7 +3361,7 @@ OceanStatus ocean_relief_cones_texels(const struct OceanReliefCones *cones,
  *
  * # Safety
  *
- * `cones` must be a live handle and `out` point to `len` writable elements of the encoding's
+ * `out` must point to `len` writable elements of the encoding's
  * type that no other thread touches during the call.
  */
 OceanStatus ocean_relief_cones_encode(const struct OceanReliefCones *cones,
@@ -3392,7 +3379,7 @@ OceanStatus ocean_relief_cones_encode(const struct OceanReliefCones *cones,
  *
  * # Safety
  *
- * `cones` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_relief_cones_quantize(const struct OceanReliefCones *cones,
                                         uint32_t encoding,
@@ -3407,7 +3394,7 @@ OceanStatus ocean_relief_cones_quantize(const struct OceanReliefCones *cones,
  *
  * # Safety
  *
- * `map` must be a live handle, `params` readable, `rgba` point to `len` writable floats that
+ * `params` readable, `rgba` point to `len` writable floats that
  * no other thread touches during the call; `progress`, if not NULL, must be safe to call with
  * `user` from this thread.
  */
@@ -3427,7 +3414,7 @@ OceanStatus ocean_relief_generate_texels(const struct OceanReliefMap *map,
  *
  * # Safety
  *
- * `map` must be a live handle, `params` readable, `out` point to `len` writable elements of
+ * `params` readable, `out` point to `len` writable elements of
  * the encoding's type that no other thread touches during the call; `progress`, if not NULL,
  * must be safe to call with `user` from this thread.
  */
@@ -3451,20 +3438,15 @@ OceanStatus ocean_relief_generate_encoded(const struct OceanReliefMap *map,
  *
  * # Safety
  *
- * `cones` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_relief_mips_create(const struct OceanReliefCones *cones,
                                      uint32_t rule,
                                      struct OceanReliefMips **out);
 
 /**
- * Frees a mip chain. NULL is ignored, and so is a pointer that is not even aligned. Never
- * fails; leaves the last-error message alone.
- *
- * # Safety
- *
- * `mips` must be NULL or a handle from `ocean_relief_mips_create` not yet destroyed, and no
- * other thread may be using it.
+ * Frees a mip chain. NULL does nothing; a handle of another kind or already destroyed frees
+ * nothing and sets the last-error message (see the header's notes on handles).
  */
 void ocean_relief_mips_destroy(struct OceanReliefMips *mips);
 
@@ -3476,7 +3458,7 @@ void ocean_relief_mips_destroy(struct OceanReliefMips *mips);
  *
  * # Safety
  *
- * `mips` must be a live handle and `out_count` writable.
+ * `out_count` must be writable.
  */
 OceanStatus ocean_relief_mips_level_count(const struct OceanReliefMips *mips, uint32_t *out_count);
 
@@ -3489,7 +3471,7 @@ OceanStatus ocean_relief_mips_level_count(const struct OceanReliefMips *mips, ui
  *
  * # Safety
  *
- * `mips` must be a live handle and `out_size` writable.
+ * `out_size` must be writable.
  */
 OceanStatus ocean_relief_mips_level_size(const struct OceanReliefMips *mips,
                                          uint32_t level,
@@ -3506,7 +3488,7 @@ OceanStatus ocean_relief_mips_level_size(const struct OceanReliefMips *mips,
  *
  * # Safety
  *
- * `mips` must be a live handle and `out` point to `len` writable elements of the encoding's
+ * `out` must point to `len` writable elements of the encoding's
  * type that no other thread touches during the call.
  */
 OceanStatus ocean_relief_mips_copy_level(const struct OceanReliefMips *mips,
@@ -3601,7 +3583,7 @@ OceanStatus ocean_relief_uniforms(const struct OceanCameraDesc *camera,
  *
  * # Safety
  *
- * `map` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_relief_map_downsample(const struct OceanReliefMap *map,
                                         struct OceanReliefMap **out);
@@ -3694,7 +3676,7 @@ OceanStatus ocean_relief_mip_level(float du_x,
  *
  * # Safety
  *
- * `map` must be a live handle, `params` readable, `out` writable; `progress`, if not NULL,
+ * `params` readable, `out` writable; `progress`, if not NULL,
  * must be safe to call with `user` from this thread.
  */
 OceanStatus ocean_relief_quad_cones_create(const struct OceanReliefMap *map,
@@ -3704,13 +3686,8 @@ OceanStatus ocean_relief_quad_cones_create(const struct OceanReliefMap *map,
                                            struct OceanReliefQuadCones **out);
 
 /**
- * Frees a quad-directional cone map. NULL is ignored, and so is a pointer that is not even
- * aligned. Never fails; leaves the last-error message alone.
- *
- * # Safety
- *
- * `cones` must be NULL or a handle from `ocean_relief_quad_cones_create` not yet destroyed,
- * and no other thread may be using it.
+ * Frees a quad-directional cone map. NULL does nothing; a handle of another kind or already
+ * destroyed frees nothing and sets the last-error message (see the header's notes on handles).
  */
 void ocean_relief_quad_cones_destroy(struct OceanReliefQuadCones *cones);
 
@@ -3723,7 +3700,7 @@ void ocean_relief_quad_cones_destroy(struct OceanReliefQuadCones *cones);
  *
  * # Safety
  *
- * `cones` must be a live handle and `out_size` writable.
+ * `out_size` must be writable.
  */
 OceanStatus ocean_relief_quad_cones_size(const struct OceanReliefQuadCones *cones,
                                          uint32_t *out_size);
@@ -3740,7 +3717,7 @@ OceanStatus ocean_relief_quad_cones_size(const struct OceanReliefQuadCones *cone
  *
  * # Safety
  *
- * `cones` must be a live handle and `rgba` point to `len` writable floats that no other thread
+ * `rgba` must point to `len` writable floats that no other thread
  * touches during the call.
  */
 OceanStatus ocean_relief_quad_cones_texels(const struct OceanReliefQuadCones *cones,
@@ -3756,7 +3733,7 @@ OceanStatus ocean_relief_quad_cones_texels(const struct OceanReliefQuadCones *co
  *
  * # Safety
  *
- * `map` must be a live handle, `params` readable, `rgba` point to `len` writable floats that
+ * `params` readable, `rgba` point to `len` writable floats that
  * no other thread touches during the call; `progress`, if not NULL, must be safe to call with
  * `user` from this thread.
  */
@@ -3780,7 +3757,7 @@ OceanStatus ocean_relief_quad_generate_texels(const struct OceanReliefMap *map,
  *
  * # Safety
  *
- * `cones` must be a live handle, `method` readable, `rays` point to `count` readable rays and
+ * `method` readable, `rays` point to `count` readable rays and
  * `hits` to `count` writable hits, neither touched by another thread during the call.
  */
 OceanStatus ocean_relief_quad_trace(const struct OceanReliefQuadCones *cones,
@@ -3797,7 +3774,7 @@ OceanStatus ocean_relief_quad_trace(const struct OceanReliefQuadCones *cones,
  *
  * # Safety
  *
- * `cones` must be a live handle, `method` readable, `points` point to `count` readable points
+ * `method` readable, `points` point to `count` readable points
  * and `in_shadow` to `count` writable bytes, neither touched by another thread during the
  * call.
  */
@@ -3854,7 +3831,7 @@ OceanStatus ocean_relief_ray_from_view(float start_u,
  *
  * # Safety
  *
- * `cones` must be a live handle, `method` readable, `rays` point to `count` readable rays and
+ * `method` readable, `rays` point to `count` readable rays and
  * `hits` to `count` writable hits, neither touched by another thread during the call.
  */
 OceanStatus ocean_relief_trace(const struct OceanReliefCones *cones,
@@ -3883,7 +3860,7 @@ OceanStatus ocean_relief_trace(const struct OceanReliefCones *cones,
  *
  * # Safety
  *
- * `cones` must be a live handle, `method` readable, `points` point to `count` readable points
+ * `method` readable, `points` point to `count` readable points
  * and `in_shadow` to `count` writable bytes, neither touched by another thread during the
  * call.
  */
@@ -3950,13 +3927,8 @@ OceanStatus ocean_sao_create(uint32_t input_width,
                              struct OceanSao **out);
 
 /**
- * Frees an SAO set-up. NULL is ignored, and so is a pointer that is not even aligned (it
- * cannot have come from `ocean_sao_create`). Never fails; leaves the last-error message alone.
- *
- * # Safety
- *
- * `sao` must be NULL or a handle from `ocean_sao_create` that has not been destroyed, and no
- * other thread may be using it.
+ * Frees an SAO set-up. NULL does nothing; a handle of another kind or already destroyed frees
+ * nothing and sets the last-error message (see the header's notes on handles).
  */
 void ocean_sao_destroy(struct OceanSao *sao);
 
@@ -3970,7 +3942,7 @@ void ocean_sao_destroy(struct OceanSao *sao);
  *
  * # Safety
  *
- * `sao` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_sao_describe(const struct OceanSao *sao, struct OceanSaoInfo *out);
 
@@ -4007,7 +3979,7 @@ OceanStatus ocean_sao_describe(const struct OceanSao *sao, struct OceanSaoInfo *
  *
  * # Safety
  *
- * `sao` must be a live handle, `depth` point to `depth_len` readable floats and `ao` to
+ * `depth` point to `depth_len` readable floats and `ao` to
  * `ao_len` writable floats, neither touched by another thread during the call.
  */
 OceanStatus ocean_sao_run(const struct OceanSao *sao,
@@ -4028,7 +4000,7 @@ OceanStatus ocean_sao_run(const struct OceanSao *sao,
  *
  * # Safety
  *
- * `sao` must be a live handle, `depth` point to `depth_len` readable floats and `z` to `z_len`
+ * `depth` point to `depth_len` readable floats and `z` to `z_len`
  * writable floats, neither touched by another thread during the call.
  */
 OceanStatus ocean_sao_view_z(const struct OceanSao *sao,
@@ -4051,13 +4023,8 @@ OceanStatus ocean_sao_view_z(const struct OceanSao *sao,
 OceanStatus ocean_sao_gpu_create(const struct OceanGpuContext *ctx, struct OceanSaoGpu **out);
 
 /**
- * Frees the handle. NULL is ignored, and so is a pointer that is not even aligned. Never
- * fails; leaves the last-error message alone.
- *
- * # Safety
- *
- * `sao_gpu` must be NULL or a handle from `ocean_sao_gpu_create` not yet destroyed, and no
- * other thread may be using it.
+ * Frees the handle. NULL does nothing; a handle of another kind or already destroyed frees nothing
+ * and sets the last-error message (see the header's notes on handles).
  */
 void ocean_sao_gpu_destroy(struct OceanSaoGpu *sao_gpu);
 
@@ -4076,7 +4043,7 @@ void ocean_sao_gpu_destroy(struct OceanSaoGpu *sao_gpu);
  *
  * # Safety
  *
- * `sao_gpu`, `ctx` and `sao` must be live handles, `depth` point to `depth_len` readable
+ * `depth` point to `depth_len` readable
  * floats and `ao` to `ao_len` writable floats, neither touched by another thread during the
  * call.
  */
@@ -4112,7 +4079,7 @@ OceanStatus ocean_sao_gpu_run(const struct OceanSaoGpu *sao_gpu,
  *
  * # Safety
  *
- * `sao` must be a live handle, `out` point to `len` writable bytes and `levels` to a writable
+ * `out` point to `len` writable bytes and `levels` to a writable
  * `uint32_t`, none touched by another thread during the call.
  */
 OceanStatus ocean_sao_uniforms(const struct OceanSao *sao,
@@ -4169,13 +4136,9 @@ OceanStatus ocean_shader_export(const char *name,
                                 struct OceanShaderExport **out);
 
 /**
- * Frees an export; every pointer it handed out becomes invalid. NULL is ignored, and so is a
- * pointer that is not even aligned. Never fails; leaves the last-error message alone.
- *
- * # Safety
- *
- * `shader_export` must be NULL or a handle from `ocean_shader_export` not yet destroyed, and no other
- * thread may be using it.
+ * Frees an export; every pointer it handed out becomes invalid. NULL does nothing; a handle of
+ * another kind or already destroyed frees nothing and sets the last-error message (see the
+ * header's notes on handles).
  */
 void ocean_shader_export_destroy(struct OceanShaderExport *shader_export);
 
@@ -4187,7 +4150,7 @@ void ocean_shader_export_destroy(struct OceanShaderExport *shader_export);
  *
  * # Safety
  *
- * `shader_export` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_shader_export_file_count(const struct OceanShaderExport *shader_export,
                                            size_t *out);
@@ -4208,7 +4171,7 @@ OceanStatus ocean_shader_export_file_count(const struct OceanShaderExport *shade
  *
  * # Safety
  *
- * `shader_export` must be a live handle and the three out-pointers writable.
+ * The three out-pointers must be writable.
  */
 OceanStatus ocean_shader_export_file(const struct OceanShaderExport *shader_export,
                                      size_t index,
@@ -4227,7 +4190,7 @@ OceanStatus ocean_shader_export_file(const struct OceanShaderExport *shader_expo
  *
  * # Safety
  *
- * `shader_export` must be a live handle and both out-pointers writable.
+ * Both out-pointers must be writable.
  */
 OceanStatus ocean_shader_export_file_stage(const struct OceanShaderExport *shader_export,
                                            size_t index,
@@ -4247,7 +4210,7 @@ OceanStatus ocean_shader_export_file_stage(const struct OceanShaderExport *shade
  *
  * # Safety
  *
- * `shader_export` must be a live handle and `table` writable.
+ * `table` must be writable.
  */
 OceanStatus ocean_shader_export_bindings(const struct OceanShaderExport *shader_export,
                                          const char **table);
@@ -4261,7 +4224,7 @@ OceanStatus ocean_shader_export_bindings(const struct OceanShaderExport *shader_
  *
  * # Safety
  *
- * `shader_export` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_shader_export_binding_count(const struct OceanShaderExport *shader_export,
                                               size_t *out);
@@ -4276,7 +4239,7 @@ OceanStatus ocean_shader_export_binding_count(const struct OceanShaderExport *sh
  *
  * # Safety
  *
- * `shader_export` must be a live handle and `out` writable.
+ * `out` must be writable.
  */
 OceanStatus ocean_shader_export_binding(const struct OceanShaderExport *shader_export,
                                         size_t index,
@@ -4337,13 +4300,7 @@ OceanStatus ocean_waves_create(const struct OceanWaveDesc *descs,
                                struct OceanWaves **out);
 
 /**
- * Frees a wave set. NULL is ignored, and so is a pointer that is not even aligned (it cannot
- * have come from `ocean_waves_create`). Never fails; leaves the last-error message alone.
- *
- * # Safety
- *
- * `waves` must be NULL or a handle from `ocean_waves_create` that has not been destroyed, and
- * no other thread may be using it.
+ * Frees a wave set (see `ocean_scene_destroy` for the rules every destroy function follows).
  */
 void ocean_waves_destroy(struct OceanWaves *waves);
 
@@ -4376,7 +4333,7 @@ void ocean_waves_destroy(struct OceanWaves *waves);
  *
  * # Safety
  *
- * `waves` must be a live handle; `xz` must point to `n` readable `OceanVec2`s, and `out_pos`
+ * `xz` must point to `n` readable `OceanVec2`s, and `out_pos`
  * and `out_normal` to `n` writable `OceanVec3`s each, none of them modified by another thread
  * during the call.
  */
@@ -4407,7 +4364,7 @@ OceanStatus ocean_waves_evaluate(const struct OceanWaves *waves,
  *
  * # Safety
  *
- * `waves` must be a live handle, `grid` must point to a readable `OceanGrid`, and `out_pos` and
+ * `grid` must point to a readable `OceanGrid`, and `out_pos` and
  * `out_normal` to `nx * nz` writable `OceanVec3`s each, untouched by other threads during the
  * call.
  */
@@ -4425,7 +4382,7 @@ OceanStatus ocean_waves_evaluate_grid(const struct OceanWaves *waves,
  *
  * # Safety
  *
- * `waves` must be a live handle and `out_count` writable.
+ * `out_count` must be writable.
  */
 OceanStatus ocean_waves_count(const struct OceanWaves *waves, size_t *out_count);
 
@@ -4439,7 +4396,7 @@ OceanStatus ocean_waves_count(const struct OceanWaves *waves, size_t *out_count)
  *
  * # Safety
  *
- * `waves` must be a live handle and `out_steepness` writable.
+ * `out_steepness` must be writable.
  */
 OceanStatus ocean_waves_steepness_sum(const struct OceanWaves *waves, double *out_steepness);
 
@@ -4451,7 +4408,7 @@ OceanStatus ocean_waves_steepness_sum(const struct OceanWaves *waves, double *ou
  *
  * # Safety
  *
- * `waves` must be a live handle and `out_amplitude` writable.
+ * `out_amplitude` must be writable.
  */
 OceanStatus ocean_waves_max_amplitude(const struct OceanWaves *waves, double *out_amplitude);
 
@@ -4496,13 +4453,12 @@ OceanStatus ocean_scene_create(const struct OceanWaterGridDesc *grid,
                                struct OceanScene **out);
 
 /**
- * Frees a scene and its boxes. NULL is ignored, and so is a pointer that is not even aligned.
- * Never fails; leaves the last-error message alone.
- *
- * # Safety
- *
- * `scene` must be NULL or a handle from `ocean_scene_create` not yet destroyed, and no other
- * thread may be using it.
+ * Frees a scene and its boxes. Every destroy function follows the same rules: NULL does
+ * nothing; a handle of another kind, one already destroyed or a value this library never
+ * returned frees nothing and sets the last-error message (`OCEAN_STATUS_INVALID_HANDLE`'s
+ * text); a live handle is unregistered at once (later calls with it are refused) and freed when
+ * the last call using it on another thread returns. A successful destroy leaves the last-error
+ * message alone.
  */
 void ocean_scene_destroy(struct OceanScene *scene);
 
@@ -4518,7 +4474,7 @@ void ocean_scene_destroy(struct OceanScene *scene);
  *
  * # Safety
  *
- * `scene` must be a live handle; `terrain_heights` NULL or `terrain_len` readable floats.
+ * `terrain_heights` must be NULL or point to `terrain_len` readable floats.
  */
 OceanStatus ocean_scene_set_terrain(struct OceanScene *scene,
                                     const float *terrain_heights,
@@ -4548,7 +4504,7 @@ OceanStatus ocean_scene_set_terrain(struct OceanScene *scene,
  *
  * # Safety
  *
- * `scene` must be a live handle, `desc` readable, `trains` NULL or `n_trains` readable
+ * `desc` readable, `trains` NULL or `n_trains` readable
  * descriptions, `out_id` writable; nothing is retained.
  */
 OceanStatus ocean_scene_add_box(struct OceanScene *scene,
@@ -4578,10 +4534,6 @@ OceanStatus ocean_scene_update_box(struct OceanScene *scene,
 /**
  * Removes box `id`. Returns `OCEAN_STATUS_NOT_FOUND` for an id not in the scene (also when
  * it was removed already).
- *
- * # Safety
- *
- * `scene` must be a live handle.
  */
 OceanStatus ocean_scene_remove_box(struct OceanScene *scene, uint32_t id);
 
@@ -4590,7 +4542,7 @@ OceanStatus ocean_scene_remove_box(struct OceanScene *scene, uint32_t id);
  *
  * # Safety
  *
- * `scene` must be a live handle and `out_count` writable.
+ * `out_count` must be writable.
  */
 OceanStatus ocean_scene_box_count(struct OceanScene *scene, size_t *out_count);
 
@@ -4604,16 +4556,12 @@ OceanStatus ocean_scene_box_count(struct OceanScene *scene, size_t *out_count);
  *
  * # Safety
  *
- * `scene` must be a live handle and `effects` readable.
+ * `effects` must be readable.
  */
 OceanStatus ocean_scene_set_effects(struct OceanScene *scene, const struct OceanEffects *effects);
 
 /**
  * Removes any budget limit: every enabled train and effect runs (the default).
- *
- * # Safety
- *
- * `scene` must be a live handle.
  */
 OceanStatus ocean_scene_set_budget_unlimited(struct OceanScene *scene);
 
@@ -4626,10 +4574,6 @@ OceanStatus ocean_scene_set_budget_unlimited(struct OceanScene *scene);
  *
  * Returns `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `seconds`,
  * `OCEAN_STATUS_INVALID_ARGUMENT` for a negative one; the budget is then unchanged.
- *
- * # Safety
- *
- * `scene` must be a live handle.
  */
 OceanStatus ocean_scene_set_budget_seconds(struct OceanScene *scene, double seconds);
 
@@ -4640,7 +4584,7 @@ OceanStatus ocean_scene_set_budget_seconds(struct OceanScene *scene, double seco
  *
  * # Safety
  *
- * `scene` must be a live handle and `effects` readable.
+ * `effects` must be readable.
  */
 OceanStatus ocean_scene_set_budget_explicit(struct OceanScene *scene,
                                             size_t max_trains,
@@ -4675,7 +4619,7 @@ OceanStatus ocean_scene_set_budget_explicit(struct OceanScene *scene,
  *
  * # Safety
  *
- * `scene` must be a live handle, `view_projection` NULL or 16 readable floats, `out_pos` and
+ * `view_projection` NULL or 16 readable floats, `out_pos` and
  * `out_normal` `n` writable `OceanVec3`s each, `out_stats` NULL or writable; no other thread
  * may touch the buffers during the call.
  */
@@ -4718,10 +4662,6 @@ OceanStatus ocean_scene_evaluate_incremental(struct OceanScene *scene,
  * Call it before passing other buffers.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` or `OCEAN_STATUS_MISALIGNED_POINTER` for a bad handle.
- *
- * # Safety
- *
- * `scene` must be a live handle.
  */
 OceanStatus ocean_scene_reset_coverage(struct OceanScene *scene);
 
@@ -4756,7 +4696,7 @@ OceanStatus ocean_scene_reset_coverage(struct OceanScene *scene);
  *
  * # Safety
  *
- * `scene` must be a live handle, `xz` `n` readable `OceanDVec2`s and `out` `n` writable
+ * `xz` `n` readable `OceanDVec2`s and `out` `n` writable
  * `OceanDrawnSample`s, untouched by other threads during the call.
  */
 OceanStatus ocean_scene_heights_drawn(struct OceanScene *scene,
@@ -4788,7 +4728,7 @@ OceanStatus ocean_scene_heights_drawn(struct OceanScene *scene,
  *
  * # Safety
  *
- * `scene` must be a live handle, `xz` `n` readable `OceanDVec2`s and `out` `n` writable
+ * `xz` `n` readable `OceanDVec2`s and `out` `n` writable
  * `OceanHeightSample`s, untouched by other threads during the call.
  */
 OceanStatus ocean_scene_heights_continuous(struct OceanScene *scene,
@@ -4810,10 +4750,6 @@ OceanStatus ocean_scene_heights_continuous(struct OceanScene *scene,
  * Returns `OCEAN_STATUS_NON_FINITE` for a NaN or infinite threshold,
  * `OCEAN_STATUS_INVALID_ARGUMENT` unless 0 <= `min_cells` < `max_cells` <= 1e6 (or both 0);
  * nothing changes then.
- *
- * # Safety
- *
- * `scene` must be a live handle.
  */
 OceanStatus ocean_scene_set_train_filter(struct OceanScene *scene,
                                          double min_cells,

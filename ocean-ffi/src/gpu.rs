@@ -10,15 +10,19 @@
 use core::ffi::c_char;
 use std::ffi::CString;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Mutex, MutexGuard, PoisonError};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 use ocean_brdf::{Filter, FilteredSurface};
 use ocean_gpu::{GpuContext, GpuError, OceanOptions, OceanRenderer as GpuRenderer};
 
-use crate::lighting::{OceanLighting, borrow, brdf_error, destroy, read_in, write_handle};
+use crate::boundary::{
+    borrow, byte_len, check_finite, check_ptr, check_time, destroy, read_in, write_handle,
+    write_out,
+};
+use crate::lighting::{OceanLighting, brdf_error};
+
 use crate::lighting_spectrum::{OceanCameraDesc, OceanSpectrum, camera_from};
 use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{byte_len, check_finite, check_ptr, check_time, write_out};
 
 /// A headless GPU device and queue that the library created (opaque). Create with
 /// `ocean_gpu_context_create`, free with `ocean_gpu_context_destroy`. A
@@ -167,18 +171,13 @@ pub unsafe extern "C" fn ocean_gpu_context_create(out: *mut *mut OceanGpuContext
     })
 }
 
-/// Frees a context. NULL is ignored, and so is a pointer that is not even aligned. Never
-/// fails; leaves the last-error message alone. Renderers created on it keep the device alive
-/// until they are destroyed, but can no longer be used (every renderer call needs the context).
-///
-/// # Safety
-///
-/// `ctx` must be NULL or a handle from `ocean_gpu_context_create` not yet destroyed, and no
-/// other thread may be using it.
+/// Frees a context. NULL does nothing; a handle of another kind or already destroyed frees nothing
+/// and sets the last-error message (see the header's notes on handles). Renderers created on it
+/// keep the device alive until they are destroyed, but can no longer be used (every renderer call
+/// needs the context).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_gpu_context_destroy(ctx: *mut OceanGpuContext) {
-    // SAFETY: forwarded from this function's contract.
-    unsafe { destroy(ctx) }
+pub extern "C" fn ocean_gpu_context_destroy(ctx: *mut OceanGpuContext) {
+    destroy(ctx, "ocean_gpu_context_destroy", "ctx");
 }
 
 /// Copies a one-line, NUL-terminated UTF-8 description of the context's adapter (name,
@@ -202,7 +201,7 @@ pub unsafe extern "C" fn ocean_gpu_context_destroy(ctx: *mut OceanGpuContext) {
 ///
 /// # Safety
 ///
-/// `ctx` must be a live handle, `buf` NULL or `len` writable bytes that no other thread
+/// `buf` NULL or `len` writable bytes that no other thread
 /// touches during the call, and `needed` writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_gpu_context_describe(
@@ -212,8 +211,7 @@ pub unsafe extern "C" fn ocean_gpu_context_describe(
     needed: *mut usize,
 ) -> OceanStatus {
     guard("ocean_gpu_context_describe", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(ctx, "ctx") }?;
+        let c = borrow(ctx, "ctx")?;
         check_ptr(needed.cast_const(), "needed")?;
         let text = c.description.as_bytes_with_nul();
         let n = text.len();
@@ -319,7 +317,7 @@ fn options_to_gpu(o: &OceanRendererOptions) -> Result<OceanOptions, Error> {
 ///
 /// # Safety
 ///
-/// `ctx` must be a live handle, `options` point to a readable `OceanRendererOptions` and `out`
+/// `options` point to a readable `OceanRendererOptions` and `out`
 /// to a writable pointer; `options` is not retained.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_renderer_create(
@@ -328,8 +326,7 @@ pub unsafe extern "C" fn ocean_renderer_create(
     out: *mut *mut OceanRenderer,
 ) -> OceanStatus {
     guard("ocean_renderer_create", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(ctx, "ctx") }?;
+        let c = borrow(ctx, "ctx")?;
         // SAFETY: forwarded from this function's contract.
         let o = unsafe { read_in(options, "options") }?;
         check_ptr(out.cast_const(), "out")?;
@@ -348,32 +345,21 @@ pub unsafe extern "C" fn ocean_renderer_create(
     })
 }
 
-/// Frees a renderer and its GPU resources. NULL is ignored, and so is a pointer that is not
-/// even aligned. Never fails; leaves the last-error message alone. It may outlive its context.
-///
-/// # Safety
-///
-/// `renderer` must be NULL or a handle from `ocean_renderer_create` not yet destroyed, and no
-/// other thread may be using it.
+/// Frees a renderer and its GPU resources. NULL does nothing; a handle of another kind or already
+/// destroyed frees nothing and sets the last-error message (see the header's notes on handles). It
+/// may outlive its context.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_renderer_destroy(renderer: *mut OceanRenderer) {
-    // SAFETY: forwarded from this function's contract.
-    unsafe { destroy(renderer) }
+pub extern "C" fn ocean_renderer_destroy(renderer: *mut OceanRenderer) {
+    destroy(renderer, "ocean_renderer_destroy", "renderer");
 }
 
 /// Borrows a renderer and its context, checking that the renderer was created on it.
-///
-/// # Safety
-///
-/// Each pointer must be NULL, misaligned, or a live handle of its type.
-unsafe fn renderer_and_context<'a>(
+fn renderer_and_context(
     renderer: *const OceanRenderer,
     ctx: *const OceanGpuContext,
-) -> Result<(&'a OceanRenderer, &'a OceanGpuContext), Error> {
-    // SAFETY: forwarded from the caller's contract.
-    let r = unsafe { borrow(renderer, "renderer") }?;
-    // SAFETY: forwarded from the caller's contract.
-    let c = unsafe { borrow(ctx, "ctx") }?;
+) -> Result<(Arc<OceanRenderer>, Arc<OceanGpuContext>), Error> {
+    let r = borrow(renderer, "renderer")?;
+    let c = borrow(ctx, "ctx")?;
     if r.context != c.id {
         return Err(Error::new(
             OceanStatus::InvalidArgument,
@@ -395,12 +381,8 @@ unsafe fn renderer_and_context<'a>(
 /// unless 0 < n_min < n_max <= 1e6, for more waves than the device's largest texture is wide,
 /// or for a context other than the renderer's; `OCEAN_STATUS_GPU_FAILURE` for a device error.
 /// On failure the renderer keeps its previous spectrum.
-///
-/// # Safety
-///
-/// `renderer`, `ctx` and `spectrum` must be live handles.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_renderer_set_spectrum(
+pub extern "C" fn ocean_renderer_set_spectrum(
     renderer: *mut OceanRenderer,
     ctx: *const OceanGpuContext,
     spectrum: *const OceanSpectrum,
@@ -408,10 +390,8 @@ pub unsafe extern "C" fn ocean_renderer_set_spectrum(
     n_max: f64,
 ) -> OceanStatus {
     guard("ocean_renderer_set_spectrum", || {
-        // SAFETY: forwarded from this function's contract.
-        let (r, c) = unsafe { renderer_and_context(renderer, ctx) }?;
-        // SAFETY: forwarded from this function's contract.
-        let s = unsafe { borrow(spectrum, "spectrum") }?;
+        let (r, c) = renderer_and_context(renderer, ctx)?;
+        let s = borrow(spectrum, "spectrum")?;
         check_finite("", &[("n_min", n_min), ("n_max", n_max)])?;
         let filter = Filter::new(n_min, n_max).map_err(|e| brdf_error("", e))?;
         let surface = FilteredSurface::new(&s.spectrum, filter).map_err(|e| brdf_error("", e))?;
@@ -434,21 +414,15 @@ pub unsafe extern "C" fn ocean_renderer_set_spectrum(
 /// `OCEAN_STATUS_INVALID_ARGUMENT` for a context other than the renderer's or a radiance beyond
 /// binary16's range (65504: scale the radiance unit down), `OCEAN_STATUS_GPU_FAILURE` for a
 /// device error. On failure the renderer keeps its previous lighting.
-///
-/// # Safety
-///
-/// `renderer`, `ctx` and `lighting` must be live handles.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_renderer_set_lighting(
+pub extern "C" fn ocean_renderer_set_lighting(
     renderer: *mut OceanRenderer,
     ctx: *const OceanGpuContext,
     lighting: *const OceanLighting,
 ) -> OceanStatus {
     guard("ocean_renderer_set_lighting", || {
-        // SAFETY: forwarded from this function's contract.
-        let (r, c) = unsafe { renderer_and_context(renderer, ctx) }?;
-        // SAFETY: forwarded from this function's contract.
-        let l = unsafe { borrow(lighting, "lighting") }?;
+        let (r, c) = renderer_and_context(renderer, ctx)?;
+        let l = borrow(lighting, "lighting")?;
         let mut state = r.lock();
         state
             .renderer
@@ -486,7 +460,7 @@ pub unsafe extern "C" fn ocean_renderer_set_lighting(
 ///
 /// # Safety
 ///
-/// `renderer` and `ctx` must be live handles, `camera` readable, and `out` point to `len`
+/// `camera` readable, and `out` point to `len`
 /// writable bytes that no other thread touches during the call.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
@@ -501,8 +475,7 @@ pub unsafe extern "C" fn ocean_renderer_render_rgba8(
     len: usize,
 ) -> OceanStatus {
     guard("ocean_renderer_render_rgba8", || {
-        // SAFETY: forwarded from this function's contract.
-        let (r, c) = unsafe { renderer_and_context(renderer, ctx) }?;
+        let (r, c) = renderer_and_context(renderer, ctx)?;
         // SAFETY: forwarded from this function's contract.
         let cam = unsafe { read_in(camera, "camera") }?;
         check_ptr(out.cast_const(), "out")?;
@@ -727,7 +700,10 @@ mod tests {
                 .unwrap()
                 .to_owned();
             assert_eq!(text.len() + 1, needed);
-            assert_eq!(text, (*ctx).ctx.describe());
+            assert_eq!(
+                text,
+                crate::boundary::borrow(ctx, "ctx").unwrap().ctx.describe()
+            );
 
             assert_eq!(ocean_renderer_options_default(&mut opts), OceanStatus::Ok);
             opts.sky_map_size = 64;
@@ -787,12 +763,9 @@ mod tests {
             .unwrap();
         assert!(image == want, "the C ABI's image differs from ocean_gpu's");
         assert!(image.chunks_exact(4).all(|p| p[3] == 255));
-        // SAFETY: live handles, destroyed once.
-        unsafe {
-            ocean_renderer_destroy(r);
-            ocean_lighting_destroy(lighting);
-            ocean_spectrum_destroy(spectrum);
-            ocean_gpu_context_destroy(ctx);
-        }
+        ocean_renderer_destroy(r);
+        ocean_lighting_destroy(lighting);
+        ocean_spectrum_destroy(spectrum);
+        ocean_gpu_context_destroy(ctx);
     }
 }

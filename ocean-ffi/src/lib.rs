@@ -23,6 +23,7 @@
 #![deny(clippy::undocumented_unsafe_blocks)]
 #![warn(missing_docs)]
 
+mod boundary;
 mod gpu;
 mod lighting;
 mod lighting_brdf;

@@ -10,7 +10,6 @@
 //! incidence as about 1).
 
 use core::mem::{align_of, size_of};
-use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use glam::{DVec2, DVec3};
 use ocean_brdf::sea::{SeaLight, sea_color};
@@ -18,8 +17,11 @@ use ocean_brdf::sky::CieSky;
 use ocean_brdf::sky_map::{SKY_MAP_EXTENT, SKY_MAP_MAX_SIZE, SKY_MAP_MIN_SIZE};
 use ocean_brdf::{BrdfError, Lighting, SeaParams, SkyMap, SkyParams, SlopeVariance};
 
+use crate::boundary::{
+    borrow, byte_len, check_disjoint, check_finite, check_ptr, destroy, read_in, write_handle,
+    write_out,
+};
 use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{byte_len, check_disjoint, check_finite, check_ptr, write_out};
 use crate::wtb::{OceanDVec2, OceanDVec3};
 
 /// Half-width E of the square of the stereographic plane a sky map covers: texel (i, j) of a
@@ -190,59 +192,6 @@ pub(crate) fn brdf_error(context: &str, e: BrdfError) -> Error {
     Error::new(status, format!("{context}{e}"))
 }
 
-/// Borrows an opaque handle after checking it for NULL and alignment.
-///
-/// # Safety
-///
-/// `p` must be NULL, misaligned, or a live handle of type `T` made by this library, not being
-/// destroyed during the borrow.
-pub(crate) unsafe fn borrow<'a, T>(p: *const T, name: &str) -> Result<&'a T, Error> {
-    check_ptr(p, name)?;
-    // SAFETY: non-NULL and aligned (checked); live and not being destroyed (caller's
-    // guarantee); only shared references are ever made from these immutable handles.
-    Ok(unsafe { &*p })
-}
-
-/// Reads a caller's input struct after checking the pointer.
-///
-/// # Safety
-///
-/// `p` must be NULL, misaligned, or point to a readable `T`.
-pub(crate) unsafe fn read_in<T: Copy>(p: *const T, name: &str) -> Result<T, Error> {
-    check_ptr(p, name)?;
-    // SAFETY: non-NULL and aligned (checked); readable (caller's guarantee); copied out.
-    Ok(unsafe { p.read() })
-}
-
-/// Stores a new handle in `*out` (checked before the handle is made).
-///
-/// # Safety
-///
-/// `out` must be NULL, misaligned, or writable.
-pub(crate) unsafe fn write_handle<T>(out: *mut *mut T, value: T) -> Result<(), Error> {
-    check_ptr(out.cast_const(), "out")?;
-    let handle = Box::into_raw(Box::new(value));
-    // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
-    unsafe { out.write(handle) };
-    Ok(())
-}
-
-/// Frees a handle made by `write_handle`; NULL and misaligned pointers are ignored.
-///
-/// # Safety
-///
-/// `p` must be NULL, misaligned, or a live handle of type `T` from `write_handle` that no other
-/// thread uses; it is not used again.
-pub(crate) unsafe fn destroy<T>(p: *mut T) {
-    if p.is_null() || !p.is_aligned() {
-        return;
-    }
-    // SAFETY: the caller guarantees a live handle from `Box::into_raw` used by nobody else.
-    let boxed = unsafe { Box::from_raw(p) };
-    // Dropping only frees memory; the boundary is there all the same.
-    let _ = catch_unwind(AssertUnwindSafe(move || drop(boxed)));
-}
-
 /// `OCEAN_STATUS_NON_FINITE` unless every component of `v` is finite, naming `name.x` etc.
 pub(crate) fn finite_dvec3(name: &str, v: &OceanDVec3) -> Result<DVec3, Error> {
     check_finite(name, &[(".x", v.x), (".y", v.y), (".z", v.z)])?;
@@ -382,25 +331,19 @@ pub unsafe extern "C" fn ocean_lighting_create(
     })
 }
 
-/// Frees a lighting. NULL is ignored, and so is a pointer that is not even aligned. Never
-/// fails; leaves the last-error message alone. Sky maps made from it stay valid.
-///
-/// # Safety
-///
-/// `lighting` must be NULL or a handle from `ocean_lighting_create` not yet destroyed, and no
-/// other thread may be using it.
+/// Frees a lighting. NULL does nothing; a handle of another kind or already destroyed frees nothing
+/// and sets the last-error message (see the header's notes on handles). Sky maps made from it stay
+/// valid.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_lighting_destroy(lighting: *mut OceanLighting) {
-    // SAFETY: forwarded from this function's contract.
-    unsafe { destroy(lighting) }
+pub extern "C" fn ocean_lighting_destroy(lighting: *mut OceanLighting) {
+    destroy(lighting, "ocean_lighting_destroy", "lighting");
 }
 
 /// Runs `f` on a borrowed lighting and writes its RGB result to `*out`.
 ///
 /// # Safety
 ///
-/// `lighting` must be a live handle (or NULL / misaligned), `out` writable (or NULL /
-/// misaligned).
+/// `out` must be NULL, misaligned or writable.
 unsafe fn lighting_rgb(
     function: &str,
     lighting: *const OceanLighting,
@@ -408,8 +351,7 @@ unsafe fn lighting_rgb(
     f: impl FnOnce(&Lighting) -> DVec3,
 ) -> OceanStatus {
     guard(function, || {
-        // SAFETY: forwarded from the caller's contract.
-        let l = unsafe { borrow(lighting, "lighting") }?;
+        let l = borrow(lighting, "lighting")?;
         check_ptr(out.cast_const(), "out")?;
         let c = OceanRgb::from_dvec3(f(&l.lighting));
         // SAFETY: forwarded from the caller's contract.
@@ -425,7 +367,7 @@ unsafe fn lighting_rgb(
 ///
 /// # Safety
 ///
-/// `lighting` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_lighting_sky_irradiance(
     lighting: *const OceanLighting,
@@ -479,15 +421,14 @@ impl OceanIrradiance {
 ///
 /// # Safety
 ///
-/// `lighting` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_lighting_irradiance(
     lighting: *const OceanLighting,
     out: *mut OceanIrradiance,
 ) -> OceanStatus {
     guard("ocean_lighting_irradiance", || {
-        // SAFETY: forwarded from this function's contract.
-        let l = unsafe { borrow(lighting, "lighting") }?;
+        let l = borrow(lighting, "lighting")?;
         check_ptr(out.cast_const(), "out")?;
         let e = OceanIrradiance::from_irradiance(&ocean_brdf::Irradiance::new(&l.lighting));
         // SAFETY: forwarded from this function's contract.
@@ -503,7 +444,7 @@ pub unsafe extern "C" fn ocean_lighting_irradiance(
 ///
 /// # Safety
 ///
-/// `lighting` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_lighting_sea_radiance(
     lighting: *const OceanLighting,
@@ -526,7 +467,7 @@ pub unsafe extern "C" fn ocean_lighting_sea_radiance(
 ///
 /// # Safety
 ///
-/// `lighting` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_lighting_below_horizon_radiance(
     lighting: *const OceanLighting,
@@ -551,7 +492,7 @@ pub unsafe extern "C" fn ocean_lighting_below_horizon_radiance(
 ///
 /// # Safety
 ///
-/// `lighting` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_lighting_sun_radiance(
     lighting: *const OceanLighting,
@@ -573,15 +514,14 @@ pub unsafe extern "C" fn ocean_lighting_sun_radiance(
 ///
 /// # Safety
 ///
-/// `lighting` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_lighting_sun_solid_angle(
     lighting: *const OceanLighting,
     out: *mut f64,
 ) -> OceanStatus {
     guard("ocean_lighting_sun_solid_angle", || {
-        // SAFETY: forwarded from this function's contract.
-        let l = unsafe { borrow(lighting, "lighting") }?;
+        let l = borrow(lighting, "lighting")?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out, "out", l.lighting.sky().sun_solid_angle()) }
     })
@@ -599,7 +539,7 @@ pub unsafe extern "C" fn ocean_lighting_sun_solid_angle(
 ///
 /// # Safety
 ///
-/// `lighting` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_lighting_environment_radiance(
     lighting: *const OceanLighting,
@@ -607,8 +547,7 @@ pub unsafe extern "C" fn ocean_lighting_environment_radiance(
     out: *mut OceanRgb,
 ) -> OceanStatus {
     guard("ocean_lighting_environment_radiance", || {
-        // SAFETY: forwarded from this function's contract.
-        let l = unsafe { borrow(lighting, "lighting") }?;
+        let l = borrow(lighting, "lighting")?;
         check_ptr(out.cast_const(), "out")?;
         let d = unit_dvec3("dir", &dir)?;
         let c = OceanRgb::from_dvec3(l.lighting.environment_radiance(d));
@@ -650,7 +589,7 @@ pub(crate) fn unit_dvec3(name: &str, v: &OceanDVec3) -> Result<DVec3, Error> {
 ///
 /// # Safety
 ///
-/// `lighting` must be a live handle and `out` point to a writable pointer.
+/// `out` must point to a writable pointer.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_lighting_sky_map_create(
     lighting: *const OceanLighting,
@@ -658,8 +597,7 @@ pub unsafe extern "C" fn ocean_lighting_sky_map_create(
     out: *mut *mut OceanSkyMap,
 ) -> OceanStatus {
     guard("ocean_lighting_sky_map_create", || {
-        // SAFETY: forwarded from this function's contract.
-        let l = unsafe { borrow(lighting, "lighting") }?;
+        let l = borrow(lighting, "lighting")?;
         check_ptr(out.cast_const(), "out")?;
         let map = l.lighting.sky_map(size).map_err(|e| brdf_error("", e))?;
         let value = OceanSkyMap {
@@ -671,17 +609,11 @@ pub unsafe extern "C" fn ocean_lighting_sky_map_create(
     })
 }
 
-/// Frees a sky map. NULL is ignored, and so is a pointer that is not even aligned. Never
-/// fails; leaves the last-error message alone.
-///
-/// # Safety
-///
-/// `sky_map` must be NULL or a handle from `ocean_lighting_sky_map_create` not yet destroyed,
-/// and no other thread may be using it.
+/// Frees a sky map. NULL does nothing; a handle of another kind or already destroyed frees nothing
+/// and sets the last-error message (see the header's notes on handles).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_sky_map_destroy(sky_map: *mut OceanSkyMap) {
-    // SAFETY: forwarded from this function's contract.
-    unsafe { destroy(sky_map) }
+pub extern "C" fn ocean_sky_map_destroy(sky_map: *mut OceanSkyMap) {
+    destroy(sky_map, "ocean_sky_map_destroy", "sky_map");
 }
 
 /// Stores the number of mip levels of the map, log2(size) + 1, in `*out_count`.
@@ -691,15 +623,14 @@ pub unsafe extern "C" fn ocean_sky_map_destroy(sky_map: *mut OceanSkyMap) {
 ///
 /// # Safety
 ///
-/// `sky_map` must be a live handle and `out_count` writable.
+/// `out_count` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_sky_map_level_count(
     sky_map: *const OceanSkyMap,
     out_count: *mut u32,
 ) -> OceanStatus {
     guard("ocean_sky_map_level_count", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(sky_map, "sky_map") }?;
+        let m = borrow(sky_map, "sky_map")?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out_count, "out_count", m.map.level_count()) }
     })
@@ -727,7 +658,7 @@ fn level(m: &OceanSkyMap, level: u32) -> Result<&[[f32; 4]], Error> {
 ///
 /// # Safety
 ///
-/// `sky_map` must be a live handle and `out_size` writable.
+/// `out_size` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_sky_map_level_info(
     sky_map: *const OceanSkyMap,
@@ -735,9 +666,8 @@ pub unsafe extern "C" fn ocean_sky_map_level_info(
     out_size: *mut u32,
 ) -> OceanStatus {
     guard("ocean_sky_map_level_info", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(sky_map, "sky_map") }?;
-        self::level(m, level)?;
+        let m = borrow(sky_map, "sky_map")?;
+        self::level(&m, level)?;
         let side = (m.map.size() >> level).max(1);
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out_size, "out_size", side) }
@@ -756,7 +686,7 @@ pub unsafe extern "C" fn ocean_sky_map_level_info(
 ///
 /// # Safety
 ///
-/// `sky_map` must be a live handle and `rgba` point to `len` writable floats that no other
+/// `rgba` must point to `len` writable floats that no other
 /// thread touches during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_sky_map_copy_level(
@@ -766,10 +696,9 @@ pub unsafe extern "C" fn ocean_sky_map_copy_level(
     len: usize,
 ) -> OceanStatus {
     guard("ocean_sky_map_copy_level", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(sky_map, "sky_map") }?;
+        let m = borrow(sky_map, "sky_map")?;
         check_ptr(rgba.cast_const(), "rgba")?;
-        let texels = self::level(m, level)?;
+        let texels = self::level(&m, level)?;
         let want = texels.len() * 4;
         if len != want {
             return Err(Error::new(
@@ -865,7 +794,7 @@ fn sea_color_one(
 ///
 /// # Safety
 ///
-/// `lighting` and `sky_map` must be live handles and `out` writable.
+/// `out` writable.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn ocean_sea_color(
@@ -879,12 +808,10 @@ pub unsafe extern "C" fn ocean_sea_color(
     out: *mut OceanSeaLight,
 ) -> OceanStatus {
     guard("ocean_sea_color", || {
-        // SAFETY: forwarded from this function's contract.
-        let l = unsafe { borrow(lighting, "lighting") }?;
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(sky_map, "sky_map") }?;
+        let l = borrow(lighting, "lighting")?;
+        let m = borrow(sky_map, "sky_map")?;
         check_ptr(out.cast_const(), "out")?;
-        same_lighting(l, m)?;
+        same_lighting(&l, &m)?;
         let input = OceanSeaColorInput {
             v,
             n,
@@ -911,7 +838,7 @@ pub unsafe extern "C" fn ocean_sea_color(
 ///
 /// # Safety
 ///
-/// `lighting` and `sky_map` must be live handles, `inputs` point to `n` readable
+/// `inputs` point to `n` readable
 /// `OceanSeaColorInput`s and `out` to `n` writable `OceanSeaLight`s, none modified by another
 /// thread during the call.
 #[unsafe(no_mangle)]
@@ -923,10 +850,8 @@ pub unsafe extern "C" fn ocean_sea_color_batch(
     out: *mut OceanSeaLight,
 ) -> OceanStatus {
     guard("ocean_sea_color_batch", || {
-        // SAFETY: forwarded from this function's contract.
-        let l = unsafe { borrow(lighting, "lighting") }?;
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(sky_map, "sky_map") }?;
+        let l = borrow(lighting, "lighting")?;
+        let m = borrow(sky_map, "sky_map")?;
         check_ptr(inputs, "inputs")?;
         check_ptr(out.cast_const(), "out")?;
         if n == 0 {
@@ -941,7 +866,7 @@ pub unsafe extern "C" fn ocean_sea_color_batch(
             (inputs.cast::<u8>(), in_bytes, "inputs"),
             (out.cast_const().cast::<u8>(), out_bytes, "out"),
         )?;
-        same_lighting(l, m)?;
+        same_lighting(&l, &m)?;
         // SAFETY: non-NULL and aligned (checked), the byte size fits in isize (checked), and
         // the caller guarantees `n` readable inputs that nothing writes during the call.
         let inputs = unsafe { core::slice::from_raw_parts(inputs, n) };
@@ -1076,11 +1001,8 @@ mod tests {
         .unwrap();
         assert_eq!(one, OceanSeaLight::from_core(&want));
         assert_eq!(batch, [one, one]);
-        // SAFETY: live handles, destroyed once.
-        unsafe {
-            ocean_sky_map_destroy(m);
-            ocean_lighting_destroy(l);
-        }
+        ocean_sky_map_destroy(m);
+        ocean_lighting_destroy(l);
     }
 
     #[test]
@@ -1125,12 +1047,9 @@ mod tests {
             last_error()
         );
         assert_eq!(out, OceanSeaLight::default());
-        // SAFETY: live handles, destroyed once.
-        unsafe {
-            ocean_sky_map_destroy(m);
-            ocean_lighting_destroy(other);
-            ocean_lighting_destroy(l);
-        }
+        ocean_sky_map_destroy(m);
+        ocean_lighting_destroy(other);
+        ocean_lighting_destroy(l);
     }
 
     #[test]
@@ -1143,18 +1062,16 @@ mod tests {
         let mut side = 7;
         // SAFETY: refused before any access.
         let s = unsafe { ocean_sky_map_level_info(bad_map, 0, &mut side) };
-        assert_eq!(s, OceanStatus::MisalignedPointer);
+        // A handle is an id, never an address: a pointer into the caller's memory is not one.
+        assert_eq!(s, OceanStatus::InvalidHandle);
         assert_eq!(side, 7);
         let bad_rgba = base.wrapping_add(2).cast::<f32>();
         // SAFETY: refused before any access.
         let s = unsafe { ocean_sky_map_copy_level(m, 2, bad_rgba, 4) };
         assert_eq!(s, OceanStatus::MisalignedPointer);
         assert!(storage.iter().all(|&v| v == 0));
-        // SAFETY: misaligned pointers are ignored by destroy; live handles destroyed once.
-        unsafe {
-            ocean_sky_map_destroy(bad_map.cast_mut());
-            ocean_sky_map_destroy(m);
-            ocean_lighting_destroy(l);
-        }
+        ocean_sky_map_destroy(bad_map.cast_mut());
+        ocean_sky_map_destroy(m);
+        ocean_lighting_destroy(l);
     }
 }

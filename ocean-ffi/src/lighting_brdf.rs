@@ -12,9 +12,9 @@ use ocean_brdf::fresnel_table::effective_fresnel_table;
 use ocean_brdf::ross::{brdf, sun_radiance};
 use ocean_brdf::tonemap::{DEFAULT_EXPOSURE, linear_to_srgb, tone_map};
 
+use crate::boundary::{check_finite, check_ptr, write_out};
 use crate::lighting::{OceanRgb, brdf_error, finite_dvec3};
 use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{check_finite, check_ptr, write_out};
 use crate::wtb::OceanDVec3;
 
 /// Reflectance of water at normal incidence, R of Eq. 14 (a refractive index of 1.33).

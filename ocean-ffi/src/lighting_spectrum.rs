@@ -8,9 +8,13 @@ use ocean_brdf::{Filter, SlopeVariance, Spectrum, SpectrumParams};
 use ocean_core::camera::{Camera, CameraError, DepthConvention, Far, Projection};
 use ocean_core::{Depth, WaveDesc};
 
-use crate::lighting::{borrow, brdf_error, destroy, read_in, write_handle};
+use crate::boundary::{
+    borrow, byte_len, check_finite, check_ptr, destroy, read_in, write_handle, write_out,
+};
+use crate::lighting::brdf_error;
+
 use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{OceanWaveDesc, byte_len, check_finite, check_ptr, write_out};
+use crate::waves::OceanWaveDesc;
 use crate::wtb::{OceanDVec2, OceanDepthConvention};
 
 /// N_min of the paper's filter (section 7.1): a wave starts to appear in the normals (or the
@@ -216,25 +220,18 @@ pub unsafe extern "C" fn ocean_spectrum_create(
     })
 }
 
-/// Frees a spectrum. NULL is ignored, and so is a pointer that is not even aligned. Never
-/// fails; leaves the last-error message alone.
-///
-/// # Safety
-///
-/// `spectrum` must be NULL or a handle from `ocean_spectrum_create` not yet destroyed, and no
-/// other thread may be using it.
+/// Frees a spectrum. NULL does nothing; a handle of another kind or already destroyed frees nothing
+/// and sets the last-error message (see the header's notes on handles).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_spectrum_destroy(spectrum: *mut OceanSpectrum) {
-    // SAFETY: forwarded from this function's contract.
-    unsafe { destroy(spectrum) }
+pub extern "C" fn ocean_spectrum_destroy(spectrum: *mut OceanSpectrum) {
+    destroy(spectrum, "ocean_spectrum_destroy", "spectrum");
 }
 
 /// Runs `f` on a borrowed spectrum and writes its result to `*out`.
 ///
 /// # Safety
 ///
-/// `spectrum` must be a live handle (or NULL / misaligned), `out` writable (or NULL /
-/// misaligned).
+/// `out` must be NULL, misaligned or writable.
 unsafe fn spectrum_out<T>(
     function: &str,
     spectrum: *const OceanSpectrum,
@@ -242,8 +239,7 @@ unsafe fn spectrum_out<T>(
     f: impl FnOnce(&Spectrum) -> T,
 ) -> OceanStatus {
     guard(function, || {
-        // SAFETY: forwarded from the caller's contract.
-        let s = unsafe { borrow(spectrum, "spectrum") }?;
+        let s = borrow(spectrum, "spectrum")?;
         check_ptr(out.cast_const(), "out")?;
         let value = f(&s.spectrum);
         // SAFETY: forwarded from the caller's contract.
@@ -258,7 +254,7 @@ unsafe fn spectrum_out<T>(
 ///
 /// # Safety
 ///
-/// `spectrum` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_spectrum_wave_count(
     spectrum: *const OceanSpectrum,
@@ -297,7 +293,7 @@ fn wave_desc_to(w: &WaveDesc) -> OceanWaveDesc {
 ///
 /// # Safety
 ///
-/// `spectrum` must be a live handle and `out` point to `n` writable `OceanWaveDesc`s that no
+/// `out` must point to `n` writable `OceanWaveDesc`s that no
 /// other thread touches during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_spectrum_waves(
@@ -306,8 +302,7 @@ pub unsafe extern "C" fn ocean_spectrum_waves(
     n: usize,
 ) -> OceanStatus {
     guard("ocean_spectrum_waves", || {
-        // SAFETY: forwarded from this function's contract.
-        let s = unsafe { borrow(spectrum, "spectrum") }?;
+        let s = borrow(spectrum, "spectrum")?;
         check_ptr(out.cast_const(), "out")?;
         let waves = s.spectrum.waves();
         if n != waves.len() {
@@ -334,7 +329,7 @@ pub unsafe extern "C" fn ocean_spectrum_waves(
 ///
 /// # Safety
 ///
-/// `spectrum` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_spectrum_wind_direction(
     spectrum: *const OceanSpectrum,
@@ -356,7 +351,7 @@ pub unsafe extern "C" fn ocean_spectrum_wind_direction(
 ///
 /// # Safety
 ///
-/// `spectrum` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_spectrum_clamped_count(
     spectrum: *const OceanSpectrum,
@@ -378,7 +373,7 @@ pub unsafe extern "C" fn ocean_spectrum_clamped_count(
 ///
 /// # Safety
 ///
-/// `spectrum` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_spectrum_max_amplitude(
     spectrum: *const OceanSpectrum,
@@ -400,7 +395,7 @@ pub unsafe extern "C" fn ocean_spectrum_max_amplitude(
 ///
 /// # Safety
 ///
-/// `spectrum` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_spectrum_steepness_sum(
     spectrum: *const OceanSpectrum,
@@ -423,7 +418,7 @@ pub unsafe extern "C" fn ocean_spectrum_steepness_sum(
 ///
 /// # Safety
 ///
-/// `spectrum` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_spectrum_mean_height_shift(
     spectrum: *const OceanSpectrum,
@@ -445,7 +440,7 @@ pub unsafe extern "C" fn ocean_spectrum_mean_height_shift(
 ///
 /// # Safety
 ///
-/// `spectrum` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_spectrum_height_variance(
     spectrum: *const OceanSpectrum,
@@ -468,7 +463,7 @@ pub unsafe extern "C" fn ocean_spectrum_height_variance(
 ///
 /// # Safety
 ///
-/// `spectrum` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_spectrum_total_slope_variance(
     spectrum: *const OceanSpectrum,
@@ -498,7 +493,7 @@ pub unsafe extern "C" fn ocean_spectrum_total_slope_variance(
 ///
 /// # Safety
 ///
-/// `spectrum` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_spectrum_slope_variance(
     spectrum: *const OceanSpectrum,
@@ -508,8 +503,7 @@ pub unsafe extern "C" fn ocean_spectrum_slope_variance(
     out: *mut OceanSlopeVariance,
 ) -> OceanStatus {
     guard("ocean_spectrum_slope_variance", || {
-        // SAFETY: forwarded from this function's contract.
-        let s = unsafe { borrow(spectrum, "spectrum") }?;
+        let s = borrow(spectrum, "spectrum")?;
         check_ptr(out.cast_const(), "out")?;
         check_finite(
             "",

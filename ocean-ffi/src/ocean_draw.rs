@@ -12,13 +12,13 @@
 use ocean_brdf::{Filter, FilteredSurface};
 use ocean_gpu::{MeshGrid, OceanOptions, WaveTexels};
 
+use crate::boundary::{borrow, byte_len, check_finite, check_ptr, check_time, read_in, write_out};
 use crate::gpu::gpu_error;
-use crate::lighting::{OceanLighting, borrow, brdf_error, read_in};
+use crate::lighting::{OceanLighting, brdf_error};
 use crate::lighting_spectrum::{
     OCEAN_FILTER_N_MAX, OCEAN_FILTER_N_MIN, OceanCameraDesc, OceanSpectrum, camera_from,
 };
 use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{byte_len, check_finite, check_ptr, check_time, write_out};
 use crate::wtb::{OceanWaterGridDesc, water_grid};
 
 /// Size in bytes of the exported `ocean` shader's uniform block `Frame` (binding 0, std140);
@@ -208,10 +208,8 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
     guard("ocean_ocean_uniforms", || {
         // SAFETY: forwarded from this function's contract.
         let camera = camera_from(&unsafe { read_in(camera, "camera") }?)?;
-        // SAFETY: forwarded from this function's contract.
-        let s = unsafe { borrow(spectrum, "spectrum") }?;
-        // SAFETY: forwarded from this function's contract.
-        let l = unsafe { borrow(lighting, "lighting") }?;
+        let s = borrow(spectrum, "spectrum")?;
+        let l = borrow(lighting, "lighting")?;
         // SAFETY: forwarded from this function's contract.
         let (options, filter) = params_from(&unsafe { read_in(params, "params") }?)?;
         let mesh = if mesh.is_null() {
@@ -297,8 +295,7 @@ pub unsafe extern "C" fn ocean_ocean_wave_texels(
     guard("ocean_ocean_wave_texels", || {
         // SAFETY: forwarded from this function's contract.
         let camera = camera_from(&unsafe { read_in(camera, "camera") }?)?;
-        // SAFETY: forwarded from this function's contract.
-        let s = unsafe { borrow(spectrum, "spectrum") }?;
+        let s = borrow(spectrum, "spectrum")?;
         check_time(time)?;
         check_ptr(out.cast_const(), "out")?;
         // The filter only orders the waves (longest first), the same for every filter.
@@ -393,14 +390,22 @@ mod tests {
         (desc, camera)
     }
 
-    fn handles() -> (OceanSpectrum, OceanLighting) {
+    /// A registered spectrum and lighting of the default parameters (never destroyed: the
+    /// tests end with the process).
+    fn handles() -> (*const OceanSpectrum, *const OceanLighting) {
         let spectrum = OceanSpectrum {
             spectrum: Spectrum::new(SpectrumParams::default()).unwrap(),
         };
         let lighting = OceanLighting {
             lighting: Lighting::new(SkyParams::default(), SeaParams::default()).unwrap(),
         };
-        (spectrum, lighting)
+        let (mut s, mut l) = (core::ptr::null_mut(), core::ptr::null_mut());
+        // SAFETY: writable locals.
+        unsafe {
+            crate::boundary::write_handle(&mut s, spectrum).unwrap();
+            crate::boundary::write_handle(&mut l, lighting).unwrap();
+        }
+        (s, l)
     }
 
     fn default_params() -> OceanOceanDrawParams {
@@ -448,8 +453,8 @@ mod tests {
         let status = unsafe {
             ocean_ocean_uniforms(
                 &desc,
-                &spectrum,
-                &lighting,
+                spectrum,
+                lighting,
                 &p,
                 &m,
                 12.5,
@@ -460,7 +465,13 @@ mod tests {
             )
         };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
-        let surface = FilteredSurface::new(&spectrum.spectrum, Filter::PAPER).unwrap();
+        let surface = FilteredSurface::new(
+            &crate::boundary::borrow(spectrum, "spectrum")
+                .unwrap()
+                .spectrum,
+            Filter::PAPER,
+        )
+        .unwrap();
         let mesh_grid = MeshGrid {
             origin: DVec2::new(m.origin_x, m.origin_z),
             spacing: 0.5,
@@ -470,7 +481,11 @@ mod tests {
         let want = ocean_gpu::frame_uniform(
             &OceanOptions::default(),
             &WaveTexels::new(&surface),
-            Some(&lighting.lighting),
+            Some(
+                &crate::boundary::borrow(lighting, "lighting")
+                    .unwrap()
+                    .lighting,
+            ),
             &camera,
             12.5,
             (96, 64),
@@ -494,8 +509,8 @@ mod tests {
         let status = unsafe {
             ocean_ocean_uniforms(
                 &desc,
-                &spectrum,
-                &lighting,
+                spectrum,
+                lighting,
                 &p,
                 null(),
                 12.5,
@@ -521,14 +536,23 @@ mod tests {
     fn wave_and_fresnel_texels_are_the_renderers() {
         let (desc, camera) = camera();
         let (spectrum, _) = handles();
-        let n = spectrum.spectrum.waves().len();
+        let n = crate::boundary::borrow(spectrum, "spectrum")
+            .unwrap()
+            .spectrum
+            .waves()
+            .len();
         let mut out = vec![f32::NAN; 12 * n];
         // SAFETY: readable inputs, `out` holds `len` writable floats.
-        let status = unsafe {
-            ocean_ocean_wave_texels(&desc, &spectrum, 3.0e5, out.as_mut_ptr(), out.len())
-        };
+        let status =
+            unsafe { ocean_ocean_wave_texels(&desc, spectrum, 3.0e5, out.as_mut_ptr(), out.len()) };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
-        let surface = FilteredSurface::new(&spectrum.spectrum, Filter::PAPER).unwrap();
+        let surface = FilteredSurface::new(
+            &crate::boundary::borrow(spectrum, "spectrum")
+                .unwrap()
+                .spectrum,
+            Filter::PAPER,
+        )
+        .unwrap();
         let want = WaveTexels::new(&surface).frame_texels(&camera, 3.0e5);
         assert_eq!(out, bytemuck::cast_slice::<[f32; 4], f32>(&want));
         // Row 0's phases: each θ₀ in [−π, π], k·o − ωt + Φ modulo 2π.
@@ -568,8 +592,8 @@ mod tests {
             let status = unsafe {
                 ocean_ocean_uniforms(
                     desc,
-                    &spectrum,
-                    &lighting,
+                    spectrum,
+                    lighting,
                     p,
                     m,
                     time,
@@ -684,26 +708,26 @@ mod tests {
         unsafe {
             let o = out.as_mut_ptr();
             assert_eq!(
-                ocean_ocean_uniforms(null(), &spectrum, &lighting, &good, &m, 0.0, 8, 8, o, 352),
+                ocean_ocean_uniforms(null(), spectrum, lighting, &good, &m, 0.0, 8, 8, o, 352),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_ocean_uniforms(&desc, null(), &lighting, &good, &m, 0.0, 8, 8, o, 352),
+                ocean_ocean_uniforms(&desc, null(), lighting, &good, &m, 0.0, 8, 8, o, 352),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_ocean_uniforms(&desc, &spectrum, null(), &good, &m, 0.0, 8, 8, o, 352),
+                ocean_ocean_uniforms(&desc, spectrum, null(), &good, &m, 0.0, 8, 8, o, 352),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_ocean_uniforms(&desc, &spectrum, &lighting, null(), &m, 0.0, 8, 8, o, 352),
+                ocean_ocean_uniforms(&desc, spectrum, lighting, null(), &m, 0.0, 8, 8, o, 352),
                 OceanStatus::NullPointer
             );
             assert_eq!(
                 ocean_ocean_uniforms(
                     &desc,
-                    &spectrum,
-                    &lighting,
+                    spectrum,
+                    lighting,
                     &good,
                     &m,
                     0.0,
@@ -717,18 +741,22 @@ mod tests {
         }
 
         // The texel functions: wrong lengths, NaN time, NULL.
-        let n = spectrum.spectrum.waves().len();
+        let n = crate::boundary::borrow(spectrum, "spectrum")
+            .unwrap()
+            .spectrum
+            .waves()
+            .len();
         let mut texels = vec![7.0f32; 12 * n + 1];
         // SAFETY: `texels` holds at least `len` writable floats; NULL is refused.
         unsafe {
             let t = texels.as_mut_ptr();
             assert_eq!(
-                ocean_ocean_wave_texels(&desc, &spectrum, 0.0, t, 12 * n + 1),
+                ocean_ocean_wave_texels(&desc, spectrum, 0.0, t, 12 * n + 1),
                 OceanStatus::InvalidArgument
             );
             assert!(last_error().contains(&format!("exactly {}", 12 * n)));
             assert_eq!(
-                ocean_ocean_wave_texels(&desc, &spectrum, f64::INFINITY, t, 12 * n),
+                ocean_ocean_wave_texels(&desc, spectrum, f64::INFINITY, t, 12 * n),
                 OceanStatus::NonFinite
             );
             assert_eq!(
@@ -736,7 +764,7 @@ mod tests {
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_ocean_wave_texels(&desc, &spectrum, 0.0, null_mut(), 12 * n),
+                ocean_ocean_wave_texels(&desc, spectrum, 0.0, null_mut(), 12 * n),
                 OceanStatus::NullPointer
             );
             assert_eq!(

@@ -18,10 +18,11 @@ use ocean_relief::{
     ConeKind, ConeMap, ConeParams, Edge, HeightMap, HeightRange, ReliefError, ReliefTexture,
 };
 
-use crate::lighting::{borrow, destroy, read_in, write_handle};
+use crate::boundary::{
+    borrow, check_len, check_ptr, destroy, input, read_in, write_handle, write_out, write_slice,
+};
 use crate::sao_camera::camera_status;
 use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{byte_len, check_ptr, write_out};
 
 /// `edge`: the texture tiles (sampler addressing *repeat*).
 pub const OCEAN_RELIEF_EDGE_WRAP: u32 = 0;
@@ -232,52 +233,6 @@ pub(crate) fn params_from(p: &OceanReliefConeParams) -> Result<ConeParams, Error
     })
 }
 
-/// Borrows `len` values of `T` from a caller's input buffer, after checking the pointer and the
-/// byte size.
-///
-/// # Safety
-///
-/// `p` must be NULL, misaligned, or point to `len` readable values that nothing writes during
-/// the borrow.
-pub(crate) unsafe fn input<'a, T>(p: *const T, len: usize, name: &str) -> Result<&'a [T], Error> {
-    check_ptr(p, name)?;
-    byte_len::<T>(len, name)?;
-    // SAFETY: non-NULL and aligned (checked), `len` values whose byte size fits in isize
-    // (checked), readable and unmodified during the borrow (caller's guarantee).
-    Ok(unsafe { core::slice::from_raw_parts(p, len) })
-}
-
-/// Checks that a caller's buffer of `len` values is exactly `want` long.
-pub(crate) fn check_len(name: &str, len: usize, want: usize, what: &str) -> Result<(), Error> {
-    if len != want {
-        return Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!("`{name}` is {len} values long, {what} holds exactly {want}"),
-        ));
-    }
-    Ok(())
-}
-
-/// Copies a finished result into a caller's output buffer (checked for NULL and alignment).
-///
-/// # Safety
-///
-/// `p` must be NULL, misaligned, or point to `values.len()` writable `T` that no other thread
-/// touches during the call and that do not overlap any input still borrowed.
-pub(crate) unsafe fn write_slice<T: Copy>(
-    p: *mut T,
-    name: &str,
-    values: &[T],
-) -> Result<(), Error> {
-    check_ptr(p.cast_const(), name)?;
-    byte_len::<T>(values.len(), name)?;
-    // SAFETY: non-NULL and aligned (checked), `values.len()` elements whose byte size fits in
-    // isize (checked), writable and untouched by others (caller's guarantee).
-    let out = unsafe { core::slice::from_raw_parts_mut(p, values.len()) };
-    out.copy_from_slice(values);
-    Ok(())
-}
-
 /// The side and texel count of a `width` x `height` input, checked the way the crate checks it
 /// (with `OCEAN_STATUS_EMPTY` for a zero side), and `len` against it.
 fn map_dims(width: u32, height: u32, len: usize) -> Result<usize, Error> {
@@ -450,17 +405,11 @@ unsafe fn create_integer_map<T>(
     })
 }
 
-/// Frees a height map. NULL is ignored, and so is a pointer that is not even aligned. Never
-/// fails; leaves the last-error message alone.
-///
-/// # Safety
-///
-/// `map` must be NULL or a handle from an `ocean_relief_map_create_*` function not yet
-/// destroyed, and no other thread may be using it.
+/// Frees a height map. NULL does nothing; a handle of another kind or already destroyed frees
+/// nothing and sets the last-error message (see the header's notes on handles).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_relief_map_destroy(map: *mut OceanReliefMap) {
-    // SAFETY: forwarded from this function's contract.
-    unsafe { destroy(map) }
+pub extern "C" fn ocean_relief_map_destroy(map: *mut OceanReliefMap) {
+    destroy(map, "ocean_relief_map_destroy", "map");
 }
 
 /// Stores the side N of the map, texels, in `*out_size`.
@@ -470,15 +419,14 @@ pub unsafe extern "C" fn ocean_relief_map_destroy(map: *mut OceanReliefMap) {
 ///
 /// # Safety
 ///
-/// `map` must be a live handle and `out_size` writable.
+/// `out_size` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_map_size(
     map: *const OceanReliefMap,
     out_size: *mut u32,
 ) -> OceanStatus {
     guard("ocean_relief_map_size", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(map, "map") }?;
+        let m = borrow(map, "map")?;
         // At most OCEAN_RELIEF_MAX_SIDE.
         let side = m.map.size() as u32;
         // SAFETY: forwarded from this function's contract.
@@ -495,7 +443,7 @@ pub unsafe extern "C" fn ocean_relief_map_size(
 ///
 /// # Safety
 ///
-/// `map` must be a live handle and `depths` point to `len` writable floats that no other thread
+/// `depths` must point to `len` writable floats that no other thread
 /// touches during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_map_depths(
@@ -504,8 +452,7 @@ pub unsafe extern "C" fn ocean_relief_map_depths(
     len: usize,
 ) -> OceanStatus {
     guard("ocean_relief_map_depths", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(map, "map") }?;
+        let m = borrow(map, "map")?;
         check_ptr(depths.cast_const(), "depths")?;
         let d = m.map.depths();
         check_len("len", len, d.len(), "the map")?;
@@ -525,7 +472,7 @@ pub unsafe extern "C" fn ocean_relief_map_depths(
 ///
 /// # Safety
 ///
-/// `map` must be a live handle and `xyz` point to `len` writable floats that no other thread
+/// `xyz` must point to `len` writable floats that no other thread
 /// touches during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_normals(
@@ -535,8 +482,7 @@ pub unsafe extern "C" fn ocean_relief_normals(
     len: usize,
 ) -> OceanStatus {
     guard("ocean_relief_normals", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(map, "map") }?;
+        let m = borrow(map, "map")?;
         check_ptr(xyz.cast_const(), "xyz")?;
         let n = m.map.size();
         check_len("len", len, 3 * n * n, "the normal map (3 floats a texel)")?;
@@ -628,7 +574,7 @@ pub(crate) fn with_progress<T>(
 ///
 /// # Safety
 ///
-/// `map` must be a live handle, `params` readable, `out` writable; `progress`, if not NULL,
+/// `params` readable, `out` writable; `progress`, if not NULL,
 /// must be safe to call with `user` from this thread.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_cones_create(
@@ -639,8 +585,7 @@ pub unsafe extern "C" fn ocean_relief_cones_create(
     out: *mut *mut OceanReliefCones,
 ) -> OceanStatus {
     guard("ocean_relief_cones_create", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(map, "map") }?;
+        let m = borrow(map, "map")?;
         // SAFETY: forwarded from this function's contract.
         let params = unsafe { read_in(params, "params") }?;
         check_ptr(out.cast_const(), "out")?;
@@ -652,17 +597,11 @@ pub unsafe extern "C" fn ocean_relief_cones_create(
     })
 }
 
-/// Frees a cone map. NULL is ignored, and so is a pointer that is not even aligned. Never
-/// fails; leaves the last-error message alone.
-///
-/// # Safety
-///
-/// `cones` must be NULL or a handle from `ocean_relief_cones_create` or
-/// `ocean_relief_cones_quantize` not yet destroyed, and no other thread may be using it.
+/// Frees a cone map. NULL does nothing; a handle of another kind or already destroyed frees nothing
+/// and sets the last-error message (see the header's notes on handles).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_relief_cones_destroy(cones: *mut OceanReliefCones) {
-    // SAFETY: forwarded from this function's contract.
-    unsafe { destroy(cones) }
+pub extern "C" fn ocean_relief_cones_destroy(cones: *mut OceanReliefCones) {
+    destroy(cones, "ocean_relief_cones_destroy", "cones");
 }
 
 /// Stores the side N of the cone map (that of its height map), texels, in `*out_size`.
@@ -672,15 +611,14 @@ pub unsafe extern "C" fn ocean_relief_cones_destroy(cones: *mut OceanReliefCones
 ///
 /// # Safety
 ///
-/// `cones` must be a live handle and `out_size` writable.
+/// `out_size` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_cones_size(
     cones: *const OceanReliefCones,
     out_size: *mut u32,
 ) -> OceanStatus {
     guard("ocean_relief_cones_size", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(cones, "cones") }?;
+        let c = borrow(cones, "cones")?;
         // At most OCEAN_RELIEF_MAX_SIDE.
         let side = c.cones.size() as u32;
         // SAFETY: forwarded from this function's contract.
@@ -776,7 +714,7 @@ unsafe fn write_encoded(out: *mut c_void, values: &Interleaved) -> Result<(), Er
 ///
 /// # Safety
 ///
-/// `cones` must be a live handle and `rgba` point to `len` writable floats that no other thread
+/// `rgba` must point to `len` writable floats that no other thread
 /// touches during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_cones_texels(
@@ -785,8 +723,7 @@ pub unsafe extern "C" fn ocean_relief_cones_texels(
     len: usize,
 ) -> OceanStatus {
     guard("ocean_relief_cones_texels", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(cones, "cones") }?;
+        let c = borrow(cones, "cones")?;
         check_ptr(rgba.cast_const(), "rgba")?;
         let n = c.cones.size();
         check_len("len", len, 4 * n * n, "the texture (4 floats a texel)")?;
@@ -809,7 +746,7 @@ pub unsafe extern "C" fn ocean_relief_cones_texels(
 ///
 /// # Safety
 ///
-/// `cones` must be a live handle and `out` point to `len` writable elements of the encoding's
+/// `out` must point to `len` writable elements of the encoding's
 /// type that no other thread touches during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_cones_encode(
@@ -819,8 +756,7 @@ pub unsafe extern "C" fn ocean_relief_cones_encode(
     len: usize,
 ) -> OceanStatus {
     guard("ocean_relief_cones_encode", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(cones, "cones") }?;
+        let c = borrow(cones, "cones")?;
         let encoding = encoding_from(encoding)?;
         check_encoded_out(out, encoding)?;
         let n = c.cones.size();
@@ -840,7 +776,7 @@ pub unsafe extern "C" fn ocean_relief_cones_encode(
 ///
 /// # Safety
 ///
-/// `cones` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_cones_quantize(
     cones: *const OceanReliefCones,
@@ -848,8 +784,7 @@ pub unsafe extern "C" fn ocean_relief_cones_quantize(
     out: *mut *mut OceanReliefCones,
 ) -> OceanStatus {
     guard("ocean_relief_cones_quantize", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(cones, "cones") }?;
+        let c = borrow(cones, "cones")?;
         let encoding = encoding_from(encoding)?;
         check_ptr(out.cast_const(), "out")?;
         let q = c
@@ -870,7 +805,7 @@ pub unsafe extern "C" fn ocean_relief_cones_quantize(
 ///
 /// # Safety
 ///
-/// `map` must be a live handle, `params` readable, `rgba` point to `len` writable floats that
+/// `params` readable, `rgba` point to `len` writable floats that
 /// no other thread touches during the call; `progress`, if not NULL, must be safe to call with
 /// `user` from this thread.
 #[unsafe(no_mangle)]
@@ -883,8 +818,7 @@ pub unsafe extern "C" fn ocean_relief_generate_texels(
     len: usize,
 ) -> OceanStatus {
     guard("ocean_relief_generate_texels", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(map, "map") }?;
+        let m = borrow(map, "map")?;
         // SAFETY: forwarded from this function's contract.
         let params = unsafe { read_in(params, "params") }?;
         check_ptr(rgba.cast_const(), "rgba")?;
@@ -906,7 +840,7 @@ pub unsafe extern "C" fn ocean_relief_generate_texels(
 ///
 /// # Safety
 ///
-/// `map` must be a live handle, `params` readable, `out` point to `len` writable elements of
+/// `params` readable, `out` point to `len` writable elements of
 /// the encoding's type that no other thread touches during the call; `progress`, if not NULL,
 /// must be safe to call with `user` from this thread.
 #[unsafe(no_mangle)]
@@ -920,8 +854,7 @@ pub unsafe extern "C" fn ocean_relief_generate_encoded(
     len: usize,
 ) -> OceanStatus {
     guard("ocean_relief_generate_encoded", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(map, "map") }?;
+        let m = borrow(map, "map")?;
         // SAFETY: forwarded from this function's contract.
         let params = unsafe { read_in(params, "params") }?;
         let encoding = encoding_from(encoding)?;
@@ -947,7 +880,7 @@ pub unsafe extern "C" fn ocean_relief_generate_encoded(
 ///
 /// # Safety
 ///
-/// `cones` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_mips_create(
     cones: *const OceanReliefCones,
@@ -955,8 +888,7 @@ pub unsafe extern "C" fn ocean_relief_mips_create(
     out: *mut *mut OceanReliefMips,
 ) -> OceanStatus {
     guard("ocean_relief_mips_create", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(cones, "cones") }?;
+        let c = borrow(cones, "cones")?;
         check_ptr(out.cast_const(), "out")?;
         let rule = match rule {
             OCEAN_RELIEF_MIP_WINDOW => MipRule::Window,
@@ -977,17 +909,11 @@ pub unsafe extern "C" fn ocean_relief_mips_create(
     })
 }
 
-/// Frees a mip chain. NULL is ignored, and so is a pointer that is not even aligned. Never
-/// fails; leaves the last-error message alone.
-///
-/// # Safety
-///
-/// `mips` must be NULL or a handle from `ocean_relief_mips_create` not yet destroyed, and no
-/// other thread may be using it.
+/// Frees a mip chain. NULL does nothing; a handle of another kind or already destroyed frees
+/// nothing and sets the last-error message (see the header's notes on handles).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_relief_mips_destroy(mips: *mut OceanReliefMips) {
-    // SAFETY: forwarded from this function's contract.
-    unsafe { destroy(mips) }
+pub extern "C" fn ocean_relief_mips_destroy(mips: *mut OceanReliefMips) {
+    destroy(mips, "ocean_relief_mips_destroy", "mips");
 }
 
 /// Stores the number of levels, log2(N) + 1, in `*out_count`.
@@ -997,15 +923,14 @@ pub unsafe extern "C" fn ocean_relief_mips_destroy(mips: *mut OceanReliefMips) {
 ///
 /// # Safety
 ///
-/// `mips` must be a live handle and `out_count` writable.
+/// `out_count` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_mips_level_count(
     mips: *const OceanReliefMips,
     out_count: *mut u32,
 ) -> OceanStatus {
     guard("ocean_relief_mips_level_count", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(mips, "mips") }?;
+        let m = borrow(mips, "mips")?;
         // At most 13 levels (N <= 4096).
         let count = m.levels.len() as u32;
         // SAFETY: forwarded from this function's contract.
@@ -1033,7 +958,7 @@ fn level(m: &OceanReliefMips, level: u32) -> Result<&ConeMap, Error> {
 ///
 /// # Safety
 ///
-/// `mips` must be a live handle and `out_size` writable.
+/// `out_size` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_mips_level_size(
     mips: *const OceanReliefMips,
@@ -1041,10 +966,9 @@ pub unsafe extern "C" fn ocean_relief_mips_level_size(
     out_size: *mut u32,
 ) -> OceanStatus {
     guard("ocean_relief_mips_level_size", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(mips, "mips") }?;
+        let m = borrow(mips, "mips")?;
         // At most OCEAN_RELIEF_MAX_SIDE.
-        let side = self::level(m, level)?.size() as u32;
+        let side = self::level(&m, level)?.size() as u32;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out_size, "out_size", side) }
     })
@@ -1060,7 +984,7 @@ pub unsafe extern "C" fn ocean_relief_mips_level_size(
 ///
 /// # Safety
 ///
-/// `mips` must be a live handle and `out` point to `len` writable elements of the encoding's
+/// `out` must point to `len` writable elements of the encoding's
 /// type that no other thread touches during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_mips_copy_level(
@@ -1071,11 +995,10 @@ pub unsafe extern "C" fn ocean_relief_mips_copy_level(
     len: usize,
 ) -> OceanStatus {
     guard("ocean_relief_mips_copy_level", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(mips, "mips") }?;
+        let m = borrow(mips, "mips")?;
         let encoding = encoding_from(encoding)?;
         check_encoded_out(out, encoding)?;
-        let l = self::level(m, level)?;
+        let l = self::level(&m, level)?;
         let side = l.size();
         check_len(
             "len",

@@ -11,13 +11,13 @@ use ocean_gpu::ReliefScene;
 use ocean_relief::Method;
 use ocean_relief::gpu_params::ReliefUniforms;
 
+use crate::boundary::{byte_len, check_finite, check_ptr, read_in, write_out};
 use crate::gpu::gpu_error;
-use crate::lighting::{OceanIrradiance, finite_dvec3, read_in};
+use crate::lighting::{OceanIrradiance, finite_dvec3};
 use crate::lighting_spectrum::{OceanCameraDesc, camera_from};
 use crate::relief::edge_from;
 use crate::relief_trace::{OceanReliefMethod, method_from};
 use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{byte_len, check_finite, check_ptr, write_out};
 use crate::wtb::OceanDVec3;
 
 /// Size in bytes of the exported `relief` shader's uniform block `Relief` (binding 0, std140);

@@ -16,10 +16,9 @@
 use glam::Vec2;
 use ocean_relief::lod::{atlas_origin, atlas_size, downsample, max_levels, mip_level};
 
-use crate::lighting::{borrow, write_handle};
+use crate::boundary::{borrow, check_ptr, write_handle, write_out};
 use crate::relief::{OceanReliefMap, relief_error};
 use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{check_ptr, write_out};
 
 /// Makes the next mip level of `map`: side N / 2, each depth the mean ((a + b) + (c + d)) / 4
 /// of its 2x2 group (row above first, left texel first), the same edge mode; stores the handle
@@ -31,15 +30,14 @@ use crate::waves::{check_ptr, write_out};
 ///
 /// # Safety
 ///
-/// `map` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_map_downsample(
     map: *const OceanReliefMap,
     out: *mut *mut OceanReliefMap,
 ) -> OceanStatus {
     guard("ocean_relief_map_downsample", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(map, "map") }?;
+        let m = borrow(map, "map")?;
         check_ptr(out.cast_const(), "out")?;
         let half = downsample(&m.map).map_err(|e| relief_error("map: ", e))?;
         // SAFETY: forwarded from this function's contract.

@@ -13,16 +13,17 @@ use core::ffi::c_void;
 
 use ocean_relief::{HeightMap, QuadConeMap, QuadReliefTexture};
 
-use crate::lighting::{borrow, destroy, read_in, write_handle};
+use crate::boundary::{
+    borrow, check_len, check_ptr, destroy, read_in, write_handle, write_out, write_slice,
+};
 use crate::relief::{
-    OceanReliefConeParams, OceanReliefMap, OceanReliefProgress, check_len, params_from,
-    relief_error, texels, with_progress, write_slice,
+    OceanReliefConeParams, OceanReliefMap, OceanReliefProgress, params_from, relief_error, texels,
+    with_progress,
 };
 use crate::relief_trace::{
     OceanReliefHit, OceanReliefMethod, OceanReliefPoint, OceanReliefRay, shadow_batch, trace_batch,
 };
 use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{check_ptr, write_out};
 
 /// Array layers of a quad-directional cone map: one per closed quadrant of the ray's horizontal
 /// direction, layer k = x_neg + 2 y_neg (`OCEAN_RELIEF_QUAD_X_NEG`, `_Y_NEG`).
@@ -105,7 +106,7 @@ fn quad_len(n: usize) -> usize {
 ///
 /// # Safety
 ///
-/// `map` must be a live handle, `params` readable, `out` writable; `progress`, if not NULL,
+/// `params` readable, `out` writable; `progress`, if not NULL,
 /// must be safe to call with `user` from this thread.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_quad_cones_create(
@@ -116,8 +117,7 @@ pub unsafe extern "C" fn ocean_relief_quad_cones_create(
     out: *mut *mut OceanReliefQuadCones,
 ) -> OceanStatus {
     guard("ocean_relief_quad_cones_create", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(map, "map") }?;
+        let m = borrow(map, "map")?;
         // SAFETY: forwarded from this function's contract.
         let params = unsafe { read_in(params, "params") }?;
         check_ptr(out.cast_const(), "out")?;
@@ -133,17 +133,11 @@ pub unsafe extern "C" fn ocean_relief_quad_cones_create(
     })
 }
 
-/// Frees a quad-directional cone map. NULL is ignored, and so is a pointer that is not even
-/// aligned. Never fails; leaves the last-error message alone.
-///
-/// # Safety
-///
-/// `cones` must be NULL or a handle from `ocean_relief_quad_cones_create` not yet destroyed,
-/// and no other thread may be using it.
+/// Frees a quad-directional cone map. NULL does nothing; a handle of another kind or already
+/// destroyed frees nothing and sets the last-error message (see the header's notes on handles).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_relief_quad_cones_destroy(cones: *mut OceanReliefQuadCones) {
-    // SAFETY: forwarded from this function's contract.
-    unsafe { destroy(cones) }
+pub extern "C" fn ocean_relief_quad_cones_destroy(cones: *mut OceanReliefQuadCones) {
+    destroy(cones, "ocean_relief_quad_cones_destroy", "cones");
 }
 
 /// Stores the side N of the quad-directional cone map (that of its height map), texels, in
@@ -154,15 +148,14 @@ pub unsafe extern "C" fn ocean_relief_quad_cones_destroy(cones: *mut OceanRelief
 ///
 /// # Safety
 ///
-/// `cones` must be a live handle and `out_size` writable.
+/// `out_size` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_quad_cones_size(
     cones: *const OceanReliefQuadCones,
     out_size: *mut u32,
 ) -> OceanStatus {
     guard("ocean_relief_quad_cones_size", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(cones, "cones") }?;
+        let c = borrow(cones, "cones")?;
         // At most OCEAN_RELIEF_MAX_SIDE.
         let side = c.cones.size() as u32;
         // SAFETY: forwarded from this function's contract.
@@ -181,7 +174,7 @@ pub unsafe extern "C" fn ocean_relief_quad_cones_size(
 ///
 /// # Safety
 ///
-/// `cones` must be a live handle and `rgba` point to `len` writable floats that no other thread
+/// `rgba` must point to `len` writable floats that no other thread
 /// touches during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_quad_cones_texels(
@@ -190,8 +183,7 @@ pub unsafe extern "C" fn ocean_relief_quad_cones_texels(
     len: usize,
 ) -> OceanStatus {
     guard("ocean_relief_quad_cones_texels", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(cones, "cones") }?;
+        let c = borrow(cones, "cones")?;
         check_ptr(rgba.cast_const(), "rgba")?;
         let n = c.cones.size();
         check_len(
@@ -214,7 +206,7 @@ pub unsafe extern "C" fn ocean_relief_quad_cones_texels(
 ///
 /// # Safety
 ///
-/// `map` must be a live handle, `params` readable, `rgba` point to `len` writable floats that
+/// `params` readable, `rgba` point to `len` writable floats that
 /// no other thread touches during the call; `progress`, if not NULL, must be safe to call with
 /// `user` from this thread.
 #[unsafe(no_mangle)]
@@ -227,8 +219,7 @@ pub unsafe extern "C" fn ocean_relief_quad_generate_texels(
     len: usize,
 ) -> OceanStatus {
     guard("ocean_relief_quad_generate_texels", || {
-        // SAFETY: forwarded from this function's contract.
-        let m = unsafe { borrow(map, "map") }?;
+        let m = borrow(map, "map")?;
         // SAFETY: forwarded from this function's contract.
         let params = unsafe { read_in(params, "params") }?;
         check_ptr(rgba.cast_const(), "rgba")?;
@@ -260,7 +251,7 @@ pub unsafe extern "C" fn ocean_relief_quad_generate_texels(
 ///
 /// # Safety
 ///
-/// `cones` must be a live handle, `method` readable, `rays` point to `count` readable rays and
+/// `method` readable, `rays` point to `count` readable rays and
 /// `hits` to `count` writable hits, neither touched by another thread during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_quad_trace(
@@ -271,8 +262,7 @@ pub unsafe extern "C" fn ocean_relief_quad_trace(
     hits: *mut OceanReliefHit,
 ) -> OceanStatus {
     guard("ocean_relief_quad_trace", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(cones, "cones") }?;
+        let c = borrow(cones, "cones")?;
         let texture = &c.texture;
         // SAFETY: forwarded from this function's contract.
         unsafe { trace_batch(method, rays, count, hits, |m, r| texture.trace(m, r)) }
@@ -286,7 +276,7 @@ pub unsafe extern "C" fn ocean_relief_quad_trace(
 ///
 /// # Safety
 ///
-/// `cones` must be a live handle, `method` readable, `points` point to `count` readable points
+/// `method` readable, `points` point to `count` readable points
 /// and `in_shadow` to `count` writable bytes, neither touched by another thread during the
 /// call.
 #[unsafe(no_mangle)]
@@ -304,8 +294,7 @@ pub unsafe extern "C" fn ocean_relief_quad_shadow(
     in_shadow: *mut u8,
 ) -> OceanStatus {
     guard("ocean_relief_quad_shadow", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(cones, "cones") }?;
+        let c = borrow(cones, "cones")?;
         let texture = &c.texture;
         // SAFETY: forwarded from this function's contract.
         unsafe {
@@ -457,8 +446,7 @@ mod tests {
                 .unwrap();
             assert_eq!(sh, u8::from(want));
         }
-        // SAFETY: handles from the create functions, destroyed once.
-        unsafe {
+        {
             ocean_relief_quad_cones_destroy(cones);
             crate::relief::ocean_relief_map_destroy(map);
         }

@@ -123,8 +123,7 @@ fn maps_are_the_crates() {
         let m = map_f32(&h, edge, OCEAN_RELIEF_RANGE_REFUSE);
         let want = HeightMap::from_heights(32, 32, &h, e, HeightRange::Refuse).unwrap();
         assert_eq!(depths_of(m), want.depths());
-        // SAFETY: live handle.
-        unsafe { ocean_relief_map_destroy(m) };
+        ocean_relief_map_destroy(m);
 
         // Heights in [-3, 5]: normalised to [0, 1].
         let wide: Vec<f32> = h.iter().map(|v| 8.0 * v - 3.0).collect();
@@ -136,8 +135,7 @@ fn maps_are_the_crates() {
         let st = unsafe { ocean_relief_map_size(m, &mut side) };
         assert_eq!(st, OceanStatus::Ok);
         assert_eq!(side, N);
-        // SAFETY: live handle.
-        unsafe { ocean_relief_map_destroy(m) };
+        ocean_relief_map_destroy(m);
 
         let h8: Vec<u8> = (0..TEXELS).map(|k| (k * 37 % 256) as u8).collect();
         let mut m = null_mut();
@@ -148,8 +146,7 @@ fn maps_are_the_crates() {
             depths_of(m),
             HeightMap::from_u8(32, 32, &h8, e).unwrap().depths()
         );
-        // SAFETY: live handle.
-        unsafe { ocean_relief_map_destroy(m) };
+        ocean_relief_map_destroy(m);
 
         let h16: Vec<u16> = (0..TEXELS).map(|k| (k * 2113 % 65536) as u16).collect();
         let mut m = null_mut();
@@ -160,11 +157,9 @@ fn maps_are_the_crates() {
             depths_of(m),
             HeightMap::from_u16(32, 32, &h16, e).unwrap().depths()
         );
-        // SAFETY: live handle.
-        unsafe { ocean_relief_map_destroy(m) };
+        ocean_relief_map_destroy(m);
     }
-    // SAFETY: NULL is ignored.
-    unsafe { ocean_relief_map_destroy(null_mut()) };
+    ocean_relief_map_destroy(null_mut());
 }
 
 /// Cone maps through the handle and straight into buffers equal `ConeMap::generate`'s bits in
@@ -237,14 +232,11 @@ fn cones_are_the_crates_in_every_encoding() {
                 let wq = ReliefTexture::new(&hm, &want.quantized(enc).unwrap()).unwrap();
                 let wq: Vec<f32> = wq.texels().iter().flatten().copied().collect();
                 assert_eq!(qt, wq);
-                // SAFETY: live handle.
-                unsafe { ocean_relief_cones_destroy(q) };
+                ocean_relief_cones_destroy(q);
             }
-            // SAFETY: live handle.
-            unsafe { ocean_relief_cones_destroy(c) };
+            ocean_relief_cones_destroy(c);
         }
-        // SAFETY: live handle.
-        unsafe { ocean_relief_map_destroy(m) };
+        ocean_relief_map_destroy(m);
     }
 }
 
@@ -291,12 +283,9 @@ fn progress_reaches_total_and_output_is_unchanged() {
             t
         };
         assert_eq!(read(c), read(plain));
-        // SAFETY: live handles.
-        unsafe {
-            ocean_relief_cones_destroy(c);
-            ocean_relief_cones_destroy(plain);
-            ocean_relief_map_destroy(m);
-        }
+        ocean_relief_cones_destroy(c);
+        ocean_relief_cones_destroy(plain);
+        ocean_relief_map_destroy(m);
     }
 }
 
@@ -381,8 +370,7 @@ fn cancellation_writes_nothing() {
     };
     assert_eq!(s, OceanStatus::InvalidArgument);
     assert!(rec.calls.is_empty());
-    // SAFETY: live handle.
-    unsafe { ocean_relief_map_destroy(m) };
+    ocean_relief_map_destroy(m);
 }
 
 /// Every bad input of the map constructors: the status, a message naming the problem, and
@@ -436,8 +424,7 @@ fn map_errors_are_mapped_and_write_nothing() {
     let m = map_f32(&over, wrap, OCEAN_RELIEF_RANGE_NORMALIZE);
     // The largest height (1.5) becomes depth 0.
     assert_eq!(depths_of(m)[7], 0.0);
-    // SAFETY: live handle.
-    unsafe { ocean_relief_map_destroy(m) };
+    ocean_relief_map_destroy(m);
     // Unknown enumeration values.
     let (s, msg) = create(&h, N, N, 2, refuse);
     assert_eq!(s, OceanStatus::InvalidArgument);
@@ -542,12 +529,9 @@ fn cone_errors_are_mapped_and_write_nothing() {
     // SAFETY: NULL handle is checked.
     let s = unsafe { ocean_relief_cones_texels(null(), t.as_mut_ptr(), 4 * TEXELS) };
     assert_eq!(s, OceanStatus::NullPointer);
-    // SAFETY: live handles.
-    unsafe {
-        ocean_relief_cones_destroy(c);
-        ocean_relief_cones_destroy(null_mut());
-        ocean_relief_map_destroy(m);
-    }
+    ocean_relief_cones_destroy(c);
+    ocean_relief_cones_destroy(null_mut());
+    ocean_relief_map_destroy(m);
 }
 
 /// The mip chain is the crate's (both rules, every level, every encoding); a side that is not a
@@ -595,8 +579,7 @@ fn mips_are_the_crates() {
         assert_eq!(s, OceanStatus::InvalidArgument);
         assert!(last_error().contains("levels 0 to 5"));
         assert_eq!(side, 77);
-        // SAFETY: live handle.
-        unsafe { ocean_relief_mips_destroy(mips) };
+        ocean_relief_mips_destroy(mips);
     }
     // 24 is not a power of two.
     let h24 = vec![0.5f32; 24 * 24];
@@ -612,14 +595,11 @@ fn mips_are_the_crates() {
     assert_eq!(s, OceanStatus::InvalidArgument);
     assert!(last_error().contains("power-of-two"), "{}", last_error());
     assert_eq!(mips, sentinel);
-    // SAFETY: live handles.
-    unsafe {
-        ocean_relief_cones_destroy(c24);
-        ocean_relief_map_destroy(m24);
-        ocean_relief_cones_destroy(c);
-        ocean_relief_map_destroy(m);
-        ocean_relief_mips_destroy(null_mut());
-    }
+    ocean_relief_cones_destroy(c24);
+    ocean_relief_map_destroy(m24);
+    ocean_relief_cones_destroy(c);
+    ocean_relief_map_destroy(m);
+    ocean_relief_mips_destroy(null_mut());
 }
 
 /// Normals are the crate's; a bad depth is refused with the buffer untouched.
@@ -648,8 +628,7 @@ fn normals_are_the_crates() {
         assert_eq!(s, status);
     }
     assert!(keep.iter().all(|&v| v == 9.0));
-    // SAFETY: live handle.
-    unsafe { ocean_relief_map_destroy(m) };
+    ocean_relief_map_destroy(m);
 }
 
 /// Rays at 0–80° from the normal, random starts and azimuths (a fixed LCG).
@@ -831,12 +810,9 @@ fn trace_and_shadow_are_the_crates() {
             points.len()
         );
     }
-    // SAFETY: live handles.
-    unsafe {
-        ocean_relief_cones_destroy(c_rel);
-        ocean_relief_cones_destroy(c_con);
-        ocean_relief_map_destroy(m);
-    }
+    ocean_relief_cones_destroy(c_rel);
+    ocean_relief_cones_destroy(c_con);
+    ocean_relief_map_destroy(m);
 }
 
 /// Bad methods, rays and shadow arguments: the status, a message naming the culprit, and the
@@ -984,9 +960,6 @@ fn trace_errors_are_mapped_and_write_nothing() {
     }];
     assert_eq!(shadow(1.0, 0.1, 0.0, &nan_point), OceanStatus::NonFinite);
     assert!(last_error().contains("points[0].u"));
-    // SAFETY: live handles.
-    unsafe {
-        ocean_relief_cones_destroy(c);
-        ocean_relief_map_destroy(m);
-    }
+    ocean_relief_cones_destroy(c);
+    ocean_relief_map_destroy(m);
 }

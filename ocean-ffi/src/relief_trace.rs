@@ -10,10 +10,12 @@ use ocean_core::rows::for_rows;
 use ocean_relief::trace::{BinarySearch, MAX_STEPS, Method, Ray};
 use ocean_relief::{Hit, ReliefError};
 
-use crate::lighting::{borrow, read_in};
-use crate::relief::{OceanReliefCones, input, relief_error, write_slice};
+use crate::boundary::{
+    borrow, byte_len, check_disjoint, check_finite, check_ptr, input, read_in, write_out,
+    write_slice,
+};
+use crate::relief::{OceanReliefCones, relief_error};
 use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{byte_len, check_disjoint, check_finite, check_ptr, write_out};
 
 /// `OceanReliefMethod::method`: linear search (Policarpo et al. 2005): `steps` equal depth
 /// steps, then `binary` bisections of the step that first went inside. Reads only the depth.
@@ -266,7 +268,7 @@ pub unsafe extern "C" fn ocean_relief_ray_from_view(
 ///
 /// # Safety
 ///
-/// `cones` must be a live handle, `method` readable, `rays` point to `count` readable rays and
+/// `method` readable, `rays` point to `count` readable rays and
 /// `hits` to `count` writable hits, neither touched by another thread during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_trace(
@@ -277,8 +279,7 @@ pub unsafe extern "C" fn ocean_relief_trace(
     hits: *mut OceanReliefHit,
 ) -> OceanStatus {
     guard("ocean_relief_trace", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(cones, "cones") }?;
+        let c = borrow(cones, "cones")?;
         let texture = c.texture();
         // SAFETY: forwarded from this function's contract.
         unsafe { trace_batch(method, rays, count, hits, |m, r| m.trace(texture, r)) }
@@ -353,7 +354,7 @@ pub(crate) unsafe fn trace_batch(
 ///
 /// # Safety
 ///
-/// `cones` must be a live handle, `method` readable, `points` point to `count` readable points
+/// `method` readable, `points` point to `count` readable points
 /// and `in_shadow` to `count` writable bytes, neither touched by another thread during the
 /// call.
 #[unsafe(no_mangle)]
@@ -371,8 +372,7 @@ pub unsafe extern "C" fn ocean_relief_shadow(
     in_shadow: *mut u8,
 ) -> OceanStatus {
     guard("ocean_relief_shadow", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(cones, "cones") }?;
+        let c = borrow(cones, "cones")?;
         let texture = c.texture();
         let light = [light_x, light_y, light_z];
         // SAFETY: forwarded from this function's contract.

@@ -13,10 +13,11 @@ use ocean_sao::{
     SaoParams, Viewport,
 };
 
-use crate::lighting::{borrow, destroy, read_in, write_handle};
+use crate::boundary::{
+    borrow, byte_len, check_disjoint, check_ptr, destroy, read_in, write_handle, write_out,
+};
 use crate::sao_camera::{OceanSaoCamera, camera_status, sao_camera_from};
 use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{byte_len, check_disjoint, check_ptr, write_out};
 
 /// `OceanSaoParams::mip_filter`: rotated grid subsampling (Table 1), the paper's choice: every
 /// MIP texel is one of its children, a true scene value.
@@ -509,17 +510,11 @@ pub unsafe extern "C" fn ocean_sao_create(
     })
 }
 
-/// Frees an SAO set-up. NULL is ignored, and so is a pointer that is not even aligned (it
-/// cannot have come from `ocean_sao_create`). Never fails; leaves the last-error message alone.
-///
-/// # Safety
-///
-/// `sao` must be NULL or a handle from `ocean_sao_create` that has not been destroyed, and no
-/// other thread may be using it.
+/// Frees an SAO set-up. NULL does nothing; a handle of another kind or already destroyed frees
+/// nothing and sets the last-error message (see the header's notes on handles).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_sao_destroy(sao: *mut OceanSao) {
-    // SAFETY: forwarded from this function's contract.
-    unsafe { destroy(sao) }
+pub extern "C" fn ocean_sao_destroy(sao: *mut OceanSao) {
+    destroy(sao, "ocean_sao_destroy", "sao");
 }
 
 /// Stores what `sao` was made of in `*out` (see `OceanSaoInfo`): the sizes, the near and far
@@ -531,15 +526,14 @@ pub unsafe extern "C" fn ocean_sao_destroy(sao: *mut OceanSao) {
 ///
 /// # Safety
 ///
-/// `sao` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_sao_describe(
     sao: *const OceanSao,
     out: *mut OceanSaoInfo,
 ) -> OceanStatus {
     guard("ocean_sao_describe", || {
-        // SAFETY: forwarded from this function's contract.
-        let s = unsafe { borrow(sao, "sao") }?;
+        let s = borrow(sao, "sao")?;
         let v = s.sao.viewport();
         let z = s.sao.z_constants();
         // Every side is at most OCEAN_SAO_MAX_SIDE (Viewport::new checked), so u32 holds it.
@@ -666,7 +660,7 @@ impl Buffers<'_> {
 ///
 /// # Safety
 ///
-/// `sao` must be a live handle, `depth` point to `depth_len` readable floats and `ao` to
+/// `depth` point to `depth_len` readable floats and `ao` to
 /// `ao_len` writable floats, neither touched by another thread during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_sao_run(
@@ -677,8 +671,7 @@ pub unsafe extern "C" fn ocean_sao_run(
     ao_len: usize,
 ) -> OceanStatus {
     guard("ocean_sao_run", || {
-        // SAFETY: forwarded from this function's contract.
-        let s = unsafe { borrow(sao, "sao") }?;
+        let s = borrow(sao, "sao")?;
         let want = s.sao.viewport().output_len();
         let (ow, oh) = (
             s.sao.viewport().output_width(),
@@ -686,7 +679,7 @@ pub unsafe extern "C" fn ocean_sao_run(
         );
         let what = format!("the {ow} x {oh} AO image");
         // SAFETY: forwarded from this function's contract.
-        let b = unsafe { buffers(s, depth, depth_len, (ao, ao_len, "ao", want, &what)) }?;
+        let b = unsafe { buffers(&s, depth, depth_len, (ao, ao_len, "ao", want, &what)) }?;
         let mut result = vec![0.0f32; want];
         s.sao
             .run(b.depth, &mut result)
@@ -708,7 +701,7 @@ pub unsafe extern "C" fn ocean_sao_run(
 ///
 /// # Safety
 ///
-/// `sao` must be a live handle, `depth` point to `depth_len` readable floats and `z` to `z_len`
+/// `depth` point to `depth_len` readable floats and `z` to `z_len`
 /// writable floats, neither touched by another thread during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_sao_view_z(
@@ -719,8 +712,7 @@ pub unsafe extern "C" fn ocean_sao_view_z(
     z_len: usize,
 ) -> OceanStatus {
     guard("ocean_sao_view_z", || {
-        // SAFETY: forwarded from this function's contract.
-        let s = unsafe { borrow(sao, "sao") }?;
+        let s = borrow(sao, "sao")?;
         let v = s.sao.viewport();
         let want = v.input_len();
         let what = format!(
@@ -729,7 +721,7 @@ pub unsafe extern "C" fn ocean_sao_view_z(
             v.input_height()
         );
         // SAFETY: forwarded from this function's contract.
-        let b = unsafe { buffers(s, depth, depth_len, (z, z_len, "z", want, &what)) }?;
+        let b = unsafe { buffers(&s, depth, depth_len, (z, z_len, "z", want, &what)) }?;
         let result = s
             .sao
             .z_constants()

@@ -11,8 +11,8 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 use ocean_gpu::SaoPass;
 use ocean_sao::SaoUniforms;
 
+use crate::boundary::{borrow, destroy, write_handle};
 use crate::gpu::{OceanGpuContext, gpu_error};
-use crate::lighting::{borrow, destroy, write_handle};
 use crate::sao::{OceanSao, buffers};
 use crate::status::{Error, OceanStatus, guard};
 
@@ -55,9 +55,8 @@ pub unsafe extern "C" fn ocean_sao_gpu_create(
     out: *mut *mut OceanSaoGpu,
 ) -> OceanStatus {
     guard("ocean_sao_gpu_create", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(ctx, "ctx") }?;
-        crate::waves::check_ptr(out.cast_const(), "out")?;
+        let c = borrow(ctx, "ctx")?;
+        crate::boundary::check_ptr(out.cast_const(), "out")?;
         let pass = SaoPass::new(c.context()).map_err(|e| gpu_error("", e))?;
         // SAFETY: forwarded from this function's contract.
         unsafe {
@@ -72,17 +71,11 @@ pub unsafe extern "C" fn ocean_sao_gpu_create(
     })
 }
 
-/// Frees the handle. NULL is ignored, and so is a pointer that is not even aligned. Never
-/// fails; leaves the last-error message alone.
-///
-/// # Safety
-///
-/// `sao_gpu` must be NULL or a handle from `ocean_sao_gpu_create` not yet destroyed, and no
-/// other thread may be using it.
+/// Frees the handle. NULL does nothing; a handle of another kind or already destroyed frees nothing
+/// and sets the last-error message (see the header's notes on handles).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_sao_gpu_destroy(sao_gpu: *mut OceanSaoGpu) {
-    // SAFETY: forwarded from this function's contract.
-    unsafe { destroy(sao_gpu) }
+pub extern "C" fn ocean_sao_gpu_destroy(sao_gpu: *mut OceanSaoGpu) {
+    destroy(sao_gpu, "ocean_sao_gpu_destroy", "sao_gpu");
 }
 
 /// Computes the obscurance of `depth` as `ocean_sao_run` does, on the GPU of `ctx`: the depth
@@ -99,7 +92,7 @@ pub unsafe extern "C" fn ocean_sao_gpu_destroy(sao_gpu: *mut OceanSaoGpu) {
 ///
 /// # Safety
 ///
-/// `sao_gpu`, `ctx` and `sao` must be live handles, `depth` point to `depth_len` readable
+/// `depth` point to `depth_len` readable
 /// floats and `ao` to `ao_len` writable floats, neither touched by another thread during the
 /// call.
 #[unsafe(no_mangle)]
@@ -113,12 +106,9 @@ pub unsafe extern "C" fn ocean_sao_gpu_run(
     ao_len: usize,
 ) -> OceanStatus {
     guard("ocean_sao_gpu_run", || {
-        // SAFETY: forwarded from this function's contract.
-        let g = unsafe { borrow(sao_gpu, "sao_gpu") }?;
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { borrow(ctx, "ctx") }?;
-        // SAFETY: forwarded from this function's contract.
-        let s = unsafe { borrow(sao, "sao") }?;
+        let g = borrow(sao_gpu, "sao_gpu")?;
+        let c = borrow(ctx, "ctx")?;
+        let s = borrow(sao, "sao")?;
         if g.context != c.id() {
             return Err(Error::new(
                 OceanStatus::InvalidArgument,
@@ -130,7 +120,7 @@ pub unsafe extern "C" fn ocean_sao_gpu_run(
         let want = v.output_len();
         let what = format!("the {} x {} AO image", v.output_width(), v.output_height());
         // SAFETY: forwarded from this function's contract.
-        let b = unsafe { buffers(s, depth, depth_len, (ao, ao_len, "ao", want, &what)) }?;
+        let b = unsafe { buffers(&s, depth, depth_len, (ao, ao_len, "ao", want, &what)) }?;
         let result = g
             .lock()
             .evaluate(c.context(), s.sao(), b.depth)
@@ -176,7 +166,7 @@ const _: () = assert!(size_of::<SaoUniforms>() == OCEAN_SAO_UNIFORMS_SIZE);
 ///
 /// # Safety
 ///
-/// `sao` must be a live handle, `out` point to `len` writable bytes and `levels` to a writable
+/// `out` point to `len` writable bytes and `levels` to a writable
 /// `uint32_t`, none touched by another thread during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_sao_uniforms(
@@ -186,11 +176,10 @@ pub unsafe extern "C" fn ocean_sao_uniforms(
     levels: *mut u32,
 ) -> OceanStatus {
     guard("ocean_sao_uniforms", || {
-        // SAFETY: forwarded from this function's contract.
-        let s = unsafe { borrow(sao, "sao") }?;
-        crate::waves::check_ptr(out.cast_const(), "out")?;
-        crate::waves::check_ptr(levels.cast_const(), "levels")?;
-        crate::waves::byte_len::<u8>(len, "out")?;
+        let s = borrow(sao, "sao")?;
+        crate::boundary::check_ptr(out.cast_const(), "out")?;
+        crate::boundary::check_ptr(levels.cast_const(), "levels")?;
+        crate::boundary::byte_len::<u8>(len, "out")?;
         if len < OCEAN_SAO_UNIFORMS_SIZE {
             return Err(Error::new(
                 OceanStatus::BufferTooSmall,
@@ -328,8 +317,7 @@ mod tests {
         let status =
             unsafe { ocean_sao_uniforms(sao, block.as_mut_ptr(), block.len(), &mut levels) };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
-        // SAFETY: live handle.
-        let want = SaoUniforms::new(unsafe { &*sao }.sao());
+        let want = SaoUniforms::new(crate::boundary::borrow(sao, "sao").unwrap().sao());
         assert_eq!(&block[..OCEAN_SAO_UNIFORMS_SIZE], bytemuck::bytes_of(&want));
         assert_eq!(levels, want.levels());
         assert!((1..=14).contains(&levels));
@@ -358,12 +346,9 @@ mod tests {
         assert_eq!(status, OceanStatus::InvalidArgument);
         assert!(last_error().contains("another context"), "{}", last_error());
         assert!(untouched.iter().all(|&v| v == -1.0));
-        // SAFETY: handles from the create calls above, destroyed once.
-        unsafe {
-            ocean_sao_gpu_destroy(gpu);
-            ocean_sao_destroy(sao);
-            ocean_gpu_context_destroy(other);
-            ocean_gpu_context_destroy(ctx);
-        }
+        ocean_sao_gpu_destroy(gpu);
+        ocean_sao_destroy(sao);
+        ocean_gpu_context_destroy(other);
+        ocean_gpu_context_destroy(ctx);
     }
 }

@@ -225,8 +225,7 @@ fn run_and_view_z_match_the_crate_bit_for_bit() {
                         .fold(0.0f32, f32::max);
                     assert!(worst <= 1.0 / 255.0, "{p:?} {c:?} {s:?}: {worst}");
                     bit_identical_to_nominal += usize::from(worst == 0.0);
-                    // SAFETY: live handle, destroyed once.
-                    unsafe { ocean_sao_destroy(handle) };
+                    ocean_sao_destroy(handle);
                     runs += 1;
                 }
             }
@@ -295,8 +294,7 @@ fn describe_reports_sizes_planes_and_constants() {
             info.pixels_per_metre,
             sao.projection_info().pixels_per_metre
         );
-        // SAFETY: live handle, destroyed once.
-        unsafe { ocean_sao_destroy(handle) };
+        ocean_sao_destroy(handle);
     }
     let mut info = OceanSaoInfo::default();
     // SAFETY: refused before any access.
@@ -411,8 +409,7 @@ fn create_refuses_bad_arguments_and_leaves_out_untouched() {
         // SAFETY: valid pointers.
         let status = unsafe { ocean_sao_create(w, h, g, c, p, &mut out) };
         if status == OceanStatus::Ok {
-            // SAFETY: a live handle, destroyed once.
-            unsafe { ocean_sao_destroy(out) };
+            ocean_sao_destroy(out);
         } else {
             assert_eq!(out, sentinel, "out written on failure");
         }
@@ -684,8 +681,7 @@ fn create_refuses_bad_arguments_and_leaves_out_untouched() {
     }
     assert_eq!(out, sentinel);
     // Destroy is NULL-safe and ignores misaligned pointers.
-    // SAFETY: NULL and a misaligned pointer are ignored.
-    unsafe {
+    {
         ocean_sao_destroy(null_mut());
         let mut storage = [0u64; 8];
         ocean_sao_destroy(storage.as_mut_ptr().cast::<u8>().wrapping_add(3).cast());
@@ -819,6 +815,5 @@ fn run_refuses_bad_buffers_and_leaves_outputs_untouched() {
     // After all that, a good call succeeds and clears the message.
     let good = run(handle, &depth);
     assert!(good.iter().all(|a| (0.0..=1.0).contains(a)));
-    // SAFETY: live handle, destroyed once.
-    unsafe { ocean_sao_destroy(handle) };
+    ocean_sao_destroy(handle);
 }

@@ -18,9 +18,8 @@ use std::sync::OnceLock;
 
 use ocean_gpu::shaders::{self, BindingKind, Language, ShaderError, Stage};
 
-use crate::lighting::{borrow, destroy, write_handle};
+use crate::boundary::{borrow, check_ptr, destroy, write_handle, write_out};
 use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{check_ptr, write_out};
 
 /// Target language of `ocean_shader_export`.
 #[repr(u32)]
@@ -329,17 +328,16 @@ pub unsafe extern "C" fn ocean_shader_export(
     })
 }
 
-/// Frees an export; every pointer it handed out becomes invalid. NULL is ignored, and so is a
-/// pointer that is not even aligned. Never fails; leaves the last-error message alone.
-///
-/// # Safety
-///
-/// `shader_export` must be NULL or a handle from `ocean_shader_export` not yet destroyed, and no other
-/// thread may be using it.
+/// Frees an export; every pointer it handed out becomes invalid. NULL does nothing; a handle of
+/// another kind or already destroyed frees nothing and sets the last-error message (see the
+/// header's notes on handles).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_shader_export_destroy(shader_export: *mut OceanShaderExport) {
-    // SAFETY: forwarded from this function's contract.
-    unsafe { destroy(shader_export) }
+pub extern "C" fn ocean_shader_export_destroy(shader_export: *mut OceanShaderExport) {
+    destroy(
+        shader_export,
+        "ocean_shader_export_destroy",
+        "shader_export",
+    );
 }
 
 /// Stores the number of files of the export (>= 1) in `*out`.
@@ -349,15 +347,14 @@ pub unsafe extern "C" fn ocean_shader_export_destroy(shader_export: *mut OceanSh
 ///
 /// # Safety
 ///
-/// `shader_export` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_shader_export_file_count(
     shader_export: *const OceanShaderExport,
     out: *mut usize,
 ) -> OceanStatus {
     guard("ocean_shader_export_file_count", || {
-        // SAFETY: forwarded from this function's contract.
-        let e = unsafe { borrow(shader_export, "shader_export") }?;
+        let e = borrow(shader_export, "shader_export")?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out, "out", e.files.len()) }
     })
@@ -390,7 +387,7 @@ fn file(e: &OceanShaderExport, index: usize) -> Result<&ExportedFile, Error> {
 ///
 /// # Safety
 ///
-/// `shader_export` must be a live handle and the three out-pointers writable.
+/// The three out-pointers must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_shader_export_file(
     shader_export: *const OceanShaderExport,
@@ -400,12 +397,11 @@ pub unsafe extern "C" fn ocean_shader_export_file(
     len: *mut usize,
 ) -> OceanStatus {
     guard("ocean_shader_export_file", || {
-        // SAFETY: forwarded from this function's contract.
-        let e = unsafe { borrow(shader_export, "shader_export") }?;
+        let e = borrow(shader_export, "shader_export")?;
         check_ptr(file_name.cast_const(), "file_name")?;
         check_ptr(data.cast_const(), "data")?;
         check_ptr(len.cast_const(), "len")?;
-        let f = file(e, index)?;
+        let f = file(&e, index)?;
         // SAFETY: each pointer checked and writable (this function's contract).
         unsafe {
             write_out(file_name, "file_name", f.name.as_ptr())?;
@@ -425,7 +421,7 @@ pub unsafe extern "C" fn ocean_shader_export_file(
 ///
 /// # Safety
 ///
-/// `shader_export` must be a live handle and both out-pointers writable.
+/// Both out-pointers must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_shader_export_file_stage(
     shader_export: *const OceanShaderExport,
@@ -434,11 +430,10 @@ pub unsafe extern "C" fn ocean_shader_export_file_stage(
     entry_point: *mut *const c_char,
 ) -> OceanStatus {
     guard("ocean_shader_export_file_stage", || {
-        // SAFETY: forwarded from this function's contract.
-        let e = unsafe { borrow(shader_export, "shader_export") }?;
+        let e = borrow(shader_export, "shader_export")?;
         check_ptr(stage.cast_const(), "stage")?;
         check_ptr(entry_point.cast_const(), "entry_point")?;
-        let f = file(e, index)?;
+        let f = file(&e, index)?;
         // SAFETY: both pointers checked and writable (this function's contract).
         unsafe {
             write_out(stage, "stage", f.stage as u32)?;
@@ -459,15 +454,14 @@ pub unsafe extern "C" fn ocean_shader_export_file_stage(
 ///
 /// # Safety
 ///
-/// `shader_export` must be a live handle and `table` writable.
+/// `table` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_shader_export_bindings(
     shader_export: *const OceanShaderExport,
     table: *mut *const c_char,
 ) -> OceanStatus {
     guard("ocean_shader_export_bindings", || {
-        // SAFETY: forwarded from this function's contract.
-        let e = unsafe { borrow(shader_export, "shader_export") }?;
+        let e = borrow(shader_export, "shader_export")?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(table, "table", e.table.as_ptr()) }
     })
@@ -481,15 +475,14 @@ pub unsafe extern "C" fn ocean_shader_export_bindings(
 ///
 /// # Safety
 ///
-/// `shader_export` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_shader_export_binding_count(
     shader_export: *const OceanShaderExport,
     out: *mut usize,
 ) -> OceanStatus {
     guard("ocean_shader_export_binding_count", || {
-        // SAFETY: forwarded from this function's contract.
-        let e = unsafe { borrow(shader_export, "shader_export") }?;
+        let e = borrow(shader_export, "shader_export")?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out, "out", e.bindings.len()) }
     })
@@ -504,7 +497,7 @@ pub unsafe extern "C" fn ocean_shader_export_binding_count(
 ///
 /// # Safety
 ///
-/// `shader_export` must be a live handle and `out` writable.
+/// `out` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_shader_export_binding(
     shader_export: *const OceanShaderExport,
@@ -512,8 +505,7 @@ pub unsafe extern "C" fn ocean_shader_export_binding(
     out: *mut OceanShaderBinding,
 ) -> OceanStatus {
     guard("ocean_shader_export_binding", || {
-        // SAFETY: forwarded from this function's contract.
-        let e = unsafe { borrow(shader_export, "shader_export") }?;
+        let e = borrow(shader_export, "shader_export")?;
         check_ptr(out.cast_const(), "out")?;
         let b = e.bindings.get(index).ok_or_else(|| {
             Error::new(

@@ -62,10 +62,15 @@ pub enum OceanStatus {
     /// never evaluated, or changed since (a box, the terrain, the effects, the budget or the
     /// train filter). Evaluate it again first.
     NotEvaluated = 15,
+    /// A handle argument is not a live handle of its kind: it is of another kind (an
+    /// `OceanSpectrum *` passed as an `OceanLighting *`), was destroyed, or is a value no
+    /// function of this library returned (zeroed or freed memory). Nothing was read through
+    /// it. A destroy function given such a handle frees nothing and sets this message.
+    InvalidHandle = 16,
 }
 
 /// Every status, in numeric order.
-const ALL_STATUSES: [OceanStatus; 16] = [
+const ALL_STATUSES: [OceanStatus; 17] = [
     OceanStatus::Ok,
     OceanStatus::NullPointer,
     OceanStatus::MisalignedPointer,
@@ -82,6 +87,7 @@ const ALL_STATUSES: [OceanStatus; 16] = [
     OceanStatus::BufferTooSmall,
     OceanStatus::Cancelled,
     OceanStatus::NotEvaluated,
+    OceanStatus::InvalidHandle,
 ];
 
 impl OceanStatus {
@@ -103,6 +109,9 @@ impl OceanStatus {
             OceanStatus::BufferTooSmall => c"the buffer is too small for the result",
             OceanStatus::Cancelled => c"cancelled by the caller's progress callback",
             OceanStatus::NotEvaluated => c"no evaluated frame to answer for: evaluate first",
+            OceanStatus::InvalidHandle => {
+                c"not a live handle of its kind (another kind, destroyed, or never made)"
+            }
         }
     }
 }
@@ -126,7 +135,7 @@ thread_local! {
 }
 
 /// Replaces the calling thread's last-error message (`None` clears it).
-fn set_last_error(message: Option<String>) {
+pub(crate) fn set_last_error(message: Option<String>) {
     let message = message
         .map(|m| CString::new(m.replace('\0', "\\0")).expect("interior NUL bytes were replaced"));
     // `try_with` fails only during thread teardown, when nobody can read the message any more.

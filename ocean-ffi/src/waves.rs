@@ -1,12 +1,15 @@
 //! Trochoid (Gerstner) wave sets: create, evaluate at points or on a grid, query, destroy.
 
 use core::mem::{align_of, size_of};
-use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use bytemuck::{Pod, Zeroable};
 use glam::{DVec2, Vec2, Vec3};
 use ocean_core::{Depth, EvalError, Grid, WaveDesc, WaveError, WaveSet};
 
+use crate::boundary::{
+    borrow, byte_len, check_disjoint, check_finite, check_ptr, check_time, destroy, write_handle,
+    write_out,
+};
 use crate::status::{Error, OceanStatus, guard};
 
 /// A point on the sea plane y = 0: world x and z in metres (single precision).
@@ -97,79 +100,6 @@ pub struct OceanWaves {
 /// Points from which `ocean_waves_evaluate` splits the work over threads (the results are
 /// bit-identical either way; below this the thread hand-off costs more than it saves).
 const PARALLEL_POINTS: usize = 16 * 1024;
-
-pub(crate) fn check_ptr<T>(p: *const T, name: &str) -> Result<(), Error> {
-    if p.is_null() {
-        return Err(Error::new(
-            OceanStatus::NullPointer,
-            format!("`{name}` is NULL"),
-        ));
-    }
-    if !p.is_aligned() {
-        return Err(Error::new(
-            OceanStatus::MisalignedPointer,
-            format!(
-                "`{name}` ({p:p}) is not aligned to {} bytes",
-                align_of::<T>()
-            ),
-        ));
-    }
-    Ok(())
-}
-
-/// Size in bytes of `n` elements of `T`, if it fits in `isize::MAX` (the limit of every Rust and
-/// C object).
-pub(crate) fn byte_len<T>(n: usize, name: &str) -> Result<usize, Error> {
-    n.checked_mul(size_of::<T>())
-        .filter(|&b| b <= isize::MAX as usize)
-        .ok_or_else(|| {
-            Error::new(
-                OceanStatus::LengthOverflow,
-                format!(
-                    "{n} elements of {} bytes for `{name}` exceed PTRDIFF_MAX bytes",
-                    size_of::<T>()
-                ),
-            )
-        })
-}
-
-/// Fails if the byte ranges `[a, a + a_len)` and `[b, b + b_len)` intersect.
-pub(crate) fn check_disjoint(
-    (a, a_len, a_name): (*const u8, usize, &str),
-    (b, b_len, b_name): (*const u8, usize, &str),
-) -> Result<(), Error> {
-    let (a0, b0) = (a as usize, b as usize);
-    if a0 < b0.saturating_add(b_len) && b0 < a0.saturating_add(a_len) {
-        return Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!("`{a_name}` and `{b_name}` overlap"),
-        ));
-    }
-    Ok(())
-}
-
-pub(crate) fn check_time(time: f64) -> Result<(), Error> {
-    if time.is_finite() {
-        Ok(())
-    } else {
-        Err(Error::new(
-            OceanStatus::NonFinite,
-            format!("`time` must be finite seconds, got {time}"),
-        ))
-    }
-}
-
-/// `OCEAN_STATUS_NON_FINITE` naming the first of `fields` that is NaN or infinite, as
-/// `{prefix}{name}`.
-pub(crate) fn check_finite(prefix: &str, fields: &[(&str, f64)]) -> Result<(), Error> {
-    match fields.iter().find(|(_, v)| !v.is_finite()) {
-        Some((name, v)) => Err(Error::new(
-            OceanStatus::NonFinite,
-            format!("{prefix}{name} must be finite, got {v}"),
-        )),
-        None => Ok(()),
-    }
-}
 
 fn wave_desc(i: usize, d: &OceanWaveDesc) -> Result<WaveDesc, Error> {
     wave_desc_in("descs", i, d)
@@ -273,42 +203,15 @@ pub unsafe extern "C" fn ocean_waves_create(
             waves.push(wave_desc(i, d)?.build().map_err(|e| wave_error(i, e))?);
         }
         let set = WaveSet::new(&waves).map_err(|e| wave_error(0, e))?;
-        let handle = Box::into_raw(Box::new(OceanWaves { set }));
-        // SAFETY: `out` is non-NULL and aligned (checked) and writable (caller's guarantee).
-        unsafe { out.write(handle) };
-        Ok(())
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_handle(out, OceanWaves { set }) }
     })
 }
 
-/// Frees a wave set. NULL is ignored, and so is a pointer that is not even aligned (it cannot
-/// have come from `ocean_waves_create`). Never fails; leaves the last-error message alone.
-///
-/// # Safety
-///
-/// `waves` must be NULL or a handle from `ocean_waves_create` that has not been destroyed, and
-/// no other thread may be using it.
+/// Frees a wave set (see `ocean_scene_destroy` for the rules every destroy function follows).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_waves_destroy(waves: *mut OceanWaves) {
-    if waves.is_null() || !waves.is_aligned() {
-        return;
-    }
-    // SAFETY: the caller guarantees a live handle from `ocean_waves_create`, which came from
-    // `Box::into_raw`, and exclusive access to it; it is not used again.
-    let boxed = unsafe { Box::from_raw(waves) };
-    // Dropping a WaveSet only frees memory; the boundary is there all the same.
-    let _ = catch_unwind(AssertUnwindSafe(move || drop(boxed)));
-}
-
-/// Borrows a handle after checking it for NULL and alignment.
-///
-/// # Safety
-///
-/// `waves` must be NULL, misaligned, or a live handle from `ocean_waves_create`.
-unsafe fn handle<'a>(waves: *const OceanWaves) -> Result<&'a OceanWaves, Error> {
-    check_ptr(waves, "waves")?;
-    // SAFETY: non-NULL and aligned (checked); live and not being destroyed (caller's
-    // guarantee); only shared references are ever made from a `const OceanWaves *`.
-    Ok(unsafe { &*waves })
+pub extern "C" fn ocean_waves_destroy(waves: *mut OceanWaves) {
+    destroy(waves, "ocean_waves_destroy", "waves");
 }
 
 /// Evaluates the wave set at `n` rest points at `time` seconds.
@@ -339,7 +242,7 @@ unsafe fn handle<'a>(waves: *const OceanWaves) -> Result<&'a OceanWaves, Error> 
 ///
 /// # Safety
 ///
-/// `waves` must be a live handle; `xz` must point to `n` readable `OceanVec2`s, and `out_pos`
+/// `xz` must point to `n` readable `OceanVec2`s, and `out_pos`
 /// and `out_normal` to `n` writable `OceanVec3`s each, none of them modified by another thread
 /// during the call.
 #[unsafe(no_mangle)]
@@ -352,8 +255,7 @@ pub unsafe extern "C" fn ocean_waves_evaluate(
     out_normal: *mut OceanVec3,
 ) -> OceanStatus {
     guard("ocean_waves_evaluate", || {
-        // SAFETY: forwarded from this function's contract.
-        let waves = unsafe { handle(waves) }?;
+        let waves = borrow(waves, "waves")?;
         check_ptr(xz, "xz")?;
         check_ptr(out_pos, "out_pos")?;
         check_ptr(out_normal, "out_normal")?;
@@ -425,7 +327,7 @@ pub unsafe extern "C" fn ocean_waves_evaluate(
 ///
 /// # Safety
 ///
-/// `waves` must be a live handle, `grid` must point to a readable `OceanGrid`, and `out_pos` and
+/// `grid` must point to a readable `OceanGrid`, and `out_pos` and
 /// `out_normal` to `nx * nz` writable `OceanVec3`s each, untouched by other threads during the
 /// call.
 #[unsafe(no_mangle)]
@@ -437,8 +339,7 @@ pub unsafe extern "C" fn ocean_waves_evaluate_grid(
     out_normal: *mut OceanVec3,
 ) -> OceanStatus {
     guard("ocean_waves_evaluate_grid", || {
-        // SAFETY: forwarded from this function's contract.
-        let waves = unsafe { handle(waves) }?;
+        let waves = borrow(waves, "waves")?;
         check_ptr(grid, "grid")?;
         check_ptr(out_pos, "out_pos")?;
         check_ptr(out_normal, "out_normal")?;
@@ -503,18 +404,6 @@ pub unsafe extern "C" fn ocean_waves_evaluate_grid(
     })
 }
 
-/// Writes `*out` through a checked pointer, after `value` has been computed.
-///
-/// # Safety
-///
-/// `out` must be NULL, misaligned, or writable.
-pub(crate) unsafe fn write_out<T>(out: *mut T, name: &str, value: T) -> Result<(), Error> {
-    check_ptr(out, name)?;
-    // SAFETY: non-NULL and aligned (checked); writable (caller's guarantee).
-    unsafe { out.write(value) };
-    Ok(())
-}
-
 /// Stores the number of waves in the set (>= 1) in `*out_count`.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `waves` or
@@ -522,15 +411,14 @@ pub(crate) unsafe fn write_out<T>(out: *mut T, name: &str, value: T) -> Result<(
 ///
 /// # Safety
 ///
-/// `waves` must be a live handle and `out_count` writable.
+/// `out_count` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_waves_count(
     waves: *const OceanWaves,
     out_count: *mut usize,
 ) -> OceanStatus {
     guard("ocean_waves_count", || {
-        // SAFETY: forwarded from this function's contract.
-        let waves = unsafe { handle(waves) }?;
+        let waves = borrow(waves, "waves")?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out_count, "out_count", waves.set.waves().len()) }
     })
@@ -545,15 +433,14 @@ pub unsafe extern "C" fn ocean_waves_count(
 ///
 /// # Safety
 ///
-/// `waves` must be a live handle and `out_steepness` writable.
+/// `out_steepness` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_waves_steepness_sum(
     waves: *const OceanWaves,
     out_steepness: *mut f64,
 ) -> OceanStatus {
     guard("ocean_waves_steepness_sum", || {
-        // SAFETY: forwarded from this function's contract.
-        let waves = unsafe { handle(waves) }?;
+        let waves = borrow(waves, "waves")?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out_steepness, "out_steepness", waves.set.steepness_sum()) }
     })
@@ -566,15 +453,14 @@ pub unsafe extern "C" fn ocean_waves_steepness_sum(
 ///
 /// # Safety
 ///
-/// `waves` must be a live handle and `out_amplitude` writable.
+/// `out_amplitude` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_waves_max_amplitude(
     waves: *const OceanWaves,
     out_amplitude: *mut f64,
 ) -> OceanStatus {
     guard("ocean_waves_max_amplitude", || {
-        // SAFETY: forwarded from this function's contract.
-        let waves = unsafe { handle(waves) }?;
+        let waves = borrow(waves, "waves")?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out_amplitude, "out_amplitude", waves.set.max_amplitude()) }
     })
@@ -708,8 +594,7 @@ mod tests {
                 .zip(&cn)
                 .all(|(a, b)| [a.x, a.y, a.z] == b.to_array())
         );
-        // SAFETY: live handle, destroyed once.
-        unsafe { ocean_waves_destroy(w) };
+        ocean_waves_destroy(w);
     }
 
     /// Misaligned pointers (which C code cannot even form without undefined behaviour, but
@@ -735,15 +620,14 @@ mod tests {
         let bad_handle = base.wrapping_add(4).cast::<OceanWaves>().cast_const();
         // SAFETY: as above.
         let s = unsafe { ocean_waves_count(bad_handle, &mut count) };
-        assert_eq!(s, OceanStatus::MisalignedPointer);
+        // A handle is an id, never an address: a pointer into the caller's memory is not one.
+        assert_eq!(s, OceanStatus::InvalidHandle);
         assert!(
             storage.iter().all(|&v| v == 0),
             "a refused call wrote memory"
         );
-        // SAFETY: misaligned pointers are ignored by destroy.
-        unsafe { ocean_waves_destroy(bad_handle.cast_mut()) };
-        // SAFETY: live handle, destroyed once.
-        unsafe { ocean_waves_destroy(w) };
+        ocean_waves_destroy(bad_handle.cast_mut());
+        ocean_waves_destroy(w);
     }
 
     /// Partly overlapping arrays (not only identical pointers) are refused: creating `&` and
@@ -767,8 +651,7 @@ mod tests {
         // SAFETY: refused before any access (1 point = 8 bytes inside element 8).
         let s = unsafe { ocean_waves_evaluate(w, xz_alias, 1, 0.0, p.wrapping_add(8), p) };
         assert_eq!(s, OceanStatus::InvalidArgument);
-        // SAFETY: live handle, destroyed once.
-        unsafe { ocean_waves_destroy(w) };
+        ocean_waves_destroy(w);
     }
 
     #[test]

@@ -3,7 +3,6 @@
 //! the grid and batched height queries.
 
 use core::mem::size_of;
-use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use glam::{DVec2, Mat4, Vec3};
@@ -16,11 +15,12 @@ use ocean_wtb::scene::{BoxId, BoxSpec, Coverage, FrameStats, Scene, rectangles_o
 use ocean_wtb::wind::MAX_EXPLICIT_TRAINS;
 use ocean_wtb::{BoxFrame, Terrain, TrainSource, WaterGrid, Wind, WtbError};
 
-use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{
-    OceanVec3, OceanWaveDesc, byte_len, check_disjoint, check_finite, check_ptr, check_time,
-    eval_error, wave_desc_in, wave_error, write_out,
+use crate::boundary::{
+    borrow, byte_len, check_disjoint, check_finite, check_ptr, check_time, destroy, write_handle,
+    write_out,
 };
+use crate::status::{Error, OceanStatus, guard};
+use crate::waves::{OceanVec3, OceanWaveDesc, eval_error, wave_desc_in, wave_error};
 
 /// A point on the sea plane in double precision: world x and z in metres.
 #[repr(C)]
@@ -691,18 +691,6 @@ fn check_reaches_grid(grid: &WaterGrid, wind: &Wind) -> Result<(), Error> {
     ))
 }
 
-/// Borrows a scene handle after checking it for NULL and alignment.
-///
-/// # Safety
-///
-/// `scene` must be NULL, misaligned, or a live handle from `ocean_scene_create`.
-pub(crate) unsafe fn handle<'a>(scene: *mut OceanScene) -> Result<&'a OceanScene, Error> {
-    check_ptr(scene.cast_const(), "scene")?;
-    // SAFETY: non-NULL and aligned (checked); live and not being destroyed (caller's
-    // guarantee); only shared references are made, and the scene is behind a mutex.
-    Ok(unsafe { &*scene })
-}
-
 /// The box with the caller's id.
 fn box_id(scene: &Scene, id: u32) -> Result<BoxId, Error> {
     scene.box_ids().find(|b| b.get() == id).ok_or_else(|| {
@@ -766,33 +754,25 @@ pub unsafe extern "C" fn ocean_scene_create(
         let t = unsafe { terrain(&g, terrain_heights, terrain_len) }?;
         let scene = Scene::new(g, t).map_err(|e| wtb_error("", e))?;
         let coverage = Coverage::everything(scene.grid());
-        let handle = Box::into_raw(Box::new(OceanScene {
+        let value = OceanScene {
             scene: Mutex::new(scene),
             coverage: Mutex::new(coverage),
             evaluated: Mutex::new(None),
-        }));
-        // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
-        unsafe { out.write(handle) };
-        Ok(())
+        };
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_handle(out, value) }
     })
 }
 
-/// Frees a scene and its boxes. NULL is ignored, and so is a pointer that is not even aligned.
-/// Never fails; leaves the last-error message alone.
-///
-/// # Safety
-///
-/// `scene` must be NULL or a handle from `ocean_scene_create` not yet destroyed, and no other
-/// thread may be using it.
+/// Frees a scene and its boxes. Every destroy function follows the same rules: NULL does
+/// nothing; a handle of another kind, one already destroyed or a value this library never
+/// returned frees nothing and sets the last-error message (`OCEAN_STATUS_INVALID_HANDLE`'s
+/// text); a live handle is unregistered at once (later calls with it are refused) and freed when
+/// the last call using it on another thread returns. A successful destroy leaves the last-error
+/// message alone.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_destroy(scene: *mut OceanScene) {
-    if scene.is_null() || !scene.is_aligned() {
-        return;
-    }
-    // SAFETY: the caller guarantees a live handle from `ocean_scene_create` (a `Box::into_raw`)
-    // used by nobody else; it is not used again.
-    let boxed = unsafe { Box::from_raw(scene) };
-    let _ = catch_unwind(AssertUnwindSafe(move || drop(boxed)));
+pub extern "C" fn ocean_scene_destroy(scene: *mut OceanScene) {
+    destroy(scene, "ocean_scene_destroy", "scene");
 }
 
 /// Replaces the scene's terrain (same format as in `ocean_scene_create`; NULL and 0 for a deep
@@ -806,7 +786,7 @@ pub unsafe extern "C" fn ocean_scene_destroy(scene: *mut OceanScene) {
 ///
 /// # Safety
 ///
-/// `scene` must be a live handle; `terrain_heights` NULL or `terrain_len` readable floats.
+/// `terrain_heights` must be NULL or point to `terrain_len` readable floats.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_scene_set_terrain(
     scene: *mut OceanScene,
@@ -814,8 +794,7 @@ pub unsafe extern "C" fn ocean_scene_set_terrain(
     terrain_len: usize,
 ) -> OceanStatus {
     guard("ocean_scene_set_terrain", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene = borrow(scene, "scene")?;
         let mut scene = scene.lock();
         let grid = *scene.grid();
         // SAFETY: forwarded from this function's contract.
@@ -847,7 +826,7 @@ pub unsafe extern "C" fn ocean_scene_set_terrain(
 ///
 /// # Safety
 ///
-/// `scene` must be a live handle, `desc` readable, `trains` NULL or `n_trains` readable
+/// `desc` readable, `trains` NULL or `n_trains` readable
 /// descriptions, `out_id` writable; nothing is retained.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_scene_add_box(
@@ -858,8 +837,7 @@ pub unsafe extern "C" fn ocean_scene_add_box(
     out_id: *mut u32,
 ) -> OceanStatus {
     guard("ocean_scene_add_box", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene = borrow(scene, "scene")?;
         check_ptr(out_id.cast_const(), "out_id")?;
         let mut scene = scene.lock();
         let grid = *scene.grid();
@@ -891,8 +869,7 @@ pub unsafe extern "C" fn ocean_scene_update_box(
     n_trains: usize,
 ) -> OceanStatus {
     guard("ocean_scene_update_box", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene = borrow(scene, "scene")?;
         let mut scene = scene.lock();
         let id = box_id(&scene, id)?;
         let grid = *scene.grid();
@@ -904,15 +881,10 @@ pub unsafe extern "C" fn ocean_scene_update_box(
 
 /// Removes box `id`. Returns `OCEAN_STATUS_NOT_FOUND` for an id not in the scene (also when
 /// it was removed already).
-///
-/// # Safety
-///
-/// `scene` must be a live handle.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_remove_box(scene: *mut OceanScene, id: u32) -> OceanStatus {
+pub extern "C" fn ocean_scene_remove_box(scene: *mut OceanScene, id: u32) -> OceanStatus {
     guard("ocean_scene_remove_box", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene = borrow(scene, "scene")?;
         let mut scene = scene.lock();
         let id = box_id(&scene, id)?;
         scene.remove_box(id).map_err(|e| wtb_error("", e))
@@ -923,15 +895,14 @@ pub unsafe extern "C" fn ocean_scene_remove_box(scene: *mut OceanScene, id: u32)
 ///
 /// # Safety
 ///
-/// `scene` must be a live handle and `out_count` writable.
+/// `out_count` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_scene_box_count(
     scene: *mut OceanScene,
     out_count: *mut usize,
 ) -> OceanStatus {
     guard("ocean_scene_box_count", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene = borrow(scene, "scene")?;
         let count = scene.lock().box_ids().count();
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out_count, "out_count", count) }
@@ -947,15 +918,14 @@ pub unsafe extern "C" fn ocean_scene_box_count(
 ///
 /// # Safety
 ///
-/// `scene` must be a live handle and `effects` readable.
+/// `effects` must be readable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_scene_set_effects(
     scene: *mut OceanScene,
     effects: *const OceanEffects,
 ) -> OceanStatus {
     guard("ocean_scene_set_effects", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene = borrow(scene, "scene")?;
         check_ptr(effects, "effects")?;
         // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
         let e = effects_from(&unsafe { effects.read() }, "effects")?;
@@ -967,15 +937,10 @@ pub unsafe extern "C" fn ocean_scene_set_effects(
 }
 
 /// Removes any budget limit: every enabled train and effect runs (the default).
-///
-/// # Safety
-///
-/// `scene` must be a live handle.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_set_budget_unlimited(scene: *mut OceanScene) -> OceanStatus {
+pub extern "C" fn ocean_scene_set_budget_unlimited(scene: *mut OceanScene) -> OceanStatus {
     guard("ocean_scene_set_budget_unlimited", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene = borrow(scene, "scene")?;
         scene
             .lock()
             .set_budget(Budget::Unlimited)
@@ -991,18 +956,13 @@ pub unsafe extern "C" fn ocean_scene_set_budget_unlimited(scene: *mut OceanScene
 ///
 /// Returns `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `seconds`,
 /// `OCEAN_STATUS_INVALID_ARGUMENT` for a negative one; the budget is then unchanged.
-///
-/// # Safety
-///
-/// `scene` must be a live handle.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_set_budget_seconds(
+pub extern "C" fn ocean_scene_set_budget_seconds(
     scene: *mut OceanScene,
     seconds: f64,
 ) -> OceanStatus {
     guard("ocean_scene_set_budget_seconds", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene = borrow(scene, "scene")?;
         check_finite("", &[("seconds", seconds)])?;
         scene
             .lock()
@@ -1017,7 +977,7 @@ pub unsafe extern "C" fn ocean_scene_set_budget_seconds(
 ///
 /// # Safety
 ///
-/// `scene` must be a live handle and `effects` readable.
+/// `effects` must be readable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_scene_set_budget_explicit(
     scene: *mut OceanScene,
@@ -1025,8 +985,7 @@ pub unsafe extern "C" fn ocean_scene_set_budget_explicit(
     effects: *const OceanEffects,
 ) -> OceanStatus {
     guard("ocean_scene_set_budget_explicit", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene = borrow(scene, "scene")?;
         check_ptr(effects, "effects")?;
         // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
         let e = effects_from(&unsafe { effects.read() }, "effects")?;
@@ -1110,7 +1069,7 @@ unsafe fn frustum(m: *const f32, depth: u32) -> Result<Option<Frustum>, Error> {
 ///
 /// # Safety
 ///
-/// `scene` must be a live handle, `view_projection` NULL or 16 readable floats, `out_pos` and
+/// `view_projection` NULL or 16 readable floats, `out_pos` and
 /// `out_normal` `n` writable `OceanVec3`s each, `out_stats` NULL or writable; no other thread
 /// may touch the buffers during the call.
 #[unsafe(no_mangle)]
@@ -1189,15 +1148,10 @@ pub unsafe extern "C" fn ocean_scene_evaluate_incremental(
 /// Call it before passing other buffers.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` or `OCEAN_STATUS_MISALIGNED_POINTER` for a bad handle.
-///
-/// # Safety
-///
-/// `scene` must be a live handle.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_reset_coverage(scene: *mut OceanScene) -> OceanStatus {
+pub extern "C" fn ocean_scene_reset_coverage(scene: *mut OceanScene) -> OceanStatus {
     guard("ocean_scene_reset_coverage", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene = borrow(scene, "scene")?;
         let grid = *scene.lock().grid();
         *scene
             .coverage
@@ -1226,9 +1180,8 @@ unsafe fn evaluate(
     out_stats: *mut OceanFrameStats,
 ) -> OceanStatus {
     guard(name, || {
-        // SAFETY: forwarded from this function's contract.
-        let scene_handle = unsafe { handle(scene) }?;
-        let scene = scene_handle;
+        let scene_handle = borrow(scene, "scene")?;
+        let scene = &*scene_handle;
         check_ptr(out_pos.cast_const(), "out_pos")?;
         check_ptr(out_normal.cast_const(), "out_normal")?;
         if !out_stats.is_null() {
@@ -1446,8 +1399,7 @@ mod tests {
                 assert_eq!([o.normal.x, o.normal.y, o.normal.z], h.normal.to_array());
             }
         }
-        // SAFETY: live handle, destroyed once.
-        unsafe { ocean_scene_destroy(s) };
+        ocean_scene_destroy(s);
     }
 
     /// Drawn queries answer for the last evaluation, culling included, and refuse a scene
@@ -1530,13 +1482,11 @@ mod tests {
             "culled: drawn at rest"
         );
         // Any change of the description needs a new evaluation.
-        // SAFETY: live scene.
-        let st = unsafe { ocean_scene_set_budget_unlimited(s) };
+        let st = ocean_scene_set_budget_unlimited(s);
         assert_eq!(st, OceanStatus::Ok);
         assert_eq!(query(&mut out), OceanStatus::NotEvaluated);
         assert!(last_error().contains("changed"), "{}", last_error());
-        // SAFETY: live handle, destroyed once.
-        unsafe { ocean_scene_destroy(s) };
+        ocean_scene_destroy(s);
     }
 
     /// Misaligned pointers are refused before any access, and nothing is written.
@@ -1617,8 +1567,7 @@ mod tests {
             y: 9.0,
             z: 9.0,
         });
-        // SAFETY: live scene.
-        assert_eq!(unsafe { ocean_scene_reset_coverage(s) }, OceanStatus::Ok);
+        assert_eq!(ocean_scene_reset_coverage(s), OceanStatus::Ok);
         let mut full = (vec![OceanVec3::default(); n], vec![OceanVec3::default(); n]);
         // SAFETY: as above.
         unsafe {
@@ -1644,11 +1593,9 @@ mod tests {
             );
         }
         assert!(kept == full);
-        // SAFETY: NULL is refused, not dereferenced.
-        let st = unsafe { ocean_scene_reset_coverage(core::ptr::null_mut()) };
+        let st = ocean_scene_reset_coverage(core::ptr::null_mut());
         assert_eq!(st, OceanStatus::NullPointer);
-        // SAFETY: live scene destroyed once.
-        unsafe { ocean_scene_destroy(s) };
+        ocean_scene_destroy(s);
     }
 
     #[test]
@@ -1697,18 +1644,15 @@ mod tests {
         let st = unsafe { ocean_scene_heights_continuous(s, 0.0, bad_xz, 1, out.as_mut_ptr()) };
         assert_eq!(st, OceanStatus::MisalignedPointer);
         let bad_scene = base.wrapping_add(4).cast::<OceanScene>();
-        // SAFETY: refused before any access.
-        let st = unsafe { ocean_scene_remove_box(bad_scene, 0) };
-        assert_eq!(st, OceanStatus::MisalignedPointer);
+        let st = ocean_scene_remove_box(bad_scene, 0);
+        // A handle is an id, never an address: a pointer into the caller's memory is not one.
+        assert_eq!(st, OceanStatus::InvalidHandle);
         assert!(
             storage.iter().all(|&v| v == 0),
             "a refused call wrote memory"
         );
-        // SAFETY: misaligned pointers are ignored; live handle destroyed once.
-        unsafe {
-            ocean_scene_destroy(bad_scene);
-            ocean_scene_destroy(s);
-        }
+        ocean_scene_destroy(bad_scene);
+        ocean_scene_destroy(s);
     }
 
     /// Error statuses of the mapping that the C test cannot reach by a single bad member.

@@ -5,9 +5,9 @@ use glam::DVec2;
 use ocean_wtb::TrainFilter;
 use ocean_wtb::scene::{DrawnSample, HeightSample};
 
+use crate::boundary::{borrow, byte_len, check_disjoint, check_ptr, check_time};
 use crate::status::{Error, OceanStatus, guard};
-use crate::waves::{byte_len, check_disjoint, check_ptr, check_time};
-use crate::wtb::{OceanDVec2, OceanDVec3, OceanScene, handle, wtb_error};
+use crate::wtb::{OceanDVec2, OceanDVec3, OceanScene, wtb_error};
 
 /// The answer of a drawn height query at world (x, z): the triangle of the evaluated grid's
 /// mesh that lies over it.
@@ -147,7 +147,7 @@ unsafe fn query_points(
 ///
 /// # Safety
 ///
-/// `scene` must be a live handle, `xz` `n` readable `OceanDVec2`s and `out` `n` writable
+/// `xz` `n` readable `OceanDVec2`s and `out` `n` writable
 /// `OceanDrawnSample`s, untouched by other threads during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_scene_heights_drawn(
@@ -157,8 +157,7 @@ pub unsafe extern "C" fn ocean_scene_heights_drawn(
     out: *mut OceanDrawnSample,
 ) -> OceanStatus {
     guard("ocean_scene_heights_drawn", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene = borrow(scene, "scene")?;
         check_ptr(out.cast_const(), "out")?;
         let out_bytes = byte_len::<OceanDrawnSample>(n, "out");
         // SAFETY: forwarded from this function's contract.
@@ -221,7 +220,7 @@ pub unsafe extern "C" fn ocean_scene_heights_drawn(
 ///
 /// # Safety
 ///
-/// `scene` must be a live handle, `xz` `n` readable `OceanDVec2`s and `out` `n` writable
+/// `xz` `n` readable `OceanDVec2`s and `out` `n` writable
 /// `OceanHeightSample`s, untouched by other threads during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_scene_heights_continuous(
@@ -232,8 +231,7 @@ pub unsafe extern "C" fn ocean_scene_heights_continuous(
     out: *mut OceanHeightSample,
 ) -> OceanStatus {
     guard("ocean_scene_heights_continuous", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene = borrow(scene, "scene")?;
         check_ptr(out.cast_const(), "out")?;
         let out_bytes = byte_len::<OceanHeightSample>(n, "out");
         // SAFETY: forwarded from this function's contract.
@@ -280,19 +278,14 @@ pub unsafe extern "C" fn ocean_scene_heights_continuous(
 /// Returns `OCEAN_STATUS_NON_FINITE` for a NaN or infinite threshold,
 /// `OCEAN_STATUS_INVALID_ARGUMENT` unless 0 <= `min_cells` < `max_cells` <= 1e6 (or both 0);
 /// nothing changes then.
-///
-/// # Safety
-///
-/// `scene` must be a live handle.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_set_train_filter(
+pub extern "C" fn ocean_scene_set_train_filter(
     scene: *mut OceanScene,
     min_cells: f64,
     max_cells: f64,
 ) -> OceanStatus {
     guard("ocean_scene_set_train_filter", || {
-        // SAFETY: forwarded from this function's contract.
-        let scene = unsafe { handle(scene) }?;
+        let scene = borrow(scene, "scene")?;
         let filter = if min_cells == 0.0 && max_cells == 0.0 {
             None
         } else {

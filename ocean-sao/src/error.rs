@@ -89,22 +89,24 @@ pub enum SaoError {
     EvenTaps(u32),
 }
 
-/// Checks that `value` is finite and within `[min, max]`.
-pub(crate) fn check_range(
+/// Checks that `value` is finite and within `[min, max]`, compared in the value's own type: an
+/// `f32` parameter is compared with `f32` bounds, so a C caller's float literal of a documented
+/// bound (`1e-4f`, whose nearest float lies below 1e-4) is accepted.
+pub(crate) fn check_range<T: Copy + PartialOrd + Into<f64>>(
     name: &'static str,
-    value: f64,
-    min: f64,
-    max: f64,
+    value: T,
+    min: T,
+    max: T,
 ) -> Result<(), SaoError> {
-    if !value.is_finite() {
+    if !value.into().is_finite() {
         return Err(SaoError::NotFinite(name));
     }
     if value < min || value > max {
         return Err(SaoError::OutOfRange {
             name,
-            value,
-            min,
-            max,
+            value: value.into(),
+            min: min.into(),
+            max: max.into(),
         });
     }
     Ok(())

@@ -1,6 +1,6 @@
 //! Parameters of the passes, their defaults and their accepted ranges.
 
-use core::f64::consts::FRAC_PI_2;
+use core::f32::consts::FRAC_PI_2;
 
 use crate::SaoError;
 use crate::error::check_range;
@@ -160,14 +160,9 @@ impl BlurParams {
             return Err(SaoError::EvenTaps(self.taps));
         }
         check_range("blur.stride", f64::from(self.stride), 1.0, 64.0)?;
-        check_range("blur.depth_scale", f64::from(self.depth_scale), 0.0, 1.0e9)?;
-        check_range("blur.sigma", f64::from(self.sigma), 1.0e-3, 1.0e3)?;
-        check_range(
-            "blur.world_extent",
-            f64::from(self.world_extent),
-            0.0,
-            1.0e3,
-        )?;
+        check_range("blur.depth_scale", self.depth_scale, 0.0, 1.0e9)?;
+        check_range("blur.sigma", self.sigma, 1.0e-3, 1.0e3)?;
+        check_range("blur.world_extent", self.world_extent, 0.0, 1.0e3)?;
         Ok(())
     }
 
@@ -268,14 +263,14 @@ impl SaoParams {
     ///
     /// [`SaoError::NotFinite`], [`SaoError::OutOfRange`], [`SaoError::EvenTaps`].
     pub fn validate(&self) -> Result<(), SaoError> {
-        check_range("radius", f64::from(self.radius), 1.0e-4, 1.0e4)?;
+        check_range("radius", self.radius, 1.0e-4, 1.0e4)?;
         check_range(
             "samples",
             f64::from(self.samples),
             1.0,
             f64::from(MAX_SAMPLES),
         )?;
-        check_range("spiral_turns", f64::from(self.spiral_turns), 1.0e-3, 1.0e3)?;
+        check_range("spiral_turns", self.spiral_turns, 1.0e-3, 1.0e3)?;
         check_range(
             "mip_switch_log2",
             f64::from(self.mip_switch_log2),
@@ -283,30 +278,30 @@ impl SaoParams {
             f64::from(MAX_MIP_SWITCH_LOG2),
         )?;
         check_range("max_mip", f64::from(self.max_mip), 0.0, f64::from(MAX_MIP))?;
-        check_range("epsilon", f64::from(self.epsilon), 1.0e-12, 1.0e4)?;
+        check_range("epsilon", self.epsilon, 1.0e-12, 1.0e4)?;
         match self.estimator {
             Estimator::Alchemy { sigma, beta, k } => {
-                check_range("sigma", f64::from(sigma), 0.0, 1.0e4)?;
-                check_range("beta", f64::from(beta), 0.0, 1.0)?;
-                check_range("k", f64::from(k), 1.0e-2, 16.0)?;
+                check_range("sigma", sigma, 0.0, 1.0e4)?;
+                check_range("beta", beta, 0.0, 1.0)?;
+                check_range("k", k, 1.0e-2, 16.0)?;
             }
             Estimator::Falloff { beta, intensity } => {
-                check_range("beta", f64::from(beta), 0.0, 1.0e3)?;
-                check_range("intensity", f64::from(intensity), 0.0, 1.0e3)?;
+                check_range("beta", beta, 0.0, 1.0e3)?;
+                check_range("intensity", intensity, 0.0, 1.0e3)?;
             }
         }
         if let Some(t) = self.quad_depth_threshold {
-            check_range("quad_depth_threshold", f64::from(t), 0.0, 1.0e6)?;
+            check_range("quad_depth_threshold", t, 0.0, 1.0e6)?;
         }
         if let Some(r) = self.normal_rejection {
             check_range(
                 "normal_rejection.max_incidence",
-                f64::from(r.max_incidence),
+                r.max_incidence,
                 1.0e-3,
                 FRAC_PI_2 - 1.0e-3,
             )?;
         }
-        check_range("z_min", f64::from(self.z_min), -1.0e8, -1.0e-4)?;
+        check_range("z_min", self.z_min, -1.0e8, -1.0e-4)?;
         self.blur.validate()
     }
 }

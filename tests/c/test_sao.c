@@ -419,6 +419,30 @@ static void test_create_errors(void)
     EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "depth_source");
 
+    /* The documented bounds, written as C float literals, are inside: 1e-4f, 1e-12f, 1e-2f and
+     * -1e-4f are the nearest floats to the decimal bounds, which lie just outside them. */
+    {
+        OceanSao *edge = NULL;
+        bad = p;
+        bad.radius = 1e-4f;
+        bad.epsilon = 1e-12f;
+        bad.z_min = -1e-4f;
+        if (OK(ocean_sao_create(W, H, GUARD, &c, &bad, &edge)))
+            ocean_sao_destroy(edge);
+        bad = p;
+        bad.estimator = OCEAN_SAO_ESTIMATOR_ALCHEMY;
+        bad.alchemy_k = 1e-2f;
+        bad.radius = 1e4f;
+        if (OK(ocean_sao_create(W, H, GUARD, &c, &bad, &edge)))
+            ocean_sao_destroy(edge);
+        /* The next float beyond a bound is outside, and the message prints it briefly. */
+        bad = p;
+        bad.radius = nextafterf(1e-4f, 0.0f);
+        EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+                   "radius");
+        CHECK(strlen(last_error()) < 160, "long message: %s", last_error());
+    }
+
     /* Parameters out of range. */
     bad = p;
     bad.samples = 0;

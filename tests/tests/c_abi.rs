@@ -1,6 +1,7 @@
 //! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c`, `tests/c/test_wtb.c`,
 //! `tests/c/test_lighting.c`, `tests/c/test_sao.c`, `tests/c/test_relief.c`, `tests/c/test_draw.c`,
-//! `tests/c/test_gpu.c`, `tests/cpp/test_waves.cpp` and `tests/cpp/test_lighting.cpp` against
+//! `tests/c/test_gpu.c`, `tests/c/test_misuse.c`, `tests/cpp/test_waves.cpp` and
+//! `tests/cpp/test_lighting.cpp` against
 //! `include/ocean.h` and the static library `libocean.a` with the system compilers and
 //! `-Wall -Wextra -Werror -pedantic`, runs them, and fails unless each reports `0 failures` after
 //! a positive number of checks and exits 0.
@@ -209,6 +210,19 @@ fn c11_program_against_the_static_library() {
         "-std=c11",
         "tests/c/test_waves.c",
         "test_waves_c",
+    );
+}
+
+/// Handle misuse from C11: every CPU handle kind given where another is expected, destroyed
+/// twice, destroyed through another kind's function, used after destroy, and foreign memory:
+/// `OCEAN_STATUS_INVALID_HANDLE` with both kinds named, outputs untouched, no crash or hang.
+#[test]
+fn c11_handle_misuse_against_the_static_library() {
+    build_and_run(
+        compiler("CC", "cc"),
+        "-std=c11",
+        "tests/c/test_misuse.c",
+        "test_misuse_c",
     );
 }
 

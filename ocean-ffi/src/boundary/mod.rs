@@ -1,0 +1,42 @@
+//! The boundary: every check between a C caller and the library, written once.
+//!
+//! Every entry point of the C ABI is a thin function that states its contract by calling these
+//! helpers, inside [`crate::status::guard`] (the panic boundary and the last-error message):
+//!
+//! - [`handle`]: opaque handles, a registry of live objects with kinds ([`borrow`],
+//!   [`write_handle`], [`destroy`]);
+//! - [`pointer`]: pointers, lengths, input slices and out-parameters;
+//! - [`value`]: finiteness and the brief printing of numbers in messages.
+//!
+//! # The contract every function follows
+//!
+//! A status-returning function checks its arguments in this order and reports the first
+//! failure (the precedence of errors that `include/ocean.h` documents in `OceanStatus`):
+//!
+//! 1. handles, in parameter order: NULL is `OCEAN_STATUS_NULL_POINTER`; another kind, a
+//!    destroyed handle or a value the library never returned is `OCEAN_STATUS_INVALID_HANDLE`;
+//! 2. other pointers, in parameter order: `OCEAN_STATUS_NULL_POINTER`, then
+//!    `OCEAN_STATUS_MISALIGNED_POINTER`;
+//! 3. counts: `OCEAN_STATUS_EMPTY` for zero, then `OCEAN_STATUS_LENGTH_OVERFLOW` when a byte
+//!    size exceeds `PTRDIFF_MAX`, then `OCEAN_STATUS_INVALID_ARGUMENT` for buffers that overlap
+//!    or a length that disagrees with a size given elsewhere;
+//! 4. values, in parameter order and struct fields in declaration order:
+//!    `OCEAN_STATUS_NON_FINITE` for NaN and infinities, then the range checks
+//!    (`OCEAN_STATUS_INVALID_ARGUMENT`, `OCEAN_STATUS_TOO_STEEP`, ...);
+//! 5. the state of a handle (`OCEAN_STATUS_NOT_FOUND`, `OCEAN_STATUS_NOT_EVALUATED`,
+//!    `OCEAN_STATUS_OUTSIDE_GRID`) and the work itself: a result that would not be finite is
+//!    `OCEAN_STATUS_INVALID_ARGUMENT`, naming the inputs that cause it; a caller's buffer
+//!    that is too small is `OCEAN_STATUS_BUFFER_TOO_SMALL` with the size needed written to the
+//!    function's `needed` out-parameter.
+//!
+//! No output is written on failure (but for that `needed`).
+
+pub(crate) mod handle;
+pub(crate) mod pointer;
+pub(crate) mod value;
+
+pub(crate) use handle::{borrow, destroy, write_handle};
+pub(crate) use pointer::{
+    byte_len, check_disjoint, check_len, check_ptr, input, read_in, write_out, write_slice,
+};
+pub(crate) use value::{check_finite, check_time};

@@ -1,0 +1,125 @@
+//! Pointers, lengths and out-parameters from C: every check that turns a raw pointer into a
+//! Rust reference or slice, written once.
+
+use crate::status::{Error, OceanStatus};
+
+/// `OCEAN_STATUS_NULL_POINTER` for NULL, `OCEAN_STATUS_MISALIGNED_POINTER` for a pointer not
+/// aligned for `T`.
+pub(crate) fn check_ptr<T>(p: *const T, name: &str) -> Result<(), Error> {
+    if p.is_null() {
+        return Err(Error::new(
+            OceanStatus::NullPointer,
+            format!("`{name}` is NULL"),
+        ));
+    }
+    if !p.is_aligned() {
+        return Err(Error::new(
+            OceanStatus::MisalignedPointer,
+            format!(
+                "`{name}` ({p:p}) is not aligned to {} bytes",
+                align_of::<T>()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Size in bytes of `n` elements of `T`, if it fits in `isize::MAX` (the limit of every Rust and
+/// C object).
+pub(crate) fn byte_len<T>(n: usize, name: &str) -> Result<usize, Error> {
+    n.checked_mul(size_of::<T>())
+        .filter(|&b| b <= isize::MAX as usize)
+        .ok_or_else(|| {
+            Error::new(
+                OceanStatus::LengthOverflow,
+                format!(
+                    "{n} elements of {} bytes for `{name}` exceed PTRDIFF_MAX bytes",
+                    size_of::<T>()
+                ),
+            )
+        })
+}
+
+/// Fails if the byte ranges `[a, a + a_len)` and `[b, b + b_len)` intersect.
+pub(crate) fn check_disjoint(
+    (a, a_len, a_name): (*const u8, usize, &str),
+    (b, b_len, b_name): (*const u8, usize, &str),
+) -> Result<(), Error> {
+    let (a0, b0) = (a as usize, b as usize);
+    if a0 < b0.saturating_add(b_len) && b0 < a0.saturating_add(a_len) {
+        return Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("`{a_name}` and `{b_name}` overlap"),
+        ));
+    }
+    Ok(())
+}
+
+/// Reads a caller's input struct after checking the pointer.
+///
+/// # Safety
+///
+/// `p` must be NULL, misaligned, or point to a readable `T`.
+pub(crate) unsafe fn read_in<T: Copy>(p: *const T, name: &str) -> Result<T, Error> {
+    check_ptr(p, name)?;
+    // SAFETY: non-NULL and aligned (checked); readable (caller's guarantee); copied out.
+    Ok(unsafe { p.read() })
+}
+
+/// Writes `*out` through a checked pointer, after `value` has been computed.
+///
+/// # Safety
+///
+/// `out` must be NULL, misaligned, or writable.
+pub(crate) unsafe fn write_out<T>(out: *mut T, name: &str, value: T) -> Result<(), Error> {
+    check_ptr(out, name)?;
+    // SAFETY: non-NULL and aligned (checked); writable (caller's guarantee).
+    unsafe { out.write(value) };
+    Ok(())
+}
+
+/// Borrows `len` values of `T` from a caller's input buffer, after checking the pointer and the
+/// byte size.
+///
+/// # Safety
+///
+/// `p` must be NULL, misaligned, or point to `len` readable values that nothing writes during
+/// the borrow.
+pub(crate) unsafe fn input<'a, T>(p: *const T, len: usize, name: &str) -> Result<&'a [T], Error> {
+    check_ptr(p, name)?;
+    byte_len::<T>(len, name)?;
+    // SAFETY: non-NULL and aligned (checked), `len` values whose byte size fits in isize
+    // (checked), readable and unmodified during the borrow (caller's guarantee).
+    Ok(unsafe { core::slice::from_raw_parts(p, len) })
+}
+
+/// Checks that a caller's buffer of `len` values is exactly `want` long.
+pub(crate) fn check_len(name: &str, len: usize, want: usize, what: &str) -> Result<(), Error> {
+    if len != want {
+        return Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("`{name}` is {len} values long, {what} holds exactly {want}"),
+        ));
+    }
+    Ok(())
+}
+
+/// Copies a finished result into a caller's output buffer (checked for NULL and alignment).
+///
+/// # Safety
+///
+/// `p` must be NULL, misaligned, or point to `values.len()` writable `T` that no other thread
+/// touches during the call and that do not overlap any input still borrowed.
+pub(crate) unsafe fn write_slice<T: Copy>(
+    p: *mut T,
+    name: &str,
+    values: &[T],
+) -> Result<(), Error> {
+    check_ptr(p.cast_const(), name)?;
+    byte_len::<T>(values.len(), name)?;
+    // SAFETY: non-NULL and aligned (checked), `values.len()` elements whose byte size fits in
+    // isize (checked), writable and untouched by others (caller's guarantee).
+    let out = unsafe { core::slice::from_raw_parts_mut(p, values.len()) };
+    out.copy_from_slice(values);
+    Ok(())
+}
