@@ -4287,7 +4287,8 @@ const char *ocean_version(void);
  * `n` is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanWaveDesc)` exceeds
  * `PTRDIFF_MAX`, `OCEAN_STATUS_NON_FINITE` for NaN or infinite members (see `OceanWaveDesc`),
  * `OCEAN_STATUS_TOO_STEEP` if a wave has k*A > 1, `OCEAN_STATUS_INVALID_ARGUMENT` for other
- * out-of-range members (amplitude < 0, wavelength <= 0, zero direction, depth <= 0). On any
+ * out-of-range members (amplitude < 0, wavelength <= 0, zero direction, depth <= 0) and for
+ * amplitudes that add up past 1e30 m (a displaced float position could overflow). On any
  * failure `*out` is left unchanged. Free the handle with `ocean_waves_destroy`.
  *
  * # Safety
@@ -4329,7 +4330,10 @@ void ocean_waves_destroy(struct OceanWaves *waves);
  * `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanVec3)` exceeds `PTRDIFF_MAX`,
  * `OCEAN_STATUS_INVALID_ARGUMENT` if any two of the three arrays overlap,
  * `OCEAN_STATUS_NON_FINITE` if `time` or a coordinate of `xz` is NaN or infinite (the message
- * gives the first bad index). Nothing is written on failure.
+ * gives the first bad index), `OCEAN_STATUS_INVALID_ARGUMENT` if a phase leaves the domain
+ * where double precision resolves it: |omega * time| of the fastest wave or |k * x| (or
+ * |k * z|) of the shortest wave above 1e15 rad (far beyond it the results would be NaN).
+ * Nothing is written on failure.
  *
  * # Safety
  *
@@ -4359,8 +4363,10 @@ OceanStatus ocean_waves_evaluate(const struct OceanWaves *waves,
  * `OCEAN_STATUS_MISALIGNED_POINTER` if one is misaligned, `OCEAN_STATUS_EMPTY` if `nx` or `nz`
  * is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if `nx * nz` overflows or `nx * nz * sizeof(OceanVec3)`
  * exceeds `PTRDIFF_MAX`, `OCEAN_STATUS_INVALID_ARGUMENT` if the output arrays overlap, a
- * spacing is <= 0 or `nx` or `nz` exceeds 2^24, `OCEAN_STATUS_NON_FINITE` if `time`, the origin
- * or a spacing is NaN or infinite. Nothing is written on failure.
+ * spacing is <= 0, `nx` or `nz` exceeds 2^24, the grid's extent does not fit in a float, or
+ * a phase leaves 1e15 rad (as in `ocean_waves_evaluate`, for `time` and the grid's farthest
+ * corner), `OCEAN_STATUS_NON_FINITE` if `time`, the origin or a spacing is NaN or infinite.
+ * Nothing is written on failure.
  *
  * # Safety
  *

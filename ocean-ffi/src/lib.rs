@@ -41,6 +41,7 @@ mod shader_export;
 mod status;
 mod version;
 mod waves;
+mod waves_domain;
 mod wtb;
 mod wtb_query;
 

@@ -11,6 +11,7 @@ use crate::boundary::{
     write_out,
 };
 use crate::status::{Error, OceanStatus, guard};
+use crate::waves_domain::Reach;
 
 /// A point on the sea plane y = 0: world x and z in metres (single precision).
 ///
@@ -95,6 +96,8 @@ pub struct OceanGrid {
 /// of threads at once; destroying it must not race with any other use.
 pub struct OceanWaves {
     set: WaveSet,
+    /// What bounds its phases: checked before every evaluation.
+    reach: Reach,
 }
 
 /// Points from which `ocean_waves_evaluate` splits the work over threads (the results are
@@ -171,7 +174,8 @@ pub(crate) fn eval_error(e: EvalError, positions: &str) -> Error {
 /// `n` is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanWaveDesc)` exceeds
 /// `PTRDIFF_MAX`, `OCEAN_STATUS_NON_FINITE` for NaN or infinite members (see `OceanWaveDesc`),
 /// `OCEAN_STATUS_TOO_STEEP` if a wave has k*A > 1, `OCEAN_STATUS_INVALID_ARGUMENT` for other
-/// out-of-range members (amplitude < 0, wavelength <= 0, zero direction, depth <= 0). On any
+/// out-of-range members (amplitude < 0, wavelength <= 0, zero direction, depth <= 0) and for
+/// amplitudes that add up past 1e30 m (a displaced float position could overflow). On any
 /// failure `*out` is left unchanged. Free the handle with `ocean_waves_destroy`.
 ///
 /// # Safety
@@ -203,8 +207,9 @@ pub unsafe extern "C" fn ocean_waves_create(
             waves.push(wave_desc(i, d)?.build().map_err(|e| wave_error(i, e))?);
         }
         let set = WaveSet::new(&waves).map_err(|e| wave_error(0, e))?;
+        let reach = Reach::of(&set)?;
         // SAFETY: forwarded from this function's contract.
-        unsafe { write_handle(out, OceanWaves { set }) }
+        unsafe { write_handle(out, OceanWaves { set, reach }) }
     })
 }
 
@@ -238,7 +243,10 @@ pub extern "C" fn ocean_waves_destroy(waves: *mut OceanWaves) {
 /// `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanVec3)` exceeds `PTRDIFF_MAX`,
 /// `OCEAN_STATUS_INVALID_ARGUMENT` if any two of the three arrays overlap,
 /// `OCEAN_STATUS_NON_FINITE` if `time` or a coordinate of `xz` is NaN or infinite (the message
-/// gives the first bad index). Nothing is written on failure.
+/// gives the first bad index), `OCEAN_STATUS_INVALID_ARGUMENT` if a phase leaves the domain
+/// where double precision resolves it: |omega * time| of the fastest wave or |k * x| (or
+/// |k * z|) of the shortest wave above 1e15 rad (far beyond it the results would be NaN).
+/// Nothing is written on failure.
 ///
 /// # Safety
 ///
@@ -291,6 +299,8 @@ pub unsafe extern "C" fn ocean_waves_evaluate(
             )
         };
         let local: &[Vec2] = bytemuck::cast_slice(xz);
+        waves.reach.check_time(time)?;
+        waves.reach.check_points("xz", local)?;
         let pos: &mut [Vec3] = bytemuck::cast_slice_mut(pos);
         let nrm: &mut [Vec3] = bytemuck::cast_slice_mut(nrm);
         // Origin (0, 0): `xz` are world positions and so are the outputs. The core validates
@@ -322,8 +332,10 @@ pub unsafe extern "C" fn ocean_waves_evaluate(
 /// `OCEAN_STATUS_MISALIGNED_POINTER` if one is misaligned, `OCEAN_STATUS_EMPTY` if `nx` or `nz`
 /// is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if `nx * nz` overflows or `nx * nz * sizeof(OceanVec3)`
 /// exceeds `PTRDIFF_MAX`, `OCEAN_STATUS_INVALID_ARGUMENT` if the output arrays overlap, a
-/// spacing is <= 0 or `nx` or `nz` exceeds 2^24, `OCEAN_STATUS_NON_FINITE` if `time`, the origin
-/// or a spacing is NaN or infinite. Nothing is written on failure.
+/// spacing is <= 0, `nx` or `nz` exceeds 2^24, the grid's extent does not fit in a float, or
+/// a phase leaves 1e15 rad (as in `ocean_waves_evaluate`, for `time` and the grid's farthest
+/// corner), `OCEAN_STATUS_NON_FINITE` if `time`, the origin or a spacing is NaN or infinite.
+/// Nothing is written on failure.
 ///
 /// # Safety
 ///
@@ -383,6 +395,8 @@ pub unsafe extern "C" fn ocean_waves_evaluate_grid(
         core_grid
             .point_count()
             .map_err(|e| eval_error(e, "grid->origin"))?;
+        waves.reach.check_time(time)?;
+        waves.reach.check_grid("grid", &core_grid)?;
         // SAFETY: both pointers are non-NULL and aligned, the byte size fits in isize and the
         // ranges are disjoint (all checked above); the caller guarantees `n` writable elements
         // in each, untouched by others during the call.

@@ -27,7 +27,8 @@ pub(crate) fn check_finite(prefix: &str, fields: &[(&str, f64)]) -> Result<(), E
 }
 
 /// A number as messages print it: the shortest text that reads back as the same value, in
-/// scientific notation outside [1e-4, 1e16) so that 5e-324 or 1e300 stay short.
+/// scientific notation outside [1e-4, 1e7) so that 5e-324 or 1e300 stay short. For the
+/// caller's own inputs, which a message must show exactly.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Num<T>(pub T);
 
@@ -38,11 +39,23 @@ where
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         let x: f64 = self.0.into();
         let a = x.abs();
-        if x == 0.0 || !x.is_finite() || (1e-4..1e16).contains(&a) {
+        if x == 0.0 || !x.is_finite() || (1e-4..1e7).contains(&a) {
             write!(f, "{}", self.0)
         } else {
             write!(f, "{:e}", self.0)
         }
+    }
+}
+
+/// A derived number (a limit, a product) as messages print it: six significant digits, then as
+/// [`Num`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Approx(pub f64);
+
+impl core::fmt::Display for Approx {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let rounded: f64 = format!("{:.5e}", self.0).parse().unwrap_or(self.0);
+        Num(rounded).fmt(f)
     }
 }
 
@@ -52,7 +65,7 @@ mod tests {
 
     #[test]
     fn numbers_print_briefly_and_read_back_exactly() {
-        let cases: [(f64, &str); 9] = [
+        let cases: [(f64, &str); 10] = [
             (5e-324, "5e-324"),
             (1e300, "1e300"),
             (f64::MAX, "1.7976931348623157e308"),
@@ -60,6 +73,7 @@ mod tests {
             (-0.0, "-0"),
             (1e-5, "1e-5"),
             (123456.5, "123456.5"),
+            (1e15, "1e15"),
             (f64::NAN, "NaN"),
             (f64::NEG_INFINITY, "-inf"),
         ];
@@ -73,5 +87,8 @@ mod tests {
         assert_eq!(Num(0.1f32).to_string(), "0.1");
         assert_eq!(Num(f32::MAX).to_string(), "3.4028235e38");
         assert_eq!(Num(1e-12f32).to_string(), "1e-12");
+        assert_eq!(Approx(569626991516026.3).to_string(), "5.69627e14");
+        assert_eq!(Approx(1.7555347883683727).to_string(), "1.75553");
+        assert_eq!(Approx(f64::INFINITY).to_string(), "inf");
     }
 }

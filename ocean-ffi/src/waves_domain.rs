@@ -1,0 +1,265 @@
+//! Where a wave set's results are finite and meaningful, checked before anything is written.
+//!
+//! A trochoid's phase k·p₀ − ωt + Φ is formed and reduced in double precision. Beyond
+//! [`PHASE_LIMIT`] radians a double no longer resolves the phase (its spacing there is 0.125
+//! rad), and far beyond it k·p₀ or ωt overflows to infinity and every output becomes NaN. The
+//! displaced positions are floats: a set whose amplitudes add up past [`AMPLITUDE_SUM_LIMIT`]
+//! could displace a point to infinity. Inputs outside this domain are refused with
+//! `OCEAN_STATUS_INVALID_ARGUMENT`, naming the input and the bound it breaks, instead of
+//! returning non-finite results behind `OCEAN_STATUS_OK`.
+
+use glam::{DVec2, Vec2};
+use ocean_core::{Grid, WaveSet};
+
+use crate::boundary::{Approx, Num};
+use crate::status::{Error, OceanStatus};
+
+/// The largest |k·p₀| or |ω·t|, radians, whose phase a double still resolves to 1/8 rad.
+pub(crate) const PHASE_LIMIT: f64 = 1e15;
+
+/// The largest sum of a set's amplitudes, metres: far enough below `FLT_MAX` (3.4e38) that no
+/// float position plus the largest displacement overflows.
+pub(crate) const AMPLITUDE_SUM_LIMIT: f64 = 1e30;
+
+/// The fastest and shortest wave of a set: what bounds its phases.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Reach {
+    k_max: f64,
+    omega_max: f64,
+}
+
+fn invalid(message: String) -> Error {
+    Error::new(OceanStatus::InvalidArgument, message)
+}
+
+impl Reach {
+    /// The reach of `set`, refusing a set whose amplitudes add up past the limit.
+    pub(crate) fn of(set: &WaveSet) -> Result<Self, Error> {
+        let waves = set.waves();
+        let amplitude_sum: f64 = waves.iter().map(|w| w.amplitude()).sum();
+        if amplitude_sum > AMPLITUDE_SUM_LIMIT {
+            return Err(invalid(format!(
+                "the amplitudes add up to {} m, above {} m: a displaced position would overflow \
+                 a float",
+                Approx(amplitude_sum),
+                Approx(AMPLITUDE_SUM_LIMIT)
+            )));
+        }
+        Ok(Self {
+            k_max: waves.iter().map(|w| w.wavenumber()).fold(0.0, f64::max),
+            omega_max: waves
+                .iter()
+                .map(|w| w.angular_frequency())
+                .fold(0.0, f64::max),
+        })
+    }
+
+    /// Refuses a finite `time` whose phase ω·t leaves the limit for the fastest wave.
+    pub(crate) fn check_time(&self, time: f64) -> Result<(), Error> {
+        if (time * self.omega_max).abs() <= PHASE_LIMIT {
+            return Ok(());
+        }
+        Err(invalid(format!(
+            "`time` = {} s puts the phase of the fastest wave (omega = {} rad/s) beyond {} rad, \
+             where a double no longer resolves it: |time| must be <= {} s for this set",
+            Num(time),
+            Approx(self.omega_max),
+            Approx(PHASE_LIMIT),
+            Approx(PHASE_LIMIT / self.omega_max)
+        )))
+    }
+
+    /// The largest |x| or |z| whose phase k·x stays within the limit for the shortest wave.
+    fn max_coordinate(&self) -> f64 {
+        PHASE_LIMIT / self.k_max
+    }
+
+    /// Refuses the first rest position `name[i]` (relative to `origin`) whose phase leaves the
+    /// limit. NaN coordinates pass: the evaluation refuses them with `OCEAN_STATUS_NON_FINITE`.
+    pub(crate) fn check_points(&self, name: &str, points: &[Vec2]) -> Result<(), Error> {
+        let most = self.max_coordinate();
+        let far = points
+            .iter()
+            .position(|p| f64::from(p.x.abs()) > most || f64::from(p.y.abs()) > most);
+        match far {
+            None => Ok(()),
+            Some(i) => Err(invalid(format!(
+                "{name}[{i}] = ({}, {}) lies beyond {} m from the origin, where the phase k*x of \
+                 the shortest wave (k = {} rad/m) passes {} rad",
+                Num(points[i].x),
+                Num(points[i].y),
+                Approx(most),
+                Approx(self.k_max),
+                Approx(PHASE_LIMIT)
+            ))),
+        }
+    }
+
+    /// Refuses a grid whose far corner (world coordinates) leaves the phase limit, or whose
+    /// extent from its origin does not fit in a float.
+    pub(crate) fn check_grid(&self, name: &str, grid: &Grid) -> Result<(), Error> {
+        let (nx, nz) = grid.size;
+        let steps = DVec2::new(nx.saturating_sub(1) as f64, nz.saturating_sub(1) as f64);
+        let extent = grid.spacing * steps;
+        if extent.max_element() > f64::from(f32::MAX) / 2.0 {
+            return Err(invalid(format!(
+                "{name}: the grid extends {} m from its origin, which a float cannot hold",
+                Approx(extent.max_element())
+            )));
+        }
+        let far = grid.origin.abs() + extent;
+        if far.max_element() > self.max_coordinate() {
+            return Err(invalid(format!(
+                "{name}: the grid reaches {} m from the world origin, where the phase k*x of the \
+                 shortest wave (k = {} rad/m) passes {} rad (the limit is {} m)",
+                Approx(far.max_element()),
+                Approx(self.k_max),
+                Approx(PHASE_LIMIT),
+                Approx(self.max_coordinate())
+            )));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::status::last_error;
+    use crate::waves::{
+        OceanGrid, OceanVec2, OceanVec3, OceanWaveDesc, OceanWaves, ocean_waves_create,
+        ocean_waves_destroy, ocean_waves_evaluate, ocean_waves_evaluate_grid,
+    };
+
+    fn desc(amplitude: f64, wavelength: f64) -> OceanWaveDesc {
+        OceanWaveDesc {
+            amplitude,
+            wavelength,
+            direction_x: 1.0,
+            direction_z: 0.0,
+            phase: 0.0,
+            depth: f64::INFINITY,
+        }
+    }
+
+    fn create(descs: &[OceanWaveDesc]) -> Result<*mut OceanWaves, OceanStatus> {
+        let mut w = core::ptr::null_mut();
+        // SAFETY: `descs.len()` readable descriptions, a writable out.
+        match unsafe { ocean_waves_create(descs.as_ptr(), descs.len(), &mut w) } {
+            OceanStatus::Ok => Ok(w),
+            s => Err(s),
+        }
+    }
+
+    /// Evaluates one point; the outputs start as a sentinel and are returned with the status.
+    fn evaluate(w: *const OceanWaves, x: f32, time: f64) -> (OceanStatus, OceanVec3, OceanVec3) {
+        let xz = [OceanVec2 { x, z: 0.5 }];
+        let sentinel = OceanVec3 {
+            x: 7.0,
+            y: 7.0,
+            z: 7.0,
+        };
+        let (mut p, mut n) = ([sentinel], [sentinel]);
+        // SAFETY: one readable point, one writable position and normal.
+        let s = unsafe {
+            ocean_waves_evaluate(w, xz.as_ptr(), 1, time, p.as_mut_ptr(), n.as_mut_ptr())
+        };
+        (s, p[0], n[0])
+    }
+
+    fn finite(v: OceanVec3) -> bool {
+        v.x.is_finite() && v.y.is_finite() && v.z.is_finite()
+    }
+
+    #[test]
+    fn a_time_past_the_phase_limit_is_refused_and_one_within_it_is_finite() {
+        // One 20 m deep-water wave: omega = sqrt(g k), k = 2 pi / 20.
+        let w = create(&[desc(1.0, 20.0)]).unwrap();
+        let omega = (ocean_core::GRAVITY * core::f64::consts::TAU / 20.0).sqrt();
+        let limit = PHASE_LIMIT / omega;
+        for time in [f64::MAX, -f64::MAX, 1e300, limit * 1.0001] {
+            let (s, p, n) = evaluate(w, 1.0, time);
+            assert_eq!(s, OceanStatus::InvalidArgument, "time {time}");
+            assert!(last_error().contains("`time`"), "{}", last_error());
+            assert_eq!((p.x, n.x), (7.0, 7.0), "written on failure");
+        }
+        for time in [limit * 0.9999, -limit * 0.9999, 1e6, 0.0] {
+            let (s, p, n) = evaluate(w, 1.0, time);
+            assert_eq!(s, OceanStatus::Ok, "time {time}: {}", last_error());
+            assert!(finite(p) && finite(n), "time {time}: {p:?} {n:?}");
+        }
+        ocean_waves_destroy(w);
+    }
+
+    #[test]
+    fn a_position_past_the_phase_limit_is_refused() {
+        let w = create(&[desc(1.0, 20.0)]).unwrap();
+        let k = core::f64::consts::TAU / 20.0;
+        let (s, p, _) = evaluate(w, f32::MAX, 0.0);
+        assert_eq!(s, OceanStatus::InvalidArgument);
+        assert!(last_error().contains("xz[0]"), "{}", last_error());
+        assert_eq!(p.x, 7.0);
+        let inside = (PHASE_LIMIT / k * 0.999) as f32;
+        let (s, p, n) = evaluate(w, inside, 0.0);
+        assert_eq!(s, OceanStatus::Ok, "{}", last_error());
+        assert!(finite(p) && finite(n));
+        ocean_waves_destroy(w);
+    }
+
+    #[test]
+    fn amplitudes_that_overflow_a_float_when_aligned_are_refused() {
+        // Eight aligned waves, each at most a cusp (k A <= 1), whose sum 4.6e38 m exceeds
+        // FLT_MAX: their crests would add up to an infinite height.
+        let each = [desc(5.7e37, 4.0e38); 8];
+        assert_eq!(create(&each), Err(OceanStatus::InvalidArgument));
+        assert!(
+            last_error().contains("add up to 4.56e38 m"),
+            "{}",
+            last_error()
+        );
+        // At the limit the sum is finite in a float.
+        let w = create(&[desc(AMPLITUDE_SUM_LIMIT / 2.0, 1e31); 2]).unwrap();
+        let (s, p, n) = evaluate(w, 0.0, 0.0);
+        assert_eq!(s, OceanStatus::Ok, "{}", last_error());
+        assert!(finite(p) && finite(n), "{p:?} {n:?}");
+        ocean_waves_destroy(w);
+    }
+
+    #[test]
+    fn a_grid_a_float_cannot_hold_or_beyond_the_phase_limit_is_refused() {
+        let w = create(&[desc(1.0, 20.0)]).unwrap();
+        let sentinel = OceanVec3 {
+            x: 7.0,
+            y: 7.0,
+            z: 7.0,
+        };
+        let run = |g: OceanGrid| {
+            let (mut p, mut n) = ([sentinel; 4], [sentinel; 4]);
+            // SAFETY: a readable grid of 2 x 2 points, four writable outputs each.
+            let s =
+                unsafe { ocean_waves_evaluate_grid(w, &g, 0.0, p.as_mut_ptr(), n.as_mut_ptr()) };
+            (s, p, n)
+        };
+        let grid = |spacing_x: f64, origin_x: f64| OceanGrid {
+            origin_x,
+            origin_z: 0.0,
+            spacing_x,
+            spacing_z: 1.0,
+            nx: 2,
+            nz: 2,
+        };
+        for (g, needle) in [
+            (grid(1e300, 0.0), "float cannot hold"),
+            (grid(1.0, 1e17), "the limit"),
+        ] {
+            let (s, p, _) = run(g);
+            assert_eq!(s, OceanStatus::InvalidArgument);
+            assert!(last_error().contains(needle), "{}", last_error());
+            assert!(p.iter().all(|v| v.x == 7.0), "written on failure");
+        }
+        let (s, p, n) = run(grid(1e6, 1e9));
+        assert_eq!(s, OceanStatus::Ok, "{}", last_error());
+        assert!(p.iter().chain(&n).all(|v| finite(*v)));
+        ocean_waves_destroy(w);
+    }
+}
