@@ -960,11 +960,11 @@ typedef struct OceanSkyParams {
    */
   struct OceanDVec3 sun_direction;
   /**
-   * The Sun's irradiance on a surface facing it, linear RGB, each channel finite and >= 0.
+   * The Sun's irradiance on a surface facing it, linear RGB, each channel in [0, 1e30].
    */
   struct OceanRgb sun_irradiance;
   /**
-   * The sky's radiance at the zenith, linear RGB, each channel finite and >= 0.
+   * The sky's radiance at the zenith, linear RGB, each channel in [0, 1e30].
    */
   struct OceanRgb zenith_radiance;
   /**

@@ -1,5 +1,7 @@
 //! Errors of the lighting model's inputs.
 
+use ocean_core::Num;
+
 /// Why an input of the lighting model was refused.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -8,7 +10,7 @@ pub enum BrdfError {
     #[error("{0} must be finite")]
     NotFinite(&'static str),
     /// A parameter lies outside its documented range.
-    #[error("{name} = {value} is outside [{min}, {max}]")]
+    #[error("{name} = {} is outside [{}, {}]", Num(*.value), Num(*.min), Num(*.max))]
     OutOfRange {
         /// The parameter.
         name: &'static str,

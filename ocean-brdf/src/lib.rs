@@ -66,7 +66,7 @@ pub use filter::Filter;
 pub use irradiance::Irradiance;
 pub use local::{LocalPoint, LocalWaves};
 pub use sea::{Lighting, SeaLight, SeaParams};
-pub use sky::{Sky, SkyParams};
+pub use sky::{MAX_RADIOMETRIC, Sky, SkyParams};
 pub use sky_map::SkyMap;
 pub use spectrum::{Spectrum, SpectrumParams};
 pub use surface::{FilteredSurface, PixelSurface};

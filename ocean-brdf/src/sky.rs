@@ -284,10 +284,17 @@ impl Sky {
     }
 }
 
-/// Validates an RGB quantity: finite and non-negative in every channel.
+/// Largest irradiance or radiance accepted in any channel (any unit). The Sun's radiance is
+/// its irradiance over a solid angle of about 6.8e-5 sr, and the sky's irradiance integrates
+/// radiances over the hemisphere: with inputs up to 1e30 every derived quantity stays below
+/// 1e35, finite as a double and as the float the GPU reads (FLT_MAX is 3.4e38).
+pub const MAX_RADIOMETRIC: f64 = 1e30;
+
+/// Validates an RGB quantity: finite, non-negative and at most [`MAX_RADIOMETRIC`] in every
+/// channel.
 pub(crate) fn check_rgb(name: &'static str, c: DVec3) -> Result<DVec3, BrdfError> {
     for v in c.to_array() {
-        check(name, v, 0.0, f64::MAX)?;
+        check(name, v, 0.0, MAX_RADIOMETRIC)?;
     }
     Ok(c)
 }

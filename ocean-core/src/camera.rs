@@ -53,6 +53,7 @@
 //! The other combinations (finite reversed Z, infinite `[−1,1]`, reversed orthographic) have no
 //! glam equivalent and are checked in the tests against their defining depth mapping.
 
+use crate::num::Num;
 use glam::{DMat4, DVec3, DVec4, Mat4};
 
 use crate::math::{cos, sin, sqrt};
@@ -62,7 +63,7 @@ use crate::math::{cos, sin, sqrt};
 #[non_exhaustive]
 pub enum CameraError {
     /// A parameter is NaN or infinite.
-    #[error("camera parameter `{name}` must be finite, got {value}")]
+    #[error("camera parameter `{name}` must be finite, got {}", Num(*.value))]
     NotFinite {
         /// Name of the parameter.
         name: &'static str,
@@ -76,16 +77,16 @@ pub enum CameraError {
     #[error("up vector is zero or parallel to the view direction")]
     UpParallelToView,
     /// The vertical field of view must lie in the open interval (0, π) radians.
-    #[error("vertical field of view must be in (0, pi) radians, got {0}")]
+    #[error("vertical field of view must be in (0, pi) radians, got {}", Num(*.0))]
     FieldOfView(f64),
     /// The aspect ratio (width / height) must be > 0.
-    #[error("aspect ratio must be > 0, got {0}")]
+    #[error("aspect ratio must be > 0, got {}", Num(*.0))]
     Aspect(f64),
     /// A perspective near plane must be at a distance > 0 m.
-    #[error("perspective near plane must be > 0 m, got {0}")]
+    #[error("perspective near plane must be > 0 m, got {}", Num(*.0))]
     Near(f64),
     /// The far plane must lie beyond the near plane.
-    #[error("far plane ({far} m) must be beyond the near plane ({near} m)")]
+    #[error("far plane ({} m) must be beyond the near plane ({} m)", Num(*.far), Num(*.near))]
     FarNotBeyondNear {
         /// Near-plane distance (metres).
         near: f64,
@@ -93,7 +94,7 @@ pub enum CameraError {
         far: f64,
     },
     /// An orthographic box needs `left < right`.
-    #[error("orthographic box needs left < right, got left = {left}, right = {right}")]
+    #[error("orthographic box needs left < right, got left = {}, right = {}", Num(*.left), Num(*.right))]
     OrthoWidth {
         /// Left edge (view-space x, metres).
         left: f64,
@@ -101,7 +102,7 @@ pub enum CameraError {
         right: f64,
     },
     /// An orthographic box needs `bottom < top`.
-    #[error("orthographic box needs bottom < top, got bottom = {bottom}, top = {top}")]
+    #[error("orthographic box needs bottom < top, got bottom = {}, top = {}", Num(*.bottom), Num(*.top))]
     OrthoHeight {
         /// Bottom edge (view-space y, metres).
         bottom: f64,

@@ -55,6 +55,7 @@
 //! entirely outside neither) is reported `Intersecting`. `Inside` is exact up to rounding: every
 //! point of the shape is inside the frustum.
 
+use crate::num::Num;
 use glam::{DMat4, DQuat, DVec3, DVec4, Mat4};
 
 use crate::camera::{Camera, DepthConvention, DepthDirection, DepthRange};
@@ -112,7 +113,7 @@ pub enum FrustumError {
     #[error("the {0:?} plane of the matrix is degenerate")]
     Degenerate(PlaneId),
     /// A radius or half extent is negative.
-    #[error("`{name}` must be >= 0, got {value}")]
+    #[error("`{name}` must be >= 0, got {}", Num(*.value))]
     Negative {
         /// The parameter.
         name: &'static str,

@@ -80,6 +80,7 @@ pub mod kernel;
 pub mod layers;
 pub mod math;
 pub mod modulation;
+pub mod num;
 pub mod phase;
 pub mod rng;
 pub mod rows;
@@ -105,6 +106,7 @@ pub use layers::{
 #[cfg(feature = "std")]
 pub use layers::{evaluate_layers_par, evaluate_layers_region_par};
 pub use modulation::Modulation;
+pub use num::Num;
 pub use rng::Pcg32;
 pub use timed::{LaneSums, TimedWaves};
 pub use trochoid::{PointSums, Sample, SampleF64, WaveSet};

@@ -31,13 +31,14 @@
 //! This is **not** a cryptographic generator.
 
 use crate::math::sqrt;
+use crate::num::Num;
 
 /// Why an RNG helper refused its arguments.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum RngError {
     /// The half-open range `[low, high)` is empty (`low >= high`), or a bound of 0 was asked for.
-    #[error("empty range: [{low}, {high})")]
+    #[error("empty range: [{}, {})", Num(*.low), Num(*.high))]
     EmptyRange {
         /// Lower bound (inclusive).
         low: f64,
@@ -48,7 +49,7 @@ pub enum RngError {
     #[error("`{0}` must be finite")]
     NotFinite(&'static str),
     /// A standard deviation is negative.
-    #[error("standard deviation must be >= 0, got {0}")]
+    #[error("standard deviation must be >= 0, got {}", Num(*.0))]
     NegativeStdDev(f64),
 }
 

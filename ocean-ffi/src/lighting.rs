@@ -93,9 +93,9 @@ pub struct OceanSkyParams {
     /// Unit vector towards the Sun, world space (y up); its length must be within 1e-6 of 1
     /// and its elevation in [0, 90] degrees (y >= 0): the model has no twilight.
     pub sun_direction: OceanDVec3,
-    /// The Sun's irradiance on a surface facing it, linear RGB, each channel finite and >= 0.
+    /// The Sun's irradiance on a surface facing it, linear RGB, each channel in [0, 1e30].
     pub sun_irradiance: OceanRgb,
-    /// The sky's radiance at the zenith, linear RGB, each channel finite and >= 0.
+    /// The sky's radiance at the zenith, linear RGB, each channel in [0, 1e30].
     pub zenith_radiance: OceanRgb,
     /// The sky's relative radiance distribution.
     pub cie: OceanCieSky,

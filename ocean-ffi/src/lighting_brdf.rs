@@ -12,7 +12,7 @@ use ocean_brdf::fresnel_table::effective_fresnel_table;
 use ocean_brdf::ross::{brdf, sun_radiance};
 use ocean_brdf::tonemap::{DEFAULT_EXPOSURE, linear_to_srgb, tone_map};
 
-use crate::boundary::{check_finite, check_ptr, write_out};
+use crate::boundary::{Num, check_finite, check_ptr, write_out};
 use crate::lighting::{OceanRgb, brdf_error, finite_dvec3};
 use crate::status::{Error, OceanStatus, guard};
 use crate::wtb::OceanDVec3;
@@ -162,7 +162,7 @@ pub unsafe extern "C" fn ocean_schlick(cos_theta: f64, r: f64, out: *mut f64) ->
             if !(0.0..=1.0).contains(&r) {
                 return Err(Error::new(
                     OceanStatus::InvalidArgument,
-                    format!("r = {r} is outside [0, 1]"),
+                    format!("r = {} is outside [0, 1]", Num(r)),
                 ));
             }
             Ok(schlick(cos_theta, r))
@@ -307,7 +307,7 @@ pub unsafe extern "C" fn ocean_tone_map(
             if exposure < 0.0 {
                 return Err(Error::new(
                     OceanStatus::InvalidArgument,
-                    format!("exposure must be >= 0, got {exposure}"),
+                    format!("exposure must be >= 0, got {}", Num(exposure)),
                 ));
             }
             let c = tone_map(DVec3::new(radiance.r, radiance.g, radiance.b), exposure);

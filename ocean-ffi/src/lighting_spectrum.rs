@@ -9,7 +9,7 @@ use ocean_core::camera::{Camera, CameraError, DepthConvention, Far, Projection};
 use ocean_core::{Depth, WaveDesc};
 
 use crate::boundary::{
-    borrow, byte_len, check_finite, check_ptr, destroy, read_in, write_handle, write_out,
+    Num, borrow, byte_len, check_finite, check_ptr, destroy, read_in, write_handle, write_out,
 };
 use crate::lighting::brdf_error;
 
@@ -517,7 +517,10 @@ pub unsafe extern "C" fn ocean_spectrum_slope_variance(
         if pixel_footprint < 0.0 {
             return Err(Error::new(
                 OceanStatus::InvalidArgument,
-                format!("pixel_footprint must be >= 0 metres, got {pixel_footprint}"),
+                format!(
+                    "pixel_footprint must be >= 0 metres, got {}",
+                    Num(pixel_footprint)
+                ),
             ));
         }
         let v = s.spectrum.variance().unresolved(&filter, pixel_footprint);
@@ -661,7 +664,7 @@ pub unsafe extern "C" fn ocean_pixel_footprint(
         if max_distance <= 0.0 {
             return Err(Error::new(
                 OceanStatus::InvalidArgument,
-                format!("max_distance must be > 0 metres, got {max_distance}"),
+                format!("max_distance must be > 0 metres, got {}", Num(max_distance)),
             ));
         }
         let cam = camera_from(&c)?;

@@ -11,7 +11,7 @@ use ocean_relief::trace::{BinarySearch, MAX_STEPS, Method, Ray};
 use ocean_relief::{Hit, ReliefError};
 
 use crate::boundary::{
-    borrow, byte_len, check_disjoint, check_finite, check_ptr, input, read_in, write_out,
+    Num, borrow, byte_len, check_disjoint, check_finite, check_ptr, input, read_in, write_out,
     write_slice,
 };
 use crate::relief::{OceanReliefCones, relief_error};
@@ -229,7 +229,10 @@ pub unsafe extern "C" fn ocean_relief_ray_from_view(
         if view_z >= 0.0 {
             return Err(Error::new(
                 OceanStatus::InvalidArgument,
-                format!("view_z = {view_z} must be negative: the view must look at the polygon"),
+                format!(
+                    "view_z = {} must be negative: the view must look at the polygon",
+                    Num(view_z)
+                ),
             ));
         }
         let ray = Ray::from_view(
@@ -435,13 +438,13 @@ pub(crate) unsafe fn shadow_batch(
     if depth_scale < 0.0 {
         return Err(Error::new(
             OceanStatus::InvalidArgument,
-            format!("depth_scale = {depth_scale} must be >= 0"),
+            format!("depth_scale = {} must be >= 0", Num(depth_scale)),
         ));
     }
     if !(0.0..=1.0).contains(&bias) {
         return Err(Error::new(
             OceanStatus::InvalidArgument,
-            format!("bias = {bias} is outside [0, 1]"),
+            format!("bias = {} is outside [0, 1]", Num(bias)),
         ));
     }
     // SAFETY: forwarded from this function's contract (pointer, size and overlap checked).

@@ -317,6 +317,17 @@ pub(crate) fn wtb_error(context: &str, e: WtbError) -> Error {
         WtbError::Wave { index, source } => return wave_error(index, source),
         WtbError::UnknownBox(_) => OceanStatus::NotFound,
         WtbError::OutsideGrid => OceanStatus::OutsideGrid,
+        // The scene evaluates its own grid points: an `EvalError` there names none of the
+        // caller's arguments, and the checks of boxes and effects are meant to exclude it.
+        WtbError::Eval(ocean_core::EvalError::Position { index }) => {
+            return Error::new(
+                OceanStatus::InvalidArgument,
+                format!(
+                    "{context}the evaluation gave a non-finite value at water grid point {index}: \
+                     a box's or an effect's parameters drive it out of range"
+                ),
+            );
+        }
         WtbError::Eval(e) => return eval_error(e, "xz"),
         _ => OceanStatus::InvalidArgument,
     };
@@ -591,7 +602,7 @@ unsafe fn box_spec(
     if w.speed == 0.0 {
         return Err(Error::new(
             OceanStatus::InvalidArgument,
-            "desc->wind.speed is 0: a wind that does not blow raises no waves (speed in (0, 100] m/s)",
+            "desc->wind.speed is 0: a wind that does not blow raises no waves (speed in [0.1, 100] m/s)",
         ));
     }
     let wind = Wind {

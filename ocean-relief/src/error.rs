@@ -1,5 +1,7 @@
 //! The error type of this crate.
 
+use ocean_core::Num;
+
 /// Why a height map, cone map or tracer could not be built or run. No input makes this crate
 /// panic or read out of bounds; a function that returns an error has written nothing.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
@@ -45,7 +47,7 @@ pub enum ReliefError {
         y: usize,
     },
     /// A height lies outside `[0, 1]` and the map was built with [`crate::HeightRange::Refuse`].
-    #[error("height {value} at ({x}, {y}) is outside [0, 1]")]
+    #[error("height {} at ({x}, {y}) is outside [0, 1]", Num(*.value))]
     HeightOutOfRange {
         /// Column of the first offending texel (row-major scan).
         x: usize,
@@ -58,7 +60,7 @@ pub enum ReliefError {
     #[error("`{0}` must be finite")]
     NotFinite(&'static str),
     /// A parameter lies outside its documented range `[min, max]`.
-    #[error("`{name}` = {value} is outside [{min}, {max}]")]
+    #[error("`{name}` = {} is outside [{}, {}]", Num(*.value), Num(*.min), Num(*.max))]
     OutOfRange {
         /// The parameter.
         name: &'static str,

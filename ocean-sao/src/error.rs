@@ -1,6 +1,7 @@
 //! The error type of this crate.
 
 use ocean_core::CameraError;
+use ocean_core::Num;
 
 /// Why an SAO pass could not run. Nothing is written to an output buffer when an error is
 /// returned, and no input can make a pass panic or read out of bounds.
@@ -53,7 +54,7 @@ pub enum SaoError {
         y: usize,
     },
     /// A depth value lies outside the range of the depth convention.
-    #[error("depth {value} at ({x}, {y}) is outside [{min}, {max}]")]
+    #[error("depth {} at ({x}, {y}) is outside [{}, {}]", Num(*.value), Num(*.min), Num(*.max))]
     DepthOutOfRange {
         /// Column of the first offending pixel (row-major scan).
         x: usize,
@@ -70,7 +71,7 @@ pub enum SaoError {
     #[error("`{0}` must be finite")]
     NotFinite(&'static str),
     /// A parameter lies outside its documented range `[min, max]`.
-    #[error("`{name}` = {value} is outside [{min}, {max}]")]
+    #[error("`{name}` = {} is outside [{}, {}]", Num(*.value), Num(*.min), Num(*.max))]
     OutOfRange {
         /// The parameter.
         name: &'static str,

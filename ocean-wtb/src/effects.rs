@@ -112,6 +112,18 @@ impl Default for Effects {
 /// Greatest shoaling gain: Green's law grows without bound as D → 0, the paper asks for "slightly".
 pub const MAX_SHOALING: f64 = 1.5;
 
+/// Largest capillary-noise amplitude or beach run-up, metres. Far above any sea state; the
+/// bound keeps every height finite in the `f32` outputs.
+pub const MAX_EFFECT_HEIGHT: f64 = 1e3;
+/// Largest run-up fade-out depth, metres (deeper than any ocean).
+pub const MAX_EFFECT_DEPTH: f64 = 1e4;
+/// Largest irregular-height frequency or envelope wavenumber, radians per metre (a 6 mm
+/// period): with coordinates within [`crate::grid::MAX_COORDINATE`] (1e9 m) their phases stay
+/// below 1e12 rad, where a double resolves them.
+pub const MAX_EFFECT_WAVENUMBER: f64 = 1e3;
+/// Largest irregular-height envelope speed, m/s.
+pub const MAX_EFFECT_SPEED: f64 = 1e3;
+
 /// Green's law shoaling factor (D_ref / D)^(1/4) for depth `depth` below the depth
 /// `reference` where the waves begin to feel the bottom (half a wavelength), 1 in deeper water,
 /// capped at [`MAX_SHOALING`]. `depth` ≤ 0 (land) gives 0.

@@ -1,6 +1,6 @@
 //! The error type of this crate.
 
-use ocean_core::WaveError;
+use ocean_core::{Num, WaveError};
 
 /// Why an `ocean-wtb` object could not be built or used. Nothing is modified when an error is
 /// returned.
@@ -11,7 +11,7 @@ pub enum WtbError {
     #[error("`{0}` must be finite")]
     NotFinite(&'static str),
     /// A parameter lies outside its documented range `[min, max]`.
-    #[error("`{name}` = {value} is outside [{min}, {max}]")]
+    #[error("`{name}` = {} is outside [{}, {}]", Num(*.value), Num(*.min), Num(*.max))]
     OutOfRange {
         /// The parameter.
         name: &'static str,
@@ -35,7 +35,7 @@ pub enum WtbError {
     },
     /// The water grid's spacing differs along x and z (a box's internal frame has the grid's
     /// spacing along both of its axes, paper §2).
-    #[error("water grid spacing must be square, got {x} along x and {z} along z")]
+    #[error("water grid spacing must be square, got {} along x and {} along z", Num(*.x), Num(*.z))]
     NonSquareSpacing {
         /// Spacing along x (m).
         x: f64,
@@ -60,7 +60,7 @@ pub enum WtbError {
         index: usize,
     },
     /// A box frame was traversed over a water grid of another spacing.
-    #[error("box frame spacing {frame} m differs from the water grid spacing {grid} m")]
+    #[error("box frame spacing {} m differs from the water grid spacing {} m", Num(*.frame), Num(*.grid))]
     SpacingMismatch {
         /// The frame's spacing (m).
         frame: f64,
@@ -69,7 +69,7 @@ pub enum WtbError {
     },
     /// The summed steepness Σ kᵢAᵢ of a box's wave trains exceeds the limit, so the surface could
     /// fold over itself.
-    #[error("summed steepness of the wave trains is {total}, above the limit {max}")]
+    #[error("summed steepness of the wave trains is {}, above the limit {}", Num(*.total), Num(*.max))]
     TooSteep {
         /// Σ kᵢAᵢ.
         total: f64,

@@ -32,11 +32,14 @@ use ocean_core::layers::{GridRect, Layer, evaluate_layers};
 use ocean_core::{Modulation, TimedWaves, Wave, WaveDesc, WaveSet};
 
 use crate::budget::{BoxLoad, Budget, CostModel, Selection, select, train_order};
-use crate::effects::{self, Effects, Refraction};
+use crate::effects::{
+    self, Effects, MAX_EFFECT_DEPTH, MAX_EFFECT_HEIGHT, MAX_EFFECT_SPEED, MAX_EFFECT_WAVENUMBER,
+    Refraction,
+};
 use crate::error::WtbError;
 use crate::filter::TrainFilter;
 use crate::frame::BoxFrame;
-use crate::grid::{WaterGrid, ceil_i64, floor_i64};
+use crate::grid::{WaterGrid, ceil_i64, check_range, floor_i64};
 use crate::march::{self, MarchBox, Plan, PlannedBox};
 use crate::shore;
 use crate::terrain::Terrain;
@@ -620,27 +623,32 @@ fn finite_at_least(name: &'static str, v: f64, min: f64) -> Result<(), WtbError>
 
 fn check_effects(e: &Effects) -> Result<(), WtbError> {
     if let Some(n) = e.noise {
-        finite_at_least("noise amplitude", n.amplitude, 0.0)?;
+        check_range("noise amplitude", n.amplitude, 0.0, MAX_EFFECT_HEIGHT)?;
     }
     if let Some(p) = e.irregular {
-        finite_at_least("irregular scale", p.scale, 0.0)?;
-        if p.scale > 1.0 {
-            return Err(WtbError::OutOfRange {
-                name: "irregular scale",
-                value: p.scale,
-                min: 0.0,
-                max: 1.0,
-            });
-        }
-        finite_at_least("irregular frequency", p.frequency, 0.0)?;
-        finite_at_least("irregular envelope wavenumber", p.envelope_wavenumber, 0.0)?;
-        if !p.envelope_speed.is_finite() {
-            return Err(WtbError::NotFinite("irregular envelope speed"));
-        }
+        check_range("irregular scale", p.scale, 0.0, 1.0)?;
+        check_range(
+            "irregular frequency",
+            p.frequency,
+            0.0,
+            MAX_EFFECT_WAVENUMBER,
+        )?;
+        check_range(
+            "irregular envelope wavenumber",
+            p.envelope_wavenumber,
+            0.0,
+            MAX_EFFECT_WAVENUMBER,
+        )?;
+        check_range(
+            "irregular envelope speed",
+            p.envelope_speed,
+            -MAX_EFFECT_SPEED,
+            MAX_EFFECT_SPEED,
+        )?;
     }
     if let Some(b) = e.beach {
-        finite_at_least("beach run-up", b.run_up, 0.0)?;
-        finite_at_least("beach run-up depth", b.run_up_depth, 0.0)?;
+        check_range("beach run-up", b.run_up, 0.0, MAX_EFFECT_HEIGHT)?;
+        check_range("beach run-up depth", b.run_up_depth, 0.0, MAX_EFFECT_DEPTH)?;
         if !(b.max_depth_share > 0.0 && b.max_depth_share <= 1.0) {
             return Err(WtbError::OutOfRange {
                 name: "beach max depth share",

@@ -59,6 +59,10 @@ pub const MAX_TRAINS: u32 = 8;
 pub const MAX_EXPLICIT_TRAINS: usize = 64;
 /// Largest wind speed accepted, m/s (above the strongest gusts measured; H = 214 m there).
 pub const MAX_WIND_SPEED: f64 = 100.0;
+/// Smallest wind speed accepted, m/s: its peak wavelength λ_p = 2π h² / (0.877² g) is 8.3 mm,
+/// at the capillary limit where gravity waves end. Slower winds would give trains so short
+/// that their wavenumbers overflow (at 5e-324 m/s, λ_p underflows to 0).
+pub const MIN_WIND_SPEED: f64 = 0.1;
 /// Largest fetch or width of a wind, metres.
 pub const MAX_EXTENT: f64 = 1e7;
 /// The PCG32 stream of the wind → trains mapping.
@@ -150,7 +154,7 @@ impl Wind {
     /// [`WtbError::NotFinite`], [`WtbError::OutOfRange`] (speed, width, fetch, durations, trains),
     /// [`WtbError::ZeroDirection`].
     pub fn validate(&self) -> Result<(), WtbError> {
-        positive("speed", self.speed, MAX_WIND_SPEED)?;
+        check_range("speed", self.speed, MIN_WIND_SPEED, MAX_WIND_SPEED)?;
         unit_direction("direction", self.direction)?;
         check_position("origin", self.origin)?;
         positive("width", self.width, MAX_EXTENT)?;

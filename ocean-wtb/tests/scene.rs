@@ -580,3 +580,64 @@ fn incremental_evaluation_equals_full_evaluation_frame_after_frame() {
         }
     }
 }
+
+#[test]
+fn effects_that_would_make_heights_non_finite_are_refused() {
+    use ocean_wtb::effects::{
+        Beach, Irregular, MAX_EFFECT_HEIGHT, MAX_EFFECT_SPEED, MAX_EFFECT_WAVENUMBER, Noise,
+    };
+    let (grid, terrain) = sloping();
+    let mut s = Scene::new(grid, terrain).unwrap();
+    let noise = |amplitude| Effects {
+        noise: Some(Noise { amplitude, seed: 1 }),
+        ..Effects::default()
+    };
+    let irregular = |frequency, envelope_speed| Effects {
+        irregular: Some(Irregular {
+            scale: 0.5,
+            frequency,
+            envelope_wavenumber: 0.1,
+            envelope_speed,
+        }),
+        ..Effects::default()
+    };
+    let beach = |run_up| Effects {
+        beach: Some(Beach {
+            max_depth_share: 0.5,
+            run_up,
+            run_up_depth: 2.0,
+        }),
+        ..Effects::default()
+    };
+    // A noise of 1e300 m once gave NaN heights behind success.
+    for bad in [
+        noise(1e300),
+        noise(MAX_EFFECT_HEIGHT * 1.0001),
+        irregular(1e300, 1.0),
+        irregular(MAX_EFFECT_WAVENUMBER * 2.0, 1.0),
+        irregular(1.0, -MAX_EFFECT_SPEED * 2.0),
+        beach(1e300),
+    ] {
+        let e = s.set_effects(bad).unwrap_err();
+        assert!(e.to_string().contains("is outside"), "{e}");
+    }
+    for good in [
+        noise(MAX_EFFECT_HEIGHT),
+        irregular(MAX_EFFECT_WAVENUMBER, MAX_EFFECT_SPEED),
+        beach(MAX_EFFECT_HEIGHT),
+    ] {
+        s.set_effects(good).unwrap();
+        s.add_box(spec(wind(
+            10.0,
+            DVec2::X,
+            DVec2::new(5.0, 5.0),
+            40.0,
+            60.0,
+            2,
+            3,
+        )))
+        .unwrap();
+        let (p, n) = evaluate(&mut s, 3.0);
+        assert!(p.iter().chain(&n).all(|v| v.is_finite()), "{good:?}");
+    }
+}

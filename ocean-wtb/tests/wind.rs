@@ -393,3 +393,37 @@ fn trains_snapshot() {
     }
     insta::assert_snapshot!(out);
 }
+
+#[test]
+fn winds_too_weak_to_raise_gravity_waves_are_refused() {
+    // The slowest wind accepted, 0.1 m/s, peaks at λ_p = 2π·0.1²/(0.877²·9.81) = 8.33 mm,
+    // the capillary limit; 5e-324 m/s would give λ_p = 0 and infinite wavenumbers.
+    use ocean_wtb::wind::MIN_WIND_SPEED;
+    assert!((peak_wavelength(MIN_WIND_SPEED) - 0.008_327_443_106_384).abs() < 1e-12);
+    for speed in [5e-324, 1e-3, MIN_WIND_SPEED * (1.0 - 1e-15)] {
+        let w = Wind { speed, ..wind() };
+        let e = w.validate().unwrap_err();
+        assert!(
+            matches!(e, WtbError::OutOfRange { name: "speed", .. }),
+            "{e}"
+        );
+    }
+    // The message prints 5e-324 as such, not as 324 digits.
+    let e = Wind {
+        speed: 5e-324,
+        ..wind()
+    }
+    .validate()
+    .unwrap_err();
+    assert_eq!(e.to_string(), "`speed` = 5e-324 is outside [0.1, 100]");
+    let w = Wind {
+        speed: MIN_WIND_SPEED,
+        ..wind()
+    };
+    w.validate().unwrap();
+    // Its trains are finite and built.
+    for train in w.trains().unwrap() {
+        let built = train.build().unwrap();
+        assert!(built.wavenumber().is_finite() && built.angular_frequency().is_finite());
+    }
+}
