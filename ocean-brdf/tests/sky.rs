@@ -348,7 +348,11 @@ fn sun_size_is_a_parameter() {
 fn radiometric_inputs_whose_derived_radiances_overflow_are_refused() {
     // DBL_MAX W/m² of Sun once gave an infinite Sun radiance (E / 6.8e-5 sr) behind success.
     use ocean_brdf::MAX_RADIOMETRIC;
-    for (sun, zenith) in [(f64::MAX, 1.0), (1.0, f64::MAX), (MAX_RADIOMETRIC * 1.01, 1.0)] {
+    for (sun, zenith) in [
+        (f64::MAX, 1.0),
+        (1.0, f64::MAX),
+        (MAX_RADIOMETRIC * 1.01, 1.0),
+    ] {
         let sky = SkyParams {
             sun_irradiance: DVec3::splat(sun),
             zenith_radiance: DVec3::splat(zenith),
@@ -364,5 +368,8 @@ fn radiometric_inputs_whose_derived_radiances_overflow_are_refused() {
     };
     let l = Lighting::new(sky, SeaParams::default()).unwrap();
     let radiance = l.sky().sun_radiance();
-    assert!(radiance.is_finite() && radiance.max_element() < f64::from(f32::MAX), "{radiance}");
+    assert!(
+        radiance.is_finite() && radiance.max_element() < f64::from(f32::MAX),
+        "{radiance}"
+    );
 }
