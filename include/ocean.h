@@ -3088,13 +3088,15 @@ OceanStatus ocean_ocean_draw_params_default(struct OceanOceanDrawParams *out);
  * `OCEAN_STATUS_INVALID_ARGUMENT` for a parameter, camera or mesh outside its documented
  * ranges (the message names it) or a camera not above the sea, `OCEAN_STATUS_BUFFER_TOO_SMALL`
  * if `len` is below `OCEAN_OCEAN_UNIFORMS_SIZE`, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len`
- * exceeds `PTRDIFF_MAX`. Nothing is written on failure.
+ * exceeds `PTRDIFF_MAX`. `out`, `len` and `needed` follow the size query of
+ * `ocean_gpu_context_describe`: `*needed` receives the block's size, on success and with
+ * `OCEAN_STATUS_BUFFER_TOO_SMALL` (the one output written on a failure); `out` NULL and `len`
+ * 0 only ask for it.
  *
  * # Safety
  *
- * `camera`, `params` and `mesh` (unless NULL) must be readable, `spectrum` and `lighting` live
- * handles, and `out` point to `len` writable bytes that no other thread touches during the
- * call.
+ * `camera`, `params` and `mesh` (unless NULL) must be readable, `out` NULL or point to `len`
+ * writable bytes that no other thread touches during the call, and `needed` writable.
  */
 OceanStatus ocean_ocean_uniforms(const struct OceanCameraDesc *camera,
                                  const struct OceanSpectrum *spectrum,
@@ -3105,7 +3107,8 @@ OceanStatus ocean_ocean_uniforms(const struct OceanCameraDesc *camera,
                                  uint32_t width,
                                  uint32_t height,
                                  uint8_t *out,
-                                 size_t len);
+                                 size_t len,
+                                 size_t *needed);
 
 /**
  * Writes the wave texture of the exported `ocean` shader (binding 1) for one frame seen by
@@ -3555,13 +3558,15 @@ OceanStatus ocean_relief_scene_default(struct OceanReliefScene *out);
  * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite member, `OCEAN_STATUS_INVALID_ARGUMENT` for
  * a camera, scene, method, size or edge the description above refuses (the message names
  * it), `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_RELIEF_UNIFORMS_SIZE`,
- * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing is written on
- * failure.
+ * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. `out`, `len` and `needed`
+ * follow the size query of `ocean_gpu_context_describe`: `*needed` receives the block's size,
+ * on success and with `OCEAN_STATUS_BUFFER_TOO_SMALL` (the one output written on a failure);
+ * `out` NULL and `len` 0 only ask for it.
  *
  * # Safety
  *
- * `camera` and `scene` must be readable, `out` point to `len` writable bytes that no other
- * thread touches during the call.
+ * `camera` and `scene` must be readable, `out` NULL or point to `len` writable bytes that no
+ * other thread touches during the call, and `needed` writable.
  */
 OceanStatus ocean_relief_uniforms(const struct OceanCameraDesc *camera,
                                   const struct OceanReliefScene *scene,
@@ -3570,7 +3575,8 @@ OceanStatus ocean_relief_uniforms(const struct OceanCameraDesc *camera,
                                   uint32_t levels,
                                   uint8_t srgb_encode,
                                   uint8_t *out,
-                                  size_t len);
+                                  size_t len,
+                                  size_t *needed);
 
 /**
  * Makes the next mip level of `map`: side N / 2, each depth the mean ((a + b) + (c + d)) / 4
@@ -4072,19 +4078,23 @@ OceanStatus ocean_sao_gpu_run(const struct OceanSaoGpu *sao_gpu,
  * 4. `sao_blur` `blur_horizontal`, then `blur_vertical`: packed to packed, the last one also
  *    writing A (`r32f`, output size), with a memory barrier between the dispatches.
  *
+ * `out`, `len` and `needed` follow the size query of `ocean_gpu_context_describe`: `*needed`
+ * receives `OCEAN_SAO_UNIFORMS_SIZE`; `out` NULL and `len` 0 only ask for it (and `*levels`).
+ *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
- * `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_SAO_UNIFORMS_SIZE`,
- * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing is written on
- * failure.
+ * `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_SAO_UNIFORMS_SIZE` (with `*needed`
+ * written), `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing else is
+ * written on failure.
  *
  * # Safety
  *
- * `out` point to `len` writable bytes and `levels` to a writable
- * `uint32_t`, none touched by another thread during the call.
+ * `out` must be NULL or point to `len` writable bytes, and `needed` and `levels` to writable
+ * values, none touched by another thread during the call.
  */
 OceanStatus ocean_sao_uniforms(const struct OceanSao *sao,
                                uint8_t *out,
                                size_t len,
+                               size_t *needed,
                                uint32_t *levels);
 
 /**

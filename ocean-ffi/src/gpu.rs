@@ -17,7 +17,7 @@ use ocean_gpu::{GpuContext, GpuError, OceanOptions, OceanRenderer as GpuRenderer
 
 use crate::boundary::{
     borrow, byte_len, check_finite, check_ptr, check_time, destroy, read_in, write_handle,
-    write_out,
+    write_out, write_sized,
 };
 use crate::lighting::{OceanLighting, brdf_error};
 
@@ -212,34 +212,18 @@ pub unsafe extern "C" fn ocean_gpu_context_describe(
 ) -> OceanStatus {
     guard("ocean_gpu_context_describe", || {
         let c = borrow(ctx, "ctx")?;
-        check_ptr(needed.cast_const(), "needed")?;
         let text = c.description.as_bytes_with_nul();
-        let n = text.len();
-        if buf.is_null() {
-            if len != 0 {
-                return Err(Error::new(
-                    OceanStatus::NullPointer,
-                    format!("`buf` is NULL but `len` is {len} (pass NULL and 0 to query the size)"),
-                ));
-            }
-            // SAFETY: forwarded from this function's contract.
-            return unsafe { write_out(needed, "needed", n) };
-        }
-        byte_len::<u8>(len, "buf")?;
-        if len < n {
-            // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
-            unsafe { needed.write(n) };
-            return Err(Error::new(
-                OceanStatus::BufferTooSmall,
-                format!("`len` is {len} bytes, the description needs {n} (with its NUL)"),
-            ));
-        }
-        // SAFETY: non-NULL (checked), `n` <= `len` bytes whose size fits in isize (checked),
-        // writable and untouched by others (caller's guarantee); `c_char` has alignment 1.
-        let out = unsafe { core::slice::from_raw_parts_mut(buf.cast::<u8>(), n) };
-        out.copy_from_slice(text);
         // SAFETY: forwarded from this function's contract.
-        unsafe { write_out(needed, "needed", n) }
+        unsafe {
+            write_sized(
+                buf.cast(),
+                "buf",
+                len,
+                needed,
+                text,
+                "the description (with its NUL)",
+            )
+        }
     })
 }
 

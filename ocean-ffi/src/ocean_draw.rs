@@ -12,7 +12,9 @@
 use ocean_brdf::{Filter, FilteredSurface};
 use ocean_gpu::{MeshGrid, OceanOptions, WaveTexels};
 
-use crate::boundary::{borrow, byte_len, check_finite, check_ptr, check_time, read_in, write_out};
+use crate::boundary::{
+    borrow, byte_len, check_finite, check_ptr, check_time, read_in, write_out, write_sized,
+};
 use crate::gpu::gpu_error;
 use crate::lighting::{OceanLighting, brdf_error};
 use crate::lighting_spectrum::{
@@ -184,13 +186,15 @@ fn params_from(p: &OceanOceanDrawParams) -> Result<(OceanOptions, Filter), Error
 /// `OCEAN_STATUS_INVALID_ARGUMENT` for a parameter, camera or mesh outside its documented
 /// ranges (the message names it) or a camera not above the sea, `OCEAN_STATUS_BUFFER_TOO_SMALL`
 /// if `len` is below `OCEAN_OCEAN_UNIFORMS_SIZE`, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len`
-/// exceeds `PTRDIFF_MAX`. Nothing is written on failure.
+/// exceeds `PTRDIFF_MAX`. `out`, `len` and `needed` follow the size query of
+/// `ocean_gpu_context_describe`: `*needed` receives the block's size, on success and with
+/// `OCEAN_STATUS_BUFFER_TOO_SMALL` (the one output written on a failure); `out` NULL and `len`
+/// 0 only ask for it.
 ///
 /// # Safety
 ///
-/// `camera`, `params` and `mesh` (unless NULL) must be readable, `spectrum` and `lighting` live
-/// handles, and `out` point to `len` writable bytes that no other thread touches during the
-/// call.
+/// `camera`, `params` and `mesh` (unless NULL) must be readable, `out` NULL or point to `len`
+/// writable bytes that no other thread touches during the call, and `needed` writable.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn ocean_ocean_uniforms(
@@ -204,6 +208,7 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
     height: u32,
     out: *mut u8,
     len: usize,
+    needed: *mut usize,
 ) -> OceanStatus {
     guard("ocean_ocean_uniforms", || {
         // SAFETY: forwarded from this function's contract.
@@ -232,16 +237,7 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
                 format!("the viewport is {width} x {height} pixels: both sizes must be >= 1"),
             ));
         }
-        check_ptr(out.cast_const(), "out")?;
-        byte_len::<u8>(len, "out")?;
-        if len < OCEAN_OCEAN_UNIFORMS_SIZE {
-            return Err(Error::new(
-                OceanStatus::BufferTooSmall,
-                format!(
-                    "`len` is {len} bytes, the uniform block needs {OCEAN_OCEAN_UNIFORMS_SIZE}"
-                ),
-            ));
-        }
+        check_ptr(needed.cast_const(), "needed")?;
         let surface = FilteredSurface::new(&s.spectrum, filter).map_err(|e| brdf_error("", e))?;
         let u = ocean_gpu::frame_uniform(
             &options,
@@ -253,10 +249,17 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
             mesh.as_ref(),
         )
         .map_err(|e| gpu_error("", e))?;
-        let bytes = bytemuck::bytes_of(&u);
-        // SAFETY: non-NULL (checked), `len` >= the block's size, writable and untouched by
-        // others (caller's guarantee); `u8` has alignment 1.
-        unsafe { core::slice::from_raw_parts_mut(out, bytes.len()) }.copy_from_slice(bytes);
+        // SAFETY: forwarded from this function's contract.
+        unsafe {
+            write_sized(
+                out,
+                "out",
+                len,
+                needed,
+                bytemuck::bytes_of(&u),
+                "the uniform block",
+            )
+        }?;
         Ok(())
     })
 }
@@ -462,6 +465,7 @@ mod tests {
                 64,
                 out.as_mut_ptr(),
                 out.len(),
+                &mut 0usize,
             )
         };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
@@ -518,6 +522,7 @@ mod tests {
                 64,
                 no_mesh.as_mut_ptr(),
                 no_mesh.len(),
+                &mut 0usize,
             )
         };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
@@ -601,6 +606,7 @@ mod tests {
                     size.1,
                     out.as_mut_ptr(),
                     len,
+                    &mut 0usize,
                 )
             };
             assert!(out.iter().all(|&b| b == 7), "written on failure");
@@ -708,19 +714,67 @@ mod tests {
         unsafe {
             let o = out.as_mut_ptr();
             assert_eq!(
-                ocean_ocean_uniforms(null(), spectrum, lighting, &good, &m, 0.0, 8, 8, o, 352),
+                ocean_ocean_uniforms(
+                    null(),
+                    spectrum,
+                    lighting,
+                    &good,
+                    &m,
+                    0.0,
+                    8,
+                    8,
+                    o,
+                    352,
+                    &mut 0usize
+                ),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_ocean_uniforms(&desc, null(), lighting, &good, &m, 0.0, 8, 8, o, 352),
+                ocean_ocean_uniforms(
+                    &desc,
+                    null(),
+                    lighting,
+                    &good,
+                    &m,
+                    0.0,
+                    8,
+                    8,
+                    o,
+                    352,
+                    &mut 0usize
+                ),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_ocean_uniforms(&desc, spectrum, null(), &good, &m, 0.0, 8, 8, o, 352),
+                ocean_ocean_uniforms(
+                    &desc,
+                    spectrum,
+                    null(),
+                    &good,
+                    &m,
+                    0.0,
+                    8,
+                    8,
+                    o,
+                    352,
+                    &mut 0usize
+                ),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_ocean_uniforms(&desc, spectrum, lighting, null(), &m, 0.0, 8, 8, o, 352),
+                ocean_ocean_uniforms(
+                    &desc,
+                    spectrum,
+                    lighting,
+                    null(),
+                    &m,
+                    0.0,
+                    8,
+                    8,
+                    o,
+                    352,
+                    &mut 0usize
+                ),
                 OceanStatus::NullPointer
             );
             assert_eq!(
@@ -734,7 +788,8 @@ mod tests {
                     8,
                     8,
                     null_mut(),
-                    352
+                    352,
+                    &mut 0usize
                 ),
                 OceanStatus::NullPointer
             );

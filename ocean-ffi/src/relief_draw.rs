@@ -11,7 +11,7 @@ use ocean_gpu::ReliefScene;
 use ocean_relief::Method;
 use ocean_relief::gpu_params::ReliefUniforms;
 
-use crate::boundary::{byte_len, check_finite, check_ptr, read_in, write_out};
+use crate::boundary::{check_finite, check_ptr, read_in, write_out, write_sized};
 use crate::gpu::gpu_error;
 use crate::lighting::{OceanIrradiance, finite_dvec3};
 use crate::lighting_spectrum::{OceanCameraDesc, camera_from};
@@ -226,13 +226,15 @@ pub unsafe extern "C" fn ocean_relief_scene_default(out: *mut OceanReliefScene) 
 /// `OCEAN_STATUS_NON_FINITE` for a NaN or infinite member, `OCEAN_STATUS_INVALID_ARGUMENT` for
 /// a camera, scene, method, size or edge the description above refuses (the message names
 /// it), `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_RELIEF_UNIFORMS_SIZE`,
-/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing is written on
-/// failure.
+/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. `out`, `len` and `needed`
+/// follow the size query of `ocean_gpu_context_describe`: `*needed` receives the block's size,
+/// on success and with `OCEAN_STATUS_BUFFER_TOO_SMALL` (the one output written on a failure);
+/// `out` NULL and `len` 0 only ask for it.
 ///
 /// # Safety
 ///
-/// `camera` and `scene` must be readable, `out` point to `len` writable bytes that no other
-/// thread touches during the call.
+/// `camera` and `scene` must be readable, `out` NULL or point to `len` writable bytes that no
+/// other thread touches during the call, and `needed` writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_uniforms(
     camera: *const OceanCameraDesc,
@@ -243,6 +245,7 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
     srgb_encode: u8,
     out: *mut u8,
     len: usize,
+    needed: *mut usize,
 ) -> OceanStatus {
     guard("ocean_relief_uniforms", || {
         // SAFETY: forwarded from this function's contract.
@@ -260,16 +263,7 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
                 ));
             }
         };
-        check_ptr(out.cast_const(), "out")?;
-        byte_len::<u8>(len, "out")?;
-        if len < OCEAN_RELIEF_UNIFORMS_SIZE {
-            return Err(Error::new(
-                OceanStatus::BufferTooSmall,
-                format!(
-                    "`len` is {len} bytes, the uniform block needs {OCEAN_RELIEF_UNIFORMS_SIZE}"
-                ),
-            ));
-        }
+        check_ptr(needed.cast_const(), "needed")?;
         let u = ocean_gpu::scene_uniforms(
             &camera,
             &scene,
@@ -279,10 +273,17 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
             srgb_encode,
         )
         .map_err(|e| gpu_error("", e))?;
-        let bytes = bytemuck::bytes_of(&u);
-        // SAFETY: non-NULL (checked), `len` >= the block's size, writable and untouched by
-        // others (caller's guarantee); `u8` has alignment 1.
-        unsafe { core::slice::from_raw_parts_mut(out, bytes.len()) }.copy_from_slice(bytes);
+        // SAFETY: forwarded from this function's contract.
+        unsafe {
+            write_sized(
+                out,
+                "out",
+                len,
+                needed,
+                bytemuck::bytes_of(&u),
+                "the uniform block",
+            )
+        }?;
         Ok(())
     })
 }
@@ -380,6 +381,7 @@ mod tests {
                 1,
                 out.as_mut_ptr(),
                 out.len(),
+                &mut 0usize,
             )
         };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
@@ -435,7 +437,17 @@ mod tests {
                 let mut out = [7u8; 500];
                 // SAFETY: readable inputs, `out` holds at least `len` writable bytes.
                 let status = unsafe {
-                    ocean_relief_uniforms(desc, s, size, edge, levels, srgb, out.as_mut_ptr(), len)
+                    ocean_relief_uniforms(
+                        desc,
+                        s,
+                        size,
+                        edge,
+                        levels,
+                        srgb,
+                        out.as_mut_ptr(),
+                        len,
+                        &mut 0usize,
+                    )
                 };
                 assert!(out.iter().all(|&b| b == 7), "written on failure");
                 (status, last_error())
@@ -573,15 +585,35 @@ mod tests {
         // SAFETY: NULL pointers are refused before anything is read or written.
         unsafe {
             assert_eq!(
-                ocean_relief_uniforms(null(), &good, 64, 0, 1, 0, out.as_mut_ptr(), 448),
+                ocean_relief_uniforms(
+                    null(),
+                    &good,
+                    64,
+                    0,
+                    1,
+                    0,
+                    out.as_mut_ptr(),
+                    448,
+                    &mut 0usize
+                ),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_relief_uniforms(&desc, null(), 64, 0, 1, 0, out.as_mut_ptr(), 448),
+                ocean_relief_uniforms(
+                    &desc,
+                    null(),
+                    64,
+                    0,
+                    1,
+                    0,
+                    out.as_mut_ptr(),
+                    448,
+                    &mut 0usize
+                ),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_relief_uniforms(&desc, &good, 64, 0, 1, 0, null_mut(), 448),
+                ocean_relief_uniforms(&desc, &good, 64, 0, 1, 0, null_mut(), 448, &mut 0usize),
                 OceanStatus::NullPointer
             );
         }

@@ -159,38 +159,42 @@ const _: () = assert!(size_of::<SaoUniforms>() == OCEAN_SAO_UNIFORMS_SIZE);
 /// 4. `sao_blur` `blur_horizontal`, then `blur_vertical`: packed to packed, the last one also
 ///    writing A (`r32f`, output size), with a memory barrier between the dispatches.
 ///
+/// `out`, `len` and `needed` follow the size query of `ocean_gpu_context_describe`: `*needed`
+/// receives `OCEAN_SAO_UNIFORMS_SIZE`; `out` NULL and `len` 0 only ask for it (and `*levels`).
+///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
-/// `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_SAO_UNIFORMS_SIZE`,
-/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing is written on
-/// failure.
+/// `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_SAO_UNIFORMS_SIZE` (with `*needed`
+/// written), `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing else is
+/// written on failure.
 ///
 /// # Safety
 ///
-/// `out` point to `len` writable bytes and `levels` to a writable
-/// `uint32_t`, none touched by another thread during the call.
+/// `out` must be NULL or point to `len` writable bytes, and `needed` and `levels` to writable
+/// values, none touched by another thread during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_sao_uniforms(
     sao: *const OceanSao,
     out: *mut u8,
     len: usize,
+    needed: *mut usize,
     levels: *mut u32,
 ) -> OceanStatus {
     guard("ocean_sao_uniforms", || {
         let s = borrow(sao, "sao")?;
-        crate::boundary::check_ptr(out.cast_const(), "out")?;
+        crate::boundary::check_ptr(needed.cast_const(), "needed")?;
         crate::boundary::check_ptr(levels.cast_const(), "levels")?;
-        crate::boundary::byte_len::<u8>(len, "out")?;
-        if len < OCEAN_SAO_UNIFORMS_SIZE {
-            return Err(Error::new(
-                OceanStatus::BufferTooSmall,
-                format!("`len` is {len} bytes, the uniform block needs {OCEAN_SAO_UNIFORMS_SIZE}"),
-            ));
-        }
         let u = SaoUniforms::new(s.sao());
-        let bytes = bytemuck::bytes_of(&u);
-        // SAFETY: non-NULL (checked), `len` >= the block's size, writable and untouched by
-        // others (caller's guarantee); `u8` has alignment 1.
-        unsafe { core::slice::from_raw_parts_mut(out, bytes.len()) }.copy_from_slice(bytes);
+        // SAFETY: forwarded from this function's contract.
+        unsafe {
+            crate::boundary::write_sized(
+                out,
+                "out",
+                len,
+                needed,
+                bytemuck::bytes_of(&u),
+                "the uniform block",
+            )
+        }?;
         // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
         unsafe { levels.write(u.levels()) };
         Ok(())
@@ -314,19 +318,42 @@ mod tests {
         let mut block = vec![0u8; OCEAN_SAO_UNIFORMS_SIZE + 4];
         let mut levels = 0u32;
         // SAFETY: live handle, writable buffers.
-        let status =
-            unsafe { ocean_sao_uniforms(sao, block.as_mut_ptr(), block.len(), &mut levels) };
+        let status = unsafe {
+            ocean_sao_uniforms(
+                sao,
+                block.as_mut_ptr(),
+                block.len(),
+                &mut 0usize,
+                &mut levels,
+            )
+        };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
         let want = SaoUniforms::new(crate::boundary::borrow(sao, "sao").unwrap().sao());
         assert_eq!(&block[..OCEAN_SAO_UNIFORMS_SIZE], bytemuck::bytes_of(&want));
         assert_eq!(levels, want.levels());
         assert!((1..=14).contains(&levels));
         let mut small = [7u8; 16];
+        let mut needed = 0usize;
         // SAFETY: live handle, writable buffers.
-        let status =
-            unsafe { ocean_sao_uniforms(sao, small.as_mut_ptr(), small.len(), &mut levels) };
+        let status = unsafe {
+            ocean_sao_uniforms(
+                sao,
+                small.as_mut_ptr(),
+                small.len(),
+                &mut needed,
+                &mut levels,
+            )
+        };
+        // Too small: the size needed is reported, the buffer untouched.
         assert_eq!(status, OceanStatus::BufferTooSmall);
+        assert_eq!(needed, OCEAN_SAO_UNIFORMS_SIZE);
         assert_eq!(small, [7u8; 16]);
+        // A pure query: NULL and 0 give the size.
+        needed = 0;
+        // SAFETY: live handle, writable outputs.
+        let status = unsafe { ocean_sao_uniforms(sao, null_mut(), 0, &mut needed, &mut levels) };
+        assert_eq!(status, OceanStatus::Ok, "{}", last_error());
+        assert_eq!(needed, OCEAN_SAO_UNIFORMS_SIZE);
 
         // Another context: refused, nothing written.
         let Some(other) = context() else { return };

@@ -75,12 +75,13 @@ impl Reach {
     }
 
     /// Refuses the first rest position `name[i]` (relative to `origin`) whose phase leaves the
-    /// limit. NaN coordinates pass: the evaluation refuses them with `OCEAN_STATUS_NON_FINITE`.
+    /// limit. NaN and infinite coordinates pass: the evaluation refuses them with
+    /// `OCEAN_STATUS_NON_FINITE`.
     pub(crate) fn check_points(&self, name: &str, points: &[Vec2]) -> Result<(), Error> {
         let most = self.max_coordinate();
-        let far = points
-            .iter()
-            .position(|p| f64::from(p.x.abs()) > most || f64::from(p.y.abs()) > most);
+        // Infinities are left to the evaluation too, which reports them as non-finite.
+        let beyond = |c: f32| c.is_finite() && f64::from(c.abs()) > most;
+        let far = points.iter().position(|p| beyond(p.x) || beyond(p.y));
         match far {
             None => Ok(()),
             Some(i) => Err(invalid(format!(

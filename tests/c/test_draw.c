@@ -38,6 +38,9 @@
 
 #include "check.h"
 
+/* The size the uniform-block functions report (OCEAN_*_UNIFORMS_SIZE). */
+static size_t needed_size;
+
 #define W 96
 #define H 64
 #define PI 3.14159265358979323846
@@ -120,7 +123,7 @@ static void test_uniforms(OceanSpectrum *spectrum, OceanLighting *lighting, size
     OK(ocean_ocean_draw_params_default(&p));
     memset(block, 0xA5, sizeof block);
     if (!OK(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, 2.0, W, H, block,
-                                 sizeof block)))
+                                 sizeof block, &needed_size)))
         return;
     CHECK(all_bytes(block + OCEAN_OCEAN_UNIFORMS_SIZE, 8, 0xA5), "wrote past the block");
     /* mesh_grid: (0 - 10, -4, -100 - (-20)), spacing 0.5; mesh_counts 64 x 32. */
@@ -147,12 +150,12 @@ static void test_uniforms(OceanSpectrum *spectrum, OceanLighting *lighting, size
           "sky (%g, %g)", f32_at(block, 256), f32_at(block, 260));
 
     /* Without a mesh: the mesh fields are zero, nothing else differs. */
-    OK(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, NULL, 2.0, W, H, plain, sizeof plain));
+    OK(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, NULL, 2.0, W, H, plain, sizeof plain, &needed_size));
     CHECK(memcmp(plain, block, 320) == 0, "the block depends on the mesh beyond its fields");
     CHECK(all_bytes(plain + 320, 32, 0), "mesh fields not zero without a mesh");
     /* Another time: the same block. */
     OK(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, 1.0e6, W, H, later,
-                            sizeof later));
+                            sizeof later, &needed_size));
     CHECK(memcmp(later, block, OCEAN_OCEAN_UNIFORMS_SIZE) == 0, "the block depends on time");
 }
 
@@ -231,44 +234,44 @@ static void test_errors(OceanSpectrum *spectrum, OceanLighting *lighting, size_t
     OK(ocean_ocean_draw_params_default(&p));
     memset(block, 0x5A, sizeof block);
     EXPECT_MSG(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, W, H, block,
-                                    len - 1),
+                                    len - 1, &needed_size),
                OCEAN_STATUS_BUFFER_TOO_SMALL, "352");
-    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, 0, H, block, len),
+    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, 0, H, block, len, &needed_size),
            OCEAN_STATUS_EMPTY);
-    EXPECT_MSG(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, NAN, W, H, block, len),
+    EXPECT_MSG(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, NAN, W, H, block, len, &needed_size),
                OCEAN_STATUS_NON_FINITE, "time");
     EXPECT_MSG(ocean_ocean_uniforms(&below, spectrum, lighting, &p, &mesh, 0.0, W, H, block,
-                                    len),
+                                    len, &needed_size),
                OCEAN_STATUS_INVALID_ARGUMENT, "above the sea");
     q = p;
     q.srgb_encode = 2;
-    EXPECT_MSG(ocean_ocean_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len),
+    EXPECT_MSG(ocean_ocean_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len, &needed_size),
                OCEAN_STATUS_INVALID_ARGUMENT, "srgb_encode");
     q = p;
     q.n_max = 0.5;
-    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len),
+    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len, &needed_size),
            OCEAN_STATUS_INVALID_ARGUMENT);
     q = p;
     q.sky_map_size = 100;
-    EXPECT_MSG(ocean_ocean_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len),
+    EXPECT_MSG(ocean_ocean_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len, &needed_size),
                OCEAN_STATUS_INVALID_ARGUMENT, "sky_map_size");
     bad_mesh.spacing = 0.0;
     EXPECT_MSG(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &bad_mesh, 0.0, W, H, block,
-                                    len),
+                                    len, &needed_size),
                OCEAN_STATUS_INVALID_ARGUMENT, "mesh");
     bad_mesh = mesh;
     bad_mesh.nz = 0;
-    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &bad_mesh, 0.0, W, H, block, len),
+    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &bad_mesh, 0.0, W, H, block, len, &needed_size),
            OCEAN_STATUS_EMPTY);
-    EXPECT(ocean_ocean_uniforms(NULL, spectrum, lighting, &p, &mesh, 0.0, W, H, block, len),
+    EXPECT(ocean_ocean_uniforms(NULL, spectrum, lighting, &p, &mesh, 0.0, W, H, block, len, &needed_size),
            OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_ocean_uniforms(&cam, NULL, lighting, &p, &mesh, 0.0, W, H, block, len),
+    EXPECT(ocean_ocean_uniforms(&cam, NULL, lighting, &p, &mesh, 0.0, W, H, block, len, &needed_size),
            OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_ocean_uniforms(&cam, spectrum, NULL, &p, &mesh, 0.0, W, H, block, len),
+    EXPECT(ocean_ocean_uniforms(&cam, spectrum, NULL, &p, &mesh, 0.0, W, H, block, len, &needed_size),
            OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, NULL, &mesh, 0.0, W, H, block, len),
+    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, NULL, &mesh, 0.0, W, H, block, len, &needed_size),
            OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, W, H, NULL, len),
+    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, W, H, NULL, len, &needed_size),
            OCEAN_STATUS_NULL_POINTER);
     CHECK(all_bytes(block, sizeof block, 0x5A), "the block was written on failure");
 

@@ -43,6 +43,9 @@
 
 #include "check.h"
 
+/* The size the uniform-block functions report (OCEAN_*_UNIFORMS_SIZE). */
+static size_t needed_size;
+
 #define FLAT 16
 #define FLAT_TEXELS (FLAT * FLAT)
 #define BOX 64
@@ -769,7 +772,7 @@ static void test_uniforms(void)
     /* A sky: its coefficients reach the block as E / pi, a Lambertian surface's radiance. */
     scene.sky.k[2].g = 3.0;
     if (!OK(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 8, 1, block,
-                                  sizeof block)))
+                                  sizeof block, &needed_size)))
         return;
     {
         float row[4];
@@ -808,25 +811,25 @@ static void test_uniforms(void)
         OceanReliefScene zeroed = scene;
         memset(zeroed.corners, 0, sizeof zeroed.corners);
         EXPECT(ocean_relief_uniforms(&camera, &zeroed, 256, OCEAN_RELIEF_EDGE_WRAP, 8, 1, block,
-                                     sizeof block),
+                                     sizeof block, &needed_size),
                OCEAN_STATUS_INVALID_ARGUMENT);
     }
     EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 9, 1, block,
-                                 sizeof block),
+                                 sizeof block, &needed_size),
            OCEAN_STATUS_INVALID_ARGUMENT);
 
     memset(small, 0x5A, sizeof small);
     EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, 1, small,
-                                 sizeof small),
+                                 sizeof small, &needed_size),
            OCEAN_STATUS_BUFFER_TOO_SMALL);
     scene.sky.k[8].b = NAN;
     EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, 1, block,
-                                 sizeof block),
+                                 sizeof block, &needed_size),
            OCEAN_STATUS_NON_FINITE);
     scene.sky.k[8].b = 0.0;
     scene.tiles_u = 0.0;
     EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, 1, small,
-                                 sizeof block),
+                                 sizeof block, &needed_size),
            OCEAN_STATUS_INVALID_ARGUMENT);
     for (i = 0; i < sizeof small; i++)
         if (small[i] != 0x5A)

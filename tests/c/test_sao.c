@@ -31,6 +31,9 @@
 
 #include "check.h"
 
+/* The size the uniform-block functions report (OCEAN_*_UNIFORMS_SIZE). */
+static size_t needed_size;
+
 static const double PI = 3.14159265358979323846;
 
 #define W 160
@@ -553,7 +556,7 @@ static void check_uniforms(const OceanSao *sao)
     size_t i;
 
     CHECK(OCEAN_SAO_UNIFORMS_SIZE == 304, "uniform block of %d bytes", OCEAN_SAO_UNIFORMS_SIZE);
-    if (!OK(ocean_sao_uniforms(sao, block, sizeof block, &levels)) ||
+    if (!OK(ocean_sao_uniforms(sao, block, sizeof block, &needed_size, &levels)) ||
         !OK(ocean_sao_describe(sao, &info)))
         return;
     memcpy(z, block, sizeof z);
@@ -567,9 +570,18 @@ static void check_uniforms(const OceanSao *sao)
     CHECK(sizes[4] == GUARD, "guard %u", sizes[4]);
     CHECK(levels >= 1 && levels <= 7, "%u z levels", levels);
     memset(small, 7, sizeof small);
-    EXPECT(ocean_sao_uniforms(sao, small, sizeof small, &kept), OCEAN_STATUS_BUFFER_TOO_SMALL);
-    CHECK(small[0] == 7 && small[15] == 7 && kept == 99, "nothing written on failure");
-    EXPECT(ocean_sao_uniforms(sao, NULL, 0, &kept), OCEAN_STATUS_NULL_POINTER);
+    needed_size = 0;
+    EXPECT(ocean_sao_uniforms(sao, small, sizeof small, &needed_size, &kept),
+           OCEAN_STATUS_BUFFER_TOO_SMALL);
+    CHECK(small[0] == 7 && small[15] == 7 && kept == 99, "nothing but the size written");
+    CHECK(needed_size == OCEAN_SAO_UNIFORMS_SIZE, "needed %zu", needed_size);
+    /* NULL and 0 ask for the size; NULL with a length is an error. */
+    needed_size = 0;
+    OK(ocean_sao_uniforms(sao, NULL, 0, &needed_size, &kept));
+    CHECK(needed_size == OCEAN_SAO_UNIFORMS_SIZE, "queried %zu", needed_size);
+    EXPECT(ocean_sao_uniforms(sao, NULL, 16, &needed_size, &kept), OCEAN_STATUS_NULL_POINTER);
+    EXPECT_MSG(ocean_sao_uniforms(sao, small, sizeof small, NULL, &kept),
+               OCEAN_STATUS_NULL_POINTER, "needed");
 }
 
 /* The GPU passes on the library's headless device (ocean_sao_gpu_*): the CPU's AO within 2/255

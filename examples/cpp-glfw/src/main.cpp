@@ -499,7 +499,8 @@ int main(int argc, char **argv)
           "ocean_sao_create");
     std::vector<uint8_t> sao_block(OCEAN_SAO_UNIFORMS_SIZE);
     uint32_t z_levels = 0;
-    check(ocean_sao_uniforms(sao, sao_block.data(), sao_block.size(), &z_levels),
+    size_t block_size = 0;  // the size written, OCEAN_SAO_UNIFORMS_SIZE
+    check(ocean_sao_uniforms(sao, sao_block.data(), sao_block.size(), &block_size, &z_levels),
           "ocean_sao_uniforms");
 
     // --- Shaders. ----------------------------------------------------------------------------
@@ -666,8 +667,9 @@ int main(int argc, char **argv)
         mesh.spacing = kSpacing;
         mesh.nx = kNx;
         mesh.nz = kNz;
+        size_t written = 0;
         check(ocean_ocean_uniforms(&camera, spectrum, lighting, &draw, &mesh, time, uint32_t(W),
-                                   uint32_t(H), block.data(), block.size()),
+                                   uint32_t(H), block.data(), block.size(), &written),
               "ocean_ocean_uniforms");
         gl::BindBuffer(GL_UNIFORM_BUFFER, frame_ubo);
         gl::BufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(block.size()), block.data());

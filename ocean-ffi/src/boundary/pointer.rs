@@ -123,3 +123,55 @@ pub(crate) unsafe fn write_slice<T: Copy>(
     out.copy_from_slice(values);
     Ok(())
 }
+
+/// Copies a byte block into a caller's buffer by the size-query protocol that every function
+/// writing bytes follows (`ocean_gpu_context_describe`, the uniform blocks):
+///
+/// - `out` NULL and `len` 0: a pure query, `*needed` = the block's size, `OCEAN_STATUS_OK`;
+/// - `len` >= the size: the block is copied to `out[0..size]` and `*needed` = the size;
+/// - `len` smaller: `OCEAN_STATUS_BUFFER_TOO_SMALL`, `*needed` = the size (the one output
+///   written on a failure), `out` untouched.
+///
+/// `needed` is checked first; `out` NULL with `len` != 0 is `OCEAN_STATUS_NULL_POINTER`.
+///
+/// # Safety
+///
+/// `out` must be NULL or point to `len` writable bytes that no other thread touches during the
+/// call; `needed` must be NULL, misaligned or writable.
+pub(crate) unsafe fn write_sized(
+    out: *mut u8,
+    out_name: &str,
+    len: usize,
+    needed: *mut usize,
+    bytes: &[u8],
+    what: &str,
+) -> Result<(), Error> {
+    check_ptr(needed.cast_const(), "needed")?;
+    let n = bytes.len();
+    if out.is_null() {
+        if len != 0 {
+            return Err(Error::new(
+                OceanStatus::NullPointer,
+                format!(
+                    "`{out_name}` is NULL but `len` is {len} (pass NULL and 0 to query the size)"
+                ),
+            ));
+        }
+        // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
+        unsafe { needed.write(n) };
+        return Ok(());
+    }
+    byte_len::<u8>(len, out_name)?;
+    // SAFETY: as above.
+    unsafe { needed.write(n) };
+    if len < n {
+        return Err(Error::new(
+            OceanStatus::BufferTooSmall,
+            format!("`len` is {len} bytes, {what} needs {n}"),
+        ));
+    }
+    // SAFETY: non-NULL, `n` <= `len` bytes whose size fits in isize (checked), writable and
+    // untouched by others (caller's guarantee); `u8` has alignment 1.
+    unsafe { core::slice::from_raw_parts_mut(out, n) }.copy_from_slice(bytes);
+    Ok(())
+}
