@@ -1393,8 +1393,11 @@ typedef struct OceanReliefScene {
 /**
  * A ray into the relief (section 18.2): it enters at texture coordinates (start_u, start_v)
  * at depth 0 and moves by (dir_x, dir_y) texture widths per dir_z of depth. Only the ratios
- * matter (the tracers divide by dir_z, as the book's `ray_dir /= ray_dir.z`).
- * `ocean_relief_ray_from_view` makes one from a tangent-space view vector.
+ * matter (the tracers divide by dir_z, as the book's `ray_dir /= ray_dir.z`), and they must
+ * stay finite: a dir_z so small beside dir_x, dir_y that the run per unit depth overflows a
+ * float is refused, and so is a ray whose |start| plus run to full depth exceeds 1e30 texture
+ * widths (`ocean_relief::MAX_TEXCOORD`). `ocean_relief_ray_from_view` makes one from a
+ * tangent-space view vector.
  */
 typedef struct OceanReliefRay {
   /**
@@ -2967,12 +2970,15 @@ OceanStatus ocean_spectrum_total_slope_variance(const struct OceanSpectrum *spec
 /**
  * Stores the slope variance of the waves a pixel does not resolve (Eq. 4) in `*out`.
  *
- * Each wave of length lambda is weighted by w_r = 1 - w(n_min, n_max, lambda / l), with
- * l = `pixel_footprint` (metres, the pixel's size on the sea, from `ocean_pixel_footprint`)
- * and w(a, b, x) = 3 t^2 - 2 t^3, t = clamp((x - a)/(b - a), 0, 1): waves shorter than n_min
- * pixels are wholly in the BRDF, waves longer than n_max pixels wholly in the normals. A
- * footprint of 0 resolves every wave (the result is 0, 0). The paper's thresholds are
- * `OCEAN_FILTER_N_MIN` and `OCEAN_FILTER_N_MAX`.
+ * Eq. 4 summed over every wave: a wave of wavenumber k, amplitude A and angle theta to the
+ * wind adds (cos^2 theta, sin^2 theta) (1 - sqrt(1 - k^2 w_r^2 A^2)): the weight
+ * w_r = 1 - w(n_min, n_max, lambda / l) scales the wave's amplitude inside the square root,
+ * not its variance. l = `pixel_footprint` (metres, the pixel's size on the sea, from
+ * `ocean_pixel_footprint`) and w(a, b, x) = 3 t^2 - 2 t^3, t = clamp((x - a)/(b - a), 0, 1):
+ * waves shorter than n_min pixels are wholly in the BRDF, waves longer than n_max pixels
+ * wholly in the normals. A footprint of 0 resolves every wave: the result is exactly (0, 0)
+ * (each term is summed, not the total minus the resolved part, which leaves rounding). The
+ * paper's thresholds are `OCEAN_FILTER_N_MIN` and `OCEAN_FILTER_N_MAX`.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
  * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite argument, `OCEAN_STATUS_INVALID_ARGUMENT`
@@ -3854,7 +3860,9 @@ OceanStatus ocean_relief_trace(const struct OceanReliefCones *cones,
  * and the point is in shadow (1 in `in_shadow[i]`, else 0) when the ray stops more than `bias`
  * (depth units, in [0, 1]) above it; the bias absorbs the tracer's final bracket, or a point
  * shadows itself (a few times the last step over 2^binary works). A light at or below the
- * polygon's plane (light_z <= 0) leaves every point in shadow. Points are processed in
+ * polygon's plane (light_z <= 0) leaves every point in shadow, and so does a light so close
+ * above it (light_z = FLT_TRUE_MIN beside a unit light_x) that its run per unit depth
+ * overflows a float. Points are processed in
  * parallel; each answer equals `ocean_relief::shadow::in_shadow`'s.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,

@@ -479,12 +479,15 @@ pub unsafe extern "C" fn ocean_spectrum_total_slope_variance(
 
 /// Stores the slope variance of the waves a pixel does not resolve (Eq. 4) in `*out`.
 ///
-/// Each wave of length lambda is weighted by w_r = 1 - w(n_min, n_max, lambda / l), with
-/// l = `pixel_footprint` (metres, the pixel's size on the sea, from `ocean_pixel_footprint`)
-/// and w(a, b, x) = 3 t^2 - 2 t^3, t = clamp((x - a)/(b - a), 0, 1): waves shorter than n_min
-/// pixels are wholly in the BRDF, waves longer than n_max pixels wholly in the normals. A
-/// footprint of 0 resolves every wave (the result is 0, 0). The paper's thresholds are
-/// `OCEAN_FILTER_N_MIN` and `OCEAN_FILTER_N_MAX`.
+/// Eq. 4 summed over every wave: a wave of wavenumber k, amplitude A and angle theta to the
+/// wind adds (cos^2 theta, sin^2 theta) (1 - sqrt(1 - k^2 w_r^2 A^2)): the weight
+/// w_r = 1 - w(n_min, n_max, lambda / l) scales the wave's amplitude inside the square root,
+/// not its variance. l = `pixel_footprint` (metres, the pixel's size on the sea, from
+/// `ocean_pixel_footprint`) and w(a, b, x) = 3 t^2 - 2 t^3, t = clamp((x - a)/(b - a), 0, 1):
+/// waves shorter than n_min pixels are wholly in the BRDF, waves longer than n_max pixels
+/// wholly in the normals. A footprint of 0 resolves every wave: the result is exactly (0, 0)
+/// (each term is summed, not the total minus the resolved part, which leaves rounding). The
+/// paper's thresholds are `OCEAN_FILTER_N_MIN` and `OCEAN_FILTER_N_MAX`.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
 /// `OCEAN_STATUS_NON_FINITE` for a NaN or infinite argument, `OCEAN_STATUS_INVALID_ARGUMENT`
@@ -523,7 +526,10 @@ pub unsafe extern "C" fn ocean_spectrum_slope_variance(
                 ),
             ));
         }
-        let v = s.spectrum.variance().unresolved(&filter, pixel_footprint);
+        let v = s
+            .spectrum
+            .variance()
+            .unresolved_direct(&filter, pixel_footprint);
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out, "out", OceanSlopeVariance::from_core(v)) }
     })
@@ -746,8 +752,13 @@ mod tests {
             let mut v = OceanSlopeVariance::default();
             let st = ocean_spectrum_slope_variance(s, 1.0, 2.5, 0.3, &mut v);
             assert_eq!(st, OceanStatus::Ok, "{}", last_error());
-            let want = core.variance().unresolved(&Filter::PAPER, 0.3);
+            let want = core.variance().unresolved_direct(&Filter::PAPER, 0.3);
             assert_eq!((v.sigma_x2, v.sigma_y2), (want.x, want.y));
+            // A footprint of 0 resolves every wave: nothing is left, exactly (the total minus
+            // the resolved part left 2.1e-18 here).
+            let st = ocean_spectrum_slope_variance(s, 1.0, 2.5, 0.0, &mut v);
+            assert_eq!(st, OceanStatus::Ok, "{}", last_error());
+            assert_eq!((v.sigma_x2, v.sigma_y2), (0.0, 0.0));
             let mut m = 0.0;
             assert_eq!(ocean_spectrum_mean_height_shift(s, &mut m), OceanStatus::Ok);
             assert_eq!(m, core.mean_height_shift());

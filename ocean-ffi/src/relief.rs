@@ -162,7 +162,7 @@ pub(crate) fn relief_error(context: &str, e: ReliefError) -> Error {
         ReliefError::OutOfRange { .. } => OceanStatus::InvalidArgument,
         ReliefError::Mismatch(_) => OceanStatus::InvalidArgument,
         ReliefError::NotPowerOfTwo(_) => OceanStatus::InvalidArgument,
-        ReliefError::RayDirection => OceanStatus::InvalidArgument,
+        ReliefError::RayDirection | ReliefError::RayTooFlat => OceanStatus::InvalidArgument,
         ReliefError::Cancelled => OceanStatus::Cancelled,
         ReliefError::Camera(c) => camera_status(c),
         // `ReliefError` is non-exhaustive: a variant added later is an argument out of range

@@ -75,8 +75,11 @@ pub struct OceanReliefPoint {
 
 /// A ray into the relief (section 18.2): it enters at texture coordinates (start_u, start_v)
 /// at depth 0 and moves by (dir_x, dir_y) texture widths per dir_z of depth. Only the ratios
-/// matter (the tracers divide by dir_z, as the book's `ray_dir /= ray_dir.z`).
-/// `ocean_relief_ray_from_view` makes one from a tangent-space view vector.
+/// matter (the tracers divide by dir_z, as the book's `ray_dir /= ray_dir.z`), and they must
+/// stay finite: a dir_z so small beside dir_x, dir_y that the run per unit depth overflows a
+/// float is refused, and so is a ray whose |start| plus run to full depth exceeds 1e30 texture
+/// widths (`ocean_relief::MAX_TEXCOORD`). `ocean_relief_ray_from_view` makes one from a
+/// tangent-space view vector.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct OceanReliefRay {
@@ -345,7 +348,9 @@ pub(crate) unsafe fn trace_batch(
 /// and the point is in shadow (1 in `in_shadow[i]`, else 0) when the ray stops more than `bias`
 /// (depth units, in [0, 1]) above it; the bias absorbs the tracer's final bracket, or a point
 /// shadows itself (a few times the last step over 2^binary works). A light at or below the
-/// polygon's plane (light_z <= 0) leaves every point in shadow. Points are processed in
+/// polygon's plane (light_z <= 0) leaves every point in shadow, and so does a light so close
+/// above it (light_z = FLT_TRUE_MIN beside a unit light_x) that its run per unit depth
+/// overflows a float. Points are processed in
 /// parallel; each answer equals `ocean_relief::shadow::in_shadow`'s.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,

@@ -80,6 +80,10 @@ pub enum ReliefError {
     /// A ray must point into the relief: its depth component must be positive.
     #[error("ray direction must have a positive, finite depth component and finite xy")]
     RayDirection,
+    /// A ray so close to the relief's plane (a depth component of 1e-45 beside a unit xy)
+    /// that its run per unit depth overflows a float: it never reaches a depth.
+    #[error("ray direction is too close to the plane: its run per unit depth overflows a float")]
+    RayTooFlat,
     /// A [`crate::progress::Progress`] asked to stop; nothing was computed or written.
     #[error("cancelled by the progress callback")]
     Cancelled,

@@ -106,6 +106,6 @@ pub use lod::{QuadReliefMips, ReliefMips};
 pub use map::{Edge, HeightMap, HeightRange, MAX_SIDE};
 pub use quad::{QuadConeMap, QuadReliefTexture, Quadrant};
 pub use relief::ReliefTexture;
-pub use trace::{BinarySearch, Hit, Method, Ray};
+pub use trace::{BinarySearch, Hit, MAX_TEXCOORD, Method, Ray};
 
 pub(crate) use ocean_core::rows::for_rows;

@@ -15,7 +15,8 @@ use crate::trace::{Method, Ray};
 /// must lie at least `bias` (depth units) above the point to count: the tracer's final bracket
 /// (its last step over `2^binary`) needs that margin, or the point shadows itself.
 ///
-/// A light at or below the polygon's plane (`light.z ≤ 0`) leaves every point in shadow.
+/// A light at or below the polygon's plane (`light.z ≤ 0`) leaves every point in shadow, and
+/// so does a light so close above it that its ray's run per unit depth overflows a float.
 ///
 /// # Errors
 ///
@@ -56,5 +57,10 @@ pub(crate) fn light_ray(
     // depth_scale·(−light.xy)/light.z; it enters the relief where it is at depth 0.
     let per_depth = Vec2::new(-light.x, -light.y) * (depth_scale / light.z);
     let start = Vec2::new(point.x, point.y) - per_depth * point.z;
+    if !(per_depth.is_finite() && start.is_finite()) {
+        // A light so close to the plane (light.z = 1e-45 beside a unit light.xy) that its run
+        // per unit depth overflows a float is on the plane for every texel: in shadow.
+        return Ok(None);
+    }
     Ray::from_view(start, -light, depth_scale).map(Some)
 }

@@ -56,6 +56,13 @@ pub struct Ray {
     pub dir: Vec3,
 }
 
+/// Largest texture coordinate a ray may reach, texture widths: |start| plus the run to full
+/// depth. Far beyond a float's texel resolution (already at 1e7 a float steps by a whole
+/// texture width, and the texture tiles or clamps), but within it every tracer's arithmetic,
+/// texel lookups of the largest maps included (1e30 · 4096 texels), stays finite; at
+/// `FLT_MAX` the lookups overflowed to infinite hits.
+pub const MAX_TEXCOORD: f64 = 1e30;
+
 impl Ray {
     /// The ray of a unit view vector `view` in tangent space (`z` out of the surface; `view.z <
     /// 0`) entering at `start`, for a relief `depth` texture widths deep.
@@ -97,7 +104,18 @@ impl Ray {
         let dy = self.dir.y / self.dir.z;
         let ratio = libm::sqrtf(dx * dx + dy * dy);
         if !(dx.is_finite() && dy.is_finite() && ratio.is_finite()) {
-            return Err(ReliefError::RayDirection);
+            return Err(ReliefError::RayTooFlat);
+        }
+        // Every point the tracers visit lies within start ± the run to full depth: keep it
+        // where a float holds it (at FLT_MAX the texel lookups overflow to infinity).
+        let reach = self.start.abs().max_element() + ratio;
+        if f64::from(reach) > MAX_TEXCOORD {
+            return Err(ReliefError::OutOfRange {
+                name: "ray start + run to full depth",
+                value: f64::from(reach),
+                min: 0.0,
+                max: MAX_TEXCOORD,
+            });
         }
         Ok((dx, dy, ratio))
     }

@@ -226,10 +226,6 @@ fn tracers() {
             dir: Vec3::new(1.0, 0.0, -1.0),
         },
         Ray {
-            start: Vec2::ZERO,
-            dir: Vec3::new(f32::MAX, 0.0, 1e-30),
-        },
-        Ray {
             start: Vec2::new(f32::NAN, 0.0),
             dir: Vec3::Z,
         },
@@ -246,6 +242,17 @@ fn tracers() {
             search: BinarySearch::Shared,
         },
     ];
+    // A run per unit depth that overflows a float has its own error.
+    let too_flat = Ray {
+        start: Vec2::ZERO,
+        dir: Vec3::new(f32::MAX, 0.0, 1e-30),
+    };
+    for m in &methods {
+        assert_eq!(
+            m.trace(&tex, &too_flat).unwrap_err(),
+            ReliefError::RayTooFlat
+        );
+    }
     for ray in &bad_rays {
         for m in &methods {
             assert_eq!(
@@ -353,4 +360,50 @@ fn shading() {
         normals(&map, f32::NAN).unwrap_err(),
         ReliefError::NotFinite("depth")
     ));
+}
+
+/// Rays whose arithmetic would leave a float: refused with a reason, never a non-finite hit
+/// behind success. A light just above the plane shadows every point, as one on the plane does.
+#[test]
+fn rays_and_lights_at_the_edges_of_a_float() {
+    use ocean_relief::MAX_TEXCOORD;
+    let map = flat(8);
+    let tex = ReliefTexture::new(
+        &map,
+        &ConeMap::generate(&map, ConeParams::default()).unwrap(),
+    )
+    .unwrap();
+    let method = Method::ConeStep { steps: 16 };
+    // Start at FLT_MAX: once gave an infinite hit.
+    let far = Ray {
+        start: Vec2::new(f32::MAX, 0.5),
+        dir: Vec3::new(0.3, 0.1, 1.0),
+    };
+    let e = method.trace(&tex, &far).unwrap_err();
+    assert!(matches!(e, ReliefError::OutOfRange { .. }), "{e}");
+    // Within the limit the hit is finite.
+    let near = Ray {
+        start: Vec2::new((MAX_TEXCOORD * 0.5) as f32, 0.5),
+        dir: Vec3::new(0.3, 0.1, 1.0),
+    };
+    let hit = method.trace(&tex, &near).unwrap();
+    assert!(hit.pos.is_finite(), "{hit:?}");
+    // A direction whose run per unit depth overflows: its own error, not "not positive".
+    let flat_ray = Ray {
+        start: Vec2::new(0.5, 0.5),
+        dir: Vec3::new(1.0, 0.0, f32::from_bits(1)),
+    };
+    assert_eq!(
+        method.trace(&tex, &flat_ray).unwrap_err(),
+        ReliefError::RayTooFlat
+    );
+    // light_z = FLT_TRUE_MIN: in shadow, like light_z = 0 (it was refused as invalid).
+    let point = Vec3::new(0.5, 0.5, 0.5);
+    for z in [f32::from_bits(1), 0.0] {
+        let light = Vec3::new(1.0, 0.0, z);
+        assert!(
+            in_shadow(&tex, &method, point, light, 0.1, 0.01).unwrap(),
+            "{z}"
+        );
+    }
 }
