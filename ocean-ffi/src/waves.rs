@@ -370,14 +370,6 @@ pub unsafe extern "C" fn ocean_waves_evaluate_grid(
             )
         })?;
         let out_bytes = byte_len::<OceanVec3>(n, "out_pos")?;
-        check_disjoint(
-            (out_pos.cast_const().cast::<u8>(), out_bytes, "out_pos"),
-            (
-                out_normal.cast_const().cast::<u8>(),
-                out_bytes,
-                "out_normal",
-            ),
-        )?;
         check_time(time)?;
         let members = [
             ("origin_x", g.origin_x),
@@ -395,6 +387,16 @@ pub unsafe extern "C" fn ocean_waves_evaluate_grid(
         core_grid
             .point_count()
             .map_err(|e| eval_error(e, "grid->origin"))?;
+        // After the side limit: a 2^24 + 1 point grid is refused for its side, not reported as
+        // outputs that overlap because the caller's buffers are sized for a valid grid.
+        check_disjoint(
+            (out_pos.cast_const().cast::<u8>(), out_bytes, "out_pos"),
+            (
+                out_normal.cast_const().cast::<u8>(),
+                out_bytes,
+                "out_normal",
+            ),
+        )?;
         waves.reach.check_time(time)?;
         waves.reach.check_grid("grid", &core_grid)?;
         // SAFETY: both pointers are non-NULL and aligned, the byte size fits in isize and the

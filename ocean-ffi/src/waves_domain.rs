@@ -263,4 +263,26 @@ mod tests {
         assert!(p.iter().chain(&n).all(|v| finite(*v)));
         ocean_waves_destroy(w);
     }
+
+    #[test]
+    fn a_side_over_2_pow_24_is_refused_for_its_side_not_as_overlapping_outputs() {
+        let w = create(&[desc(1.0, 20.0)]).unwrap();
+        // Two neighbouring output arrays sized for a valid grid: their ranges for 2^24 + 1
+        // points would overlap, but the side is what is wrong.
+        let mut storage = [OceanVec3::default(); 8];
+        let (a, b) = storage.split_at_mut(4);
+        let g = OceanGrid {
+            origin_x: 0.0,
+            origin_z: 0.0,
+            spacing_x: 1.0,
+            spacing_z: 1.0,
+            nx: (1 << 24) + 1,
+            nz: 1,
+        };
+        // SAFETY: refused before any access.
+        let s = unsafe { ocean_waves_evaluate_grid(w, &g, 0.0, a.as_mut_ptr(), b.as_mut_ptr()) };
+        assert_eq!(s, OceanStatus::InvalidArgument);
+        assert!(last_error().contains("2^24"), "{}", last_error());
+        ocean_waves_destroy(w);
+    }
 }
