@@ -13,7 +13,7 @@ use ocean_core::{Depth, Grid, WaveDesc, WaveSet};
 use rayon::prelude::*;
 use serde_json::{Value, json};
 
-use crate::{bench_gpu, bench_lighting, bench_relief, bench_sao, bench_wtb};
+use crate::{bench_ffi, bench_gpu, bench_lighting, bench_relief, bench_sao, bench_wtb};
 
 #[derive(Args)]
 pub struct BenchArgs {
@@ -54,6 +54,9 @@ enum Suite {
     /// per method, the level of detail's draw time and shimmer on the GPU, and the accuracy
     /// table.
     Relief,
+    /// The C ABI's cost per call against the Rust call it wraps (batches of 1024: the wave sum,
+    /// the scene's height query, the sea colour) and of an empty crossing (handle checks).
+    Ffi,
     /// Every suite above in turn; with `--json`, one document holding each suite's report with
     /// the date and the machine.
     All,
@@ -63,7 +66,12 @@ enum Suite {
 /// 60 m and steepness 0.1 each: the shape of the lighting paper's spectrum (n = 60) and of
 /// the wave-train paper's scenario 1 (n = 3).
 pub fn bench_waves(n: usize) -> WaveSet {
-    let descs: Vec<WaveDesc> = (0..n)
+    WaveSet::from_descs(&bench_wave_descs(n)).expect("benchmark waves are valid")
+}
+
+/// The descriptions of [`bench_waves`].
+pub fn bench_wave_descs(n: usize) -> Vec<WaveDesc> {
+    (0..n)
         .map(|i| {
             let f = if n > 1 {
                 i as f64 / (n - 1) as f64
@@ -80,8 +88,7 @@ pub fn bench_waves(n: usize) -> WaveSet {
                 depth: Depth::Deep,
             }
         })
-        .collect();
-    WaveSet::from_descs(&descs).expect("benchmark waves are valid")
+        .collect()
 }
 
 /// Milliseconds taken by one call of `f`.
@@ -132,12 +139,13 @@ pub fn memory_baseline(nx: usize, pos: &mut [Vec3], nrm: &mut [Vec3]) {
 
 impl Suite {
     /// Every suite, in the order of `ocean bench all`.
-    const ALL: [Suite; 5] = [
+    const ALL: [Suite; 6] = [
         Suite::Gerstner,
         Suite::Wtb,
         Suite::Lighting,
         Suite::Sao,
         Suite::Relief,
+        Suite::Ffi,
     ];
 
     fn name(self) -> &'static str {
@@ -147,6 +155,7 @@ impl Suite {
             Suite::Lighting => "lighting",
             Suite::Sao => "sao",
             Suite::Relief => "relief",
+            Suite::Ffi => "ffi",
             Suite::All => "all",
         }
     }
@@ -159,6 +168,7 @@ impl Suite {
             Suite::Lighting => bench_lighting::lighting(args),
             Suite::Sao => bench_sao::sao(args),
             Suite::Relief => bench_relief::relief(args),
+            Suite::Ffi => bench_ffi::ffi(args),
             Suite::All => Err("`all` is not one suite".to_owned()),
         }
     }
@@ -171,6 +181,7 @@ impl Suite {
             Suite::Lighting => bench_lighting::print(doc),
             Suite::Sao => bench_sao::print(doc),
             Suite::Relief => bench_relief::print(doc),
+            Suite::Ffi => bench_ffi::print(doc),
             Suite::All => {}
         }
     }

@@ -2,6 +2,7 @@
 #![forbid(unsafe_code)]
 
 mod bench;
+mod bench_ffi;
 mod bench_gpu;
 mod bench_lighting;
 mod bench_relief;

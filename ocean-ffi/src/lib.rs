@@ -28,6 +28,8 @@ mod gpu;
 mod lighting;
 mod lighting_brdf;
 mod lighting_spectrum;
+#[doc(hidden)]
+pub mod measure;
 mod ocean_draw;
 mod relief;
 mod relief_draw;

@@ -729,18 +729,24 @@ fn same_lighting(lighting: &OceanLighting, map: &OceanSkyMap) -> Result<(), Erro
     }
 }
 
-/// Validates one input and runs Algorithm 5.1.
+/// Validates one input and runs Algorithm 5.1. Messages name the input's members (`v.x`,
+/// `wind`); callers prefix the input's own name. Nothing is formatted unless an input is
+/// refused: a batch's cost stays the lighting's.
 fn sea_color_one(
     lighting: &Lighting,
     map: &SkyMap,
-    context: &str,
     input: &OceanSeaColorInput,
 ) -> Result<SeaLight, Error> {
-    let v = finite_dvec3(&format!("{context}v"), &input.v)?;
-    let n = finite_dvec3(&format!("{context}n"), &input.n)?;
+    let (v, n) = (&input.v, &input.n);
     check_finite(
-        context,
+        "",
         &[
+            ("v.x", v.x),
+            ("v.y", v.y),
+            ("v.z", v.z),
+            ("n.x", n.x),
+            ("n.y", n.y),
+            ("n.z", n.z),
             ("wind.x", input.wind.x),
             ("wind.z", input.wind.z),
             ("sigma_x2", input.sigma_x2),
@@ -750,7 +756,7 @@ fn sea_color_one(
     if input.wind.x == 0.0 && input.wind.z == 0.0 {
         return Err(Error::new(
             OceanStatus::InvalidArgument,
-            format!("{context}wind is (0, 0): the wind direction must be non-zero"),
+            "wind is (0, 0): the wind direction must be non-zero",
         ));
     }
     let variance = SlopeVariance {
@@ -760,12 +766,12 @@ fn sea_color_one(
     sea_color(
         lighting,
         map,
-        v,
-        n,
+        DVec3::new(v.x, v.y, v.z),
+        DVec3::new(n.x, n.y, n.z),
         DVec2::new(input.wind.x, input.wind.z),
         variance,
     )
-    .map_err(|e| brdf_error(context, e))
+    .map_err(|e| brdf_error("", e))
 }
 
 /// The sea's colour for one pixel: Algorithm 5.1 (paper Fig. 9), the three terms of the
@@ -819,7 +825,7 @@ pub unsafe extern "C" fn ocean_sea_color(
             sigma_x2,
             sigma_y2,
         };
-        let light = sea_color_one(&l.lighting, &m.map, "", &input)?;
+        let light = sea_color_one(&l.lighting, &m.map, &input)?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out, "out", OceanSeaLight::from_core(&light)) }
     })
@@ -873,7 +879,12 @@ pub unsafe extern "C" fn ocean_sea_color_batch(
         // Every input is lit (and so validated) before the first output is written.
         let mut lights = Vec::with_capacity(n);
         for (i, input) in inputs.iter().enumerate() {
-            let light = sea_color_one(&l.lighting, &m.map, &format!("inputs[{i}]."), input)?;
+            // The element's name is formatted only for a message: once per element it would
+            // cost as much as a small batch's lighting.
+            let light = sea_color_one(&l.lighting, &m.map, input).map_err(|e| Error {
+                message: format!("inputs[{i}].{}", e.message),
+                ..e
+            })?;
             lights.push(OceanSeaLight::from_core(&light));
         }
         // SAFETY: non-NULL and aligned (checked), byte size fits in isize and disjoint from
