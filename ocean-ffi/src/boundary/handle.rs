@@ -121,7 +121,12 @@ impl Registry {
     fn dead(&self, id: usize, name: &str, want: &str) -> String {
         let remembered = self.destroyed.iter().rev().find(|(d, _)| *d == id);
         if let Some((_, kind)) = remembered {
-            format!("`{name}` ({id:#x}) is an {kind} handle that was destroyed (wanted an {want})")
+            let wanted = if *kind == want {
+                String::new()
+            } else {
+                format!(" (wanted an {want})")
+            };
+            format!("`{name}` ({id:#x}) is an {kind} handle that was destroyed{wanted}")
         } else if id.is_multiple_of(STRIDE) && (FIRST..self.next).contains(&(id / STRIDE)) {
             format!("`{name}` ({id:#x}) is a handle that was destroyed")
         } else {
