@@ -2297,8 +2297,9 @@ OceanStatus ocean_renderer_set_lighting(struct OceanRenderer *renderer,
  * its documented ranges or not above the sea (eye y <= 0), the context is not the renderer's,
  * or the renderer has no spectrum or no lighting yet; `OCEAN_STATUS_LENGTH_OVERFLOW` if
  * width * height * 4 overflows; `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or
- * camera member; `OCEAN_STATUS_GPU_FAILURE` for a device error. Nothing is written to `out`
- * on failure.
+ * camera member; `OCEAN_STATUS_INVALID_ARGUMENT` for a `time` whose phase leaves the domain
+ * of `ocean_waves_evaluate` (|omega t| of the fastest wave above 1e15 rad);
+ * `OCEAN_STATUS_GPU_FAILURE` for a device error. Nothing is written to `out` on failure.
  *
  * # Safety
  *
@@ -3011,7 +3012,8 @@ OceanStatus ocean_spectrum_slope_variance(const struct OceanSpectrum *spectrum,
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
  * `OCEAN_STATUS_EMPTY` if `width` or `height` is 0, `OCEAN_STATUS_NON_FINITE` for a NaN or
  * infinite argument or camera member (the message names it), `OCEAN_STATUS_INVALID_ARGUMENT`
- * for a camera out of its documented ranges (see `OceanCameraDesc`), `max_distance` <= 0, or a
+ * for a camera out of its documented ranges (see `OceanCameraDesc`), `max_distance` outside
+ * (0, 1e12], or a
  * pixel whose rays do not start above the sea (the camera at or below y = 0). `*out` is
  * written only on success.
  *
@@ -3097,7 +3099,8 @@ OceanStatus ocean_ocean_draw_params_default(struct OceanOceanDrawParams *out);
  * exceeds `PTRDIFF_MAX`. `out`, `len` and `needed` follow the size query of
  * `ocean_gpu_context_describe`: `*needed` receives the block's size, on success and with
  * `OCEAN_STATUS_BUFFER_TOO_SMALL` (the one output written on a failure); `out` NULL and `len`
- * 0 only ask for it.
+ * 0 only ask for it. A `time` whose phase leaves the domain of `ocean_waves_evaluate`
+ * (|omega t| of the fastest wave above 1e15 rad) is `OCEAN_STATUS_INVALID_ARGUMENT`.
  *
  * # Safety
  *
@@ -3134,7 +3137,9 @@ OceanStatus ocean_ocean_uniforms(const struct OceanCameraDesc *camera,
  * alignment for `out`), `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or camera
  * member, `OCEAN_STATUS_INVALID_ARGUMENT` for a camera outside its documented ranges or a
  * `len` other than 12 * wave count, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)`
- * exceeds `PTRDIFF_MAX`. Nothing is written on failure.
+ * exceeds `PTRDIFF_MAX`. A `time` whose phase
+ * leaves the domain of `ocean_waves_evaluate` (|omega t| of the fastest wave above 1e15 rad)
+ * is `OCEAN_STATUS_INVALID_ARGUMENT`. Nothing is written on failure.
  *
  * # Safety
  *

@@ -23,6 +23,7 @@ use crate::lighting::{OceanLighting, brdf_error};
 
 use crate::lighting_spectrum::{OceanCameraDesc, OceanSpectrum, camera_from};
 use crate::status::{Error, OceanStatus, guard};
+use crate::waves_domain::Reach;
 
 /// A headless GPU device and queue that the library created (opaque). Create with
 /// `ocean_gpu_context_create`, free with `ocean_gpu_context_destroy`. A
@@ -79,6 +80,8 @@ pub struct OceanRenderer {
 
 struct RendererState {
     renderer: GpuRenderer,
+    /// The reach of the spectrum's waves, once one is set: bounds the time of a frame.
+    reach: Option<Reach>,
     has_surface: bool,
     has_lighting: bool,
 }
@@ -320,6 +323,7 @@ pub unsafe extern "C" fn ocean_renderer_create(
             context: c.id,
             state: Mutex::new(RendererState {
                 renderer,
+                reach: None,
                 has_surface: false,
                 has_lighting: false,
             }),
@@ -379,12 +383,14 @@ pub extern "C" fn ocean_renderer_set_spectrum(
         check_finite("", &[("n_min", n_min), ("n_max", n_max)])?;
         let filter = Filter::new(n_min, n_max).map_err(|e| brdf_error("", e))?;
         let surface = FilteredSurface::new(&s.spectrum, filter).map_err(|e| brdf_error("", e))?;
+        let reach = Reach::of_spectrum(&s.spectrum)?;
         let mut state = r.lock();
         state
             .renderer
             .set_surface(&c.ctx, &surface)
             .map_err(|e| gpu_error("", e))?;
         state.has_surface = true;
+        state.reach = Some(reach);
         Ok(())
     })
 }
@@ -439,8 +445,9 @@ pub extern "C" fn ocean_renderer_set_lighting(
 /// its documented ranges or not above the sea (eye y <= 0), the context is not the renderer's,
 /// or the renderer has no spectrum or no lighting yet; `OCEAN_STATUS_LENGTH_OVERFLOW` if
 /// width * height * 4 overflows; `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or
-/// camera member; `OCEAN_STATUS_GPU_FAILURE` for a device error. Nothing is written to `out`
-/// on failure.
+/// camera member; `OCEAN_STATUS_INVALID_ARGUMENT` for a `time` whose phase leaves the domain
+/// of `ocean_waves_evaluate` (|omega t| of the fastest wave above 1e15 rad);
+/// `OCEAN_STATUS_GPU_FAILURE` for a device error. Nothing is written to `out` on failure.
 ///
 /// # Safety
 ///
@@ -498,12 +505,13 @@ pub unsafe extern "C" fn ocean_renderer_render_rgba8(
             ));
         }
         let state = r.lock();
-        if !state.has_surface {
+        let Some(reach) = state.reach.filter(|_| state.has_surface) else {
             return Err(Error::new(
                 OceanStatus::InvalidArgument,
                 "the renderer has no spectrum yet: call ocean_renderer_set_spectrum first",
             ));
-        }
+        };
+        reach.check_time(time)?;
         if !state.has_lighting {
             return Err(Error::new(
                 OceanStatus::InvalidArgument,

@@ -620,6 +620,11 @@ pub(crate) fn camera_from(c: &OceanCameraDesc) -> Result<Camera, Error> {
     Camera::new(DMat4::from_cols_array(&c.view), projection, depth).map_err(camera_error)
 }
 
+/// The largest `max_distance` of `ocean_pixel_footprint`, metres: beyond the Moon's orbit,
+/// and far enough below `DBL_MAX` that the footprint (a length between two hits this far
+/// away) cannot overflow; at 1e154 m it did.
+const MAX_FOOTPRINT_DISTANCE: f64 = 1e12;
+
 /// Stores the footprint of a pixel on the sea at rest (y = 0), metres, in `*out`: the `l` of
 /// Eq. 3 and 4 (pass it to `ocean_spectrum_slope_variance`).
 ///
@@ -635,7 +640,8 @@ pub(crate) fn camera_from(c: &OceanCameraDesc) -> Result<Camera, Error> {
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
 /// `OCEAN_STATUS_EMPTY` if `width` or `height` is 0, `OCEAN_STATUS_NON_FINITE` for a NaN or
 /// infinite argument or camera member (the message names it), `OCEAN_STATUS_INVALID_ARGUMENT`
-/// for a camera out of its documented ranges (see `OceanCameraDesc`), `max_distance` <= 0, or a
+/// for a camera out of its documented ranges (see `OceanCameraDesc`), `max_distance` outside
+/// (0, 1e12], or a
 /// pixel whose rays do not start above the sea (the camera at or below y = 0). `*out` is
 /// written only on success.
 ///
@@ -667,10 +673,14 @@ pub unsafe extern "C" fn ocean_pixel_footprint(
             "",
             &[("px", px), ("py", py), ("max_distance", max_distance)],
         )?;
-        if max_distance <= 0.0 {
+        if !(max_distance > 0.0 && max_distance <= MAX_FOOTPRINT_DISTANCE) {
             return Err(Error::new(
                 OceanStatus::InvalidArgument,
-                format!("max_distance must be > 0 metres, got {}", Num(max_distance)),
+                format!(
+                    "max_distance must be in (0, {}] metres, got {}",
+                    Num(MAX_FOOTPRINT_DISTANCE),
+                    Num(max_distance)
+                ),
             ));
         }
         let cam = camera_from(&c)?;
@@ -837,5 +847,20 @@ mod tests {
         assert_eq!(st, OceanStatus::Ok, "{}", last_error());
         let want = 2.0 * 10.0 * (0.5f64).tan() / 100.0;
         assert!((l - want).abs() < 1e-9 * want, "{l} vs {want}");
+        // A pixel above the horizon stops at max_distance: at 5e254 m its footprint
+        // overflowed to infinity behind success; the distance is now bounded.
+        for far in [5.06e254, 1.0000001e12] {
+            let mut l = -1.0;
+            // SAFETY: valid pointers.
+            let st = unsafe { ocean_pixel_footprint(&cam, 200, 100, 100.0, 5.0, far, &mut l) };
+            assert_eq!(st, OceanStatus::InvalidArgument, "{far}");
+            assert!(last_error().contains("max_distance"), "{}", last_error());
+            assert_eq!(l, -1.0);
+        }
+        let mut l = -1.0;
+        // SAFETY: valid pointers.
+        let st = unsafe { ocean_pixel_footprint(&cam, 200, 100, 100.0, 5.0, 1e12, &mut l) };
+        assert_eq!(st, OceanStatus::Ok, "{}", last_error());
+        assert!(l.is_finite() && l > 0.0, "{l}");
     }
 }

@@ -21,6 +21,7 @@ use crate::lighting_spectrum::{
     OCEAN_FILTER_N_MAX, OCEAN_FILTER_N_MIN, OceanCameraDesc, OceanSpectrum, camera_from,
 };
 use crate::status::{Error, OceanStatus, guard};
+use crate::waves_domain::Reach;
 use crate::wtb::{OceanWaterGridDesc, water_grid};
 
 /// Size in bytes of the exported `ocean` shader's uniform block `Frame` (binding 0, std140);
@@ -189,7 +190,8 @@ fn params_from(p: &OceanOceanDrawParams) -> Result<(OceanOptions, Filter), Error
 /// exceeds `PTRDIFF_MAX`. `out`, `len` and `needed` follow the size query of
 /// `ocean_gpu_context_describe`: `*needed` receives the block's size, on success and with
 /// `OCEAN_STATUS_BUFFER_TOO_SMALL` (the one output written on a failure); `out` NULL and `len`
-/// 0 only ask for it.
+/// 0 only ask for it. A `time` whose phase leaves the domain of `ocean_waves_evaluate`
+/// (|omega t| of the fastest wave above 1e15 rad) is `OCEAN_STATUS_INVALID_ARGUMENT`.
 ///
 /// # Safety
 ///
@@ -231,6 +233,7 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
             })
         };
         check_time(time)?;
+        Reach::of_spectrum(&s.spectrum)?.check_time(time)?;
         if width == 0 || height == 0 {
             return Err(Error::new(
                 OceanStatus::Empty,
@@ -281,7 +284,9 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
 /// alignment for `out`), `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or camera
 /// member, `OCEAN_STATUS_INVALID_ARGUMENT` for a camera outside its documented ranges or a
 /// `len` other than 12 * wave count, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)`
-/// exceeds `PTRDIFF_MAX`. Nothing is written on failure.
+/// exceeds `PTRDIFF_MAX`. A `time` whose phase
+/// leaves the domain of `ocean_waves_evaluate` (|omega t| of the fastest wave above 1e15 rad)
+/// is `OCEAN_STATUS_INVALID_ARGUMENT`. Nothing is written on failure.
 ///
 /// # Safety
 ///
@@ -300,6 +305,7 @@ pub unsafe extern "C" fn ocean_ocean_wave_texels(
         let camera = camera_from(&unsafe { read_in(camera, "camera") }?)?;
         let s = borrow(spectrum, "spectrum")?;
         check_time(time)?;
+        Reach::of_spectrum(&s.spectrum)?.check_time(time)?;
         check_ptr(out.cast_const(), "out")?;
         // The filter only orders the waves (longest first), the same for every filter.
         let surface =
@@ -833,5 +839,32 @@ mod tests {
             );
         }
         assert!(texels.iter().all(|&t| t == 7.0), "written on failure");
+    }
+
+    #[test]
+    fn a_time_past_the_phase_limit_is_refused() {
+        // time = DBL_MAX gave a NaN phase texel (omega t overflowed) behind success.
+        let (desc, _) = camera();
+        let (spectrum, _) = handles();
+        let n = crate::boundary::borrow(spectrum, "spectrum")
+            .unwrap()
+            .spectrum
+            .waves()
+            .len();
+        let mut out = vec![-1.0f32; 12 * n];
+        for time in [f64::MAX, 1e300, -1e20] {
+            // SAFETY: readable inputs, `out` holds `len` writable floats.
+            let s = unsafe {
+                ocean_ocean_wave_texels(&desc, spectrum, time, out.as_mut_ptr(), out.len())
+            };
+            assert_eq!(s, OceanStatus::InvalidArgument, "{time}");
+            assert!(last_error().contains("`time`"), "{}", last_error());
+            assert!(out.iter().all(|&v| v == -1.0), "written on failure");
+        }
+        // SAFETY: as above.
+        let s =
+            unsafe { ocean_ocean_wave_texels(&desc, spectrum, 1e9, out.as_mut_ptr(), out.len()) };
+        assert_eq!(s, OceanStatus::Ok, "{}", last_error());
+        assert!(out.iter().all(|v| v.is_finite()));
     }
 }

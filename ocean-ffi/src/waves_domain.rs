@@ -9,7 +9,8 @@
 //! returning non-finite results behind `OCEAN_STATUS_OK`.
 
 use glam::{DVec2, Vec2};
-use ocean_core::{Grid, WaveSet};
+use ocean_brdf::Spectrum;
+use ocean_core::{Grid, Wave, WaveSet};
 
 use crate::boundary::{Approx, Num};
 use crate::status::{Error, OceanStatus};
@@ -35,8 +36,21 @@ fn invalid(message: String) -> Error {
 impl Reach {
     /// The reach of `set`, refusing a set whose amplitudes add up past the limit.
     pub(crate) fn of(set: &WaveSet) -> Result<Self, Error> {
-        let waves = set.waves();
-        let amplitude_sum: f64 = waves.iter().map(|w| w.amplitude()).sum();
+        Self::of_waves(set.waves().iter().copied())
+    }
+
+    /// The reach of a spectrum's waves (deep water, each well below the limits).
+    pub(crate) fn of_spectrum(spectrum: &Spectrum) -> Result<Self, Error> {
+        let waves: Vec<Wave> = spectrum
+            .waves()
+            .iter()
+            .filter_map(|d| d.build().ok())
+            .collect();
+        Self::of_waves(waves.into_iter())
+    }
+
+    fn of_waves(waves: impl Iterator<Item = Wave> + Clone) -> Result<Self, Error> {
+        let amplitude_sum: f64 = waves.clone().map(|w| w.amplitude()).sum();
         if amplitude_sum > AMPLITUDE_SUM_LIMIT {
             return Err(invalid(format!(
                 "the amplitudes add up to {} m, above {} m: a displaced position would overflow \
@@ -46,11 +60,8 @@ impl Reach {
             )));
         }
         Ok(Self {
-            k_max: waves.iter().map(|w| w.wavenumber()).fold(0.0, f64::max),
-            omega_max: waves
-                .iter()
-                .map(|w| w.angular_frequency())
-                .fold(0.0, f64::max),
+            k_max: waves.clone().map(|w| w.wavenumber()).fold(0.0, f64::max),
+            omega_max: waves.map(|w| w.angular_frequency()).fold(0.0, f64::max),
         })
     }
 
