@@ -114,6 +114,13 @@ const _: () = {
 
 static NEXT_CONTEXT_ID: AtomicU64 = AtomicU64::new(1);
 
+/// The error of a crate call as a status, with the crate's message (`?` converts).
+impl From<GpuError> for Error {
+    fn from(e: GpuError) -> Self {
+        gpu_error("", e)
+    }
+}
+
 /// The status of an `ocean-gpu` error, with its message prefixed by `context`.
 pub(crate) fn gpu_error(context: &str, e: GpuError) -> Error {
     let status = match &e {
@@ -156,7 +163,7 @@ pub(crate) fn gpu_error(context: &str, e: GpuError) -> Error {
 pub unsafe extern "C" fn ocean_gpu_context_create(out: *mut *mut OceanGpuContext) -> OceanStatus {
     guard("ocean_gpu_context_create", || {
         check_ptr(out.cast_const(), "out")?;
-        let ctx = GpuContext::headless().map_err(|e| gpu_error("", e))?;
+        let ctx = GpuContext::headless()?;
         let description = CString::new(ctx.describe().replace('\0', " "))
             .expect("interior NUL bytes were replaced");
         let id = NEXT_CONTEXT_ID.fetch_add(1, Ordering::Relaxed);
@@ -381,14 +388,11 @@ pub extern "C" fn ocean_renderer_set_spectrum(
         let (r, c) = renderer_and_context(renderer, ctx)?;
         let s = borrow(spectrum, "spectrum")?;
         check_finite("", &[("n_min", n_min), ("n_max", n_max)])?;
-        let filter = Filter::new(n_min, n_max).map_err(|e| brdf_error("", e))?;
-        let surface = FilteredSurface::new(&s.spectrum, filter).map_err(|e| brdf_error("", e))?;
+        let filter = Filter::new(n_min, n_max)?;
+        let surface = FilteredSurface::new(&s.spectrum, filter)?;
         let reach = Reach::of_spectrum(&s.spectrum)?;
         let mut state = r.lock();
-        state
-            .renderer
-            .set_surface(&c.ctx, &surface)
-            .map_err(|e| gpu_error("", e))?;
+        state.renderer.set_surface(&c.ctx, &surface)?;
         state.has_surface = true;
         state.reach = Some(reach);
         Ok(())
@@ -414,10 +418,7 @@ pub extern "C" fn ocean_renderer_set_lighting(
         let (r, c) = renderer_and_context(renderer, ctx)?;
         let l = borrow(lighting, "lighting")?;
         let mut state = r.lock();
-        state
-            .renderer
-            .set_lighting(&c.ctx, &l.lighting)
-            .map_err(|e| gpu_error("", e))?;
+        state.renderer.set_lighting(&c.ctx, &l.lighting)?;
         state.has_lighting = true;
         Ok(())
     })
@@ -520,8 +521,7 @@ pub unsafe extern "C" fn ocean_renderer_render_rgba8(
         }
         let image = state
             .renderer
-            .render_image(&c.ctx, &camera, time, width, height)
-            .map_err(|e| gpu_error("", e))?;
+            .render_image(&c.ctx, &camera, time, width, height)?;
         drop(state);
         if image.len() != want {
             return Err(Error::new(

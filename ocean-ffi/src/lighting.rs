@@ -182,6 +182,13 @@ const _: () = {
     shareable::<OceanSkyMap>();
 };
 
+/// The error of a crate call as a status, with the crate's message (`?` converts).
+impl From<BrdfError> for Error {
+    fn from(e: BrdfError) -> Self {
+        brdf_error("", e)
+    }
+}
+
 /// The status of an `ocean-brdf` error (NaN and infinities: `OCEAN_STATUS_NON_FINITE`;
 /// everything else: `OCEAN_STATUS_INVALID_ARGUMENT`), with its message prefixed by `context`.
 pub(crate) fn brdf_error(context: &str, e: BrdfError) -> Error {
@@ -325,7 +332,7 @@ pub unsafe extern "C" fn ocean_lighting_create(
         // SAFETY: forwarded from this function's contract.
         let sea = sea_params_from(&unsafe { read_in(sea, "sea") }?)?;
         check_ptr(out.cast_const(), "out")?;
-        let lighting = Lighting::new(sky, sea).map_err(|e| brdf_error("", e))?;
+        let lighting = Lighting::new(sky, sea)?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_handle(out, OceanLighting { lighting }) }
     })
@@ -599,7 +606,7 @@ pub unsafe extern "C" fn ocean_lighting_sky_map_create(
     guard("ocean_lighting_sky_map_create", || {
         let l = borrow(lighting, "lighting")?;
         check_ptr(out.cast_const(), "out")?;
-        let map = l.lighting.sky_map(size).map_err(|e| brdf_error("", e))?;
+        let map = l.lighting.sky_map(size)?;
         let value = OceanSkyMap {
             map,
             lighting: l.lighting,
@@ -771,7 +778,7 @@ fn sea_color_one(
         DVec2::new(input.wind.x, input.wind.z),
         variance,
     )
-    .map_err(|e| brdf_error("", e))
+    .map_err(Error::from)
 }
 
 /// The sea's colour for one pixel: Algorithm 5.1 (paper Fig. 9), the three terms of the

@@ -13,7 +13,7 @@ use ocean_brdf::ross::{brdf, sun_radiance};
 use ocean_brdf::tonemap::{DEFAULT_EXPOSURE, linear_to_srgb, tone_map};
 
 use crate::boundary::{Num, check_finite, check_ptr, write_out};
-use crate::lighting::{OceanRgb, brdf_error, finite_dvec3};
+use crate::lighting::{OceanRgb, finite_dvec3};
 use crate::status::{Error, OceanStatus, guard};
 use crate::wtb::OceanDVec3;
 
@@ -88,7 +88,7 @@ pub unsafe extern "C" fn ocean_ross_brdf(
             let v = finite_dvec3("v", &v)?;
             let l = finite_dvec3("l", &l)?;
             finite(&[("sigma_x2", sigma_x2), ("sigma_y2", sigma_y2), ("r", r)])?;
-            brdf(v, l, sigma_x2, sigma_y2, r).map_err(|e| brdf_error("", e))
+            brdf(v, l, sigma_x2, sigma_y2, r).map_err(Error::from)
         })
     }
 }
@@ -134,8 +134,7 @@ pub unsafe extern "C" fn ocean_sun_radiance(
                 ("omega_sun", omega_sun),
                 ("r", r),
             ])?;
-            sun_radiance(v, l, sigma_x2, sigma_y2, l_sun, omega_sun, r)
-                .map_err(|e| brdf_error("", e))
+            sun_radiance(v, l, sigma_x2, sigma_y2, l_sun, omega_sun, r).map_err(Error::from)
         })
     }
 }
@@ -202,7 +201,7 @@ pub unsafe extern "C" fn ocean_effective_fresnel_fit(
     unsafe {
         evaluate("ocean_effective_fresnel_fit", out, || {
             finite(&[("cos_theta_v", cos_theta_v), ("sigma_v", sigma_v), ("r", r)])?;
-            effective_fresnel_fit(cos_theta_v, sigma_v, r).map_err(|e| brdf_error("", e))
+            effective_fresnel_fit(cos_theta_v, sigma_v, r).map_err(Error::from)
         })
     }
 }
@@ -231,7 +230,7 @@ pub unsafe extern "C" fn ocean_effective_fresnel_table(
     unsafe {
         evaluate("ocean_effective_fresnel_table", out, || {
             finite(&[("cos_theta_v", cos_theta_v), ("sigma_v", sigma_v), ("r", r)])?;
-            effective_fresnel_table(cos_theta_v, sigma_v, r).map_err(|e| brdf_error("", e))
+            effective_fresnel_table(cos_theta_v, sigma_v, r).map_err(Error::from)
         })
     }
 }
@@ -270,7 +269,7 @@ pub unsafe extern "C" fn ocean_effective_fresnel_integral(
         evaluate("ocean_effective_fresnel_integral", out, || {
             let v = finite_dvec3("v", &v)?;
             finite(&[("sigma_x2", sigma_x2), ("sigma_y2", sigma_y2), ("r", r)])?;
-            effective_fresnel_integral(v, sigma_x2, sigma_y2, r).map_err(|e| brdf_error("", e))
+            effective_fresnel_integral(v, sigma_x2, sigma_y2, r).map_err(Error::from)
         })
     }
 }

@@ -516,7 +516,7 @@ pub unsafe extern "C" fn ocean_spectrum_slope_variance(
                 ("pixel_footprint", pixel_footprint),
             ],
         )?;
-        let filter = Filter::new(n_min, n_max).map_err(|e| brdf_error("", e))?;
+        let filter = Filter::new(n_min, n_max)?;
         if pixel_footprint < 0.0 {
             return Err(Error::new(
                 OceanStatus::InvalidArgument,

@@ -15,7 +15,6 @@ use ocean_gpu::{MeshGrid, OceanOptions, WaveTexels};
 use crate::boundary::{
     borrow, byte_len, check_finite, check_ptr, check_time, read_in, write_out, write_sized,
 };
-use crate::gpu::gpu_error;
 use crate::lighting::{OceanLighting, brdf_error};
 use crate::lighting_spectrum::{
     OCEAN_FILTER_N_MAX, OCEAN_FILTER_N_MIN, OceanCameraDesc, OceanSpectrum, camera_from,
@@ -241,7 +240,7 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
             ));
         }
         check_ptr(needed.cast_const(), "needed")?;
-        let surface = FilteredSurface::new(&s.spectrum, filter).map_err(|e| brdf_error("", e))?;
+        let surface = FilteredSurface::new(&s.spectrum, filter)?;
         let u = ocean_gpu::frame_uniform(
             &options,
             &WaveTexels::new(&surface),
@@ -250,8 +249,7 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
             time,
             (width, height),
             mesh.as_ref(),
-        )
-        .map_err(|e| gpu_error("", e))?;
+        )?;
         // SAFETY: forwarded from this function's contract.
         unsafe {
             write_sized(
@@ -308,8 +306,7 @@ pub unsafe extern "C" fn ocean_ocean_wave_texels(
         Reach::of_spectrum(&s.spectrum)?.check_time(time)?;
         check_ptr(out.cast_const(), "out")?;
         // The filter only orders the waves (longest first), the same for every filter.
-        let surface =
-            FilteredSurface::new(&s.spectrum, Filter::PAPER).map_err(|e| brdf_error("", e))?;
+        let surface = FilteredSurface::new(&s.spectrum, Filter::PAPER)?;
         let waves = WaveTexels::new(&surface);
         let want = 4 * OCEAN_WAVE_TEXTURE_ROWS * waves.wave_count();
         if len != want {

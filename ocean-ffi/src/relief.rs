@@ -120,7 +120,7 @@ pub struct OceanReliefCones {
 
 impl OceanReliefCones {
     fn new(map: HeightMap, cones: ConeMap) -> Result<Self, Error> {
-        let texture = ReliefTexture::new(&map, &cones).map_err(|e| relief_error("", e))?;
+        let texture = ReliefTexture::new(&map, &cones)?;
         Ok(Self {
             map,
             cones,
@@ -146,6 +146,13 @@ const _: () = {
     shareable::<OceanReliefCones>();
     shareable::<OceanReliefMips>();
 };
+
+/// The error of a crate call as a status, with the crate's message (`?` converts).
+impl From<ReliefError> for Error {
+    fn from(e: ReliefError) -> Self {
+        relief_error("", e)
+    }
+}
 
 /// The status of an `ocean-relief` error, and its message prefixed with `context`.
 pub(crate) fn relief_error(context: &str, e: ReliefError) -> Error {
@@ -313,8 +320,7 @@ pub unsafe extern "C" fn ocean_relief_map_create_f32(
             }
         };
         map_dims(width, height, len)?;
-        let map = HeightMap::from_heights(width as usize, height as usize, heights, edge, range)
-            .map_err(|e| relief_error("", e))?;
+        let map = HeightMap::from_heights(width as usize, height as usize, heights, edge, range)?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_handle(out, OceanReliefMap { map }) }
     })
@@ -398,8 +404,7 @@ unsafe fn create_integer_map<T>(
         check_ptr(out.cast_const(), "out")?;
         let edge = edge_from(edge)?;
         map_dims(width, height, len)?;
-        let map = make(width as usize, height as usize, heights, edge)
-            .map_err(|e| relief_error("", e))?;
+        let map = make(width as usize, height as usize, heights, edge)?;
         // SAFETY: forwarded from the caller's contract.
         unsafe { write_handle(out, OceanReliefMap { map }) }
     })
@@ -486,8 +491,7 @@ pub unsafe extern "C" fn ocean_relief_normals(
         check_ptr(xyz.cast_const(), "xyz")?;
         let n = m.map.size();
         check_len("len", len, 3 * n * n, "the normal map (3 floats a texel)")?;
-        let normals =
-            ocean_relief::relief::normals(&m.map, depth).map_err(|e| relief_error("", e))?;
+        let normals = ocean_relief::relief::normals(&m.map, depth)?;
         let flat: Vec<f32> = normals.iter().flat_map(|v| v.to_array()).collect();
         // SAFETY: forwarded from this function's contract.
         unsafe { write_slice(xyz, "xyz", &flat) }
@@ -550,7 +554,7 @@ pub(crate) fn with_progress<T>(
             run(Some(&mut report))
         }
     };
-    result.map_err(|e| relief_error("", e))
+    result.map_err(Error::from)
 }
 
 /// Generates the cone map of `map` (see `OceanReliefConeParams`) and stores a handle that holds
@@ -787,10 +791,7 @@ pub unsafe extern "C" fn ocean_relief_cones_quantize(
         let c = borrow(cones, "cones")?;
         let encoding = encoding_from(encoding)?;
         check_ptr(out.cast_const(), "out")?;
-        let q = c
-            .cones
-            .quantized(encoding)
-            .map_err(|e| relief_error("", e))?;
+        let q = c.cones.quantized(encoding)?;
         let handle = OceanReliefCones::new(c.map.clone(), q)?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_handle(out, handle) }
@@ -903,7 +904,7 @@ pub unsafe extern "C" fn ocean_relief_mips_create(
                 ));
             }
         };
-        let levels = chain(&c.cones, rule).map_err(|e| relief_error("", e))?;
+        let levels = chain(&c.cones, rule)?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_handle(out, OceanReliefMips { levels }) }
     })

@@ -12,7 +12,6 @@ use ocean_relief::Method;
 use ocean_relief::gpu_params::ReliefUniforms;
 
 use crate::boundary::{check_finite, check_ptr, read_in, write_out, write_sized};
-use crate::gpu::gpu_error;
 use crate::lighting::{OceanIrradiance, finite_dvec3};
 use crate::lighting_spectrum::{OceanCameraDesc, camera_from};
 use crate::relief::edge_from;
@@ -271,8 +270,7 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
             edge,
             levels as usize,
             srgb_encode,
-        )
-        .map_err(|e| gpu_error("", e))?;
+        )?;
         // SAFETY: forwarded from this function's contract.
         unsafe {
             write_sized(

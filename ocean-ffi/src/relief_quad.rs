@@ -17,8 +17,7 @@ use crate::boundary::{
     borrow, check_len, check_ptr, destroy, read_in, write_handle, write_out, write_slice,
 };
 use crate::relief::{
-    OceanReliefConeParams, OceanReliefMap, OceanReliefProgress, params_from, relief_error, texels,
-    with_progress,
+    OceanReliefConeParams, OceanReliefMap, OceanReliefProgress, params_from, texels, with_progress,
 };
 use crate::relief_trace::{
     OceanReliefHit, OceanReliefMethod, OceanReliefPoint, OceanReliefRay, shadow_batch, trace_batch,
@@ -122,7 +121,7 @@ pub unsafe extern "C" fn ocean_relief_quad_cones_create(
         let params = unsafe { read_in(params, "params") }?;
         check_ptr(out.cast_const(), "out")?;
         let cones = generate_quad(&m.map, &params, progress, user)?;
-        let texture = QuadReliefTexture::new(&m.map, &cones).map_err(|e| relief_error("", e))?;
+        let texture = QuadReliefTexture::new(&m.map, &cones)?;
         let handle = OceanReliefQuadCones {
             map: m.map.clone(),
             cones,

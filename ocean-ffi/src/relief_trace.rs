@@ -242,8 +242,7 @@ pub unsafe extern "C" fn ocean_relief_ray_from_view(
             Vec2::new(start_u, start_v),
             Vec3::new(view_x, view_y, view_z),
             depth,
-        )
-        .map_err(|e| relief_error("", e))?;
+        )?;
         let r = OceanReliefRay {
             start_u: ray.start.x,
             start_v: ray.start.y,

@@ -329,6 +329,13 @@ fn params_from(p: &OceanSaoParams) -> Result<SaoParams, Error> {
     Ok(params)
 }
 
+/// The error of a crate call as a status, with the crate's message (`?` converts).
+impl From<SaoError> for Error {
+    fn from(e: SaoError) -> Self {
+        sao_error("", e)
+    }
+}
+
 /// The status of an `ocean-sao` error, and its message prefixed with `context`.
 pub(crate) fn sao_error(context: &str, e: SaoError) -> Error {
     let status = match &e {
@@ -479,8 +486,7 @@ pub unsafe extern "C" fn ocean_sao_create(
         }
         let camera = sao_camera_from(&camera)?;
         let params = params_from(&params)?;
-        let viewport = Viewport::new(input_width as usize, input_height as usize, guard as usize)
-            .map_err(|e| sao_error("", e))?;
+        let viewport = Viewport::new(input_width as usize, input_height as usize, guard as usize)?;
         let sao = Sao::new(
             &camera.projection,
             camera.convention,
@@ -681,9 +687,7 @@ pub unsafe extern "C" fn ocean_sao_run(
         // SAFETY: forwarded from this function's contract.
         let b = unsafe { buffers(&s, depth, depth_len, (ao, ao_len, "ao", want, &what)) }?;
         let mut result = vec![0.0f32; want];
-        s.sao
-            .run(b.depth, &mut result)
-            .map_err(|e| sao_error("", e))?;
+        s.sao.run(b.depth, &mut result)?;
         // SAFETY: forwarded from this function's contract (checked in `buffers`).
         unsafe { b.write(&result) };
         Ok(())
@@ -722,11 +726,7 @@ pub unsafe extern "C" fn ocean_sao_view_z(
         );
         // SAFETY: forwarded from this function's contract.
         let b = unsafe { buffers(&s, depth, depth_len, (z, z_len, "z", want, &what)) }?;
-        let result = s
-            .sao
-            .z_constants()
-            .z_pass(v, b.depth)
-            .map_err(|e| sao_error("", e))?;
+        let result = s.sao.z_constants().z_pass(v, b.depth)?;
         // SAFETY: forwarded from this function's contract (checked in `buffers`).
         unsafe { b.write(&result) };
         Ok(())

@@ -12,7 +12,7 @@ use ocean_gpu::SaoPass;
 use ocean_sao::SaoUniforms;
 
 use crate::boundary::{borrow, destroy, write_handle};
-use crate::gpu::{OceanGpuContext, gpu_error};
+use crate::gpu::OceanGpuContext;
 use crate::sao::{OceanSao, buffers};
 use crate::status::{Error, OceanStatus, guard};
 
@@ -57,7 +57,7 @@ pub unsafe extern "C" fn ocean_sao_gpu_create(
     guard("ocean_sao_gpu_create", || {
         let c = borrow(ctx, "ctx")?;
         crate::boundary::check_ptr(out.cast_const(), "out")?;
-        let pass = SaoPass::new(c.context()).map_err(|e| gpu_error("", e))?;
+        let pass = SaoPass::new(c.context())?;
         // SAFETY: forwarded from this function's contract.
         unsafe {
             write_handle(
@@ -121,10 +121,7 @@ pub unsafe extern "C" fn ocean_sao_gpu_run(
         let what = format!("the {} x {} AO image", v.output_width(), v.output_height());
         // SAFETY: forwarded from this function's contract.
         let b = unsafe { buffers(&s, depth, depth_len, (ao, ao_len, "ao", want, &what)) }?;
-        let result = g
-            .lock()
-            .evaluate(c.context(), s.sao(), b.depth)
-            .map_err(|e| gpu_error("", e))?;
+        let result = g.lock().evaluate(c.context(), s.sao(), b.depth)?;
         if result.len() != want {
             return Err(Error::new(
                 OceanStatus::GpuFailure,

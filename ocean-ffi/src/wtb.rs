@@ -309,6 +309,13 @@ const _: () = {
     shareable::<OceanScene>();
 };
 
+/// The error of a crate call as a status, with the crate's message (`?` converts).
+impl From<WtbError> for Error {
+    fn from(e: WtbError) -> Self {
+        wtb_error("", e)
+    }
+}
+
 /// The status of an `ocean-wtb` error, and its message prefixed with `context`.
 pub(crate) fn wtb_error(context: &str, e: WtbError) -> Error {
     let status = match e {
@@ -763,7 +770,7 @@ pub unsafe extern "C" fn ocean_scene_create(
         let g = water_grid(&unsafe { grid.read() }, "grid")?;
         // SAFETY: forwarded from this function's contract.
         let t = unsafe { terrain(&g, terrain_heights, terrain_len) }?;
-        let scene = Scene::new(g, t).map_err(|e| wtb_error("", e))?;
+        let scene = Scene::new(g, t)?;
         let coverage = Coverage::everything(scene.grid());
         let value = OceanScene {
             scene: Mutex::new(scene),
@@ -810,7 +817,7 @@ pub unsafe extern "C" fn ocean_scene_set_terrain(
         let grid = *scene.grid();
         // SAFETY: forwarded from this function's contract.
         let t = unsafe { terrain(&grid, terrain_heights, terrain_len) }?;
-        scene.set_terrain(t).map_err(|e| wtb_error("", e))
+        scene.set_terrain(t).map_err(Error::from)
     })
 }
 
@@ -854,7 +861,7 @@ pub unsafe extern "C" fn ocean_scene_add_box(
         let grid = *scene.grid();
         // SAFETY: forwarded from this function's contract.
         let spec = unsafe { box_spec(&grid, desc, trains, n_trains) }?;
-        let id = scene.add_box(spec).map_err(|e| wtb_error("", e))?;
+        let id = scene.add_box(spec)?;
         // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
         unsafe { out_id.write(id.get()) };
         Ok(())
@@ -886,7 +893,7 @@ pub unsafe extern "C" fn ocean_scene_update_box(
         let grid = *scene.grid();
         // SAFETY: forwarded from this function's contract.
         let spec = unsafe { box_spec(&grid, desc, trains, n_trains) }?;
-        scene.update_box(id, spec).map_err(|e| wtb_error("", e))
+        scene.update_box(id, spec).map_err(Error::from)
     })
 }
 
@@ -898,7 +905,7 @@ pub extern "C" fn ocean_scene_remove_box(scene: *mut OceanScene, id: u32) -> Oce
         let scene = borrow(scene, "scene")?;
         let mut scene = scene.lock();
         let id = box_id(&scene, id)?;
-        scene.remove_box(id).map_err(|e| wtb_error("", e))
+        scene.remove_box(id).map_err(Error::from)
     })
 }
 
@@ -955,7 +962,7 @@ pub extern "C" fn ocean_scene_set_budget_unlimited(scene: *mut OceanScene) -> Oc
         scene
             .lock()
             .set_budget(Budget::Unlimited)
-            .map_err(|e| wtb_error("", e))
+            .map_err(Error::from)
     })
 }
 
@@ -978,7 +985,7 @@ pub extern "C" fn ocean_scene_set_budget_seconds(
         scene
             .lock()
             .set_budget(Budget::Seconds(seconds))
-            .map_err(|e| wtb_error("", e))
+            .map_err(Error::from)
     })
 }
 
@@ -1237,9 +1244,7 @@ unsafe fn evaluate(
                 ),
             ));
         }
-        let frame = scene
-            .frame(time, view.as_ref())
-            .map_err(|e| wtb_error("", e))?;
+        let frame = scene.frame(time, view.as_ref())?;
         // SAFETY: both pointers are non-NULL and aligned, the byte size fits in isize and the
         // ranges are disjoint (all checked above); the caller guarantees `n` writable elements
         // in each, untouched by others during the call.
@@ -1252,11 +1257,9 @@ unsafe fn evaluate(
         let pos: &mut [Vec3] = bytemuck::cast_slice_mut(pos);
         let nrm: &mut [Vec3] = bytemuck::cast_slice_mut(nrm);
         if incremental {
-            frame
-                .evaluate_incremental(&mut coverage, pos, nrm)
-                .map_err(|e| wtb_error("", e))?;
+            frame.evaluate_incremental(&mut coverage, pos, nrm)?;
         } else {
-            frame.evaluate_par(pos, nrm).map_err(|e| wtb_error("", e))?;
+            frame.evaluate_par(pos, nrm)?;
         }
         let stats = stats_to(frame.stats());
         *scene_handle.evaluated() = Some(Evaluated {

@@ -7,7 +7,7 @@ use ocean_wtb::scene::{DrawnSample, HeightSample};
 
 use crate::boundary::{borrow, byte_len, check_disjoint, check_ptr, check_time};
 use crate::status::{Error, OceanStatus, guard};
-use crate::wtb::{OceanDVec2, OceanDVec3, OceanScene, wtb_error};
+use crate::wtb::{OceanDVec2, OceanDVec3, OceanScene};
 
 /// The answer of a drawn height query at world (x, z): the triangle of the evaluated grid's
 /// mesh that lies over it.
@@ -180,12 +180,8 @@ pub unsafe extern "C" fn ocean_scene_heights_drawn(
                      querying the drawn surface",
                 ));
             }
-            let frame = s
-                .frame(e.time, e.view.as_ref())
-                .map_err(|e| wtb_error("", e))?;
-            frame
-                .drawn_heights_par(&at, &mut samples)
-                .map_err(|e| wtb_error("", e))?;
+            let frame = s.frame(e.time, e.view.as_ref())?;
+            frame.drawn_heights_par(&at, &mut samples)?;
         }
         // SAFETY: non-NULL and aligned (checked), byte size fits (checked), `n` writable
         // elements (caller's guarantee), disjoint from `xz` (checked, and not read any more).
@@ -240,10 +236,8 @@ pub unsafe extern "C" fn ocean_scene_heights_continuous(
         let mut samples = vec![HeightSample::default(); n];
         {
             let mut s = scene.lock();
-            let frame = s.frame(time, None).map_err(|e| wtb_error("", e))?;
-            frame
-                .continuous_heights_par(&at, &mut samples)
-                .map_err(|e| wtb_error("", e))?;
+            let frame = s.frame(time, None)?;
+            frame.continuous_heights_par(&at, &mut samples)?;
         }
         // SAFETY: as in `ocean_scene_heights_drawn`.
         let dst = unsafe { core::slice::from_raw_parts_mut(out, n) };
@@ -289,7 +283,7 @@ pub extern "C" fn ocean_scene_set_train_filter(
         let filter = if min_cells == 0.0 && max_cells == 0.0 {
             None
         } else {
-            Some(TrainFilter::new(min_cells, max_cells).map_err(|e| wtb_error("", e))?)
+            Some(TrainFilter::new(min_cells, max_cells)?)
         };
         scene.lock().set_train_filter(filter);
         Ok(())
