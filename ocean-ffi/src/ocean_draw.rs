@@ -13,7 +13,7 @@ use ocean_brdf::{Filter, FilteredSurface};
 use ocean_gpu::{MeshGrid, OceanOptions, WaveTexels};
 
 use crate::boundary::{
-    borrow, byte_len, check_finite, check_ptr, check_time, read_in, write_out, write_sized,
+    borrow, byte_len, check_finite, check_ptr, check_time, read_in, write_block, write_out,
 };
 use crate::lighting::{OceanLighting, brdf_error};
 use crate::lighting_spectrum::{
@@ -251,16 +251,7 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
             mesh.as_ref(),
         )?;
         // SAFETY: forwarded from this function's contract.
-        unsafe {
-            write_sized(
-                out,
-                "out",
-                len,
-                needed,
-                bytemuck::bytes_of(&u),
-                "the uniform block",
-            )
-        }?;
+        unsafe { write_block(out, len, needed, &u) }?;
         Ok(())
     })
 }
@@ -414,6 +405,14 @@ mod tests {
         (s, l)
     }
 
+    fn wave_count(spectrum: *const OceanSpectrum) -> usize {
+        crate::boundary::borrow(spectrum, "spectrum")
+            .unwrap()
+            .spectrum
+            .waves()
+            .len()
+    }
+
     fn default_params() -> OceanOceanDrawParams {
         let mut p = OceanOceanDrawParams::default();
         // SAFETY: writable out.
@@ -544,11 +543,7 @@ mod tests {
     fn wave_and_fresnel_texels_are_the_renderers() {
         let (desc, camera) = camera();
         let (spectrum, _) = handles();
-        let n = crate::boundary::borrow(spectrum, "spectrum")
-            .unwrap()
-            .spectrum
-            .waves()
-            .len();
+        let n = wave_count(spectrum);
         let mut out = vec![f32::NAN; 12 * n];
         // SAFETY: readable inputs, `out` holds `len` writable floats.
         let status =
@@ -799,11 +794,7 @@ mod tests {
         }
 
         // The texel functions: wrong lengths, NaN time, NULL.
-        let n = crate::boundary::borrow(spectrum, "spectrum")
-            .unwrap()
-            .spectrum
-            .waves()
-            .len();
+        let n = wave_count(spectrum);
         let mut texels = vec![7.0f32; 12 * n + 1];
         // SAFETY: `texels` holds at least `len` writable floats; NULL is refused.
         unsafe {
@@ -843,11 +834,7 @@ mod tests {
         // time = DBL_MAX gave a NaN phase texel (omega t overflowed) behind success.
         let (desc, _) = camera();
         let (spectrum, _) = handles();
-        let n = crate::boundary::borrow(spectrum, "spectrum")
-            .unwrap()
-            .spectrum
-            .waves()
-            .len();
+        let n = wave_count(spectrum);
         let mut out = vec![-1.0f32; 12 * n];
         for time in [f64::MAX, 1e300, -1e20] {
             // SAFETY: readable inputs, `out` holds `len` writable floats.

@@ -11,7 +11,7 @@ use ocean_gpu::ReliefScene;
 use ocean_relief::Method;
 use ocean_relief::gpu_params::ReliefUniforms;
 
-use crate::boundary::{check_finite, check_ptr, read_in, write_out, write_sized};
+use crate::boundary::{check_finite, check_ptr, read_in, write_block, write_out};
 use crate::lighting::{OceanIrradiance, finite_dvec3};
 use crate::lighting_spectrum::{OceanCameraDesc, camera_from};
 use crate::relief::edge_from;
@@ -272,16 +272,7 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
             srgb_encode,
         )?;
         // SAFETY: forwarded from this function's contract.
-        unsafe {
-            write_sized(
-                out,
-                "out",
-                len,
-                needed,
-                bytemuck::bytes_of(&u),
-                "the uniform block",
-            )
-        }?;
+        unsafe { write_block(out, len, needed, &u) }?;
         Ok(())
     })
 }

@@ -11,7 +11,7 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 use ocean_gpu::SaoPass;
 use ocean_sao::SaoUniforms;
 
-use crate::boundary::{borrow, destroy, write_handle};
+use crate::boundary::{borrow, destroy, write_block, write_handle};
 use crate::gpu::OceanGpuContext;
 use crate::sao::{OceanSao, buffers};
 use crate::status::{Error, OceanStatus, guard};
@@ -182,16 +182,7 @@ pub unsafe extern "C" fn ocean_sao_uniforms(
         crate::boundary::check_ptr(levels.cast_const(), "levels")?;
         let u = SaoUniforms::new(s.sao());
         // SAFETY: forwarded from this function's contract.
-        unsafe {
-            crate::boundary::write_sized(
-                out,
-                "out",
-                len,
-                needed,
-                bytemuck::bytes_of(&u),
-                "the uniform block",
-            )
-        }?;
+        unsafe { write_block(out, len, needed, &u) }?;
         // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
         unsafe { levels.write(u.levels()) };
         Ok(())

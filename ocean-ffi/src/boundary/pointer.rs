@@ -175,3 +175,27 @@ pub(crate) unsafe fn write_sized(
     unsafe { core::slice::from_raw_parts_mut(out, n) }.copy_from_slice(bytes);
     Ok(())
 }
+
+/// [`write_sized`] for a uniform block, the bytes of a `Pod` struct, into the caller's `out`.
+///
+/// # Safety
+///
+/// As [`write_sized`].
+pub(crate) unsafe fn write_block<T: bytemuck::Pod>(
+    out: *mut u8,
+    len: usize,
+    needed: *mut usize,
+    block: &T,
+) -> Result<(), Error> {
+    // SAFETY: forwarded from this function's contract.
+    unsafe {
+        write_sized(
+            out,
+            "out",
+            len,
+            needed,
+            bytemuck::bytes_of(block),
+            "the uniform block",
+        )
+    }
+}
