@@ -1,9 +1,9 @@
 //! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c`, `tests/c/test_wtb.c`,
 //! `tests/c/test_lighting.c`, `tests/c/test_sao.c`, `tests/c/test_relief.c`, `tests/c/test_draw.c`,
-//! `tests/c/test_gpu.c`, `tests/cpp/test_waves.cpp` and `tests/cpp/test_lighting.cpp` against
-//! `include/ocean.h` and the static library `libocean.a` with the system compilers and
-//! `-Wall -Wextra -Werror -pedantic`, runs them, and fails unless each reports `0 failures` after
-//! a positive number of checks and exits 0.
+//! `tests/c/test_gpu.c`, `tests/c/test_threads.c` (with `-pthread`), `tests/cpp/test_waves.cpp`
+//! and `tests/cpp/test_lighting.cpp` against `include/ocean.h` and the static library
+//! `libocean.a` with the system compilers and `-Wall -Wextra -Werror -pedantic`, runs them, and
+//! fails unless each reports `0 failures` after a positive number of checks and exits 0.
 //!
 //! Where the library comes from: `ocean-tests` depends on `ocean-ffi`, and cargo builds every
 //! crate type of a dependency, so by the time this test runs `libocean.a` (crate-type
@@ -592,6 +592,25 @@ fn c11_gpu_renderer_and_shader_export_against_the_static_library() {
         "{differing} of {} bytes differ between the C ABI's frame and ocean_gpu's on {}",
         from_c.len(),
         ctx.describe()
+    );
+}
+
+/// The thread-safety promises of `include/ocean.h` from C11 and POSIX threads
+/// (`tests/c/test_threads.c`): 8 threads making the library's first calls at once, then 8
+/// threads sharing one handle of every shareable kind (and one scene) while 8 others create,
+/// use and destroy their own, every result and error message bit for bit equal to the same
+/// calls made on one thread. `.ci/sanitize` also runs it under ThreadSanitizer.
+#[test]
+fn c11_threads_against_the_static_library() {
+    build_and_run_with(
+        compiler("CC", "cc"),
+        "-std=c11",
+        "tests/c/test_threads.c",
+        "test_threads_c",
+        &Extras {
+            threads: true,
+            ..Extras::default()
+        },
     );
 }
 
