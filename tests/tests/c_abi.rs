@@ -1,10 +1,10 @@
 //! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c`, `tests/c/test_wtb.c`,
 //! `tests/c/test_lighting.c`, `tests/c/test_sao.c`, `tests/c/test_relief.c`, `tests/c/test_draw.c`,
-//! `tests/c/test_gpu.c`, `tests/c/test_misuse.c`, `tests/cpp/test_waves.cpp` and
-//! `tests/cpp/test_lighting.cpp` against
-//! `include/ocean.h` and the static library `libocean.a` with the system compilers and
-//! `-Wall -Wextra -Werror -pedantic`, runs them, and fails unless each reports `0 failures` after
-//! a positive number of checks and exits 0.
+//! `tests/c/test_gpu.c`, `tests/c/test_misuse.c`, `tests/c/test_threads.c` (with `-pthread`),
+//! `tests/cpp/test_waves.cpp` and `tests/cpp/test_lighting.cpp` against `include/ocean.h` and the
+//! static library `libocean.a` with the system compilers and `-Wall -Wextra -Werror -pedantic`,
+//! runs them, and fails unless each reports `0 failures` after a positive number of checks and
+//! exits 0.
 //!
 //! Where the library comes from: `ocean-tests` depends on `ocean-ffi`, and cargo builds every
 //! crate type of a dependency, so by the time this test runs `libocean.a` (crate-type
@@ -20,6 +20,19 @@
 //!
 //! Compilers: `$CC` / `$CXX`, else `cc` / `c++`. A missing compiler fails the test with a message;
 //! it never passes silently.
+//!
+//! `OCEAN_SANITIZE` builds and runs every program under a checker instead (docs/sanitizers.md;
+//! `.ci/sanitize` runs them all):
+//! - `address`: AddressSanitizer and UndefinedBehaviorSanitizer compiled into the program
+//!   (`-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all`), leak
+//!   detection on at exit, suppressions `tests/lsan.supp`;
+//! - `thread`: ThreadSanitizer compiled into the program, linked with the shared `libocean.so`
+//!   (the cdylib built next to `libocean.a`) so that TSan can tell the uninstrumented library
+//!   apart from the program (`ignore_noninstrumented_modules=1`);
+//! - `memcheck`: the ordinary build run under valgrind's memcheck, suppressions
+//!   `tests/valgrind.supp`.
+//!
+//! Any report fails the test. The programs are written to `<target>/tmp/c_abi/<mode>/`.
 #![cfg(unix)]
 
 use std::ffi::OsString;
@@ -86,9 +99,16 @@ fn profile_dir() -> PathBuf {
     deps.parent().expect("deps has a parent").to_path_buf()
 }
 
-/// The freshest `libocean.a` of this profile (see the module documentation).
-fn libocean() -> PathBuf {
+/// The freshest `libocean.a` of this profile (see the module documentation), or with `shared`
+/// the freshest `libocean.so` (the cdylib, found the same way).
+fn libocean(shared: bool) -> PathBuf {
     let profile = profile_dir();
+    let ext = if shared {
+        std::env::consts::DLL_SUFFIX
+    } else {
+        ".a"
+    };
+    let file = format!("libocean{ext}");
     let mut found = Vec::new();
     for dir in [profile.clone(), profile.join("deps")] {
         let Ok(entries) = std::fs::read_dir(&dir) else {
@@ -97,14 +117,14 @@ fn libocean() -> PathBuf {
         for entry in entries {
             let path = entry.expect("directory entry").path();
             let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
-            if name == "libocean.a" || (name.starts_with("libocean-") && name.ends_with(".a")) {
+            if name == file || (name.starts_with("libocean-") && name.ends_with(ext)) {
                 found.push((mtime(&path), path));
             }
         }
     }
     let (built, lib) = found.into_iter().max().unwrap_or_else(|| {
         panic!(
-            "no libocean.a in {} or its deps/: ocean-ffi's staticlib was not built \
+            "no {file} in {} or its deps/: ocean-ffi's library was not built \
              (run `cargo build -p ocean-ffi` with the same profile and target directory)",
             profile.display()
         )
@@ -118,23 +138,121 @@ fn libocean() -> PathBuf {
     lib
 }
 
+/// The checker `OCEAN_SANITIZE` selects (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Sanitize {
+    None,
+    Address,
+    Thread,
+    Memcheck,
+}
+
+impl Sanitize {
+    fn from_env() -> Self {
+        match std::env::var("OCEAN_SANITIZE").as_deref() {
+            Err(_) | Ok("") => Self::None,
+            Ok("address") => Self::Address,
+            Ok("thread") => Self::Thread,
+            Ok("memcheck") => Self::Memcheck,
+            Ok(other) => panic!(
+                "OCEAN_SANITIZE={other:?}: expected `address`, `thread` or `memcheck` (or unset)"
+            ),
+        }
+    }
+
+    fn dir_name(self) -> &'static str {
+        match self {
+            Self::None => "plain",
+            Self::Address => "address",
+            Self::Thread => "thread",
+            Self::Memcheck => "memcheck",
+        }
+    }
+
+    /// Compiler flags besides the warnings.
+    fn cflags(self) -> &'static [&'static str] {
+        match self {
+            Self::None | Self::Memcheck => &[],
+            Self::Address => &[
+                "-fsanitize=address,undefined",
+                "-fno-omit-frame-pointer",
+                "-fno-sanitize-recover=all",
+            ],
+            Self::Thread => &["-fsanitize=thread", "-fno-omit-frame-pointer"],
+        }
+    }
+
+    /// What a report of this checker starts with, in the program's stderr: a program that exits
+    /// 0 despite one (an option overridden from the environment) still fails.
+    fn report_markers(self) -> &'static [&'static str] {
+        match self {
+            Self::None => &[],
+            Self::Address => &[
+                "ERROR: AddressSanitizer",
+                "ERROR: LeakSanitizer",
+                "runtime error:",
+            ],
+            Self::Thread => &["WARNING: ThreadSanitizer"],
+            Self::Memcheck => &[],
+        }
+    }
+}
+
+/// Sets `var` to `ours` followed by the caller's own value, if any: later options win, so a
+/// developer can still add or override one (`ASAN_OPTIONS=verbosity=1 ...`).
+fn options_env(cmd: &mut Command, var: &str, ours: &str) {
+    let mut value = OsString::from(ours);
+    if let Some(theirs) = std::env::var_os(var).filter(|v| !v.is_empty()) {
+        value.push(":");
+        value.push(theirs);
+    }
+    cmd.env(var, value);
+}
+
+/// The software Vulkan and GL drivers that LeakSanitizer must find still loaded at exit to name
+/// their leaks (tests/lsan.supp): the Vulkan loader and EGL unload them when the library's GPU
+/// context is destroyed, before LSan looks, and a leak in an unloaded module has no name that
+/// a suppression could match. `c_compiler -print-file-name` finds them where the system keeps
+/// its libraries (Debian: /usr/lib/x86_64-linux-gnu/libvulkan_lvp.so and
+/// /usr/lib/x86_64-linux-gnu/dri/swrast_dri.so); those not found are left out.
+fn resident_drivers(c_compiler: &OsString) -> Vec<PathBuf> {
+    ["libvulkan_lvp.so", "dri/swrast_dri.so"]
+        .into_iter()
+        .filter_map(|name| {
+            let out = Command::new(c_compiler)
+                .arg(format!("-print-file-name={name}"))
+                .output()
+                .ok()?;
+            let path = PathBuf::from(String::from_utf8_lossy(&out.stdout).trim());
+            // A name it cannot find comes back as it was given, relative.
+            if path.is_absolute() {
+                path.canonicalize().ok()
+            } else {
+                None
+            }
+        })
+        .collect()
+}
+
 fn compiler(var: &str, default: &str) -> OsString {
     std::env::var_os(var).unwrap_or_else(|| default.into())
 }
 
-/// Runs `cmd`, failing the test with its output if it cannot start or exits non-zero.
-fn run(mut cmd: Command, what: &str) -> String {
+/// Runs `cmd`, failing the test with its output if it cannot start or exits non-zero; returns
+/// its stdout and stderr.
+fn run(mut cmd: Command, what: &str) -> (String, String) {
     let out = match cmd.output() {
         Ok(out) => out,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => panic!(
             "{what}: `{}` was not found. The C ABI tests need a C11 and a C++17 compiler \
-             (Debian: apt-get install gcc g++ libglm-dev), or set CC / CXX.",
+             (Debian: apt-get install gcc g++ libglm-dev), or set CC / CXX; \
+             OCEAN_SANITIZE=memcheck needs valgrind (apt-get install valgrind).",
             cmd.get_program().to_string_lossy()
         ),
         Err(e) => panic!("{what}: cannot run {cmd:?}: {e}"),
     };
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
-    let stderr = String::from_utf8_lossy(&out.stderr);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     // Shown with --nocapture, and in the failure report otherwise.
     println!("{what}: {cmd:?}\n{stdout}{stderr}");
     assert!(
@@ -142,45 +260,136 @@ fn run(mut cmd: Command, what: &str) -> String {
         "{what} failed ({}):\n{stdout}\n{stderr}",
         out.status
     );
-    stdout
+    (stdout, stderr)
+}
+
+/// What a program needs besides its source.
+#[derive(Default)]
+struct Extras<'a> {
+    /// Environment variables for the program.
+    env: &'a [(&'a str, &'a Path)],
+    /// It creates a GPU context (Mesa's drivers are loaded into it).
+    gpu: bool,
+    /// It starts threads of its own (`-pthread`).
+    threads: bool,
 }
 
 /// Compiles `source` with `compiler` and `std`, links it with libocean.a, runs it and checks its
 /// summary line.
 fn build_and_run(compiler: OsString, std_flag: &str, source: &str, exe_name: &str) {
-    build_and_run_with_env(compiler, std_flag, source, exe_name, &[]);
+    build_and_run_with(compiler, std_flag, source, exe_name, &Extras::default());
 }
 
-/// [`build_and_run`] with extra environment variables for the program; returns its stdout.
-fn build_and_run_with_env(
+/// [`build_and_run`] with [`Extras`], under the checker `OCEAN_SANITIZE` selects; returns the
+/// program's stdout.
+fn build_and_run_with(
     compiler: OsString,
     std_flag: &str,
     source: &str,
     exe_name: &str,
-    env: &[(&str, &Path)],
+    extras: &Extras,
 ) -> String {
     let root = workspace_root();
-    let lib = libocean();
-    let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_abi");
+    let sanitize = Sanitize::from_env();
+    let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("c_abi")
+        .join(sanitize.dir_name());
     std::fs::create_dir_all(&out_dir).expect("create the output directory");
     let exe = out_dir.join(exe_name);
 
-    let mut cc = Command::new(compiler);
+    let mut cc = Command::new(&compiler);
     cc.arg(std_flag)
         .args(WARNINGS)
         .arg("-g")
+        .args(sanitize.cflags())
+        .args(extras.threads.then_some("-pthread"))
         .arg("-I")
         .arg(root.join("include"))
-        .arg(root.join(source))
-        .arg(&lib)
-        .args(NATIVE_STATIC_LIBS)
-        .arg("-o")
-        .arg(&exe);
+        .arg(root.join(source));
+    if sanitize == Sanitize::Thread {
+        // The cdylib has no SONAME, so the program records this path and finds it at run time;
+        // it brings its own system libraries, but the programs' <math.h> needs libm.
+        cc.arg(libocean(true)).arg("-lm");
+    } else {
+        cc.arg(libocean(false)).args(NATIVE_STATIC_LIBS);
+    }
+    cc.arg("-o").arg(&exe);
     run(cc, &format!("compile {source}"));
 
-    let mut program = Command::new(&exe);
-    program.envs(env.iter().copied());
-    let stdout = run(program, &format!("run {exe_name}"));
+    let mut program = match sanitize {
+        Sanitize::Memcheck => {
+            let mut vg = Command::new("valgrind");
+            vg.args([
+                "--error-exitcode=1",
+                "--leak-check=full",
+                "--errors-for-leak-kinds=definite,indirect",
+                "--show-leak-kinds=definite,indirect",
+                // Names the frames of drivers unloaded before exit, for the suppressions.
+                "--keep-debuginfo=yes",
+                "--num-callers=40",
+            ])
+            .arg(suppressions_arg(&root.join("tests/valgrind.supp")))
+            .arg(&exe);
+            vg
+        }
+        _ => Command::new(&exe),
+    };
+    program.envs(extras.env.iter().copied());
+    match sanitize {
+        Sanitize::None | Sanitize::Memcheck => {}
+        Sanitize::Address => {
+            let mut asan = String::from(
+                "detect_leaks=1:halt_on_error=1:detect_stack_use_after_return=1:\
+                 check_initialization_order=1:strict_init_order=1",
+            );
+            if extras.gpu {
+                let drivers = resident_drivers(&compiler);
+                if !drivers.is_empty() {
+                    // Preloaded libraries come before the ASan runtime in the link order, which
+                    // ASan refuses unless told; they define no allocator, so its interception
+                    // is intact.
+                    asan.push_str(":verify_asan_link_order=0");
+                    program.env("LD_PRELOAD", join_paths(&drivers, " "));
+                }
+            }
+            options_env(&mut program, "ASAN_OPTIONS", &asan);
+            options_env(
+                &mut program,
+                "UBSAN_OPTIONS",
+                "print_stacktrace=1:halt_on_error=1",
+            );
+            options_env(
+                &mut program,
+                "LSAN_OPTIONS",
+                &format!(
+                    "print_suppressions=1:suppressions={}",
+                    root.join("tests/lsan.supp").display()
+                ),
+            );
+        }
+        Sanitize::Thread => options_env(
+            &mut program,
+            "TSAN_OPTIONS",
+            "halt_on_error=1:second_deadlock_stack=1:ignore_noninstrumented_modules=1",
+        ),
+    }
+    let (stdout, stderr) = run(
+        program,
+        &format!("run {exe_name} ({})", sanitize.dir_name()),
+    );
+    for marker in sanitize.report_markers() {
+        assert!(
+            !stderr.contains(marker),
+            "{exe_name}: a {} report despite exit status 0:\n{stderr}",
+            sanitize.dir_name()
+        );
+    }
+    if sanitize == Sanitize::Memcheck {
+        assert!(
+            stderr.contains("ERROR SUMMARY: 0 errors"),
+            "{exe_name}: valgrind reported errors:\n{stderr}"
+        );
+    }
     // The programs print "<file>: library <version>, <N> checks, <F> failures; ...". Require
     // the line, N > 0 and F = 0, so an empty or truncated run cannot pass.
     let summary = stdout
@@ -201,6 +410,24 @@ fn build_and_run_with_env(
         "the program linked a library of another version: {summary}"
     );
     stdout
+}
+
+/// `--suppressions=<path>` for valgrind.
+fn suppressions_arg(path: &Path) -> OsString {
+    let mut arg = OsString::from("--suppressions=");
+    arg.push(path);
+    arg
+}
+
+fn join_paths(paths: &[PathBuf], sep: &str) -> OsString {
+    let mut joined = OsString::new();
+    for (i, p) in paths.iter().enumerate() {
+        if i > 0 {
+            joined.push(sep);
+        }
+        joined.push(p);
+    }
+    joined
 }
 
 #[test]
@@ -257,11 +484,16 @@ fn c11_lighting_against_the_static_library() {
 /// darkening monotonically toward it, the two conventions agreeing, and every error path.
 #[test]
 fn c11_sao_against_the_static_library() {
-    build_and_run(
+    build_and_run_with(
         compiler("CC", "cc"),
         "-std=c11",
         "tests/c/test_sao.c",
         "test_sao_c",
+        // Its last part runs the GPU passes when an adapter exists.
+        &Extras {
+            gpu: true,
+            ..Extras::default()
+        },
     );
 }
 
@@ -315,12 +547,16 @@ fn c11_gpu_renderer_and_shader_export_against_the_static_library() {
         .join("test_gpu_c.rgba");
     std::fs::create_dir_all(image_path.parent().expect("a parent")).expect("create the directory");
     let _ = std::fs::remove_file(&image_path);
-    let stdout = build_and_run_with_env(
+    let stdout = build_and_run_with(
         compiler("CC", "cc"),
         "-std=c11",
         "tests/c/test_gpu.c",
         "test_gpu_c",
-        &[("OCEAN_GPU_IMAGE", &image_path)],
+        &Extras {
+            env: &[("OCEAN_GPU_IMAGE", &image_path)],
+            gpu: true,
+            ..Extras::default()
+        },
     );
     let Ok(from_c) = std::fs::read(&image_path) else {
         assert!(
@@ -370,6 +606,25 @@ fn c11_gpu_renderer_and_shader_export_against_the_static_library() {
         "{differing} of {} bytes differ between the C ABI's frame and ocean_gpu's on {}",
         from_c.len(),
         ctx.describe()
+    );
+}
+
+/// The thread-safety promises of `include/ocean.h` from C11 and POSIX threads
+/// (`tests/c/test_threads.c`): 8 threads making the library's first calls at once, then 8
+/// threads sharing one handle of every shareable kind (and one scene) while 8 others create,
+/// use and destroy their own, every result and error message bit for bit equal to the same
+/// calls made on one thread. `.ci/sanitize` also runs it under ThreadSanitizer.
+#[test]
+fn c11_threads_against_the_static_library() {
+    build_and_run_with(
+        compiler("CC", "cc"),
+        "-std=c11",
+        "tests/c/test_threads.c",
+        "test_threads_c",
+        &Extras {
+            threads: true,
+            ..Extras::default()
+        },
     );
 }
 
