@@ -705,6 +705,7 @@ pub unsafe extern "C" fn ocean_sky_map_copy_level(
     guard("ocean_sky_map_copy_level", || {
         let m = borrow(sky_map, "sky_map")?;
         check_ptr(rgba.cast_const(), "rgba")?;
+        byte_len::<f32>(len, "rgba")?;
         let texels = self::level(&m, level)?;
         let want = texels.len() * 4;
         if len != want {
@@ -713,7 +714,6 @@ pub unsafe extern "C" fn ocean_sky_map_copy_level(
                 format!("`len` is {len} floats, level {level} holds exactly {want}"),
             ));
         }
-        byte_len::<f32>(len, "rgba")?;
         // SAFETY: non-NULL and 4-aligned (checked), `len` floats whose byte size fits in isize
         // (checked: it equals the level's size), writable and untouched by others (caller's
         // guarantee).

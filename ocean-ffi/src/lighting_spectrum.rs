@@ -304,6 +304,7 @@ pub unsafe extern "C" fn ocean_spectrum_waves(
     guard("ocean_spectrum_waves", || {
         let s = borrow(spectrum, "spectrum")?;
         check_ptr(out.cast_const(), "out")?;
+        byte_len::<OceanWaveDesc>(n, "out")?;
         let waves = s.spectrum.waves();
         if n != waves.len() {
             return Err(Error::new(
@@ -311,7 +312,6 @@ pub unsafe extern "C" fn ocean_spectrum_waves(
                 format!("`n` is {n}, the spectrum has exactly {} waves", waves.len()),
             ));
         }
-        byte_len::<OceanWaveDesc>(n, "out")?;
         // SAFETY: non-NULL and aligned (checked), `n` elements whose byte size fits in isize
         // (checked), writable and untouched by others (caller's guarantee).
         let out = unsafe { core::slice::from_raw_parts_mut(out, n) };

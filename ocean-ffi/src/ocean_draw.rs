@@ -296,6 +296,7 @@ pub unsafe extern "C" fn ocean_ocean_wave_texels(
         check_time(time)?;
         Reach::of_spectrum(&s.spectrum)?.check_time(time)?;
         check_ptr(out.cast_const(), "out")?;
+        byte_len::<f32>(len, "out")?;
         // The filter only orders the waves (longest first), the same for every filter.
         let surface = FilteredSurface::new(&s.spectrum, Filter::PAPER)?;
         let waves = WaveTexels::new(&surface);
@@ -309,7 +310,6 @@ pub unsafe extern "C" fn ocean_ocean_wave_texels(
                 ),
             ));
         }
-        byte_len::<f32>(len, "out")?;
         let texels = waves.frame_texels(&camera, time);
         // SAFETY: non-NULL and 4-aligned (checked), `len` floats whose byte size fits in isize
         // (checked), writable and untouched by others (caller's guarantee).
@@ -337,6 +337,7 @@ pub unsafe extern "C" fn ocean_ocean_wave_texels(
 pub unsafe extern "C" fn ocean_ocean_fresnel_texels(out: *mut f32, len: usize) -> OceanStatus {
     guard("ocean_ocean_fresnel_texels", || {
         check_ptr(out.cast_const(), "out")?;
+        byte_len::<f32>(len, "out")?;
         let texels = ocean_gpu::fresnel_table_texels();
         if len != texels.len() {
             return Err(Error::new(

@@ -585,6 +585,8 @@ pub(crate) unsafe fn buffers<'a>(
 ) -> Result<Buffers<'a>, Error> {
     check_ptr(depth, "depth")?;
     check_ptr(out.cast_const(), out_name)?;
+    let depth_bytes = byte_len::<f32>(depth_len, "depth")?;
+    let out_bytes = byte_len::<f32>(out_len, out_name)?;
     let v = sao.sao.viewport();
     let (w, h) = (v.input_width(), v.input_height());
     if depth_len != v.input_len() {
@@ -602,8 +604,6 @@ pub(crate) unsafe fn buffers<'a>(
             format!("`{out_name}_len` is {out_len} floats, {what} holds exactly {want}"),
         ));
     }
-    let depth_bytes = byte_len::<f32>(depth_len, "depth")?;
-    let out_bytes = byte_len::<f32>(out_len, out_name)?;
     check_disjoint(
         (depth.cast::<u8>(), depth_bytes, "depth"),
         (out.cast_const().cast::<u8>(), out_bytes, out_name),

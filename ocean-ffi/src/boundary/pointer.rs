@@ -94,7 +94,11 @@ pub(crate) unsafe fn input<'a, T>(p: *const T, len: usize, name: &str) -> Result
 }
 
 /// Checks that a caller's buffer of `len` values is exactly `want` long.
+///
+/// A count above `PTRDIFF_MAX` is `OCEAN_STATUS_LENGTH_OVERFLOW` (its byte size overflows
+/// whatever the element), reported before the mismatch as the header's error order says.
 pub(crate) fn check_len(name: &str, len: usize, want: usize, what: &str) -> Result<(), Error> {
+    byte_len::<u8>(len, name)?;
     if len != want {
         return Err(Error::new(
             OceanStatus::InvalidArgument,
@@ -197,5 +201,29 @@ pub(crate) unsafe fn write_block<T: bytemuck::Pod>(
             bytemuck::bytes_of(block),
             "the uniform block",
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A count above PTRDIFF_MAX is an overflow before it is a mismatch (the header's order:
+    /// EMPTY, then LENGTH_OVERFLOW, then INVALID_ARGUMENT); the bad-input matrix
+    /// (`tests/tests/c_matrix.rs`) found exact-length buffers answering INVALID_ARGUMENT.
+    #[test]
+    fn check_len_reports_overflow_before_mismatch() {
+        for len in [usize::MAX, usize::MAX / 2 + 1] {
+            let e = check_len("len", len, 16, "the map").unwrap_err();
+            assert_eq!(
+                e.status,
+                OceanStatus::LengthOverflow,
+                "{len}: {}",
+                e.message
+            );
+        }
+        let e = check_len("len", usize::MAX / 2, 16, "the map").unwrap_err();
+        assert_eq!(e.status, OceanStatus::InvalidArgument, "{}", e.message);
+        assert!(check_len("len", 16, 16, "the map").is_ok());
     }
 }
