@@ -328,10 +328,13 @@ pub unsafe extern "C" fn ocean_lighting_create(
 ) -> OceanStatus {
     guard("ocean_lighting_create", || {
         // SAFETY: forwarded from this function's contract.
+        check_ptr(sky, "sky")?;
+        check_ptr(sea, "sea")?;
+        check_ptr(out.cast_const(), "out")?;
+        // SAFETY: forwarded from this function's contract.
         let sky = sky_params_from(&unsafe { read_in(sky, "sky") }?)?;
         // SAFETY: forwarded from this function's contract.
         let sea = sea_params_from(&unsafe { read_in(sea, "sea") }?)?;
-        check_ptr(out.cast_const(), "out")?;
         let lighting = Lighting::new(sky, sea)?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_handle(out, OceanLighting { lighting }) }
@@ -674,6 +677,7 @@ pub unsafe extern "C" fn ocean_sky_map_level_info(
 ) -> OceanStatus {
     guard("ocean_sky_map_level_info", || {
         let m = borrow(sky_map, "sky_map")?;
+        check_ptr(out_size.cast_const(), "out_size")?;
         self::level(&m, level)?;
         let side = (m.map.size() >> level).max(1);
         // SAFETY: forwarded from this function's contract.

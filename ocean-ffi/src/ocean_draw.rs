@@ -13,7 +13,8 @@ use ocean_brdf::{Filter, FilteredSurface};
 use ocean_gpu::{MeshGrid, OceanOptions, WaveTexels};
 
 use crate::boundary::{
-    borrow, byte_len, check_finite, check_ptr, check_time, read_in, write_block, write_out,
+    borrow, byte_len, check_finite, check_ptr, check_sized, check_time, read_in, write_block,
+    write_out,
 };
 use crate::lighting::{OceanLighting, brdf_error};
 use crate::lighting_spectrum::{
@@ -212,10 +213,16 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
     needed: *mut usize,
 ) -> OceanStatus {
     guard("ocean_ocean_uniforms", || {
-        // SAFETY: forwarded from this function's contract.
-        let camera = camera_from(&unsafe { read_in(camera, "camera") }?)?;
         let s = borrow(spectrum, "spectrum")?;
         let l = borrow(lighting, "lighting")?;
+        check_ptr(camera, "camera")?;
+        check_ptr(params, "params")?;
+        if !mesh.is_null() {
+            check_ptr(mesh, "mesh")?;
+        }
+        check_sized(out.cast_const(), "out", len, needed.cast_const())?;
+        // SAFETY: forwarded from this function's contract.
+        let camera = camera_from(&unsafe { read_in(camera, "camera") }?)?;
         // SAFETY: forwarded from this function's contract.
         let (options, filter) = params_from(&unsafe { read_in(params, "params") }?)?;
         let mesh = if mesh.is_null() {
@@ -239,7 +246,6 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
                 format!("the viewport is {width} x {height} pixels: both sizes must be >= 1"),
             ));
         }
-        check_ptr(needed.cast_const(), "needed")?;
         let surface = FilteredSurface::new(&s.spectrum, filter)?;
         let u = ocean_gpu::frame_uniform(
             &options,
@@ -290,13 +296,14 @@ pub unsafe extern "C" fn ocean_ocean_wave_texels(
     len: usize,
 ) -> OceanStatus {
     guard("ocean_ocean_wave_texels", || {
-        // SAFETY: forwarded from this function's contract.
-        let camera = camera_from(&unsafe { read_in(camera, "camera") }?)?;
         let s = borrow(spectrum, "spectrum")?;
-        check_time(time)?;
-        Reach::of_spectrum(&s.spectrum)?.check_time(time)?;
+        check_ptr(camera, "camera")?;
         check_ptr(out.cast_const(), "out")?;
         byte_len::<f32>(len, "out")?;
+        // SAFETY: forwarded from this function's contract.
+        let camera = camera_from(&unsafe { read_in(camera, "camera") }?)?;
+        check_time(time)?;
+        Reach::of_spectrum(&s.spectrum)?.check_time(time)?;
         // The filter only orders the waves (longest first), the same for every filter.
         let surface = FilteredSurface::new(&s.spectrum, Filter::PAPER)?;
         let waves = WaveTexels::new(&surface);

@@ -302,9 +302,10 @@ pub unsafe extern "C" fn ocean_relief_map_create_f32(
     out: *mut *mut OceanReliefMap,
 ) -> OceanStatus {
     guard("ocean_relief_map_create_f32", || {
+        check_ptr(heights, "heights")?;
+        check_ptr(out.cast_const(), "out")?;
         // SAFETY: forwarded from this function's contract.
         let heights = unsafe { input(heights, len, "heights") }?;
-        check_ptr(out.cast_const(), "out")?;
         let edge = edge_from(edge)?;
         let range = match range {
             OCEAN_RELIEF_RANGE_REFUSE => HeightRange::Refuse,
@@ -399,9 +400,10 @@ unsafe fn create_integer_map<T>(
     make: fn(usize, usize, &[T], Edge) -> Result<HeightMap, ocean_relief::ReliefError>,
 ) -> OceanStatus {
     guard(name, || {
+        check_ptr(heights, "heights")?;
+        check_ptr(out.cast_const(), "out")?;
         // SAFETY: forwarded from the caller's contract.
         let heights = unsafe { input(heights, len, "heights") }?;
-        check_ptr(out.cast_const(), "out")?;
         let edge = edge_from(edge)?;
         map_dims(width, height, len)?;
         let map = make(width as usize, height as usize, heights, edge)?;
@@ -761,6 +763,7 @@ pub unsafe extern "C" fn ocean_relief_cones_encode(
 ) -> OceanStatus {
     guard("ocean_relief_cones_encode", || {
         let c = borrow(cones, "cones")?;
+        check_ptr(out.cast_const().cast::<u8>(), "out")?;
         let encoding = encoding_from(encoding)?;
         check_encoded_out(out, encoding)?;
         let n = c.cones.size();
@@ -789,8 +792,8 @@ pub unsafe extern "C" fn ocean_relief_cones_quantize(
 ) -> OceanStatus {
     guard("ocean_relief_cones_quantize", || {
         let c = borrow(cones, "cones")?;
-        let encoding = encoding_from(encoding)?;
         check_ptr(out.cast_const(), "out")?;
+        let encoding = encoding_from(encoding)?;
         let q = c.cones.quantized(encoding)?;
         let handle = OceanReliefCones::new(c.map.clone(), q)?;
         // SAFETY: forwarded from this function's contract.
@@ -858,6 +861,7 @@ pub unsafe extern "C" fn ocean_relief_generate_encoded(
         let m = borrow(map, "map")?;
         // SAFETY: forwarded from this function's contract.
         let params = unsafe { read_in(params, "params") }?;
+        check_ptr(out.cast_const().cast::<u8>(), "out")?;
         let encoding = encoding_from(encoding)?;
         check_encoded_out(out, encoding)?;
         let params = params_from(&params)?;
@@ -968,6 +972,7 @@ pub unsafe extern "C" fn ocean_relief_mips_level_size(
 ) -> OceanStatus {
     guard("ocean_relief_mips_level_size", || {
         let m = borrow(mips, "mips")?;
+        check_ptr(out_size.cast_const(), "out_size")?;
         // At most OCEAN_RELIEF_MAX_SIDE.
         let side = self::level(&m, level)?.size() as u32;
         // SAFETY: forwarded from this function's contract.
@@ -997,6 +1002,7 @@ pub unsafe extern "C" fn ocean_relief_mips_copy_level(
 ) -> OceanStatus {
     guard("ocean_relief_mips_copy_level", || {
         let m = borrow(mips, "mips")?;
+        check_ptr(out.cast_const().cast::<u8>(), "out")?;
         let encoding = encoding_from(encoding)?;
         check_encoded_out(out, encoding)?;
         let l = self::level(&m, level)?;

@@ -11,7 +11,7 @@ use ocean_gpu::ReliefScene;
 use ocean_relief::Method;
 use ocean_relief::gpu_params::ReliefUniforms;
 
-use crate::boundary::{check_finite, check_ptr, read_in, write_block, write_out};
+use crate::boundary::{check_finite, check_ptr, check_sized, read_in, write_block, write_out};
 use crate::lighting::{OceanIrradiance, finite_dvec3};
 use crate::lighting_spectrum::{OceanCameraDesc, camera_from};
 use crate::relief::edge_from;
@@ -247,6 +247,9 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
     needed: *mut usize,
 ) -> OceanStatus {
     guard("ocean_relief_uniforms", || {
+        check_ptr(camera, "camera")?;
+        check_ptr(scene, "scene")?;
+        check_sized(out.cast_const(), "out", len, needed.cast_const())?;
         // SAFETY: forwarded from this function's contract.
         let camera = camera_from(&unsafe { read_in(camera, "camera") }?)?;
         // SAFETY: forwarded from this function's contract.
@@ -262,7 +265,6 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
                 ));
             }
         };
-        check_ptr(needed.cast_const(), "needed")?;
         let u = ocean_gpu::scene_uniforms(
             &camera,
             &scene,

@@ -521,12 +521,9 @@ pub(crate) fn water_grid(g: &OceanWaterGridDesc, name: &str) -> Result<WaterGrid
         .map_err(|e| wtb_error(&format!("{name}: "), e))
 }
 
-/// A terrain from the caller's heights: NULL with length 0 is deep sea.
-///
-/// # Safety
-///
-/// `heights` must be NULL or point to `len` readable floats.
-unsafe fn terrain(grid: &WaterGrid, heights: *const f32, len: usize) -> Result<Terrain, Error> {
+/// The pointer checks of [`terrain`], which `ocean_scene_create` makes before the grid's
+/// counts and values (the header's error order): NULL with a length, or misaligned.
+fn check_terrain_ptr(heights: *const f32, len: usize) -> Result<(), Error> {
     if heights.is_null() {
         if len != 0 {
             return Err(Error::new(
@@ -537,9 +534,21 @@ unsafe fn terrain(grid: &WaterGrid, heights: *const f32, len: usize) -> Result<T
                 ),
             ));
         }
+        return Ok(());
+    }
+    check_ptr(heights, "terrain_heights")
+}
+
+/// A terrain from the caller's heights: NULL with length 0 is deep sea.
+///
+/// # Safety
+///
+/// `heights` must be NULL or point to `len` readable floats.
+unsafe fn terrain(grid: &WaterGrid, heights: *const f32, len: usize) -> Result<Terrain, Error> {
+    check_terrain_ptr(heights, len)?;
+    if heights.is_null() {
         return Ok(Terrain::deep(grid));
     }
-    check_ptr(heights, "terrain_heights")?;
     byte_len::<f32>(len, "terrain_heights")?;
     if len != grid.len() {
         return Err(Error::new(
@@ -572,6 +581,9 @@ unsafe fn box_spec(
     n_trains: usize,
 ) -> Result<BoxSpec, Error> {
     check_ptr(desc, "desc")?;
+    if n_trains > 0 {
+        check_ptr(trains, "trains")?;
+    }
     // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
     let d = unsafe { desc.read() };
     let w = &d.wind;
@@ -765,6 +777,7 @@ pub unsafe extern "C" fn ocean_scene_create(
 ) -> OceanStatus {
     guard("ocean_scene_create", || {
         check_ptr(grid, "grid")?;
+        check_terrain_ptr(terrain_heights, terrain_len)?;
         check_ptr(out.cast_const(), "out")?;
         // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
         let g = water_grid(&unsafe { grid.read() }, "grid")?;
@@ -889,10 +902,10 @@ pub unsafe extern "C" fn ocean_scene_update_box(
     guard("ocean_scene_update_box", || {
         let scene = borrow(scene, "scene")?;
         let mut scene = scene.lock();
-        let id = box_id(&scene, id)?;
         let grid = *scene.grid();
         // SAFETY: forwarded from this function's contract.
         let spec = unsafe { box_spec(&grid, desc, trains, n_trains) }?;
+        let id = box_id(&scene, id)?;
         scene.update_box(id, spec).map_err(Error::from)
     })
 }

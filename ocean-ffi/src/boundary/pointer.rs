@@ -93,6 +93,26 @@ pub(crate) unsafe fn input<'a, T>(p: *const T, len: usize, name: &str) -> Result
     Ok(unsafe { core::slice::from_raw_parts(p, len) })
 }
 
+/// The pointer and count checks of [`write_sized`], in parameter order: `out` NULL with `len`
+/// != 0 (`OCEAN_STATUS_NULL_POINTER`), `needed`, then `len` beyond `PTRDIFF_MAX`. A function
+/// calls it before its values, which the header's error order reports later.
+pub(crate) fn check_sized(
+    out: *const u8,
+    out_name: &str,
+    len: usize,
+    needed: *const usize,
+) -> Result<(), Error> {
+    if out.is_null() && len != 0 {
+        return Err(Error::new(
+            OceanStatus::NullPointer,
+            format!("`{out_name}` is NULL but `len` is {len} (pass NULL and 0 to query the size)"),
+        ));
+    }
+    check_ptr(needed, "needed")?;
+    byte_len::<u8>(len, out_name)?;
+    Ok(())
+}
+
 /// Checks that a caller's buffer of `len` values is exactly `want` long.
 ///
 /// A count above `PTRDIFF_MAX` is `OCEAN_STATUS_LENGTH_OVERFLOW` (its byte size overflows
@@ -136,7 +156,7 @@ pub(crate) unsafe fn write_slice<T: Copy>(
 /// - `len` smaller: `OCEAN_STATUS_BUFFER_TOO_SMALL`, `*needed` = the size (the one output
 ///   written on a failure), `out` untouched.
 ///
-/// `needed` is checked first; `out` NULL with `len` != 0 is `OCEAN_STATUS_NULL_POINTER`.
+/// The pointers and the count are checked first, by [`check_sized`].
 ///
 /// # Safety
 ///
@@ -150,22 +170,13 @@ pub(crate) unsafe fn write_sized(
     bytes: &[u8],
     what: &str,
 ) -> Result<(), Error> {
-    check_ptr(needed.cast_const(), "needed")?;
+    check_sized(out.cast_const(), out_name, len, needed.cast_const())?;
     let n = bytes.len();
     if out.is_null() {
-        if len != 0 {
-            return Err(Error::new(
-                OceanStatus::NullPointer,
-                format!(
-                    "`{out_name}` is NULL but `len` is {len} (pass NULL and 0 to query the size)"
-                ),
-            ));
-        }
         // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
         unsafe { needed.write(n) };
         return Ok(());
     }
-    byte_len::<u8>(len, out_name)?;
     // SAFETY: as above.
     unsafe { needed.write(n) };
     if len < n {
@@ -225,5 +236,29 @@ mod tests {
         let e = check_len("len", usize::MAX / 2, 16, "the map").unwrap_err();
         assert_eq!(e.status, OceanStatus::InvalidArgument, "{}", e.message);
         assert!(check_len("len", 16, 16, "the map").is_ok());
+    }
+
+    /// The size query's pointers and count, in parameter order, whatever the values after them.
+    #[test]
+    fn check_sized_checks_pointers_then_the_count() {
+        let mut buf = [0u8; 8];
+        let mut needed = 0usize;
+        let (out, nd) = (buf.as_mut_ptr().cast_const(), &raw mut needed);
+        let status = |o, len, n| check_sized(o, "out", len, n).map_err(|e| e.status);
+        assert_eq!(status(out, 8, nd.cast_const()), Ok(()));
+        // The pure query.
+        assert_eq!(status(core::ptr::null(), 0, nd.cast_const()), Ok(()));
+        assert_eq!(
+            status(core::ptr::null(), 8, core::ptr::null()),
+            Err(OceanStatus::NullPointer)
+        );
+        assert_eq!(
+            status(out, 8, core::ptr::null()),
+            Err(OceanStatus::NullPointer)
+        );
+        assert_eq!(
+            status(out, usize::MAX, nd.cast_const()),
+            Err(OceanStatus::LengthOverflow)
+        );
     }
 }
