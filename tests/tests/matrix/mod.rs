@@ -1,0 +1,5 @@
+//! The bad-input matrix's generator: the header parser and the C program it writes (see
+//! `tests/tests/c_matrix.rs`).
+
+pub mod generate;
+pub mod header;
