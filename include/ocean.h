@@ -922,8 +922,9 @@ typedef struct OceanRgb {
  * The coefficients of a CIE standard sky type (ISO 15469 / CIE S 011): the gradation
  * phi(theta) = 1 + a exp(b / cos theta) (theta the zenith angle of the sky element) and the
  * indicatrix f(gamma) = 1 + c (exp(d gamma) - exp(d pi/2)) + e cos^2 gamma (gamma its angle
- * from the Sun). Each in [-1000, 1000]; the sky's relative radiance must stay positive at the
- * zenith and non-negative elsewhere. The default (`ocean_sky_params_default`) is type 12,
+ * from the Sun). Each in [-1000, 1000], b and d in [-1000, 0] (as in every CIE standard type:
+ * with b > 0 the gradation grows without bound towards the horizon); the sky's relative
+ * radiance must stay positive at the zenith and non-negative elsewhere. The default (`ocean_sky_params_default`) is type 12,
  * "standard clear sky, low turbidity": a = -1, b = -0.32, c = 10, d = -3, e = 0.45.
  */
 typedef struct OceanCieSky {
@@ -932,7 +933,7 @@ typedef struct OceanCieSky {
    */
   double a;
   /**
-   * Gradation b (negative: the sky brightens towards the horizon).
+   * Gradation b, in [-1000, 0] (negative: the sky brightens towards the horizon).
    */
   double b;
   /**
@@ -940,7 +941,7 @@ typedef struct OceanCieSky {
    */
   double c;
   /**
-   * Indicatrix d.
+   * Indicatrix d, in [-1000, 0].
    */
   double d;
   /**

@@ -56,11 +56,11 @@ pub fn inverse_stereographic(u: DVec2) -> DVec3 {
 pub struct CieSky {
     /// Gradation `a`.
     pub a: f64,
-    /// Gradation `b` (negative: the sky brightens towards the horizon).
+    /// Gradation `b`, in [-1000, 0] (negative: the sky brightens towards the horizon).
     pub b: f64,
     /// Indicatrix `c` (the circumsolar brightening).
     pub c: f64,
-    /// Indicatrix `d`.
+    /// Indicatrix `d`, in [-1000, 0].
     pub d: f64,
     /// Indicatrix `e` (the forward-scattering term).
     pub e: f64,
@@ -161,6 +161,11 @@ impl Sky {
         ] {
             check(name, v, -1e3, 1e3)?;
         }
+        // The gradation a exp(b / cos θ) and the indicatrix's exp(d γ) stay bounded only for
+        // b, d <= 0 (every CIE standard type): with b > 0 the gradation grows without bound
+        // towards the horizon and the irradiance quadrature overflows.
+        check("cie.b", cie.b, -1e3, 0.0)?;
+        check("cie.d", cie.d, -1e3, 0.0)?;
         let params = SkyParams {
             sun_direction: sun,
             ..params
@@ -186,7 +191,9 @@ impl Sky {
         sky.sky_irradiance = sky.integrate_irradiance();
         // A negative relative radiance anywhere (a CIE type outside its domain) would make
         // negative light: refuse it through the irradiance and the horizon samples.
-        if sky.sky_irradiance.min_element() < 0.0 || sky.relative_radiance(DVec3::X) < 0.0 {
+        if !(sky.sky_irradiance.min_element() >= 0.0 && sky.relative_radiance(DVec3::X) >= 0.0)
+            || !sky.sky_irradiance.is_finite()
+        {
             return Err(BrdfError::OutOfRange {
                 name: "cie relative radiance",
                 value: sky.sky_irradiance.min_element(),

@@ -373,3 +373,40 @@ fn radiometric_inputs_whose_derived_radiances_overflow_are_refused() {
         "{radiance}"
     );
 }
+
+#[test]
+fn cie_skies_whose_gradation_is_unbounded_are_refused() {
+    // a = b = c = 10.75 (b > 0: a exp(b / cos θ) grows without bound towards the horizon) once
+    // gave an infinite sky irradiance behind success; d > 0 overflows the indicatrix likewise.
+    for cie in [
+        CieSky {
+            a: 10.75,
+            b: 10.75,
+            c: 10.75,
+            d: -3.0,
+            e: 0.45,
+        },
+        CieSky {
+            d: 300.0,
+            ..CieSky::CLEAR
+        },
+    ] {
+        let sky = SkyParams {
+            cie,
+            ..SkyParams::default()
+        };
+        let e = Lighting::new(sky, SeaParams::default()).unwrap_err();
+        assert!(matches!(e, BrdfError::OutOfRange { .. }), "{e}");
+    }
+    // b = 0 is bounded: a constant gradation 1 + a = 0.5.
+    let sky = SkyParams {
+        cie: CieSky {
+            a: -0.5,
+            b: 0.0,
+            ..CieSky::CLEAR
+        },
+        ..SkyParams::default()
+    };
+    let l = Lighting::new(sky, SeaParams::default()).unwrap();
+    assert!(l.sky().sky_irradiance().is_finite());
+}

@@ -112,7 +112,9 @@ impl Reach {
     pub(crate) fn check_grid(&self, name: &str, grid: &Grid) -> Result<(), Error> {
         let (nx, nz) = grid.size;
         let steps = DVec2::new(nx.saturating_sub(1) as f64, nz.saturating_sub(1) as f64);
-        let extent = grid.spacing * steps;
+        // The spacing itself is a float in the kernel: a 1 x 1 grid of spacing 2.6e151 has no
+        // extent but gave NaN at point (0, 0) (0 times an infinite float spacing).
+        let extent = (grid.spacing * steps).max(grid.spacing);
         if extent.max_element() > f64::from(f32::MAX) / 2.0 {
             return Err(invalid(format!(
                 "{name}: the grid extends {} m from its origin, which a float cannot hold",
@@ -269,6 +271,15 @@ mod tests {
             assert!(last_error().contains(needle), "{}", last_error());
             assert!(p.iter().all(|v| v.x == 7.0), "written on failure");
         }
+        // A 1 x 1 grid has no extent, but its spacing is a float in the kernel too.
+        let single = OceanGrid {
+            nx: 1,
+            nz: 1,
+            ..grid(2.57e151, 0.0)
+        };
+        let (s, p, _) = run(single);
+        assert_eq!(s, OceanStatus::InvalidArgument, "{}", last_error());
+        assert_eq!(p[0].x, 7.0);
         let (s, p, n) = run(grid(1e6, 1e9));
         assert_eq!(s, OceanStatus::Ok, "{}", last_error());
         assert!(p.iter().chain(&n).all(|v| finite(*v)));
