@@ -191,9 +191,11 @@ impl Sky {
         sky.sky_irradiance = sky.integrate_irradiance();
         // A negative relative radiance anywhere (a CIE type outside its domain) would make
         // negative light: refuse it through the irradiance and the horizon samples.
-        if !(sky.sky_irradiance.min_element() >= 0.0 && sky.relative_radiance(DVec3::X) >= 0.0)
-            || !sky.sky_irradiance.is_finite()
-        {
+        let irradiance = sky.sky_irradiance;
+        let valid = irradiance.is_finite()
+            && irradiance.min_element() >= 0.0
+            && sky.relative_radiance(DVec3::X) >= 0.0;
+        if !valid {
             return Err(BrdfError::OutOfRange {
                 name: "cie relative radiance",
                 value: sky.sky_irradiance.min_element(),
