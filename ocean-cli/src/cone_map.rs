@@ -4,7 +4,7 @@
 //! See [`FORMAT`] for what is read and written; it is the command's long help.
 
 use std::fs::File;
-use std::io::{BufReader, IsTerminal, Write};
+use std::io::{BufRead, BufReader, IsTerminal, Seek, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -113,9 +113,15 @@ pub struct HeightImage {
 
 /// Reads and converts a height-map PNG (see [`FORMAT`]).
 pub fn read_heights(path: &Path) -> Result<HeightImage, String> {
-    let p = path.display();
-    let file = File::open(path).map_err(|e| format!("cannot read {p}: {e}"))?;
-    let mut decoder = ::png::Decoder::new(BufReader::new(file));
+    let file = File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    decode_heights(BufReader::new(file), &path.display().to_string())
+}
+
+/// Converts the height-map PNG that `input` yields (see [`FORMAT`]); `p` names it in messages.
+/// [`read_heights`] without the file, so the PNG can come from memory (the `height_png` fuzz
+/// target, `fuzz/fuzz_targets/height_png.rs`).
+pub fn decode_heights(input: impl BufRead + Seek, p: &str) -> Result<HeightImage, String> {
+    let mut decoder = ::png::Decoder::new(input);
     decoder.set_transformations(::png::Transformations::EXPAND);
     let mut reader = decoder.read_info().map_err(|e| match e {
         ::png::DecodingError::IoError(e) => format!("cannot read {p}: {e}"),
