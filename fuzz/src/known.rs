@@ -5,6 +5,8 @@
 use std::any::Any;
 use std::fmt::Debug;
 
+use ocean::OceanCameraDesc;
+
 /// The inputs of a checked call, as passed to `check::outputs`: printable, and typed, so that
 /// an entry below can recognise its case.
 pub trait Args: Debug + Any {}
@@ -20,8 +22,35 @@ pub struct Known {
     pub note: &'static str,
 }
 
-/// The known non-finite cases: none yet.
-pub const KNOWN_NON_FINITE: &[Known] = &[];
+/// The known non-finite cases.
+pub const KNOWN_NON_FINITE: &[Known] = &[
+    Known {
+        function: "ocean_pixel_footprint",
+        matches: |a| {
+            a.downcast_ref::<(OceanCameraDesc, u32, u32, f64, f64, f64)>()
+                .is_some_and(|&(.., max_distance)| max_distance > 1e150)
+        },
+        note: "max_distance above about 1e154 m: rays beyond the horizon stop that far away, and the \
+           footprint, the length of the difference of two such hits (ocean-brdf's \
+           pixel_footprint, a square root of a sum of squares), overflows to +inf although the \
+           call succeeds. Reproducer: fuzz/known/pixel_footprint_overflow.bin (camera 10 m up \
+           looking along -z, viewport 4294967295 x 1077883164, pixel (100, 172.65625), \
+           max_distance 5.06e254).",
+    },
+    Known {
+        function: "ocean_ocean_wave_texels",
+        matches: |a| {
+            a.downcast_ref::<(OceanCameraDesc, f64, usize)>()
+                .is_some_and(|&(_, time, _)| time.abs() > 1e300)
+        },
+        note: "a finite `time` so large that omega * time overflows (|time| above about \
+               f64::MAX / omega, 3e306 s for the shortest default wave): the phase \
+               k.o - omega t + phi of ocean-core's Wave::phase_at is -inf, and its reduction \
+               (ocean-core/src/phase.rs) NaN, written as the phase texel although the call \
+               succeeds. Reproducer: fuzz/known/wave_texels_time_overflow.bin (the default \
+               camera, a 1-wave spectrum, time = f64::MAX).",
+    },
+];
 
 /// Whether the non-finite output of `function` for `inputs` is a known case.
 pub fn known_non_finite(function: &str, inputs: &dyn Args) -> bool {

@@ -43,9 +43,36 @@ pub enum Kind {
     Sao,
 }
 
+/// Calls whose cost dominates an execution (an integration over the sky, a spectrum's spread
+/// tables, a cone map, a wave train march): each input makes at most [`Costly::limit`] of each,
+/// which keeps the executions per second high without losing coverage (more of the same call
+/// in one input reaches nothing new).
+#[derive(Clone, Copy, Debug)]
+pub enum Costly {
+    Lighting,
+    Spectrum,
+    SkyMap,
+    Cones,
+    SceneEvaluate,
+    Sao,
+}
+
+impl Costly {
+    fn limit(self) -> u8 {
+        match self {
+            Costly::Lighting => 1,
+            Costly::Spectrum | Costly::SkyMap | Costly::Sao => 2,
+            Costly::Cones => 3,
+            Costly::SceneEvaluate => 4,
+        }
+    }
+}
+
 /// Every live handle, by kind.
 #[derive(Default)]
 pub struct Live {
+    /// How many of each [`Costly`] call this input made.
+    pub spent: [u8; 6],
     pub waves: Vec<*mut OceanWaves>,
     pub spectra: Vec<*mut OceanSpectrum>,
     pub lightings: Vec<*mut OceanLighting>,
@@ -104,6 +131,17 @@ pub unsafe fn destroy(kind: Kind, handle: *mut core::ffi::c_void) {
 }
 
 impl Live {
+    /// Whether this input may make one more `call`; counts it if so.
+    pub fn afford(&mut self, call: Costly) -> bool {
+        let spent = &mut self.spent[call as usize];
+        if *spent < call.limit() {
+            *spent += 1;
+            true
+        } else {
+            false
+        }
+    }
+
     /// Adds a new handle of `kind` to `list`, destroying the oldest if the kind is full.
     pub fn push<T>(
         list: &mut Vec<*mut T>,

@@ -18,7 +18,7 @@ use ocean::{
 use crate::call::{query, tweak};
 use crate::check;
 use crate::input::Input;
-use crate::live::{Kind, Live, pick_or_null};
+use crate::live::{Costly, Kind, Live, pick_or_null};
 
 /// A direction: a plausible one (mostly upwards, unnormalised) with fuzzed components.
 pub fn dvec3(inp: &mut Input) -> OceanDVec3 {
@@ -84,6 +84,9 @@ pub fn create(live: &mut Live, inp: &mut Input) {
     let (null_sky, null_sea) = (inp.u8() % 32 == 31, inp.u8() % 32 == 31);
     let sky: *const OceanSkyParams = if null_sky { std::ptr::null() } else { &args.0 };
     let sea: *const OceanSeaParams = if null_sea { std::ptr::null() } else { &args.1 };
+    if !live.afford(Costly::Lighting) {
+        return;
+    }
     let mut out = null_mut();
     // SAFETY: `sky` and `sea` are NULL or point to `args`; `out` is a local.
     let st = unsafe { ocean_lighting_create(sky, sea, &mut out) };
@@ -101,9 +104,13 @@ pub fn queries(live: &mut Live, inp: &mut Input) {
         query::<OceanRgb>("ocean_lighting_sky_irradiance", &(), |o| {
             ocean_lighting_sky_irradiance(l, o)
         });
-        query::<OceanIrradiance>("ocean_lighting_irradiance", &(), |o| {
-            ocean_lighting_irradiance(l, o)
-        });
+        // One time in four: the irradiance is an integration over the sky, costly for a
+        // fuzz execution and independent of anything but the lighting.
+        if inp.u8() % 4 == 3 {
+            query::<OceanIrradiance>("ocean_lighting_irradiance", &(), |o| {
+                ocean_lighting_irradiance(l, o)
+            });
+        }
         query::<OceanRgb>("ocean_lighting_sea_radiance", &(), |o| {
             ocean_lighting_sea_radiance(l, o)
         });
@@ -136,6 +143,9 @@ pub fn sky_map_create(live: &mut Live, inp: &mut Input) {
     } else {
         size
     };
+    if !live.afford(Costly::SkyMap) {
+        return;
+    }
     let mut out = null_mut();
     // SAFETY: `l` is live or NULL; `out` is a local.
     let st = unsafe { ocean_lighting_sky_map_create(l, size, &mut out) };

@@ -24,7 +24,7 @@ use crate::call::{query, tweak, tweak_flag, tweak_u32, tweak32};
 use crate::check;
 use crate::finite::half_is_finite;
 use crate::input::Input;
-use crate::live::{Kind, Live, pick_or_null};
+use crate::live::{Costly, Kind, Live, pick_or_null};
 use crate::ops_spectrum::camera;
 
 /// Height map side at most: cone generation is quadratic in the texel count.
@@ -56,9 +56,11 @@ fn heights(inp: &mut Input, w: u32, h: u32) -> Vec<f32> {
 /// (refused before anything is read).
 fn side(inp: &mut Input) -> u32 {
     match inp.u8() % 8 {
+        5 if inp.bool() => MAX_SIDE,
         6 => inp.u32() % (MAX_SIDE + 1),
         7 => [0, 1, 4097, u32::MAX][inp.upto(3)],
-        _ => 2 << inp.upto(4),
+        // 2 to 16; 32 (four times the cost of 16 and sixteen times 8) from the case above.
+        _ => 2 << inp.upto(3),
     }
 }
 
@@ -239,6 +241,9 @@ pub fn cones_create(live: &mut Live, inp: &mut Input) {
     let m = pick_or_null(inp, &live.maps);
     let n = map_side(m);
     let params = cone_params(inp);
+    if !live.afford(Costly::Cones) {
+        return;
+    }
     // SAFETY: `m` is live or NULL; `params` and `out` are locals; `user` is NULL or the
     // `Progress` of `with_progress`; each buffer holds `cap` >= `len` elements.
     unsafe {
@@ -347,7 +352,7 @@ pub fn cones_queries(live: &mut Live, inp: &mut Input) {
                     Live::push(&mut live.cones, &mut live.dead, Kind::Cones, out);
                 }
             }
-            1 => {
+            1 if live.afford(Costly::Cones) => {
                 let rule = if inp.u8() % 8 == 7 {
                     inp.u32()
                 } else {

@@ -11,7 +11,7 @@ use ocean::{
 use crate::call::{query, tweak_flag, tweak_u32, tweak32};
 use crate::check;
 use crate::input::Input;
-use crate::live::{Kind, Live, pick_or_null};
+use crate::live::{Costly, Kind, Live, pick_or_null};
 
 /// Image side at most: the passes cost samples × pixels.
 const MAX_SIDE: u32 = 16;
@@ -98,8 +98,8 @@ fn params(inp: &mut Input) -> OceanSaoParams {
 /// `ocean_sao_create` for a small image.
 pub fn create(live: &mut Live, inp: &mut Input) {
     let (w, h) = (
-        (inp.u32() + 8) % (MAX_SIDE + 1),
-        (inp.u32() + 8) % (MAX_SIDE + 1),
+        inp.u32().wrapping_add(8) % (MAX_SIDE + 1),
+        inp.u32().wrapping_add(8) % (MAX_SIDE + 1),
     );
     let guard = if inp.u8() % 8 == 7 {
         inp.u32()
@@ -107,6 +107,9 @@ pub fn create(live: &mut Live, inp: &mut Input) {
         inp.u32() % 4
     };
     let args = (w, h, guard, camera(inp), params(inp));
+    if !live.afford(Costly::Sao) {
+        return;
+    }
     let mut out = null_mut();
     // SAFETY: the camera, parameters and `out` are locals.
     let st = unsafe { ocean_sao_create(w, h, guard, &args.3, &args.4, &mut out) };

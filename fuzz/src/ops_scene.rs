@@ -16,7 +16,7 @@ use ocean::{
 use crate::call::{matrix_f32, query, tweak, tweak_flag, tweak_u32};
 use crate::check;
 use crate::input::Input;
-use crate::live::{Live, Scene, pick};
+use crate::live::{Costly, Live, Scene, pick};
 use crate::ops_waves::wave_desc;
 
 // Declared here because ocean-ffi/src/lib.rs does not re-export them (the symbols exist and
@@ -326,6 +326,9 @@ pub fn evaluate(live: &mut Live, inp: &mut Input) {
     let stats_ptr: *mut OceanFrameStats = if with_stats { &mut stats } else { null_mut() };
     let vp_ptr = vp.as_ref().map_or(std::ptr::null(), |m| m.as_ptr());
     let args = (n, time, vp, convention);
+    if !live.afford(Costly::SceneEvaluate) {
+        return;
+    }
     match (inp.u8() % 4, i) {
         (3, Some(i)) => {
             let sc = &mut live.scenes[i];
