@@ -150,6 +150,20 @@ pub fn decode_heights(mut input: impl BufRead + Seek, p: &str) -> Result<HeightI
             HeightMap::MIN_SIDE
         ));
     }
+    // The png crate (0.18.1) panics expanding a palette that is not a whole number of RGB
+    // triples, or shorter than its transparency table (image-rs/image-png issue 694), instead of
+    // refusing the file: refuse it here first (found by the height_png fuzz target).
+    if let Some(palette) = &reader.info().palette {
+        let entries = palette.len() / 3;
+        let alphas = reader.info().trns.as_ref().map_or(0, |t| t.len());
+        if palette.len() % 3 != 0 || alphas > entries {
+            return Err(format!(
+                "{p} is corrupt: its palette (PLTE) has {} bytes, {alphas} transparency entries: \
+                 not a whole number of RGB entries, each with at most one alpha",
+                palette.len()
+            ));
+        }
+    }
     let size = reader
         .output_buffer_size()
         .ok_or_else(|| format!("{p}: the decoded image would not fit in memory"))?;
@@ -459,6 +473,49 @@ mod tests {
                  of samples), more than its 65 bytes can hold"
             ),
             "{e}"
+        );
+    }
+
+    /// A 2 x 2 palette image, 8-bit indices 0, 1, 1, 0, with the given PLTE and tRNS data.
+    fn palette_png(plte: &[u8], trns: &[u8]) -> Vec<u8> {
+        let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+        let mut ihdr = Vec::new();
+        ihdr.extend_from_slice(&2u32.to_be_bytes());
+        ihdr.extend_from_slice(&2u32.to_be_bytes());
+        ihdr.extend_from_slice(&[8, 3, 0, 0, 0]);
+        chunk(&mut png, b"IHDR", &ihdr);
+        chunk(&mut png, b"PLTE", plte);
+        if !trns.is_empty() {
+            chunk(&mut png, b"tRNS", trns);
+        }
+        // zlib, stored block: the rows [filter 0, 0, 1] and [filter 0, 1, 0], then Adler-32.
+        let raw = [0u8, 0, 1, 0, 1, 0];
+        let mut idat = vec![0x78, 0x01, 0x01, 6, 0, !6, 0xff];
+        idat.extend_from_slice(&raw);
+        let (a, b) = raw.iter().fold((1u32, 0u32), |(a, b), &x| {
+            let a = (a + u32::from(x)) % 65521;
+            (a, (b + a) % 65521)
+        });
+        idat.extend_from_slice(&((b << 16) | a).to_be_bytes());
+        chunk(&mut png, b"IDAT", &idat);
+        chunk(&mut png, b"IEND", &[]);
+        png
+    }
+
+    #[test]
+    fn a_palette_that_is_not_whole_rgb_entries_is_refused_not_a_panic() {
+        // Two grays: the reference file, accepted (indices 0, 1 read as gray 16 and 200).
+        let good = palette_png(&[16, 16, 16, 200, 200, 200], &[]);
+        let image = decode_heights(std::io::Cursor::new(&good), "good.png").unwrap();
+        assert_eq!(image.heights, Heights::U8(vec![16, 200, 200, 16]));
+        // 7 bytes (two entries and one stray byte): png 0.18.1 panics on this in
+        // `create_rgba_palette`; refused with the sizes instead.
+        let odd = palette_png(&[16, 16, 16, 200, 200, 200, 9], &[]);
+        let e = decode_heights(std::io::Cursor::new(&odd), "odd.png").unwrap_err();
+        assert_eq!(
+            e,
+            "odd.png is corrupt: its palette (PLTE) has 7 bytes, 0 transparency entries: not a \
+             whole number of RGB entries, each with at most one alpha"
         );
     }
 
