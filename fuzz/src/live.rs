@@ -159,6 +159,9 @@ impl Live {
             unsafe { destroy(kind, old.cast()) };
             dead.push((kind, old.cast()));
         }
+        // The allocator may hand a freed handle's address to a new one: that address is live
+        // again, no longer a dead handle to misuse.
+        dead.retain(|&(_, d)| d != h.cast());
         list.push(h);
     }
 
@@ -184,6 +187,7 @@ impl Live {
         if self.scenes.len() == MAX_PER_KIND {
             self.kill_scene(0);
         }
+        self.dead.retain(|&(_, d)| d != scene.handle.cast());
         self.scenes.push(scene);
     }
 
