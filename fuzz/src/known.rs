@@ -5,7 +5,7 @@
 use std::any::Any;
 use std::fmt::Debug;
 
-use ocean::OceanCameraDesc;
+use ocean::{OceanCameraDesc, OceanGrid, OceanVec2};
 
 /// The inputs of a checked call, as passed to `check::outputs`: printable, and typed, so that
 /// an entry below can recognise its case.
@@ -50,6 +50,27 @@ pub const KNOWN_NON_FINITE: &[Known] = &[
                succeeds. Reproducer: fuzz/known/wave_texels_time_overflow.bin (written by \
                hand: a spectrum of the default parameters with wave_count 1, then the draw \
                data with the default camera, z_near 0.5, and time = f64::MAX).",
+    },
+    Known {
+        function: "ocean_waves_evaluate",
+        matches: |a| {
+            a.downcast_ref::<(Vec<OceanVec2>, usize, f64)>()
+                .is_some_and(|&(_, _, time)| time.abs() > 1e300)
+        },
+        note: "the same overflow of omega * time (ocean-core's Wave::phase_at) in the CPU \
+               evaluation: every position and normal NaN although the call succeeds. \
+               Reproducer: fuzz/known/waves_evaluate_time_overflow.bin (written by hand: one \
+               wave of the harness's defaults, amplitude 0.5 m, wavelength 20 m, infinite \
+               depth, evaluated at one point at time = f64::MAX).",
+    },
+    Known {
+        function: "ocean_waves_evaluate_grid",
+        matches: |a| {
+            a.downcast_ref::<(OceanGrid, f64)>()
+                .is_some_and(|&(_, time)| time.abs() > 1e300)
+        },
+        note: "the same overflow on a grid: every position and normal NaN. Reproducer: \
+               fuzz/known/waves_grid_time_overflow.bin (a 1 x 4 grid at time = f64::MAX).",
     },
 ];
 

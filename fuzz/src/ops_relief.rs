@@ -571,7 +571,7 @@ pub fn helpers(inp: &mut Input) {
     }
     let edge = inp.u32() % 3;
     let srgb = inp.flag();
-    let cap = OCEAN_RELIEF_UNIFORMS_SIZE as usize;
+    let cap = OCEAN_RELIEF_UNIFORMS_SIZE;
     let len = inp.len_within(cap);
     let mut bytes = vec![0u8; cap];
     let args = (cam, scene, size, edge, levels, srgb, len);

@@ -199,8 +199,8 @@ pub fn draw_data(live: &mut Live, inp: &mut Input) {
     let null_mesh = inp.bool();
     let time = inp.f64_near(10.0);
     let (w, h) = (inp.u32(), inp.u32());
-    let len = inp.len_within(OCEAN_OCEAN_UNIFORMS_SIZE as usize);
-    let mut bytes = vec![0u8; OCEAN_OCEAN_UNIFORMS_SIZE as usize];
+    let len = inp.len_within(OCEAN_OCEAN_UNIFORMS_SIZE);
+    let mut bytes = vec![0u8; OCEAN_OCEAN_UNIFORMS_SIZE];
     let args = (cam, params, mesh, null_mesh, time, w, h, len);
     let mesh_ptr: *const OceanWaterGridDesc = if null_mesh { std::ptr::null() } else { &args.2 };
     // SAFETY: `s` and `l` are live or NULL; the camera, parameters and mesh are locals;
@@ -234,7 +234,7 @@ pub fn draw_data(live: &mut Live, inp: &mut Input) {
     let st = unsafe { ocean_ocean_wave_texels(&args.0, s, time, texels.as_mut_ptr(), n) };
     check::outputs("ocean_ocean_wave_texels", &(args.0, time, n), st, &texels);
 
-    let table = (OCEAN_FRESNEL_TABLE_SIZE as usize).pow(2);
+    let table = OCEAN_FRESNEL_TABLE_SIZE.pow(2);
     let n = inp.len_within(table);
     let mut fresnel = vec![0f32; table];
     // SAFETY: `fresnel` holds `table` >= `n` floats.

@@ -25,7 +25,7 @@ pub fn wave_desc(inp: &mut Input) -> OceanWaveDesc {
         direction_x: 1.0,
         direction_z: 0.3,
         phase: 0.7,
-        depth: if inp.u8() % 4 == 0 {
+        depth: if inp.u8().is_multiple_of(4) {
             f64::INFINITY
         } else {
             30.0
