@@ -5,7 +5,31 @@
 use std::any::Any;
 use std::fmt::Debug;
 
-use ocean::{OceanCameraDesc, OceanGrid, OceanVec2};
+use ocean::{
+    OceanCameraDesc, OceanDVec3, OceanGrid, OceanSeaColorInput, OceanSeaParams, OceanSkyParams,
+    OceanVec2,
+};
+
+/// The sky of a lighting query's inputs, as the harness reports them (`ops_lighting.rs`).
+fn sky_of(a: &dyn Any) -> Option<&OceanSkyParams> {
+    type Made = Option<(OceanSkyParams, OceanSeaParams)>;
+    let made = a
+        .downcast_ref::<Made>()
+        .or_else(|| a.downcast_ref::<(Made, OceanDVec3)>().map(|x| &x.0))
+        .or_else(|| a.downcast_ref::<(Made, OceanSeaColorInput)>().map(|x| &x.0))
+        .or_else(|| {
+            a.downcast_ref::<(Made, Vec<OceanSeaColorInput>, usize)>()
+                .map(|x| &x.0)
+        })
+        .or_else(|| a.downcast_ref::<(Made, u32, usize)>().map(|x| &x.0))?;
+    made.as_ref().map(|(sky, _)| sky)
+}
+
+/// A CIE gradation 1 + a exp(b / cos theta) with a != 0 and b > 0: unbounded towards the
+/// horizon.
+fn unbounded_gradation(a: &dyn Any) -> bool {
+    sky_of(a).is_some_and(|s| s.cie.a != 0.0 && s.cie.b > 0.0)
+}
 
 /// The inputs of a checked call, as passed to `check::outputs`: printable, and typed, so that
 /// an entry below can recognise its case.
@@ -21,6 +45,15 @@ pub struct Known {
     /// What goes wrong, and a reproducing input.
     pub note: &'static str,
 }
+
+/// The note of every lighting output of a sky whose gradation is unbounded.
+const UNBOUNDED_SKY: &str = "a CIE sky whose gradation 1 + a exp(b / cos theta) grows without \
+    bound towards the horizon (a != 0, b > 0; every coefficient is only required to lie in \
+    [-1000, 1000] and give non-negative radiance, include/ocean.h) is accepted by \
+    ocean_lighting_create, and then its irradiance quadrature overflows: the sky irradiance \
+    and what derives from it (irradiance, sea and environment radiance, sea colour, sky map \
+    texels) are +inf or NaN. Reproducer: fuzz/known/unbounded_sky_gradation.bin (a = b = c = \
+    10.75, d = -3, e = 0.45, zenith radiance (10.75, 1.2e-38, 10.75), the default Sun).";
 
 /// The known non-finite cases.
 pub const KNOWN_NON_FINITE: &[Known] = &[
@@ -71,6 +104,46 @@ pub const KNOWN_NON_FINITE: &[Known] = &[
         },
         note: "the same overflow on a grid: every position and normal NaN. Reproducer: \
                fuzz/known/waves_grid_time_overflow.bin (a 1 x 4 grid at time = f64::MAX).",
+    },
+    Known {
+        function: "ocean_lighting_sky_irradiance",
+        matches: unbounded_gradation,
+        note: UNBOUNDED_SKY,
+    },
+    Known {
+        function: "ocean_lighting_irradiance",
+        matches: unbounded_gradation,
+        note: UNBOUNDED_SKY,
+    },
+    Known {
+        function: "ocean_lighting_sea_radiance",
+        matches: unbounded_gradation,
+        note: UNBOUNDED_SKY,
+    },
+    Known {
+        function: "ocean_lighting_below_horizon_radiance",
+        matches: unbounded_gradation,
+        note: UNBOUNDED_SKY,
+    },
+    Known {
+        function: "ocean_lighting_environment_radiance",
+        matches: unbounded_gradation,
+        note: UNBOUNDED_SKY,
+    },
+    Known {
+        function: "ocean_sea_color",
+        matches: unbounded_gradation,
+        note: UNBOUNDED_SKY,
+    },
+    Known {
+        function: "ocean_sea_color_batch",
+        matches: unbounded_gradation,
+        note: UNBOUNDED_SKY,
+    },
+    Known {
+        function: "ocean_sky_map_copy_level",
+        matches: unbounded_gradation,
+        note: UNBOUNDED_SKY,
     },
 ];
 

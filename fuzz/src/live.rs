@@ -83,6 +83,16 @@ pub struct Live {
     pub quads: Vec<*mut OceanReliefQuadCones>,
     pub mips: Vec<*mut OceanReliefMips>,
     pub saos: Vec<*mut OceanSao>,
+    /// The sky and sea each lighting was made of, to report with what its queries return.
+    pub lighting_args: Vec<(
+        *mut OceanLighting,
+        (ocean::OceanSkyParams, ocean::OceanSeaParams),
+    )>,
+    /// The lighting each sky map was made from (as `lighting_args`), likewise.
+    pub sky_map_args: Vec<(
+        *mut OceanSkyMap,
+        Option<(ocean::OceanSkyParams, ocean::OceanSeaParams)>,
+    )>,
     /// Destroyed handles, for use-after-destroy and double destroy.
     pub dead: Vec<(Kind, *mut core::ffi::c_void)>,
 }

@@ -78,6 +78,17 @@ fn params(inp: &mut Input) -> (OceanSkyParams, OceanSeaParams) {
     (sky, sea)
 }
 
+/// The sky and sea `l` was made of, if it is a live lighting.
+pub fn lighting_args(
+    live: &Live,
+    l: *mut ocean::OceanLighting,
+) -> Option<(OceanSkyParams, OceanSeaParams)> {
+    live.lighting_args
+        .iter()
+        .find(|(h, _)| *h == l)
+        .map(|&(_, a)| a)
+}
+
 /// `ocean_lighting_create` with fuzzed sky and sea (either may be NULL).
 pub fn create(live: &mut Live, inp: &mut Input) {
     let args = params(inp);
@@ -92,6 +103,8 @@ pub fn create(live: &mut Live, inp: &mut Input) {
     let st = unsafe { ocean_lighting_create(sky, sea, &mut out) };
     if check::status("ocean_lighting_create", &args, st) {
         Live::push(&mut live.lightings, &mut live.dead, Kind::Lighting, out);
+        live.lighting_args.retain(|(h, _)| *h != out);
+        live.lighting_args.push((out, args));
     }
 }
 
@@ -99,33 +112,37 @@ pub fn create(live: &mut Live, inp: &mut Input) {
 pub fn queries(live: &mut Live, inp: &mut Input) {
     let l = pick_or_null(inp, &live.lightings);
     let dir = dvec3(inp);
+    // What `l` was made of, reported with its outputs.
+    let made_of = lighting_args(live, l);
     // SAFETY: `l` is live or NULL; every output is a local.
     unsafe {
-        query::<OceanRgb>("ocean_lighting_sky_irradiance", &(), |o| {
+        query::<OceanRgb>("ocean_lighting_sky_irradiance", &made_of, |o| {
             ocean_lighting_sky_irradiance(l, o)
         });
         // One time in four: the irradiance is an integration over the sky, costly for a
         // fuzz execution and independent of anything but the lighting.
         if inp.u8() % 4 == 3 {
-            query::<OceanIrradiance>("ocean_lighting_irradiance", &(), |o| {
+            query::<OceanIrradiance>("ocean_lighting_irradiance", &made_of, |o| {
                 ocean_lighting_irradiance(l, o)
             });
         }
-        query::<OceanRgb>("ocean_lighting_sea_radiance", &(), |o| {
+        query::<OceanRgb>("ocean_lighting_sea_radiance", &made_of, |o| {
             ocean_lighting_sea_radiance(l, o)
         });
-        query::<OceanRgb>("ocean_lighting_below_horizon_radiance", &(), |o| {
+        query::<OceanRgb>("ocean_lighting_below_horizon_radiance", &made_of, |o| {
             ocean_lighting_below_horizon_radiance(l, o)
         });
-        query::<OceanRgb>("ocean_lighting_sun_radiance", &(), |o| {
+        query::<OceanRgb>("ocean_lighting_sun_radiance", &made_of, |o| {
             ocean_lighting_sun_radiance(l, o)
         });
-        query::<f64>("ocean_lighting_sun_solid_angle", &(), |o| {
+        query::<f64>("ocean_lighting_sun_solid_angle", &made_of, |o| {
             ocean_lighting_sun_solid_angle(l, o)
         });
-        query::<OceanRgb>("ocean_lighting_environment_radiance", &dir, |o| {
-            ocean_lighting_environment_radiance(l, dir, o)
-        });
+        query::<OceanRgb>(
+            "ocean_lighting_environment_radiance",
+            &(made_of, dir),
+            |o| ocean_lighting_environment_radiance(l, dir, o),
+        );
     }
 }
 
@@ -149,8 +166,11 @@ pub fn sky_map_create(live: &mut Live, inp: &mut Input) {
     let mut out = null_mut();
     // SAFETY: `l` is live or NULL; `out` is a local.
     let st = unsafe { ocean_lighting_sky_map_create(l, size, &mut out) };
-    if check::status("ocean_lighting_sky_map_create", &size, st) {
+    let made_of = lighting_args(live, l);
+    if check::status("ocean_lighting_sky_map_create", &(made_of, size), st) {
         Live::push(&mut live.sky_maps, &mut live.dead, Kind::SkyMap, out);
+        live.sky_map_args.retain(|(h, _)| *h != out);
+        live.sky_map_args.push((out, made_of));
     }
 }
 
@@ -158,6 +178,11 @@ pub fn sky_map_create(live: &mut Live, inp: &mut Input) {
 /// (or a shorter length).
 pub fn sky_map_levels(live: &mut Live, inp: &mut Input) {
     let m = pick_or_null(inp, &live.sky_maps);
+    let made_of = live
+        .sky_map_args
+        .iter()
+        .find(|(h, _)| *h == m)
+        .and_then(|&(_, a)| a);
     // SAFETY: `m` is live or NULL; outputs are locals; `rgba` holds `len` floats at least.
     unsafe {
         let count = query::<u32>("ocean_sky_map_level_count", &(), |o| {
@@ -174,7 +199,12 @@ pub fn sky_map_levels(live: &mut Live, inp: &mut Input) {
         let len = inp.len_within(cap);
         let mut rgba = vec![0f32; cap];
         let st = ocean_sky_map_copy_level(m, level, rgba.as_mut_ptr(), len);
-        check::outputs("ocean_sky_map_copy_level", &(level, len), st, &rgba);
+        check::outputs(
+            "ocean_sky_map_copy_level",
+            &(made_of, level, len),
+            st,
+            &rgba,
+        );
     }
 }
 
@@ -209,10 +239,11 @@ pub fn sea_color(live: &mut Live, inp: &mut Input) {
     let l = pick_or_null(inp, &live.lightings);
     let m = pick_or_null(inp, &live.sky_maps);
     let one = sea_input(inp);
+    let made_of = lighting_args(live, l);
     // SAFETY: `l` and `m` are live or NULL; outputs are locals; `batch` and `out` hold `k`
     // >= `n` elements.
     unsafe {
-        query::<OceanSeaLight>("ocean_sea_color", &one, |o| {
+        query::<OceanSeaLight>("ocean_sea_color", &(made_of, one), |o| {
             ocean_sea_color(l, m, one.v, one.n, one.wind, one.sigma_x2, one.sigma_y2, o)
         });
         let k = (1 + inp.upto(4)) % 5;
@@ -220,7 +251,7 @@ pub fn sea_color(live: &mut Live, inp: &mut Input) {
         let n = inp.len_within(k);
         let mut out = vec![OceanSeaLight::default(); k];
         let st = ocean_sea_color_batch(l, m, batch.as_ptr(), n, out.as_mut_ptr());
-        check::outputs("ocean_sea_color_batch", &(batch, n), st, &out);
+        check::outputs("ocean_sea_color_batch", &(made_of, batch, n), st, &out);
     }
 }
 
