@@ -99,6 +99,21 @@ pub const KNOWN_NON_FINITE: &[Known] = &[
     Known {
         function: "ocean_waves_evaluate_grid",
         matches: |a| {
+            a.downcast_ref::<(OceanGrid, f64)>().is_some_and(|&(g, _)| {
+                let max = f64::from(f32::MAX);
+                g.nx as f64 * g.spacing_x > max || g.nz as f64 * g.spacing_z > max
+            })
+        },
+        note: "a grid whose extent does not fit in a float (nx * spacing_x or nz * spacing_z \
+               above f32::MAX) is accepted (a spacing need only be finite and > 0) but its \
+               positions, floats relative to the origin, overflow: +inf, and NaN even at \
+               point (0, 0) (0 times an infinite float spacing). Reproducer: \
+               fuzz/known/waves_grid_huge_spacing.bin (a 1 x 1 grid, spacing_x 2.57e151, time \
+               -1.4e-296).",
+    },
+    Known {
+        function: "ocean_waves_evaluate_grid",
+        matches: |a| {
             a.downcast_ref::<(OceanGrid, f64)>()
                 .is_some_and(|&(_, time)| time.abs() > 1e300)
         },
