@@ -6,8 +6,8 @@ use std::any::Any;
 use std::fmt::Debug;
 
 use ocean::{
-    OceanCameraDesc, OceanDVec3, OceanGrid, OceanSeaColorInput, OceanSeaParams, OceanSkyParams,
-    OceanVec2,
+    OceanCameraDesc, OceanDVec3, OceanGrid, OceanReliefMethod, OceanReliefRay, OceanSeaColorInput,
+    OceanSeaParams, OceanSkyParams, OceanVec2,
 };
 
 /// The sky of a lighting query's inputs, as the harness reports them (`ops_lighting.rs`).
@@ -54,6 +54,22 @@ const UNBOUNDED_SKY: &str = "a CIE sky whose gradation 1 + a exp(b / cos theta) 
     and what derives from it (irradiance, sea and environment radiance, sea colour, sky map \
     texels) are +inf or NaN. Reproducer: fuzz/known/unbounded_sky_gradation.bin (a = b = c = \
     10.75, d = -3, e = 0.45, zenith radiance (10.75, 1.2e-38, 10.75), the default Sun).";
+
+/// A traced ray starting beyond 1e30 texture widths.
+fn far_ray_start(a: &dyn Any) -> bool {
+    a.downcast_ref::<(OceanReliefMethod, Vec<OceanReliefRay>, usize)>()
+        .is_some_and(|(_, rays, n)| {
+            rays[..*n]
+                .iter()
+                .any(|r| r.start_u.abs() > 1e30 || r.start_v.abs() > 1e30)
+        })
+}
+
+/// The note of the relief tracers' case.
+const FAR_RAY_START: &str = "a ray whose start (u, v) is finite but huge (any float is \
+    accepted) is traced to a hit at u or v = -inf. Reproducer: \
+    fuzz/known/relief_trace_far_start.bin (linear search, 36 steps, 12 binary; rays starting at \
+    u = -3.4028235e38 or v = -3.4028235e38, direction (0.3, -0.2, 1)).";
 
 /// The known non-finite cases.
 pub const KNOWN_NON_FINITE: &[Known] = &[
@@ -159,6 +175,16 @@ pub const KNOWN_NON_FINITE: &[Known] = &[
         function: "ocean_sky_map_copy_level",
         matches: unbounded_gradation,
         note: UNBOUNDED_SKY,
+    },
+    Known {
+        function: "ocean_relief_trace",
+        matches: far_ray_start,
+        note: FAR_RAY_START,
+    },
+    Known {
+        function: "ocean_relief_quad_trace",
+        matches: far_ray_start,
+        note: FAR_RAY_START,
     },
 ];
 
