@@ -4,7 +4,7 @@
 //! See [`FORMAT`] for what is read and written; it is the command's long help.
 
 use std::fs::File;
-use std::io::{BufReader, IsTerminal, Write};
+use std::io::{BufRead, BufReader, IsTerminal, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -111,11 +111,26 @@ pub struct HeightImage {
     pub heights: Heights,
 }
 
+/// The largest ratio of decompressed to compressed size of zlib's deflate (RFC 1951): a run
+/// of 258 repeated bytes costs at least 2 bits, so 1 byte expands to at most 1032 bytes. The
+/// image data of a PNG cannot be larger than this many times the file.
+const MAX_INFLATE_RATIO: u64 = 1032;
+
 /// Reads and converts a height-map PNG (see [`FORMAT`]).
 pub fn read_heights(path: &Path) -> Result<HeightImage, String> {
-    let p = path.display();
-    let file = File::open(path).map_err(|e| format!("cannot read {p}: {e}"))?;
-    let mut decoder = ::png::Decoder::new(BufReader::new(file));
+    let file = File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    decode_heights(BufReader::new(file), &path.display().to_string())
+}
+
+/// Converts the height-map PNG that `input` yields (see [`FORMAT`]); `p` names it in messages.
+/// [`read_heights`] without the file, so the PNG can come from memory (the `height_png` fuzz
+/// target, `fuzz/fuzz_targets/height_png.rs`).
+pub fn decode_heights(mut input: impl BufRead + Seek, p: &str) -> Result<HeightImage, String> {
+    let io = |e: std::io::Error| format!("cannot read {p}: {e}");
+    let start = input.stream_position().map_err(io)?;
+    let bytes = input.seek(SeekFrom::End(0)).map_err(io)? - start;
+    input.seek(SeekFrom::Start(start)).map_err(io)?;
+    let mut decoder = ::png::Decoder::new(input);
     decoder.set_transformations(::png::Transformations::EXPAND);
     let mut reader = decoder.read_info().map_err(|e| match e {
         ::png::DecodingError::IoError(e) => format!("cannot read {p}: {e}"),
@@ -135,9 +150,36 @@ pub fn read_heights(path: &Path) -> Result<HeightImage, String> {
             HeightMap::MIN_SIDE
         ));
     }
+    // The png crate (0.18.1) panics expanding a palette that is not a whole number of RGB
+    // triples, or shorter than its transparency table (image-rs/image-png issue 694), instead of
+    // refusing the file: refuse it here first (found by the height_png fuzz target).
+    if let Some(palette) = &reader.info().palette {
+        let entries = palette.len() / 3;
+        let alphas = reader.info().trns.as_ref().map_or(0, |t| t.len());
+        if palette.len() % 3 != 0 || alphas > entries {
+            return Err(format!(
+                "{p} is corrupt: its palette (PLTE) has {} bytes, {alphas} transparency entries: \
+                 not a whole number of RGB entries, each with at most one alpha",
+                palette.len()
+            ));
+        }
+    }
     let size = reader
         .output_buffer_size()
         .ok_or_else(|| format!("{p}: the decoded image would not fit in memory"))?;
+    // Refused before the buffer is allocated: otherwise a header of a hundred bytes that
+    // declares 4096 x 4096 RGBA16 pixels makes this allocate 128 MiB, only to find no data
+    // (found by the height_png fuzz target, fuzz/fuzz_targets/height_png.rs). The pixels as
+    // stored (before the expansion to 8 bits) come out of zlib, so they are at most
+    // MAX_INFLATE_RATIO times the file.
+    let stored = u64::from(w) * u64::from(h) * reader.info().bits_per_pixel() as u64 / 8;
+    if stored > MAX_INFLATE_RATIO.saturating_mul(bytes) {
+        return Err(format!(
+            "{p} is corrupt: its header declares {w} x {h} pixels ({stored} bytes of samples), \
+             more than its {bytes} bytes can hold (zlib expands data at most \
+             {MAX_INFLATE_RATIO} times)"
+        ));
+    }
     let mut buf = vec![0u8; size];
     let frame = reader
         .next_frame(&mut buf)
@@ -375,4 +417,122 @@ pub fn run(args: &ConeMapArgs) -> Result<(), String> {
         },
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// CRC-32 of PNG chunks (ISO 3309, the polynomial reflected), bit by bit.
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut c = !0u32;
+        for &b in bytes {
+            c ^= u32::from(b);
+            for _ in 0..8 {
+                c = if c & 1 == 1 {
+                    0xedb8_8320 ^ (c >> 1)
+                } else {
+                    c >> 1
+                };
+            }
+        }
+        !c
+    }
+
+    fn chunk(out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {
+        out.extend_from_slice(&(data.len() as u32).to_be_bytes());
+        let start = out.len();
+        out.extend_from_slice(kind);
+        out.extend_from_slice(data);
+        let crc = crc32(&out[start..]);
+        out.extend_from_slice(&crc.to_be_bytes());
+    }
+
+    #[test]
+    fn a_header_larger_than_its_file_can_hold_is_refused_before_decoding() {
+        // 4096 x 4096 RGBA, 16 bits: 128 MiB of samples declared by a file of 65 bytes, whose
+        // IDAT is an empty zlib stream (78 9c 03 00 00 00 00 01). Refused with the sizes, not
+        // with the decoder's error after allocating the 128 MiB output buffer.
+        let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+        let mut ihdr = Vec::new();
+        ihdr.extend_from_slice(&4096u32.to_be_bytes());
+        ihdr.extend_from_slice(&4096u32.to_be_bytes());
+        ihdr.extend_from_slice(&[16, 6, 0, 0, 0]);
+        chunk(&mut png, b"IHDR", &ihdr);
+        chunk(
+            &mut png,
+            b"IDAT",
+            &[0x78, 0x9c, 0x03, 0x00, 0x00, 0x00, 0x00, 0x01],
+        );
+        chunk(&mut png, b"IEND", &[]);
+        assert_eq!(png.len(), 65);
+        let e = decode_heights(std::io::Cursor::new(&png), "bomb.png").unwrap_err();
+        assert!(
+            e.starts_with(
+                "bomb.png is corrupt: its header declares 4096 x 4096 pixels (134217728 bytes \
+                 of samples), more than its 65 bytes can hold"
+            ),
+            "{e}"
+        );
+    }
+
+    /// A 2 x 2 palette image, 8-bit indices 0, 1, 1, 0, with the given PLTE and tRNS data.
+    fn palette_png(plte: &[u8], trns: &[u8]) -> Vec<u8> {
+        let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+        let mut ihdr = Vec::new();
+        ihdr.extend_from_slice(&2u32.to_be_bytes());
+        ihdr.extend_from_slice(&2u32.to_be_bytes());
+        ihdr.extend_from_slice(&[8, 3, 0, 0, 0]);
+        chunk(&mut png, b"IHDR", &ihdr);
+        chunk(&mut png, b"PLTE", plte);
+        if !trns.is_empty() {
+            chunk(&mut png, b"tRNS", trns);
+        }
+        // zlib, stored block: the rows [filter 0, 0, 1] and [filter 0, 1, 0], then Adler-32.
+        let raw = [0u8, 0, 1, 0, 1, 0];
+        let mut idat = vec![0x78, 0x01, 0x01, 6, 0, !6, 0xff];
+        idat.extend_from_slice(&raw);
+        let (a, b) = raw.iter().fold((1u32, 0u32), |(a, b), &x| {
+            let a = (a + u32::from(x)) % 65521;
+            (a, (b + a) % 65521)
+        });
+        idat.extend_from_slice(&((b << 16) | a).to_be_bytes());
+        chunk(&mut png, b"IDAT", &idat);
+        chunk(&mut png, b"IEND", &[]);
+        png
+    }
+
+    #[test]
+    fn a_palette_that_is_not_whole_rgb_entries_is_refused_not_a_panic() {
+        // Two grays: the reference file, accepted (indices 0, 1 read as gray 16 and 200).
+        let good = palette_png(&[16, 16, 16, 200, 200, 200], &[]);
+        let image = decode_heights(std::io::Cursor::new(&good), "good.png").unwrap();
+        assert_eq!(image.heights, Heights::U8(vec![16, 200, 200, 16]));
+        // 7 bytes (two entries and one stray byte): png 0.18.1 panics on this in
+        // `create_rgba_palette`; refused with the sizes instead.
+        let odd = palette_png(&[16, 16, 16, 200, 200, 200, 9], &[]);
+        let e = decode_heights(std::io::Cursor::new(&odd), "odd.png").unwrap_err();
+        assert_eq!(
+            e,
+            "odd.png is corrupt: its palette (PLTE) has 7 bytes, 0 transparency entries: not a \
+             whole number of RGB entries, each with at most one alpha"
+        );
+    }
+
+    #[test]
+    fn a_legitimately_well_compressed_image_is_accepted() {
+        // 1024 x 1024 at 1 bit, all black: 128 KiB of samples deflate to a few hundred
+        // bytes, yet at most 1032 times less, so the bound above never refuses a real file.
+        let mut png = Vec::new();
+        let mut enc = ::png::Encoder::new(&mut png, 1024, 1024);
+        enc.set_color(::png::ColorType::Grayscale);
+        enc.set_depth(::png::BitDepth::One);
+        let mut w = enc.write_header().unwrap();
+        w.write_image_data(&vec![0u8; 1024 * 1024 / 8]).unwrap();
+        w.finish().unwrap();
+        assert!(png.len() * 1032 >= 1024 * 1024 / 8, "{} bytes", png.len());
+        let image = decode_heights(std::io::Cursor::new(&png), "black.png").unwrap();
+        assert_eq!(image.side, 1024);
+        assert_eq!(image.heights, Heights::U8(vec![0; 1024 * 1024]));
+    }
 }

@@ -1,31 +1,10 @@
 //! `ocean`: the command-line front end of the ocean crates.
 #![forbid(unsafe_code)]
 
-mod bench;
-mod bench_ffi;
-mod bench_gpu;
-mod bench_lighting;
-mod bench_relief;
-mod bench_sao;
-mod bench_wtb;
-mod blocks;
-mod cone_cache;
-mod cone_map;
-mod interrupt;
-mod island;
-mod obscurance;
-mod pier;
-mod png;
-mod render;
-mod rocks;
-mod scene;
-mod shaders;
-mod solids;
-mod terrain;
-
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use ocean_cli::{bench, cone_map, interrupt, render, shaders};
 
 /// Real-time water and screen-space rendering: scene renders, benchmarks, shader export, cone
 /// maps.

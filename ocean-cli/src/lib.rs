@@ -1,0 +1,26 @@
+//! The library behind the `ocean` command (`src/main.rs`): its subcommands, scene files and
+//! height-map reader, as modules, so that tests and the fuzz targets (`fuzz/`) can call them
+//! without going through the command line.
+#![forbid(unsafe_code)]
+
+pub mod bench;
+pub mod bench_ffi;
+pub mod bench_gpu;
+pub mod bench_lighting;
+pub mod bench_relief;
+pub mod bench_sao;
+pub mod bench_wtb;
+pub mod blocks;
+pub mod cone_cache;
+pub mod cone_map;
+pub mod interrupt;
+pub mod island;
+pub mod obscurance;
+pub mod pier;
+pub mod png;
+pub mod render;
+pub mod rocks;
+pub mod scene;
+pub mod shaders;
+pub mod solids;
+pub mod terrain;
