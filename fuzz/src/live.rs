@@ -122,21 +122,18 @@ pub fn pick_or_null<T>(inp: &mut Input, handles: &[*mut T]) -> *mut T {
 /// `handle` must have come from the `_create` function of `kind`; destroying it twice, or
 /// as another kind, is the misuse that `ocean-ffi` is to detect.
 pub unsafe fn destroy(kind: Kind, handle: *mut core::ffi::c_void) {
-    // SAFETY: per this function's contract, `handle` is a handle of `kind` (or the misuse
-    // under test).
-    unsafe {
-        match kind {
-            Kind::Waves => ocean_waves_destroy(handle.cast()),
-            Kind::Spectrum => ocean_spectrum_destroy(handle.cast()),
-            Kind::Lighting => ocean_lighting_destroy(handle.cast()),
-            Kind::SkyMap => ocean_sky_map_destroy(handle.cast()),
-            Kind::Scene => ocean_scene_destroy(handle.cast()),
-            Kind::ReliefMap => ocean_relief_map_destroy(handle.cast()),
-            Kind::Cones => ocean_relief_cones_destroy(handle.cast()),
-            Kind::QuadCones => ocean_relief_quad_cones_destroy(handle.cast()),
-            Kind::Mips => ocean_relief_mips_destroy(handle.cast()),
-            Kind::Sao => ocean_sao_destroy(handle.cast()),
-        }
+    // The destroy functions check the handle themselves (the registry): nothing to promise.
+    match kind {
+        Kind::Waves => ocean_waves_destroy(handle.cast()),
+        Kind::Spectrum => ocean_spectrum_destroy(handle.cast()),
+        Kind::Lighting => ocean_lighting_destroy(handle.cast()),
+        Kind::SkyMap => ocean_sky_map_destroy(handle.cast()),
+        Kind::Scene => ocean_scene_destroy(handle.cast()),
+        Kind::ReliefMap => ocean_relief_map_destroy(handle.cast()),
+        Kind::Cones => ocean_relief_cones_destroy(handle.cast()),
+        Kind::QuadCones => ocean_relief_quad_cones_destroy(handle.cast()),
+        Kind::Mips => ocean_relief_mips_destroy(handle.cast()),
+        Kind::Sao => ocean_sao_destroy(handle.cast()),
     }
 }
 

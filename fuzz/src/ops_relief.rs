@@ -575,7 +575,8 @@ pub fn helpers(inp: &mut Input) {
     let len = inp.len_within(cap);
     let mut bytes = vec![0u8; cap];
     let args = (cam, scene, size, edge, levels, srgb, len);
-    // SAFETY: the camera and scene are locals; `bytes` holds `cap` >= `len` bytes.
+    // SAFETY: the camera and scene are locals; `bytes` holds `cap` >= `len` bytes; `needed` is a
+    // temporary.
     let st = unsafe {
         ocean_relief_uniforms(
             &args.0,
@@ -586,6 +587,7 @@ pub fn helpers(inp: &mut Input) {
             srgb,
             bytes.as_mut_ptr(),
             len,
+            &mut 0usize,
         )
     };
     check::status("ocean_relief_uniforms", &args, st);

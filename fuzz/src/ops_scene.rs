@@ -222,8 +222,7 @@ pub fn boxes(live: &mut Live, inp: &mut Input) {
             check::status("ocean_scene_update_box", &(args, n), st);
         }
         _ => {
-            // SAFETY: `s` is live or NULL.
-            let st = unsafe { ocean_scene_remove_box(s, id) };
+            let st = ocean_scene_remove_box(s, id);
             check::status("ocean_scene_remove_box", &id, st);
         }
     }

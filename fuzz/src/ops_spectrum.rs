@@ -217,6 +217,7 @@ pub fn draw_data(live: &mut Live, inp: &mut Input) {
             h,
             bytes.as_mut_ptr(),
             len,
+            &mut 0usize,
         )
     };
     check::status("ocean_ocean_uniforms", &args, st);

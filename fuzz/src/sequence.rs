@@ -7,10 +7,9 @@ use crate::live::Live;
 use crate::{misuse, ops_lighting, ops_relief, ops_sao, ops_scene, ops_spectrum, ops_waves};
 
 /// Handle misuse (use after destroy, a handle of another kind, double destroy, NULL handles;
-/// `misuse.rs`). Off: until ocean-ffi checks its handles (OCEAN_STATUS_INVALID_HANDLE), the
-/// first three are undefined behaviour that crashes, so every campaign would stop at once on a
-/// known defect. Turn it on once that check exists.
-pub const MISUSE: bool = false;
+/// `misuse.rs`): ocean-ffi's handle registry answers each with OCEAN_STATUS_INVALID_HANDLE
+/// (or, for NULL, OCEAN_STATUS_NULL_POINTER), which the harness's invariants accept.
+pub const MISUSE: bool = true;
 
 /// Steps per input at most: keeps one execution short whatever the input's length.
 const MAX_STEPS: usize = 24;
