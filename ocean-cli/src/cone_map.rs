@@ -151,8 +151,8 @@ pub fn decode_heights(mut input: impl BufRead + Seek, p: &str) -> Result<HeightI
         ));
     }
     // The png crate (0.18.1) panics expanding a palette that is not a whole number of RGB
-    // triples, or shorter than its transparency table (image-rs/image-png issue 694), instead of
-    // refusing the file: refuse it here first (found by the height_png fuzz target).
+    // triples, or shorter than its transparency table, instead of refusing the file: refuse it
+    // here first (found by the height_png fuzz target; the input is kept in its corpus).
     if let Some(palette) = &reader.info().palette {
         let entries = palette.len() / 3;
         let alphas = reader.info().trns.as_ref().map_or(0, |t| t.len());

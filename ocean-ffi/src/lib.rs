@@ -10,10 +10,14 @@
 //!   outputs through out-parameters, and only on success.
 //! - A detailed message for the most recent failure on the calling thread is available from
 //!   [`ocean_last_error_message`]; [`ocean_status_message`] gives a fixed text per code.
-//! - Objects are opaque handles with `_create` / `_destroy` pairs; destroy accepts NULL.
+//! - Objects are opaque handles with `_create` / `_destroy` pairs: registered ids with a kind,
+//!   never addresses, so a handle of another kind, a destroyed one or a second destroy is
+//!   `OCEAN_STATUS_INVALID_HANDLE`, not undefined behaviour (`boundary::handle`).
 //! - Every pointer is checked for NULL and alignment, every length for overflow, every float
-//!   for NaN and infinity. No panic crosses the boundary: each function body runs inside
-//!   `catch_unwind`, and a panic becomes `OCEAN_STATUS_PANIC`.
+//!   for NaN and infinity, and inputs whose results would not be finite are refused. The checks
+//!   are written once, in the `boundary` module, in the order the header documents. No panic
+//!   crosses the boundary: each function body runs inside `catch_unwind`, and a panic becomes
+//!   `OCEAN_STATUS_PANIC`.
 //!
 //! `unsafe` cannot be forbidden in a C ABI crate; instead `unsafe_op_in_unsafe_fn` is denied,
 //! functions that take raw pointers are `unsafe extern "C"` with a `# Safety` section (what the
