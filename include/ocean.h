@@ -87,22 +87,28 @@
  */
 #define OCEAN_FILTER_N_MAX 2.5
 
+#if defined(OCEAN_GPU)
 /**
  * Size in bytes of the exported `ocean` shader's uniform block `Frame` (binding 0, std140);
  * `ocean_ocean_uniforms` writes it.
  */
 #define OCEAN_OCEAN_UNIFORMS_SIZE 352
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Rows of the wave texture (binding 1 of the `ocean` shader): `ocean_ocean_wave_texels`.
  */
 #define OCEAN_WAVE_TEXTURE_ROWS 3
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Side of the effective Fresnel table texture (binding 6 of the `ocean` shader), texels:
  * `ocean_ocean_fresnel_texels`.
  */
 #define OCEAN_FRESNEL_TABLE_SIZE 33
+#endif
 
 /**
  * `edge`: the texture tiles (sampler addressing *repeat*).
@@ -195,11 +201,13 @@
  */
 #define OCEAN_RELIEF_PROGRESS_BANDS 64
 
+#if defined(OCEAN_GPU)
 /**
  * Size in bytes of the exported `relief` shader's uniform block `Relief` (binding 0, std140);
  * `ocean_relief_uniforms` writes it.
  */
 #define OCEAN_RELIEF_UNIFORMS_SIZE 448
+#endif
 
 /**
  * Array layers of a quad-directional cone map: one per closed quadrant of the ray's horizontal
@@ -348,18 +356,22 @@
  */
 #define OCEAN_SAO_DEPTH_NDC 1
 
+#if defined(OCEAN_GPU)
 /**
  * Size in bytes of the uniform block `Params` that every `sao_*` shader reads at binding 0
  * (std140); `ocean_sao_uniforms` writes it.
  */
 #define OCEAN_SAO_UNIFORMS_SIZE 304
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * `OceanShaderBinding::glsl_binding` when the binding has no GLSL binding number: a sampler
  * (combined with its texture in GLSL), a GLSL 3.30 export (assign the number by name), or a
  * non-GLSL export.
  */
 #define OCEAN_NO_GLSL_BINDING UINT32_MAX
+#endif
 
 /**
  * Major version of the library this header belongs to (the `ocean-ffi` crate version).
@@ -545,6 +557,7 @@ typedef uint32_t OceanDepthConvention;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
+#if defined(OCEAN_GPU)
 /**
  * Target language of `ocean_shader_export`.
  */
@@ -553,28 +566,38 @@ enum OceanShaderLanguage
   : uint32_t
 #endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
  {
+#if defined(OCEAN_GPU)
   /**
    * Desktop GLSL, one file per entry point: `#version 330 core` for draw passes (vertex and
    * fragment), `#version 430 core` for compute passes. Clip space is OpenGL's (y flipped and
    * depth remapped to [-1, 1] in the vertex stage, as wgpu's GL backend does).
    */
   OCEAN_SHADER_LANGUAGE_GLSL = 0,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * GLSL ES 3.10 (`#version 310 es`), one file per entry point.
    */
   OCEAN_SHADER_LANGUAGE_GLSL_ES = 1,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * HLSL, Shader Model 5.1, one file with every entry point.
    */
   OCEAN_SHADER_LANGUAGE_HLSL = 2,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * Metal Shading Language 2.0, one file with every entry point.
    */
   OCEAN_SHADER_LANGUAGE_MSL = 3,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * SPIR-V 1.0, one binary module with every entry point (little-endian 32-bit words).
    */
   OCEAN_SHADER_LANGUAGE_SPIRV = 4,
+#endif
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -583,7 +606,9 @@ typedef enum OceanShaderLanguage OceanShaderLanguage;
 typedef uint32_t OceanShaderLanguage;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * The stage of an exported file.
  */
@@ -592,22 +617,30 @@ enum OceanShaderStage
   : uint32_t
 #endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
  {
+#if defined(OCEAN_GPU)
   /**
    * The file holds every entry point of the pass (HLSL, MSL, SPIR-V).
    */
   OCEAN_SHADER_STAGE_MODULE = 0,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * A vertex shader (GLSL, GLSL ES).
    */
   OCEAN_SHADER_STAGE_VERTEX = 1,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * A fragment shader (GLSL, GLSL ES).
    */
   OCEAN_SHADER_STAGE_FRAGMENT = 2,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * A compute shader (GLSL, GLSL ES).
    */
   OCEAN_SHADER_STAGE_COMPUTE = 3,
+#endif
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -616,7 +649,9 @@ typedef enum OceanShaderStage OceanShaderStage;
 typedef uint32_t OceanShaderStage;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * What kind of resource a binding is.
  */
@@ -625,42 +660,60 @@ enum OceanBindingKind
   : uint32_t
 #endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
  {
+#if defined(OCEAN_GPU)
   /**
    * A uniform buffer (a GLSL uniform block).
    */
   OCEAN_BINDING_KIND_UNIFORM = 0,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * A read-only storage buffer (a GLSL shader storage block).
    */
   OCEAN_BINDING_KIND_STORAGE_READ = 1,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * A read-write storage buffer.
    */
   OCEAN_BINDING_KIND_STORAGE_READ_WRITE = 2,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * A sampled texture (in GLSL a sampler combined with the binding's sampler).
    */
   OCEAN_BINDING_KIND_TEXTURE = 3,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * A read-only storage texture (a GLSL image).
    */
   OCEAN_BINDING_KIND_STORAGE_TEXTURE_READ = 4,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * A write-only storage texture.
    */
   OCEAN_BINDING_KIND_STORAGE_TEXTURE_WRITE = 5,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * A read-write storage texture.
    */
   OCEAN_BINDING_KIND_STORAGE_TEXTURE_READ_WRITE = 6,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * A filtering or non-filtering sampler (folded into the textures it samples in GLSL).
    */
   OCEAN_BINDING_KIND_SAMPLER = 7,
+#endif
+#if defined(OCEAN_GPU)
   /**
    * A comparison sampler.
    */
   OCEAN_BINDING_KIND_SAMPLER_COMPARISON = 8,
+#endif
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -669,13 +722,16 @@ typedef enum OceanBindingKind OceanBindingKind;
 typedef uint32_t OceanBindingKind;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * A headless GPU device and queue that the library created (opaque). Create with
  * `ocean_gpu_context_create`, free with `ocean_gpu_context_destroy`. A
  * `const OceanGpuContext *` may be used by any number of threads at once.
  */
 typedef struct OceanGpuContext OceanGpuContext;
+#endif
 
 /**
  * The Sun, the sky and the sea, validated, with their derived radiances (opaque). Create with
@@ -711,6 +767,7 @@ typedef struct OceanReliefMips OceanReliefMips;
  */
 typedef struct OceanReliefQuadCones OceanReliefQuadCones;
 
+#if defined(OCEAN_GPU)
 /**
  * The GPU ocean renderer (opaque): a projected screen-space grid displaced by the filtered
  * trochoids of a spectrum (Eq. 2), per-pixel filtered normals and slope variances (Eq. 3, 4)
@@ -723,6 +780,7 @@ typedef struct OceanReliefQuadCones OceanReliefQuadCones;
  * use it, but calls on one renderer run one at a time.
  */
 typedef struct OceanRenderer OceanRenderer;
+#endif
 
 /**
  * A validated SAO set-up (opaque): image sizes, guard band, camera and parameters. Create with
@@ -731,6 +789,7 @@ typedef struct OceanRenderer OceanRenderer;
  */
 typedef struct OceanSao OceanSao;
 
+#if defined(OCEAN_GPU)
 /**
  * The GPU ambient obscurance passes (opaque), with the textures they keep for the last image
  * size they ran at. Create with `ocean_sao_gpu_create` on a context, run with
@@ -739,6 +798,7 @@ typedef struct OceanSao OceanSao;
  * one at a time.
  */
 typedef struct OceanSaoGpu OceanSaoGpu;
+#endif
 
 /**
  * A Wave Train Boxes scene (opaque): water grid, terrain, boxes, effects and budget. Create
@@ -751,12 +811,14 @@ typedef struct OceanSaoGpu OceanSaoGpu;
  */
 typedef struct OceanScene OceanScene;
 
+#if defined(OCEAN_GPU)
 /**
  * A shader translated to one language (opaque): its files and binding layout. Create with
  * `ocean_shader_export`, free with `ocean_shader_export_destroy`. Immutable: a
  * `const OceanShaderExport *` may be used by any number of threads at once.
  */
 typedef struct OceanShaderExport OceanShaderExport;
+#endif
 
 /**
  * A mip-mapped sky map of one lighting (opaque): the sky's radiance in the stereographic
@@ -780,6 +842,7 @@ typedef struct OceanSpectrum OceanSpectrum;
  */
 typedef struct OceanWaves OceanWaves;
 
+#if defined(OCEAN_GPU)
 /**
  * How an `OceanRenderer` draws. `ocean_renderer_options_default` fills in the library's
  * defaults. Colour is fixed to 8-bit RGBA (sRGB-encoded, tone-mapped) and the renderer draws
@@ -818,6 +881,7 @@ typedef struct OceanRendererOptions {
    */
   uint8_t draw_sky;
 } OceanRendererOptions;
+#endif
 
 /**
  * A camera for `ocean_pixel_footprint`: a view matrix, a projection described by its
@@ -1178,6 +1242,7 @@ typedef struct OceanSlopeVariance {
   double sigma_y2;
 } OceanSlopeVariance;
 
+#if defined(OCEAN_GPU)
 /**
  * How the exported `ocean` shader draws: the parts of the uniform block that do not come from
  * the camera, the spectrum or the lighting. `ocean_ocean_draw_params_default` fills in the
@@ -1223,6 +1288,7 @@ typedef struct OceanOceanDrawParams {
    */
   uint8_t srgb_encode;
 } OceanOceanDrawParams;
+#endif
 
 /**
  * The water grid of a scene: `nx * nz` points, point (i, j) resting at world
@@ -1304,6 +1370,7 @@ typedef struct OceanReliefMethod {
   uint32_t search;
 } OceanReliefMethod;
 
+#if defined(OCEAN_GPU)
 /**
  * A relief-mapped polygon, how it is traced and how it is lit.
  *
@@ -1390,6 +1457,7 @@ typedef struct OceanReliefScene {
    */
   double corners[4][2];
 } OceanReliefScene;
+#endif
 
 /**
  * A ray into the relief (section 18.2): it enters at texture coordinates (start_u, start_v)
@@ -1701,6 +1769,7 @@ typedef struct OceanSaoInfo {
   float pixels_per_metre;
 } OceanSaoInfo;
 
+#if defined(OCEAN_GPU)
 /**
  * One resource binding of an exported shader. The strings are NUL-terminated UTF-8, owned by
  * the export, and valid until it is destroyed.
@@ -1743,6 +1812,7 @@ typedef struct OceanShaderBinding {
    */
   const char *glsl_name;
 } OceanShaderBinding;
+#endif
 
 /**
  * A point on the sea plane y = 0: world x and z in metres (single precision).
@@ -2143,6 +2213,7 @@ typedef struct OceanHeightSample {
 extern "C" {
 #endif // __cplusplus
 
+#if defined(OCEAN_GPU)
 /**
  * Creates a headless GPU device and stores a new context in `*out`.
  *
@@ -2163,7 +2234,9 @@ extern "C" {
  * `out` must point to a writable pointer.
  */
 OceanStatus ocean_gpu_context_create(struct OceanGpuContext **out);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Frees a context. NULL does nothing; a handle of another kind or already destroyed frees nothing
  * and sets the last-error message (see the header's notes on handles). Renderers created on it
@@ -2171,7 +2244,9 @@ OceanStatus ocean_gpu_context_create(struct OceanGpuContext **out);
  * needs the context).
  */
 void ocean_gpu_context_destroy(struct OceanGpuContext *ctx);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Copies a one-line, NUL-terminated UTF-8 description of the context's adapter (name,
  * backend, device type, driver) into `buf`, for logs and bug reports.
@@ -2201,7 +2276,9 @@ OceanStatus ocean_gpu_context_describe(const struct OceanGpuContext *ctx,
                                        char *buf,
                                        size_t len,
                                        size_t *needed);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Stores the default renderer options in `*out`: 8-pixel cells, a 10 % margin, a 50 km
  * distance cap, exposure `OCEAN_DEFAULT_EXPOSURE`, a 512 x 512 sky map, sky drawn.
@@ -2214,7 +2291,9 @@ OceanStatus ocean_gpu_context_describe(const struct OceanGpuContext *ctx,
  * `out` must be writable.
  */
 OceanStatus ocean_renderer_options_default(struct OceanRendererOptions *out);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Compiles the renderer's shaders and creates its buffers and textures on `ctx`'s device, and
  * stores a new renderer in `*out`. It draws nothing until it has a spectrum and a lighting.
@@ -2233,14 +2312,18 @@ OceanStatus ocean_renderer_options_default(struct OceanRendererOptions *out);
 OceanStatus ocean_renderer_create(const struct OceanGpuContext *ctx,
                                   const struct OceanRendererOptions *options,
                                   struct OceanRenderer **out);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Frees a renderer and its GPU resources. NULL does nothing; a handle of another kind or already
  * destroyed frees nothing and sets the last-error message (see the header's notes on handles). It
  * may outlive its context.
  */
 void ocean_renderer_destroy(struct OceanRenderer *renderer);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Gives the renderer the waves of `spectrum`, filtered with the thresholds `n_min` and
  * `n_max` (paper section 7.1: a wave enters the geometry once its wavelength spans n_min grid
@@ -2259,7 +2342,9 @@ OceanStatus ocean_renderer_set_spectrum(struct OceanRenderer *renderer,
                                         const struct OceanSpectrum *spectrum,
                                         double n_min,
                                         double n_max);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Gives the renderer the Sun, the sky and the sea of `lighting`: renders its sky map at
  * `options->sky_map_size` with every mip level (as `ocean_lighting_sky_map_create`) and
@@ -2274,7 +2359,9 @@ OceanStatus ocean_renderer_set_spectrum(struct OceanRenderer *renderer,
 OceanStatus ocean_renderer_set_lighting(struct OceanRenderer *renderer,
                                         const struct OceanGpuContext *ctx,
                                         const struct OceanLighting *lighting);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Renders the sea and the sky seen by `camera` at `time` (seconds) into a `width` x `height`
  * image on the GPU, waits for it and copies it into `out`.
@@ -2315,6 +2402,7 @@ OceanStatus ocean_renderer_render_rgba8(const struct OceanRenderer *renderer,
                                         uint32_t height,
                                         uint8_t *out,
                                         size_t len);
+#endif
 
 /**
  * Stores the default Sun and sky in `*out`: a clear afternoon with the Sun 25 degrees above
@@ -3030,6 +3118,7 @@ OceanStatus ocean_pixel_footprint(const struct OceanCameraDesc *camera,
                                   double max_distance,
                                   double *out);
 
+#if defined(OCEAN_GPU)
 /**
  * Stores the default draw parameters in `*out`: the paper's filter (`OCEAN_FILTER_N_MIN`,
  * `OCEAN_FILTER_N_MAX`), 8-pixel grid cells, a 10 % margin, a 50 km distance cap, exposure
@@ -3043,7 +3132,9 @@ OceanStatus ocean_pixel_footprint(const struct OceanCameraDesc *camera,
  * `out` must be writable.
  */
 OceanStatus ocean_ocean_draw_params_default(struct OceanOceanDrawParams *out);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Writes the uniform block of the exported `ocean` draw shader for one frame of `width` x
  * `height` pixels seen by `camera` at `time` seconds into `out` (the
@@ -3119,7 +3210,9 @@ OceanStatus ocean_ocean_uniforms(const struct OceanCameraDesc *camera,
                                  uint8_t *out,
                                  size_t len,
                                  size_t *needed);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Writes the wave texture of the exported `ocean` shader (binding 1) for one frame seen by
  * `camera` at `time` seconds into `out`: `OCEAN_WAVE_TEXTURE_ROWS` rows of wave count
@@ -3152,7 +3245,9 @@ OceanStatus ocean_ocean_wave_texels(const struct OceanCameraDesc *camera,
                                     double time,
                                     float *out,
                                     size_t len);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Writes the effective Fresnel table texture of the exported `ocean` shader (binding 6) into
  * `out`: `OCEAN_FRESNEL_TABLE_SIZE` rows of as many floats, `len` exactly 33 * 33. Element
@@ -3170,6 +3265,7 @@ OceanStatus ocean_ocean_wave_texels(const struct OceanCameraDesc *camera,
  * `out` must point to `len` writable floats that no other thread touches during the call.
  */
 OceanStatus ocean_ocean_fresnel_texels(float *out, size_t len);
+#endif
 
 /**
  * Creates a height map from `len` = width * height floats, row-major (texel (i, j) at element
@@ -3512,6 +3608,7 @@ OceanStatus ocean_relief_mips_copy_level(const struct OceanReliefMips *mips,
                                          void *out,
                                          size_t len);
 
+#if defined(OCEAN_GPU)
 /**
  * Stores the default scene in `*out`: a unit quad in the xz plane facing +y (u along +x, v
  * along -z), all of it drawn, one tile, 0.1 deep; relaxed cone stepping with 15 cone steps and 6 bisections of
@@ -3526,7 +3623,9 @@ OceanStatus ocean_relief_mips_copy_level(const struct OceanReliefMips *mips,
  * `out` must be writable.
  */
 OceanStatus ocean_relief_scene_default(struct OceanReliefScene *out);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Writes the uniform block of the exported `relief` draw shader for one draw of `scene` seen
  * by `camera` into `out` (the `OCEAN_RELIEF_UNIFORMS_SIZE` bytes of `Relief`, std140, in the
@@ -3589,6 +3688,7 @@ OceanStatus ocean_relief_uniforms(const struct OceanCameraDesc *camera,
                                   uint8_t *out,
                                   size_t len,
                                   size_t *needed);
+#endif
 
 /**
  * Makes the next mip level of `map`: side N / 2, each depth the mean ((a + b) + (c + d)) / 4
@@ -4029,6 +4129,7 @@ OceanStatus ocean_sao_view_z(const struct OceanSao *sao,
                              float *z,
                              size_t z_len);
 
+#if defined(OCEAN_GPU)
 /**
  * Creates the GPU ambient obscurance passes on `ctx` and stores a new handle in `*out`.
  *
@@ -4041,13 +4142,17 @@ OceanStatus ocean_sao_view_z(const struct OceanSao *sao,
  * `ctx` must be a live context and `out` point to a writable pointer.
  */
 OceanStatus ocean_sao_gpu_create(const struct OceanGpuContext *ctx, struct OceanSaoGpu **out);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Frees the handle. NULL does nothing; a handle of another kind or already destroyed frees nothing
  * and sets the last-error message (see the header's notes on handles).
  */
 void ocean_sao_gpu_destroy(struct OceanSaoGpu *sao_gpu);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Computes the obscurance of `depth` as `ocean_sao_run` does, on the GPU of `ctx`: the depth
  * buffer is uploaded, the five passes run (view-space z, Eq. 2; its MIP levels, Table 1; the
@@ -4074,7 +4179,9 @@ OceanStatus ocean_sao_gpu_run(const struct OceanSaoGpu *sao_gpu,
                               size_t depth_len,
                               float *ao,
                               size_t ao_len);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Writes the uniform block of the exported `sao_*` shaders for `sao` into `out` (the
  * `OCEAN_SAO_UNIFORMS_SIZE` bytes of `Params`, std140, in the machine's byte order: upload
@@ -4110,13 +4217,17 @@ OceanStatus ocean_sao_uniforms(const struct OceanSao *sao,
                                size_t len,
                                size_t *needed,
                                uint32_t *levels);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Returns the number of registered shaders (passes), at least 1. Never fails; leaves the
  * last-error message alone.
  */
 size_t ocean_shader_count(void);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Stores the name of registered shader `index` (0 to `ocean_shader_count()` - 1) in `*out`:
  * a static NUL-terminated string such as "ocean" (the renderer's draw pass) or "trochoid",
@@ -4130,7 +4241,9 @@ size_t ocean_shader_count(void);
  * `out` must be writable.
  */
 OceanStatus ocean_shader_name(size_t index, const char **out);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Translates the registered shader `name` to `language` (an `OceanShaderLanguage` value) with
  * naga and stores a new export in `*out`: its files (`ocean_shader_export_file`) and its
@@ -4158,14 +4271,18 @@ OceanStatus ocean_shader_name(size_t index, const char **out);
 OceanStatus ocean_shader_export(const char *name,
                                 uint32_t language,
                                 struct OceanShaderExport **out);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Frees an export; every pointer it handed out becomes invalid. NULL does nothing; a handle of
  * another kind or already destroyed frees nothing and sets the last-error message (see the
  * header's notes on handles).
  */
 void ocean_shader_export_destroy(struct OceanShaderExport *shader_export);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Stores the number of files of the export (>= 1) in `*out`.
  *
@@ -4178,7 +4295,9 @@ void ocean_shader_export_destroy(struct OceanShaderExport *shader_export);
  */
 OceanStatus ocean_shader_export_file_count(const struct OceanShaderExport *shader_export,
                                            size_t *out);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Stores file `index` (0 to the file count - 1) of the export: its suggested file name in
  * `*file_name` (NUL-terminated, e.g. "ocean.ocean_vs.vert.glsl"), its bytes in `*data` and
@@ -4202,7 +4321,9 @@ OceanStatus ocean_shader_export_file(const struct OceanShaderExport *shader_expo
                                      const char **file_name,
                                      const uint8_t **data,
                                      size_t *len);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Stores the stage of file `index` in `*stage` (an `OceanShaderStage` value:
  * `OCEAN_SHADER_STAGE_MODULE` for a file with every entry point) and the name of its entry
@@ -4220,7 +4341,9 @@ OceanStatus ocean_shader_export_file_stage(const struct OceanShaderExport *shade
                                            size_t index,
                                            uint32_t *stage,
                                            const char **entry_point);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Stores the export's binding layout as text in `*table`: NUL-terminated UTF-8 owned by the
  * export, valid until it is destroyed. A header line starting with `#`, then one line per
@@ -4238,7 +4361,9 @@ OceanStatus ocean_shader_export_file_stage(const struct OceanShaderExport *shade
  */
 OceanStatus ocean_shader_export_bindings(const struct OceanShaderExport *shader_export,
                                          const char **table);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Stores the number of resource bindings of the exported pass in `*out` (the same for every
  * language; 0 for a pass without resources).
@@ -4252,7 +4377,9 @@ OceanStatus ocean_shader_export_bindings(const struct OceanShaderExport *shader_
  */
 OceanStatus ocean_shader_export_binding_count(const struct OceanShaderExport *shader_export,
                                               size_t *out);
+#endif
 
+#if defined(OCEAN_GPU)
 /**
  * Stores binding `index` (0 to the binding count - 1, in (group, binding) order) in `*out`;
  * its strings are owned by the export and valid until it is destroyed.
@@ -4268,6 +4395,7 @@ OceanStatus ocean_shader_export_binding_count(const struct OceanShaderExport *sh
 OceanStatus ocean_shader_export_binding(const struct OceanShaderExport *shader_export,
                                         size_t index,
                                         struct OceanShaderBinding *out);
+#endif
 
 /**
  * A static, NUL-terminated English description of a status code.

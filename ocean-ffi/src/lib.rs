@@ -28,21 +28,26 @@
 #![warn(missing_docs)]
 
 mod boundary;
+#[cfg(feature = "gpu")]
 mod gpu;
 mod lighting;
 mod lighting_brdf;
 mod lighting_spectrum;
 #[doc(hidden)]
 pub mod measure;
+#[cfg(feature = "gpu")]
 mod ocean_draw;
 mod relief;
+#[cfg(feature = "gpu")]
 mod relief_draw;
 mod relief_lod;
 mod relief_quad;
 mod relief_trace;
 mod sao;
 mod sao_camera;
+#[cfg(feature = "gpu")]
 mod sao_gpu;
+#[cfg(feature = "gpu")]
 mod shader_export;
 mod status;
 mod version;
@@ -51,6 +56,7 @@ mod waves_domain;
 mod wtb;
 mod wtb_query;
 
+#[cfg(feature = "gpu")]
 pub use gpu::{
     OceanGpuContext, OceanRenderer, OceanRendererOptions, ocean_gpu_context_create,
     ocean_gpu_context_describe, ocean_gpu_context_destroy, ocean_renderer_create,
@@ -82,6 +88,7 @@ pub use lighting_spectrum::{
     ocean_spectrum_total_slope_variance, ocean_spectrum_wave_count, ocean_spectrum_waves,
     ocean_spectrum_wind_direction,
 };
+#[cfg(feature = "gpu")]
 pub use ocean_draw::{
     OCEAN_FRESNEL_TABLE_SIZE, OCEAN_OCEAN_UNIFORMS_SIZE, OCEAN_WAVE_TEXTURE_ROWS,
     OceanOceanDrawParams, ocean_ocean_draw_params_default, ocean_ocean_fresnel_texels,
@@ -102,6 +109,7 @@ pub use relief::{
     ocean_relief_mips_copy_level, ocean_relief_mips_create, ocean_relief_mips_destroy,
     ocean_relief_mips_level_count, ocean_relief_mips_level_size, ocean_relief_normals,
 };
+#[cfg(feature = "gpu")]
 pub use relief_draw::{
     OCEAN_RELIEF_UNIFORMS_SIZE, OceanReliefScene, ocean_relief_scene_default, ocean_relief_uniforms,
 };
@@ -131,10 +139,12 @@ pub use sao::{
     ocean_sao_view_z,
 };
 pub use sao_camera::{OCEAN_SAO_DEPTH_NDC, OCEAN_SAO_DEPTH_WINDOW, OceanSaoCamera};
+#[cfg(feature = "gpu")]
 pub use sao_gpu::{
     OCEAN_SAO_UNIFORMS_SIZE, OceanSaoGpu, ocean_sao_gpu_create, ocean_sao_gpu_destroy,
     ocean_sao_gpu_run, ocean_sao_uniforms,
 };
+#[cfg(feature = "gpu")]
 pub use shader_export::{
     OCEAN_NO_GLSL_BINDING, OceanBindingKind, OceanShaderBinding, OceanShaderExport,
     OceanShaderLanguage, OceanShaderStage, ocean_shader_count, ocean_shader_export,

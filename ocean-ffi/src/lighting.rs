@@ -412,6 +412,7 @@ impl OceanIrradiance {
     }
 
     /// The irradiance, or none for all-zero coefficients; an error for a non-finite one.
+    #[cfg(feature = "gpu")]
     pub(crate) fn irradiance(&self, what: &str) -> Result<Option<ocean_brdf::Irradiance>, Error> {
         let mut k = [DVec3::ZERO; 9];
         for (i, (out, c)) in k.iter_mut().zip(&self.k).enumerate() {

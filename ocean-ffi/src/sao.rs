@@ -370,6 +370,7 @@ pub struct OceanSao {
 
 impl OceanSao {
     /// The validated set-up.
+    #[cfg(feature = "gpu")]
     pub(crate) fn sao(&self) -> &Sao {
         &self.sao
     }

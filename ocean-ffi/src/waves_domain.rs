@@ -9,7 +9,6 @@
 //! returning non-finite results behind `OCEAN_STATUS_OK`.
 
 use glam::{DVec2, Vec2};
-use ocean_brdf::Spectrum;
 use ocean_core::{Grid, Wave, WaveSet};
 
 use crate::boundary::{Approx, Num};
@@ -40,7 +39,8 @@ impl Reach {
     }
 
     /// The reach of a spectrum's waves (deep water, each well below the limits).
-    pub(crate) fn of_spectrum(spectrum: &Spectrum) -> Result<Self, Error> {
+    #[cfg(feature = "gpu")]
+    pub(crate) fn of_spectrum(spectrum: &ocean_brdf::Spectrum) -> Result<Self, Error> {
         let waves: Vec<Wave> = spectrum
             .waves()
             .iter()

@@ -29,7 +29,9 @@ use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use c_build::{NATIVE_STATIC_LIBS, WARNINGS, compiler, libocean, run, workspace_root};
+use c_build::{
+    FULL_LIBRARY, NATIVE_STATIC_LIBS, WARNINGS, compiler, libocean, run, soname, workspace_root,
+};
 
 /// The checker `OCEAN_SANITIZE` selects (see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -167,13 +169,21 @@ fn build_and_run_with(
         .arg("-g")
         .args(sanitize.cflags())
         .args(extras.threads.then_some("-pthread"))
+        .arg(FULL_LIBRARY)
         .arg("-I")
         .arg(root.join("include"))
         .arg(root.join(source));
     if sanitize == Sanitize::Thread {
-        // The cdylib has no SONAME, so the program records this path and finds it at run time;
-        // it brings its own system libraries, but the programs' <math.h> needs libm.
-        cc.arg(libocean(true)).arg("-lm");
+        // The program records the cdylib's SONAME (ocean-ffi/build.rs) and finds it at run
+        // time through a link of that name beside it; the library brings its own system
+        // libraries, but the programs' <math.h> needs libm.
+        let shared = libocean(true);
+        let link = out_dir.join(soname());
+        let _ = std::fs::remove_file(&link);
+        std::os::unix::fs::symlink(&shared, &link).expect("link the SONAME to the cdylib");
+        cc.arg(shared)
+            .arg(format!("-Wl,-rpath,{}", out_dir.display()))
+            .arg("-lm");
     } else {
         cc.arg(libocean(false)).args(NATIVE_STATIC_LIBS);
     }
@@ -521,21 +531,80 @@ fn cpp17_glm_lighting_against_the_static_library() {
 }
 
 /// The header alone compiles as C99 and C++11 too (the oldest standards it claims), without
-/// warnings.
+/// warnings, for the CPU-only library and for the full one (`OCEAN_GPU`).
 #[test]
 fn header_compiles_as_c99_and_cpp11() {
     let include = workspace_root().join("include");
-    for (compiler, lang, std_flag) in [
-        (compiler("CC", "cc"), "c", "-std=c99"),
-        (compiler("CXX", "c++"), "c++", "-std=c++11"),
+    for (compiler, lang, std_flag, variant) in [
+        (compiler("CC", "cc"), "c", "-std=c99", None),
+        (compiler("CXX", "c++"), "c++", "-std=c++11", None),
+        (compiler("CC", "cc"), "c", "-std=c99", Some(FULL_LIBRARY)),
+        (
+            compiler("CXX", "c++"),
+            "c++",
+            "-std=c++11",
+            Some(FULL_LIBRARY),
+        ),
     ] {
         let mut cmd = Command::new(compiler);
         cmd.args(["-x", lang, std_flag])
             .args(WARNINGS)
+            .args(variant)
             .arg("-fsyntax-only")
             .arg("-I")
             .arg(&include)
             .arg(include.join("ocean.h"));
         run(cmd, &format!("{lang} {std_flag} syntax check of ocean.h"));
+    }
+}
+
+/// Every C example of the README (its ```c blocks) compiles as C11 and as C++17 with the
+/// warnings of the other C tests, links against the library and exits 0: a user copying one
+/// into either kind of project gets a working program.
+#[test]
+fn readme_c_examples_build_as_c11_and_cpp17_and_run() {
+    let root = workspace_root();
+    let readme = std::fs::read_to_string(root.join("README.md")).expect("read README.md");
+    let mut examples = Vec::new();
+    let mut block: Option<String> = None;
+    for line in readme.lines() {
+        match (&mut block, line.trim_end()) {
+            (None, "```c") => block = Some(String::new()),
+            (Some(_), "```") => examples.push(block.take().expect("open block")),
+            (Some(text), _) => {
+                text.push_str(line);
+                text.push('\n');
+            }
+            (None, _) => {}
+        }
+    }
+    assert!(!examples.is_empty(), "no ```c block in README.md");
+    let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("readme");
+    std::fs::create_dir_all(&out_dir).expect("create the output directory");
+    for (i, example) in examples.iter().enumerate() {
+        let source = out_dir.join(format!("example_{i}.c"));
+        std::fs::write(&source, example).expect("write the example");
+        for (compiler, lang, std_flag) in [
+            (compiler("CC", "cc"), "c", "-std=c11"),
+            (compiler("CXX", "c++"), "c++", "-std=c++17"),
+        ] {
+            let exe = out_dir.join(format!("example_{i}_{lang}"));
+            let mut cc = Command::new(compiler);
+            cc.args(["-x", lang, std_flag])
+                .args(WARNINGS)
+                .arg("-I")
+                .arg(root.join("include"))
+                .arg(&source)
+                .args(["-x", "none"])
+                .arg(libocean(false))
+                .args(NATIVE_STATIC_LIBS)
+                .arg("-o")
+                .arg(&exe);
+            run(cc, &format!("compile README example {i} as {lang} {std_flag}"));
+            run(
+                Command::new(&exe),
+                &format!("run README example {i} ({lang})"),
+            );
+        }
     }
 }

@@ -128,6 +128,7 @@ fn bad_input_matrix_generated_from_the_header() {
     let mut cc = Command::new(c_build::compiler("CC", "cc"));
     cc.arg("-std=c11")
         .args(c_build::WARNINGS)
+        .arg(c_build::FULL_LIBRARY)
         .arg("-g")
         .arg("-I")
         .arg(root.join("include"))

@@ -40,8 +40,8 @@ pub(crate) trait Handle: Any + Send + Sync {
 
 /// Declares the handle types, each named after itself.
 macro_rules! handles {
-    ($($module:ident :: $ty:ident),* $(,)?) => {
-        $(impl Handle for crate::$module::$ty {
+    ($($(#[$attr:meta])* $module:ident :: $ty:ident),* $(,)?) => {
+        $($(#[$attr])* impl Handle for crate::$module::$ty {
             const NAME: &'static str = stringify!($ty);
         })*
     };
@@ -58,9 +58,13 @@ handles!(
     relief::OceanReliefMips,
     relief_quad::OceanReliefQuadCones,
     sao::OceanSao,
+    #[cfg(feature = "gpu")]
     sao_gpu::OceanSaoGpu,
+    #[cfg(feature = "gpu")]
     gpu::OceanGpuContext,
+    #[cfg(feature = "gpu")]
     gpu::OceanRenderer,
+    #[cfg(feature = "gpu")]
     shader_export::OceanShaderExport,
 );
 

@@ -37,7 +37,9 @@ pub(crate) mod value;
 
 pub(crate) use handle::{borrow, destroy, write_handle};
 pub(crate) use pointer::{
-    byte_len, check_disjoint, check_len, check_ptr, check_sized, input, read_in, write_block,
-    write_out, write_sized, write_slice,
+    byte_len, check_disjoint, check_len, check_ptr, input, read_in, write_out, write_slice,
 };
+// The size-query convention serves the byte blocks of the GPU entry points alone.
+#[cfg(feature = "gpu")]
+pub(crate) use pointer::{check_sized, write_block, write_sized};
 pub(crate) use value::{Approx, Num, check_finite, check_time};

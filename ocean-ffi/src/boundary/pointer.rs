@@ -96,6 +96,7 @@ pub(crate) unsafe fn input<'a, T>(p: *const T, len: usize, name: &str) -> Result
 /// The pointer and count checks of [`write_sized`], in parameter order: `out` NULL with `len`
 /// != 0 (`OCEAN_STATUS_NULL_POINTER`), `needed`, then `len` beyond `PTRDIFF_MAX`. A function
 /// calls it before its values, which the header's error order reports later.
+#[cfg(feature = "gpu")]
 pub(crate) fn check_sized(
     out: *const u8,
     out_name: &str,
@@ -162,6 +163,7 @@ pub(crate) unsafe fn write_slice<T: Copy>(
 ///
 /// `out` must be NULL or point to `len` writable bytes that no other thread touches during the
 /// call; `needed` must be NULL, misaligned or writable.
+#[cfg(feature = "gpu")]
 pub(crate) unsafe fn write_sized(
     out: *mut u8,
     out_name: &str,
@@ -196,6 +198,7 @@ pub(crate) unsafe fn write_sized(
 /// # Safety
 ///
 /// As [`write_sized`].
+#[cfg(feature = "gpu")]
 pub(crate) unsafe fn write_block<T: bytemuck::Pod>(
     out: *mut u8,
     len: usize,
@@ -239,6 +242,7 @@ mod tests {
     }
 
     /// The size query's pointers and count, in parameter order, whatever the values after them.
+    #[cfg(feature = "gpu")]
     #[test]
     fn check_sized_checks_pointers_then_the_count() {
         let mut buf = [0u8; 8];

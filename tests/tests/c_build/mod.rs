@@ -39,6 +39,11 @@ pub const NATIVE_STATIC_LIBS: &[&str] = &[
 
 pub const WARNINGS: &[&str] = &["-Wall", "-Wextra", "-Werror", "-pedantic"];
 
+/// The workspace builds ocean-ffi with its `gpu` feature, the full library: its programs
+/// declare the GPU entry points as the full library's packages do (`include/ocean.h`
+/// declares them only where `OCEAN_GPU` is defined).
+pub const FULL_LIBRARY: &str = "-DOCEAN_GPU";
+
 pub fn workspace_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .parent()
@@ -117,6 +122,22 @@ pub fn libocean(shared: bool) -> PathBuf {
         lib.display()
     );
     lib
+}
+
+/// The SONAME ocean-ffi/build.rs gives the full library: `libocean.so.<abi>`, `<abi>` the major
+/// version or `0.<minor>` before 1.0.
+#[allow(dead_code, reason = "c_matrix.rs links the static library only")]
+pub fn soname() -> String {
+    let (major, minor) = (
+        env!("CARGO_PKG_VERSION_MAJOR"),
+        env!("CARGO_PKG_VERSION_MINOR"),
+    );
+    let abi = if major == "0" {
+        format!("0.{minor}")
+    } else {
+        major.to_owned()
+    };
+    format!("libocean.so.{abi}")
 }
 
 pub fn compiler(var: &str, default: &str) -> OsString {
