@@ -90,14 +90,14 @@
 #if defined(OCEAN_GPU)
 /**
  * Size in bytes of the exported `ocean` shader's uniform block `Frame` (binding 0, std140);
- * `ocean_ocean_uniforms` writes it.
+ * `ocean_surface_uniforms` writes it.
  */
-#define OCEAN_OCEAN_UNIFORMS_SIZE 352
+#define OCEAN_SURFACE_UNIFORMS_SIZE 352
 #endif
 
 #if defined(OCEAN_GPU)
 /**
- * Rows of the wave texture (binding 1 of the `ocean` shader): `ocean_ocean_wave_texels`.
+ * Rows of the wave texture (binding 1 of the `ocean` shader): `ocean_surface_wave_texels`.
  */
 #define OCEAN_WAVE_TEXTURE_ROWS 3
 #endif
@@ -105,7 +105,7 @@
 #if defined(OCEAN_GPU)
 /**
  * Side of the effective Fresnel table texture (binding 6 of the `ocean` shader), texels:
- * `ocean_ocean_fresnel_texels`.
+ * `ocean_surface_fresnel_texels`.
  */
 #define OCEAN_FRESNEL_TABLE_SIZE 33
 #endif
@@ -528,7 +528,7 @@ typedef uint32_t OceanRefraction;
 #endif // __cplusplus
 
 /**
- * Depth convention of a view-projection matrix, for `ocean_scene_evaluate`.
+ * Depth convention of a view-projection matrix, for `ocean_wtb_scene_evaluate`.
  */
 enum OceanDepthConvention
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
@@ -800,17 +800,6 @@ typedef struct OceanSao OceanSao;
 typedef struct OceanSaoGpu OceanSaoGpu;
 #endif
 
-/**
- * A Wave Train Boxes scene (opaque): water grid, terrain, boxes, effects and budget. Create
- * with `ocean_scene_create`, free with `ocean_scene_destroy`.
- *
- * Every function taking an `OceanScene *` may be called from several threads at once on the
- * same scene: a lock inside the scene serialises them (they do not run concurrently with each
- * other; evaluations and height queries spread their own work over the library's worker
- * threads). Destroying must not race with any other use.
- */
-typedef struct OceanScene OceanScene;
-
 #if defined(OCEAN_GPU)
 /**
  * A shader translated to one language (opaque): its files and binding layout. Create with
@@ -841,6 +830,17 @@ typedef struct OceanSpectrum OceanSpectrum;
  * of threads at once; destroying it must not race with any other use.
  */
 typedef struct OceanWaves OceanWaves;
+
+/**
+ * A Wave Train Boxes scene (opaque): water grid, terrain, boxes, effects and budget. Create
+ * with `ocean_wtb_scene_create`, free with `ocean_wtb_scene_destroy`.
+ *
+ * Every function taking an `OceanWtbScene *` may be called from several threads at once on the
+ * same scene: a lock inside the scene serialises them (they do not run concurrently with each
+ * other; evaluations and height queries spread their own work over the library's worker
+ * threads). Destroying must not race with any other use.
+ */
+typedef struct OceanWtbScene OceanWtbScene;
 
 #if defined(OCEAN_GPU)
 /**
@@ -1245,10 +1245,10 @@ typedef struct OceanSlopeVariance {
 #if defined(OCEAN_GPU)
 /**
  * How the exported `ocean` shader draws: the parts of the uniform block that do not come from
- * the camera, the spectrum or the lighting. `ocean_ocean_draw_params_default` fills in the
+ * the camera, the spectrum or the lighting. `ocean_surface_draw_params_default` fills in the
  * library's defaults (those of `ocean_renderer_options_default`, the paper's filter).
  */
-typedef struct OceanOceanDrawParams {
+typedef struct OceanSurfaceDrawParams {
   /**
    * N_min of the filter (paper section 7.1): a wave enters a pixel's normal once its
    * wavelength spans this many pixels (a grid vertex's position: grid cells). > 0.
@@ -1287,7 +1287,7 @@ typedef struct OceanOceanDrawParams {
    * linear colour (for an sRGB target with `GL_FRAMEBUFFER_SRGB`). Other values are refused.
    */
   uint8_t srgb_encode;
-} OceanOceanDrawParams;
+} OceanSurfaceDrawParams;
 #endif
 
 /**
@@ -1956,7 +1956,7 @@ typedef struct OceanBeach {
 } OceanBeach;
 
 /**
- * The switchable effects of paper section 2.1. `ocean_effects_default` fills in the library's
+ * The switchable effects of paper section 2.1. `ocean_wtb_effects_default` fills in the library's
  * defaults (phase-shift refraction and shoaling on, everything else off).
  */
 typedef struct OceanEffects {
@@ -2121,7 +2121,7 @@ typedef struct OceanFrameStats {
   double estimated_seconds;
   /**
    * Trains weighted down in the geometry by the scene's train filter (they span too few
-   * grid cells to be drawn whole; see `ocean_scene_set_train_filter`), those left out
+   * grid cells to be drawn whole; see `ocean_wtb_scene_set_train_filter`), those left out
    * included.
    */
   size_t filtered_trains;
@@ -3131,16 +3131,16 @@ OceanStatus ocean_pixel_footprint(const struct OceanCameraDesc *camera,
  *
  * `out` must be writable.
  */
-OceanStatus ocean_ocean_draw_params_default(struct OceanOceanDrawParams *out);
+OceanStatus ocean_surface_draw_params_default(struct OceanSurfaceDrawParams *out);
 #endif
 
 #if defined(OCEAN_GPU)
 /**
  * Writes the uniform block of the exported `ocean` draw shader for one frame of `width` x
  * `height` pixels seen by `camera` at `time` seconds into `out` (the
- * `OCEAN_OCEAN_UNIFORMS_SIZE` bytes of `Frame`, std140, in the machine's byte order: upload
+ * `OCEAN_SURFACE_UNIFORMS_SIZE` bytes of `Frame`, std140, in the machine's byte order: upload
  * them as they are with `glBufferSubData`): the spectrum's waves filtered by `params->n_min`
- * and `n_max` (their texture: `ocean_ocean_wave_texels` for the same camera and time), the
+ * and `n_max` (their texture: `ocean_surface_wave_texels` for the same camera and time), the
  * Sun, sky and sea of `lighting`, and, when `mesh` is not NULL, the water mesh that `mesh_vs`
  * draws (a wave train box scene's grid: pass the `OceanWaterGridDesc` it was created with).
  * The camera is the one of `ocean_pixel_footprint`, above the sea (eye y > 0); its
@@ -3154,16 +3154,16 @@ OceanStatus ocean_ocean_draw_params_default(struct OceanOceanDrawParams *out);
  * the samplers `_group_0_binding_<b>_vs` / `_fs`):
  * - binding 0: this block, a uniform buffer;
  * - binding 1: the wave texture, `GL_RGBA32F`, wave count x `OCEAN_WAVE_TEXTURE_ROWS`, one
- *   level, the texels of `ocean_ocean_wave_texels` (refreshed every frame);
+ *   level, the texels of `ocean_surface_wave_texels` (refreshed every frame);
  * - bindings 2 and 3: the sky map, `GL_RGBA16F` (or `GL_RGBA32F`), `params->sky_map_size`
  *   square with every level of `ocean_sky_map_copy_level`, sampled with linear min, mag and
  *   mip filtering and clamp-to-edge (the sampler of binding 3 is folded into binding 2's);
  * - binding 6: the effective Fresnel table, `GL_R32F`, `OCEAN_FRESNEL_TABLE_SIZE` square, the
- *   texels of `ocean_ocean_fresnel_texels`;
+ *   texels of `ocean_surface_fresnel_texels`;
  * - bindings 7 and 8: local waves, never read when none are set (as here): any complete
  *   `GL_RG32F` 2D array texture and `GL_RGBA32F` 2D texture;
  * - pass 1, `mesh_vs` + `mesh_fs`: attribute 0 the positions and attribute 1 the normals that
- *   `ocean_scene_evaluate` writes (3 floats each, point (i, j) at vertex j * nx + i), drawn as
+ *   `ocean_wtb_scene_evaluate` writes (3 floats each, point (i, j) at vertex j * nx + i), drawn as
  *   indexed `GL_TRIANGLES` over the grid's cells, depth test `GL_LESS` (`GL_GREATER`
  *   reversed) with writes, no culling, into two colour targets of linear radiance: location 0
  *   the Sun's reflection, location 1 the sky's reflection plus the refracted light, both
@@ -3187,7 +3187,7 @@ OceanStatus ocean_ocean_draw_params_default(struct OceanOceanDrawParams *out);
  * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time`, parameter, camera or mesh member,
  * `OCEAN_STATUS_INVALID_ARGUMENT` for a parameter, camera or mesh outside its documented
  * ranges (the message names it) or a camera not above the sea, `OCEAN_STATUS_BUFFER_TOO_SMALL`
- * if `len` is below `OCEAN_OCEAN_UNIFORMS_SIZE`, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len`
+ * if `len` is below `OCEAN_SURFACE_UNIFORMS_SIZE`, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len`
  * exceeds `PTRDIFF_MAX`. `out`, `len` and `needed` follow the size query of
  * `ocean_gpu_context_describe`: `*needed` receives the block's size, on success and with
  * `OCEAN_STATUS_BUFFER_TOO_SMALL` (the one output written on a failure); `out` NULL and `len`
@@ -3199,17 +3199,17 @@ OceanStatus ocean_ocean_draw_params_default(struct OceanOceanDrawParams *out);
  * `camera`, `params` and `mesh` (unless NULL) must be readable, `out` NULL or point to `len`
  * writable bytes that no other thread touches during the call, and `needed` writable.
  */
-OceanStatus ocean_ocean_uniforms(const struct OceanCameraDesc *camera,
-                                 const struct OceanSpectrum *spectrum,
-                                 const struct OceanLighting *lighting,
-                                 const struct OceanOceanDrawParams *params,
-                                 const struct OceanWaterGridDesc *mesh,
-                                 double time,
-                                 uint32_t width,
-                                 uint32_t height,
-                                 uint8_t *out,
-                                 size_t len,
-                                 size_t *needed);
+OceanStatus ocean_surface_uniforms(const struct OceanCameraDesc *camera,
+                                   const struct OceanSpectrum *spectrum,
+                                   const struct OceanLighting *lighting,
+                                   const struct OceanSurfaceDrawParams *params,
+                                   const struct OceanWaterGridDesc *mesh,
+                                   double time,
+                                   uint32_t width,
+                                   uint32_t height,
+                                   uint8_t *out,
+                                   size_t len,
+                                   size_t *needed);
 #endif
 
 #if defined(OCEAN_GPU)
@@ -3218,7 +3218,7 @@ OceanStatus ocean_ocean_uniforms(const struct OceanCameraDesc *camera,
  * `camera` at `time` seconds into `out`: `OCEAN_WAVE_TEXTURE_ROWS` rows of wave count
  * (`ocean_spectrum_wave_count`) RGBA float texels, row 0 first, one column per wave, longest
  * first; `len` counts floats and must be exactly 12 * wave count. Upload it as a `GL_RGBA32F`
- * texture of wave count x 3 texels every frame, with the block of `ocean_ocean_uniforms` for
+ * texture of wave count x 3 texels every frame, with the block of `ocean_surface_uniforms` for
  * the same camera and time.
  *
  * Row 0 holds (wavelength, k_x, k_z, phase at the eye's horizontal position o, k.o - omega t +
@@ -3240,11 +3240,11 @@ OceanStatus ocean_ocean_uniforms(const struct OceanCameraDesc *camera,
  * `camera` must be readable, `spectrum` a live handle, and `out` point to `len` writable
  * floats that no other thread touches during the call.
  */
-OceanStatus ocean_ocean_wave_texels(const struct OceanCameraDesc *camera,
-                                    const struct OceanSpectrum *spectrum,
-                                    double time,
-                                    float *out,
-                                    size_t len);
+OceanStatus ocean_surface_wave_texels(const struct OceanCameraDesc *camera,
+                                      const struct OceanSpectrum *spectrum,
+                                      double time,
+                                      float *out,
+                                      size_t len);
 #endif
 
 #if defined(OCEAN_GPU)
@@ -3264,7 +3264,7 @@ OceanStatus ocean_ocean_wave_texels(const struct OceanCameraDesc *camera,
  *
  * `out` must point to `len` writable floats that no other thread touches during the call.
  */
-OceanStatus ocean_ocean_fresnel_texels(float *out, size_t len);
+OceanStatus ocean_surface_fresnel_texels(float *out, size_t len);
 #endif
 
 /**
@@ -4453,7 +4453,7 @@ OceanStatus ocean_waves_create(const struct OceanWaveDesc *descs,
                                struct OceanWaves **out);
 
 /**
- * Frees a wave set (see `ocean_scene_destroy` for the rules every destroy function follows).
+ * Frees a wave set (see `ocean_wtb_scene_destroy` for the rules every destroy function follows).
  */
 void ocean_waves_destroy(struct OceanWaves *waves);
 
@@ -4581,11 +4581,11 @@ OceanStatus ocean_waves_max_amplitude(const struct OceanWaves *waves, double *ou
  *
  * `out` must be writable.
  */
-OceanStatus ocean_effects_default(struct OceanEffects *out);
+OceanStatus ocean_wtb_effects_default(struct OceanEffects *out);
 
 /**
  * Creates a scene: a water grid over a terrain, no boxes yet, the default effects
- * (`ocean_effects_default`) and no budget limit. Stores the new handle in `*out`.
+ * (`ocean_wtb_effects_default`) and no budget limit. Stores the new handle in `*out`.
  *
  * `terrain_heights` holds one height per grid point, row-major (point (i, j) at j*nx + i):
  * the ground's height above the sea at rest, metres. A height < 0 is sea floor at depth
@@ -4598,17 +4598,17 @@ OceanStatus ocean_effects_default(struct OceanEffects *out);
  * for a NaN or infinite origin, spacing or height; `OCEAN_STATUS_INVALID_ARGUMENT` for a side
  * outside 2 to 4096, a spacing outside [1e-3, 1e4] m, an origin beyond 1e9 m, or
  * `terrain_len` != nx * nz. On failure `*out` is unchanged. Free the scene with
- * `ocean_scene_destroy`.
+ * `ocean_wtb_scene_destroy`.
  *
  * # Safety
  *
  * `grid` must point to a readable `OceanWaterGridDesc`, `terrain_heights` be NULL or point to
  * `terrain_len` readable floats, and `out` point to a writable pointer; none is retained.
  */
-OceanStatus ocean_scene_create(const struct OceanWaterGridDesc *grid,
-                               const float *terrain_heights,
-                               size_t terrain_len,
-                               struct OceanScene **out);
+OceanStatus ocean_wtb_scene_create(const struct OceanWaterGridDesc *grid,
+                                   const float *terrain_heights,
+                                   size_t terrain_len,
+                                   struct OceanWtbScene **out);
 
 /**
  * Frees a scene and its boxes. Every destroy function follows the same rules: NULL does
@@ -4618,10 +4618,10 @@ OceanStatus ocean_scene_create(const struct OceanWaterGridDesc *grid,
  * the last call using it on another thread returns. A successful destroy leaves the last-error
  * message alone.
  */
-void ocean_scene_destroy(struct OceanScene *scene);
+void ocean_wtb_scene_destroy(struct OceanWtbScene *scene);
 
 /**
- * Replaces the scene's terrain (same format as in `ocean_scene_create`; NULL and 0 for a deep
+ * Replaces the scene's terrain (same format as in `ocean_wtb_scene_create`; NULL and 0 for a deep
  * sea). Every box's land, depth and refraction along its rays is recomputed at the next
  * evaluation.
  *
@@ -4634,9 +4634,9 @@ void ocean_scene_destroy(struct OceanScene *scene);
  *
  * `terrain_heights` must be NULL or point to `terrain_len` readable floats.
  */
-OceanStatus ocean_scene_set_terrain(struct OceanScene *scene,
-                                    const float *terrain_heights,
-                                    size_t terrain_len);
+OceanStatus ocean_wtb_scene_set_terrain(struct OceanWtbScene *scene,
+                                        const float *terrain_heights,
+                                        size_t terrain_len);
 
 /**
  * Adds a wave train box raised by `desc->wind`, and stores its id in `*out_id`. Ids are never
@@ -4665,35 +4665,35 @@ OceanStatus ocean_scene_set_terrain(struct OceanScene *scene,
  * `desc` readable, `trains` NULL or `n_trains` readable
  * descriptions, `out_id` writable; nothing is retained.
  */
-OceanStatus ocean_scene_add_box(struct OceanScene *scene,
-                                const struct OceanBoxDesc *desc,
-                                const struct OceanWaveDesc *trains,
-                                size_t n_trains,
-                                uint32_t *out_id);
+OceanStatus ocean_wtb_scene_add_box(struct OceanWtbScene *scene,
+                                    const struct OceanBoxDesc *desc,
+                                    const struct OceanWaveDesc *trains,
+                                    size_t n_trains,
+                                    uint32_t *out_id);
 
 /**
- * Replaces box `id`'s description (same arguments as `ocean_scene_add_box`): move or turn it
+ * Replaces box `id`'s description (same arguments as `ocean_wtb_scene_add_box`): move or turn it
  * (a boat's wake), change its wind or trains. A moved box's action points along its rays are
  * recomputed at the next evaluation.
  *
  * Returns `OCEAN_STATUS_NOT_FOUND` for an id that is not in the scene (removed, never issued)
- * and otherwise as `ocean_scene_add_box`. On failure the box is unchanged.
+ * and otherwise as `ocean_wtb_scene_add_box`. On failure the box is unchanged.
  *
  * # Safety
  *
- * As `ocean_scene_add_box`.
+ * As `ocean_wtb_scene_add_box`.
  */
-OceanStatus ocean_scene_update_box(struct OceanScene *scene,
-                                   uint32_t id,
-                                   const struct OceanBoxDesc *desc,
-                                   const struct OceanWaveDesc *trains,
-                                   size_t n_trains);
+OceanStatus ocean_wtb_scene_update_box(struct OceanWtbScene *scene,
+                                       uint32_t id,
+                                       const struct OceanBoxDesc *desc,
+                                       const struct OceanWaveDesc *trains,
+                                       size_t n_trains);
 
 /**
  * Removes box `id`. Returns `OCEAN_STATUS_NOT_FOUND` for an id not in the scene (also when
  * it was removed already).
  */
-OceanStatus ocean_scene_remove_box(struct OceanScene *scene, uint32_t id);
+OceanStatus ocean_wtb_scene_remove_box(struct OceanWtbScene *scene, uint32_t id);
 
 /**
  * Stores the number of boxes in the scene (alive at any time or not) in `*out_count`.
@@ -4702,7 +4702,7 @@ OceanStatus ocean_scene_remove_box(struct OceanScene *scene, uint32_t id);
  *
  * `out_count` must be writable.
  */
-OceanStatus ocean_scene_box_count(struct OceanScene *scene, size_t *out_count);
+OceanStatus ocean_wtb_scene_box_count(struct OceanWtbScene *scene, size_t *out_count);
 
 /**
  * Enables and parameterises the effects (a budget may run fewer of them).
@@ -4716,12 +4716,13 @@ OceanStatus ocean_scene_box_count(struct OceanScene *scene, size_t *out_count);
  *
  * `effects` must be readable.
  */
-OceanStatus ocean_scene_set_effects(struct OceanScene *scene, const struct OceanEffects *effects);
+OceanStatus ocean_wtb_scene_set_effects(struct OceanWtbScene *scene,
+                                        const struct OceanEffects *effects);
 
 /**
  * Removes any budget limit: every enabled train and effect runs (the default).
  */
-OceanStatus ocean_scene_set_budget_unlimited(struct OceanScene *scene);
+OceanStatus ocean_wtb_scene_set_budget_unlimited(struct OceanWtbScene *scene);
 
 /**
  * Limits each evaluation to about `seconds` of estimated work (paper section 2.3): culling
@@ -4733,20 +4734,20 @@ OceanStatus ocean_scene_set_budget_unlimited(struct OceanScene *scene);
  * Returns `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `seconds`,
  * `OCEAN_STATUS_INVALID_ARGUMENT` for a negative one; the budget is then unchanged.
  */
-OceanStatus ocean_scene_set_budget_seconds(struct OceanScene *scene, double seconds);
+OceanStatus ocean_wtb_scene_set_budget_seconds(struct OceanWtbScene *scene, double seconds);
 
 /**
  * Fixes each evaluation's work explicitly: at most `max_trains` trains per box (its largest;
  * `SIZE_MAX` for all, 0 for none) and exactly the effects in `*effects` (validated as in
- * `ocean_scene_set_effects`), whatever the effects enabled with `ocean_scene_set_effects`.
+ * `ocean_wtb_scene_set_effects`), whatever the effects enabled with `ocean_wtb_scene_set_effects`.
  *
  * # Safety
  *
  * `effects` must be readable.
  */
-OceanStatus ocean_scene_set_budget_explicit(struct OceanScene *scene,
-                                            size_t max_trains,
-                                            const struct OceanEffects *effects);
+OceanStatus ocean_wtb_scene_set_budget_explicit(struct OceanWtbScene *scene,
+                                                size_t max_trains,
+                                                const struct OceanEffects *effects);
 
 /**
  * Evaluates the whole water grid at `time` seconds into the caller's buffers.
@@ -4781,52 +4782,52 @@ OceanStatus ocean_scene_set_budget_explicit(struct OceanScene *scene,
  * `out_normal` `n` writable `OceanVec3`s each, `out_stats` NULL or writable; no other thread
  * may touch the buffers during the call.
  */
-OceanStatus ocean_scene_evaluate(struct OceanScene *scene,
-                                 double time,
-                                 const float *view_projection,
-                                 uint32_t depth_convention,
-                                 struct OceanVec3 *out_pos,
-                                 struct OceanVec3 *out_normal,
-                                 size_t n,
-                                 struct OceanFrameStats *out_stats);
+OceanStatus ocean_wtb_scene_evaluate(struct OceanWtbScene *scene,
+                                     double time,
+                                     const float *view_projection,
+                                     uint32_t depth_convention,
+                                     struct OceanVec3 *out_pos,
+                                     struct OceanVec3 *out_normal,
+                                     size_t n,
+                                     struct OceanFrameStats *out_stats);
 
 /**
- * `ocean_scene_evaluate` for buffers kept from frame to frame (an engine's vertex buffers):
+ * `ocean_wtb_scene_evaluate` for buffers kept from frame to frame (an engine's vertex buffers):
  * only the part of the grid that the visible boxes cover now, or covered at the previous call,
- * is written, with exactly the values `ocean_scene_evaluate` would write; the rest of the
+ * is written, with exactly the values `ocean_wtb_scene_evaluate` would write; the rest of the
  * buffers already holds the sea at rest. A frame in which no box is visible, after one with
  * none either, writes nothing.
  *
- * Pass the same two buffers to every call. The first call after `ocean_scene_create` or
- * `ocean_scene_reset_coverage` writes the whole grid. With noise or run-up enabled the whole
+ * Pass the same two buffers to every call. The first call after `ocean_wtb_scene_create` or
+ * `ocean_wtb_scene_reset_coverage` writes the whole grid. With noise or run-up enabled the whole
  * grid changes and is written every time. Arguments, statuses and safety as for
- * `ocean_scene_evaluate`.
+ * `ocean_wtb_scene_evaluate`.
  *
  * # Safety
  *
- * As `ocean_scene_evaluate`.
+ * As `ocean_wtb_scene_evaluate`.
  */
-OceanStatus ocean_scene_evaluate_incremental(struct OceanScene *scene,
-                                             double time,
-                                             const float *view_projection,
-                                             uint32_t depth_convention,
-                                             struct OceanVec3 *out_pos,
-                                             struct OceanVec3 *out_normal,
-                                             size_t n,
-                                             struct OceanFrameStats *out_stats);
+OceanStatus ocean_wtb_scene_evaluate_incremental(struct OceanWtbScene *scene,
+                                                 double time,
+                                                 const float *view_projection,
+                                                 uint32_t depth_convention,
+                                                 struct OceanVec3 *out_pos,
+                                                 struct OceanVec3 *out_normal,
+                                                 size_t n,
+                                                 struct OceanFrameStats *out_stats);
 
 /**
- * Forgets what `ocean_scene_evaluate_incremental` wrote: its next call writes the whole grid.
+ * Forgets what `ocean_wtb_scene_evaluate_incremental` wrote: its next call writes the whole grid.
  * Call it before passing other buffers.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` or `OCEAN_STATUS_MISALIGNED_POINTER` for a bad handle.
  */
-OceanStatus ocean_scene_reset_coverage(struct OceanScene *scene);
+OceanStatus ocean_wtb_scene_reset_coverage(struct OceanWtbScene *scene);
 
 /**
  * Answers `n` height queries at world (x, z) = `xz[k]` on the **drawn** surface, into
- * `out[k]`: the triangles of the grid that the last `ocean_scene_evaluate` or
- * `ocean_scene_evaluate_incremental` wrote, culling included (a culled box's water is drawn at
+ * `out[k]`: the triangles of the grid that the last `ocean_wtb_scene_evaluate` or
+ * `ocean_wtb_scene_evaluate_incremental` wrote, culling included (a culled box's water is drawn at
  * rest, and answered at rest). This is the surface to float objects on where the grid is what
  * is drawn.
  *
@@ -4857,15 +4858,15 @@ OceanStatus ocean_scene_reset_coverage(struct OceanScene *scene);
  * `xz` `n` readable `OceanDVec2`s and `out` `n` writable
  * `OceanDrawnSample`s, untouched by other threads during the call.
  */
-OceanStatus ocean_scene_heights_drawn(struct OceanScene *scene,
-                                      const struct OceanDVec2 *xz,
-                                      size_t n,
-                                      struct OceanDrawnSample *out);
+OceanStatus ocean_wtb_scene_heights_drawn(struct OceanWtbScene *scene,
+                                          const struct OceanDVec2 *xz,
+                                          size_t n,
+                                          struct OceanDrawnSample *out);
 
 /**
  * Answers `n` height queries at world (x, z) = `xz[k]` and `time` seconds on the
  * **continuous** surface, into `out[k]`: the model between grid points (the same boxes, depth,
- * land, effects, budget and train filter as `ocean_scene_evaluate`, but never culled), the
+ * land, effects, budget and train filter as `ocean_wtb_scene_evaluate`, but never culled), the
  * limit of an ever finer grid, and what a renderer evaluating the trains per vertex of a
  * view-dependent grid approaches. The modulation and the height field are bilinear between
  * grid points; the surface is the image of the grid's rectangle, beyond which (and where an
@@ -4881,7 +4882,7 @@ OceanStatus ocean_scene_heights_drawn(struct OceanScene *scene,
  * `OceanHeightSample::residual`), then the height and normal are taken there. The library's
  * tests hold it within 5 micrometres of a forward double-precision evaluation of the model.
  *
- * Statuses as `ocean_scene_heights_drawn`, without `OCEAN_STATUS_NOT_EVALUATED`, plus
+ * Statuses as `ocean_wtb_scene_heights_drawn`, without `OCEAN_STATUS_NOT_EVALUATED`, plus
  * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time`. Nothing is written on failure.
  *
  * # Safety
@@ -4889,11 +4890,11 @@ OceanStatus ocean_scene_heights_drawn(struct OceanScene *scene,
  * `xz` `n` readable `OceanDVec2`s and `out` `n` writable
  * `OceanHeightSample`s, untouched by other threads during the call.
  */
-OceanStatus ocean_scene_heights_continuous(struct OceanScene *scene,
-                                           double time,
-                                           const struct OceanDVec2 *xz,
-                                           size_t n,
-                                           struct OceanHeightSample *out);
+OceanStatus ocean_wtb_scene_heights_continuous(struct OceanWtbScene *scene,
+                                               double time,
+                                               const struct OceanDVec2 *xz,
+                                               size_t n,
+                                               struct OceanHeightSample *out);
 
 /**
  * Sets which trains the grid's geometry carries: each train's amplitude is weighted by
@@ -4909,9 +4910,9 @@ OceanStatus ocean_scene_heights_continuous(struct OceanScene *scene,
  * `OCEAN_STATUS_INVALID_ARGUMENT` unless 0 <= `min_cells` < `max_cells` <= 1e6 (or both 0);
  * nothing changes then.
  */
-OceanStatus ocean_scene_set_train_filter(struct OceanScene *scene,
-                                         double min_cells,
-                                         double max_cells);
+OceanStatus ocean_wtb_scene_set_train_filter(struct OceanWtbScene *scene,
+                                             double min_cells,
+                                             double max_cells);
 
 #ifdef __cplusplus
 }  // extern "C"

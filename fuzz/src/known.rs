@@ -87,7 +87,7 @@ pub const KNOWN_NON_FINITE: &[Known] = &[
            max_distance 5.06e254).",
     },
     Known {
-        function: "ocean_ocean_wave_texels",
+        function: "ocean_surface_wave_texels",
         matches: |a| {
             a.downcast_ref::<(OceanCameraDesc, f64, usize)>()
                 .is_some_and(|&(_, time, _)| time.abs() > 1e300)
@@ -187,7 +187,7 @@ pub const KNOWN_NON_FINITE: &[Known] = &[
         note: FAR_RAY_START,
     },
     Known {
-        function: "ocean_scene_evaluate (filtered_slope_variance)",
+        function: "ocean_wtb_scene_evaluate (filtered_slope_variance)",
         matches: |_| true,
         note: "OceanFrameStats::filtered_slope_variance is NaN after a successful evaluation of \
                a scene whose train filter removes a train (filtered_trains 1, removed_trains \

@@ -3,9 +3,9 @@
 
 use ocean::{
     OceanLighting, OceanReliefCones, OceanReliefMap, OceanReliefMips, OceanReliefQuadCones,
-    OceanSao, OceanScene, OceanSkyMap, OceanSpectrum, OceanWaves, ocean_lighting_destroy,
+    OceanSao, OceanWtbScene, OceanSkyMap, OceanSpectrum, OceanWaves, ocean_lighting_destroy,
     ocean_relief_cones_destroy, ocean_relief_map_destroy, ocean_relief_mips_destroy,
-    ocean_relief_quad_cones_destroy, ocean_sao_destroy, ocean_scene_destroy, ocean_sky_map_destroy,
+    ocean_relief_quad_cones_destroy, ocean_sao_destroy, ocean_wtb_scene_destroy, ocean_sky_map_destroy,
     ocean_spectrum_destroy, ocean_waves_destroy,
 };
 
@@ -17,12 +17,12 @@ pub const MAX_PER_KIND: usize = 4;
 
 /// A scene and what the harness must remember to call it correctly.
 pub struct Scene {
-    pub handle: *mut OceanScene,
+    pub handle: *mut OceanWtbScene,
     /// nx * nz of its grid: the length of its evaluation buffers.
     pub points: usize,
-    /// Box ids returned by `ocean_scene_add_box` (some may have been removed since).
+    /// Box ids returned by `ocean_wtb_scene_add_box` (some may have been removed since).
     pub boxes: Vec<u32>,
-    /// The buffers of `ocean_scene_evaluate_incremental`, kept from call to call as an engine
+    /// The buffers of `ocean_wtb_scene_evaluate_incremental`, kept from call to call as an engine
     /// keeps its vertex buffers.
     pub kept_pos: Vec<ocean::OceanVec3>,
     pub kept_normal: Vec<ocean::OceanVec3>,
@@ -128,7 +128,7 @@ pub unsafe fn destroy(kind: Kind, handle: *mut core::ffi::c_void) {
         Kind::Spectrum => ocean_spectrum_destroy(handle.cast()),
         Kind::Lighting => ocean_lighting_destroy(handle.cast()),
         Kind::SkyMap => ocean_sky_map_destroy(handle.cast()),
-        Kind::Scene => ocean_scene_destroy(handle.cast()),
+        Kind::Scene => ocean_wtb_scene_destroy(handle.cast()),
         Kind::ReliefMap => ocean_relief_map_destroy(handle.cast()),
         Kind::Cones => ocean_relief_cones_destroy(handle.cast()),
         Kind::QuadCones => ocean_relief_quad_cones_destroy(handle.cast()),
@@ -189,7 +189,7 @@ impl Live {
     pub fn push_scene(&mut self, scene: Scene) {
         assert!(
             !scene.handle.is_null(),
-            "ocean_scene_create succeeded but returned NULL"
+            "ocean_wtb_scene_create succeeded but returned NULL"
         );
         if self.scenes.len() == MAX_PER_KIND {
             self.kill_scene(0);

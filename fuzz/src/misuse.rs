@@ -9,7 +9,7 @@ use std::ffi::c_void;
 use ocean::{
     OceanStatus, ocean_lighting_sun_solid_angle, ocean_relief_cones_size, ocean_relief_map_size,
     ocean_relief_mips_level_count, ocean_relief_quad_cones_size, ocean_sao_describe,
-    ocean_scene_box_count, ocean_sky_map_level_count, ocean_spectrum_wave_count, ocean_waves_count,
+    ocean_wtb_scene_box_count, ocean_sky_map_level_count, ocean_spectrum_wave_count, ocean_waves_count,
 };
 
 use crate::check;
@@ -46,7 +46,7 @@ unsafe fn query_as(kind: Kind, handle: *mut c_void) -> OceanStatus {
             Kind::Spectrum => ocean_spectrum_wave_count(handle.cast(), &mut n),
             Kind::Lighting => ocean_lighting_sun_solid_angle(handle.cast(), &mut f),
             Kind::SkyMap => ocean_sky_map_level_count(handle.cast(), &mut k),
-            Kind::Scene => ocean_scene_box_count(handle.cast(), &mut n),
+            Kind::Scene => ocean_wtb_scene_box_count(handle.cast(), &mut n),
             Kind::ReliefMap => ocean_relief_map_size(handle.cast(), &mut k),
             Kind::Cones => ocean_relief_cones_size(handle.cast(), &mut k),
             Kind::QuadCones => ocean_relief_quad_cones_size(handle.cast(), &mut k),

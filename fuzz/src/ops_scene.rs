@@ -5,12 +5,12 @@ use std::ptr::null_mut;
 
 use ocean::{
     OceanBoxDesc, OceanDVec2, OceanDrawnSample, OceanEffects, OceanFrameStats, OceanHeightSample,
-    OceanScene, OceanStatus, OceanVec3, OceanWaterGridDesc, OceanWaveDesc, OceanWindDesc,
-    ocean_effects_default, ocean_scene_add_box, ocean_scene_box_count, ocean_scene_create,
-    ocean_scene_evaluate, ocean_scene_heights_continuous, ocean_scene_heights_drawn,
-    ocean_scene_remove_box, ocean_scene_set_budget_explicit, ocean_scene_set_budget_seconds,
-    ocean_scene_set_budget_unlimited, ocean_scene_set_effects, ocean_scene_set_terrain,
-    ocean_scene_set_train_filter, ocean_scene_update_box,
+    OceanWtbScene, OceanStatus, OceanVec3, OceanWaterGridDesc, OceanWaveDesc, OceanWindDesc,
+    ocean_wtb_effects_default, ocean_wtb_scene_add_box, ocean_wtb_scene_box_count, ocean_wtb_scene_create,
+    ocean_wtb_scene_evaluate, ocean_wtb_scene_heights_continuous, ocean_wtb_scene_heights_drawn,
+    ocean_wtb_scene_remove_box, ocean_wtb_scene_set_budget_explicit, ocean_wtb_scene_set_budget_seconds,
+    ocean_wtb_scene_set_budget_unlimited, ocean_wtb_scene_set_effects, ocean_wtb_scene_set_terrain,
+    ocean_wtb_scene_set_train_filter, ocean_wtb_scene_update_box,
 };
 
 use crate::call::{matrix_f32, query, tweak, tweak_flag, tweak_u32};
@@ -21,10 +21,10 @@ use crate::ops_waves::wave_desc;
 
 // Declared here because ocean-ffi/src/lib.rs does not re-export them (the symbols exist and
 // include/ocean.h declares them): a C caller reaches them, so the fuzzer calls them too. The
-// scene is `void *` here: `OceanScene` has no C layout (it is opaque), which the lint about
+// scene is `void *` here: `OceanWtbScene` has no C layout (it is opaque), which the lint about
 // foreign types would flag; a pointer is a pointer to the linker.
 unsafe extern "C" {
-    fn ocean_scene_evaluate_incremental(
+    fn ocean_wtb_scene_evaluate_incremental(
         scene: *mut c_void,
         time: f64,
         view_projection: *const f32,
@@ -34,7 +34,7 @@ unsafe extern "C" {
         n: usize,
         out_stats: *mut OceanFrameStats,
     ) -> OceanStatus;
-    fn ocean_scene_reset_coverage(scene: *mut c_void) -> OceanStatus;
+    fn ocean_wtb_scene_reset_coverage(scene: *mut c_void) -> OceanStatus;
 }
 
 /// Grid side at most: every evaluation touches each point, and each box marches over them.
@@ -51,7 +51,7 @@ fn scene_or_null(live: &mut Live, inp: &mut Input) -> Option<usize> {
     }
 }
 
-fn handle(live: &Live, i: Option<usize>) -> *mut OceanScene {
+fn handle(live: &Live, i: Option<usize>) -> *mut OceanWtbScene {
     i.map_or(null_mut(), |i| live.scenes[i].handle)
 }
 
@@ -69,7 +69,7 @@ fn terrain(inp: &mut Input, points: usize) -> Vec<f32> {
         .collect()
 }
 
-/// `ocean_scene_create` on a small grid, with terrain or an open sea.
+/// `ocean_wtb_scene_create` on a small grid, with terrain or an open sea.
 pub fn create(live: &mut Live, inp: &mut Input) {
     let mut grid = OceanWaterGridDesc {
         origin_x: -10.0,
@@ -99,8 +99,8 @@ pub fn create(live: &mut Live, inp: &mut Input) {
     };
     let mut out = null_mut();
     // SAFETY: the grid is a local; `ptr` is NULL (with `len` 0) or points to `len` heights.
-    let st = unsafe { ocean_scene_create(&args.0, ptr, len, &mut out) };
-    if check::status("ocean_scene_create", &args, st) {
+    let st = unsafe { ocean_wtb_scene_create(&args.0, ptr, len, &mut out) };
+    if check::status("ocean_wtb_scene_create", &args, st) {
         live.push_scene(Scene {
             handle: out,
             points,
@@ -111,7 +111,7 @@ pub fn create(live: &mut Live, inp: &mut Input) {
     }
 }
 
-/// `ocean_scene_set_terrain` with heights for the scene's grid (or a shorter length).
+/// `ocean_wtb_scene_set_terrain` with heights for the scene's grid (or a shorter length).
 pub fn set_terrain(live: &mut Live, inp: &mut Input) {
     let i = scene_or_null(live, inp);
     let points = i.map_or(inp.upto(4), |i| live.scenes[i].points);
@@ -119,8 +119,8 @@ pub fn set_terrain(live: &mut Live, inp: &mut Input) {
     let len = inp.len_within(points);
     let s = handle(live, i);
     // SAFETY: `s` is live or NULL; `heights` holds `points` >= `len` floats.
-    let st = unsafe { ocean_scene_set_terrain(s, heights.as_ptr(), len) };
-    check::status("ocean_scene_set_terrain", &(heights, len), st);
+    let st = unsafe { ocean_wtb_scene_set_terrain(s, heights.as_ptr(), len) };
+    check::status("ocean_wtb_scene_set_terrain", &(heights, len), st);
 }
 
 /// A wind over the grid with fields fuzzed.
@@ -181,7 +181,7 @@ fn trains(inp: &mut Input) -> Vec<OceanWaveDesc> {
     }
 }
 
-/// `ocean_scene_add_box`, `_update_box` (of a known or unknown id) or `_remove_box`.
+/// `ocean_wtb_scene_add_box`, `_update_box` (of a known or unknown id) or `_remove_box`.
 pub fn boxes(live: &mut Live, inp: &mut Input) {
     let i = scene_or_null(live, inp);
     let s = handle(live, i);
@@ -202,8 +202,8 @@ pub fn boxes(live: &mut Live, inp: &mut Input) {
             let mut out = 0u32;
             // SAFETY: `s` is live or NULL; the description is a local; `ptr` is NULL (with
             // `n` 0) or points to `n` trains at least.
-            let st = unsafe { ocean_scene_add_box(s, &args.0, ptr, n, &mut out) };
-            if check::status("ocean_scene_add_box", &(args, n), st)
+            let st = unsafe { ocean_wtb_scene_add_box(s, &args.0, ptr, n, &mut out) };
+            if check::status("ocean_wtb_scene_add_box", &(args, n), st)
                 && let Some(i) = i
             {
                 live.scenes[i].boxes.push(out);
@@ -218,18 +218,18 @@ pub fn boxes(live: &mut Live, inp: &mut Input) {
                 args.2.as_ptr()
             };
             // SAFETY: as for `_add_box`.
-            let st = unsafe { ocean_scene_update_box(s, id, &args.1, ptr, n) };
-            check::status("ocean_scene_update_box", &(args, n), st);
+            let st = unsafe { ocean_wtb_scene_update_box(s, id, &args.1, ptr, n) };
+            check::status("ocean_wtb_scene_update_box", &(args, n), st);
         }
         _ => {
-            let st = ocean_scene_remove_box(s, id);
-            check::status("ocean_scene_remove_box", &id, st);
+            let st = ocean_wtb_scene_remove_box(s, id);
+            check::status("ocean_wtb_scene_remove_box", &id, st);
         }
     }
     // SAFETY: `s` is live or NULL; the output is a local.
     unsafe {
-        query::<usize>("ocean_scene_box_count", &(), |o| {
-            ocean_scene_box_count(s, o)
+        query::<usize>("ocean_wtb_scene_box_count", &(), |o| {
+            ocean_wtb_scene_box_count(s, o)
         });
     }
 }
@@ -238,8 +238,8 @@ pub fn boxes(live: &mut Live, inp: &mut Input) {
 fn effects(inp: &mut Input) -> OceanEffects {
     let mut e = OceanEffects::default();
     // SAFETY: `e` is a local.
-    let st = unsafe { ocean_effects_default(&mut e) };
-    check::status("ocean_effects_default", &(), st);
+    let st = unsafe { ocean_wtb_effects_default(&mut e) };
+    check::status("ocean_wtb_effects_default", &(), st);
     tweak_u32(inp, &mut e.refraction);
     for f in [
         &mut e.shoaling,
@@ -275,34 +275,34 @@ pub fn settings(live: &mut Live, inp: &mut Input) {
         match inp.u8() % 5 {
             0 => {
                 let e = effects(inp);
-                let st = ocean_scene_set_effects(s, &e);
-                check::status("ocean_scene_set_effects", &e, st);
+                let st = ocean_wtb_scene_set_effects(s, &e);
+                check::status("ocean_wtb_scene_set_effects", &e, st);
             }
             1 => {
-                let st = ocean_scene_set_budget_unlimited(s);
-                check::status("ocean_scene_set_budget_unlimited", &(), st);
+                let st = ocean_wtb_scene_set_budget_unlimited(s);
+                check::status("ocean_wtb_scene_set_budget_unlimited", &(), st);
             }
             2 => {
                 let seconds = inp.f64_near(1e-3);
-                let st = ocean_scene_set_budget_seconds(s, seconds);
-                check::status("ocean_scene_set_budget_seconds", &seconds, st);
+                let st = ocean_wtb_scene_set_budget_seconds(s, seconds);
+                check::status("ocean_wtb_scene_set_budget_seconds", &seconds, st);
             }
             3 => {
                 let max = if inp.bool() { usize::MAX } else { inp.upto(8) };
                 let e = effects(inp);
-                let st = ocean_scene_set_budget_explicit(s, max, &e);
-                check::status("ocean_scene_set_budget_explicit", &(max, e), st);
+                let st = ocean_wtb_scene_set_budget_explicit(s, max, &e);
+                check::status("ocean_wtb_scene_set_budget_explicit", &(max, e), st);
             }
             _ => {
                 let (lo, hi) = (inp.f64_near(2.0), inp.f64_near(4.0));
-                let st = ocean_scene_set_train_filter(s, lo, hi);
-                check::status("ocean_scene_set_train_filter", &(lo, hi), st);
+                let st = ocean_wtb_scene_set_train_filter(s, lo, hi);
+                check::status("ocean_wtb_scene_set_train_filter", &(lo, hi), st);
             }
         }
     }
 }
 
-/// `ocean_scene_evaluate` (or the incremental variant into the scene's kept buffers, or a
+/// `ocean_wtb_scene_evaluate` (or the incremental variant into the scene's kept buffers, or a
 /// coverage reset) at a fuzzed time, with or without a culling matrix.
 pub fn evaluate(live: &mut Live, inp: &mut Input) {
     let i = scene_or_null(live, inp);
@@ -334,7 +334,7 @@ pub fn evaluate(live: &mut Live, inp: &mut Input) {
             // SAFETY: the kept buffers hold `points` >= `n` elements each and do not overlap;
             // `vp_ptr` is NULL or 16 floats; `stats_ptr` NULL or a local.
             let st = unsafe {
-                ocean_scene_evaluate_incremental(
+                ocean_wtb_scene_evaluate_incremental(
                     s.cast(),
                     time,
                     vp_ptr,
@@ -346,7 +346,7 @@ pub fn evaluate(live: &mut Live, inp: &mut Input) {
                 )
             };
             check::outputs(
-                "ocean_scene_evaluate_incremental",
+                "ocean_wtb_scene_evaluate_incremental",
                 &args,
                 st,
                 &(&sc.kept_pos[..], &sc.kept_normal[..]),
@@ -354,8 +354,8 @@ pub fn evaluate(live: &mut Live, inp: &mut Input) {
         }
         (2, _) => {
             // SAFETY: `s` is live or NULL.
-            let st = unsafe { ocean_scene_reset_coverage(s.cast()) };
-            check::status("ocean_scene_reset_coverage", &(), st);
+            let st = unsafe { ocean_wtb_scene_reset_coverage(s.cast()) };
+            check::status("ocean_wtb_scene_reset_coverage", &(), st);
         }
         _ => {
             let mut pos = vec![OceanVec3::default(); points];
@@ -363,7 +363,7 @@ pub fn evaluate(live: &mut Live, inp: &mut Input) {
             // SAFETY: `pos` and `normal` hold `points` >= `n` elements each and do not
             // overlap; `vp_ptr` is NULL or 16 floats; `stats_ptr` NULL or a local.
             let st = unsafe {
-                ocean_scene_evaluate(
+                ocean_wtb_scene_evaluate(
                     s,
                     time,
                     vp_ptr,
@@ -374,20 +374,20 @@ pub fn evaluate(live: &mut Live, inp: &mut Input) {
                     stats_ptr,
                 )
             };
-            check::outputs("ocean_scene_evaluate", &args, st, &(pos, normal));
+            check::outputs("ocean_wtb_scene_evaluate", &args, st, &(pos, normal));
         }
     }
     if with_stats {
         // Checked apart, so that the known NaN of the one (fuzz/src/known.rs) leaves the
         // other checked.
         check::outputs(
-            "ocean_scene_evaluate (estimated_seconds)",
+            "ocean_wtb_scene_evaluate (estimated_seconds)",
             &args,
             OceanStatus::Ok,
             &stats.estimated_seconds,
         );
         check::outputs(
-            "ocean_scene_evaluate (filtered_slope_variance)",
+            "ocean_wtb_scene_evaluate (filtered_slope_variance)",
             &args,
             OceanStatus::Ok,
             &stats.filtered_slope_variance,
@@ -395,7 +395,7 @@ pub fn evaluate(live: &mut Live, inp: &mut Input) {
     }
 }
 
-/// `ocean_scene_heights_drawn` and `_continuous` at fuzzed points.
+/// `ocean_wtb_scene_heights_drawn` and `_continuous` at fuzzed points.
 pub fn heights(live: &mut Live, inp: &mut Input) {
     let i = scene_or_null(live, inp);
     let s = handle(live, i);
@@ -412,15 +412,15 @@ pub fn heights(live: &mut Live, inp: &mut Input) {
     if inp.bool() {
         let mut out = vec![OceanDrawnSample::default(); k];
         // SAFETY: `s` is live or NULL; `xz` and `out` hold `k` >= `n` elements.
-        let st = unsafe { ocean_scene_heights_drawn(s, args.0.as_ptr(), n, out.as_mut_ptr()) };
-        check::outputs("ocean_scene_heights_drawn", &args, st, &out);
+        let st = unsafe { ocean_wtb_scene_heights_drawn(s, args.0.as_ptr(), n, out.as_mut_ptr()) };
+        check::outputs("ocean_wtb_scene_heights_drawn", &args, st, &out);
     } else {
         let mut out = vec![OceanHeightSample::default(); k];
         // SAFETY: as above.
         let st = unsafe {
-            ocean_scene_heights_continuous(s, time, args.0.as_ptr(), n, out.as_mut_ptr())
+            ocean_wtb_scene_heights_continuous(s, time, args.0.as_ptr(), n, out.as_mut_ptr())
         };
-        check::outputs("ocean_scene_heights_continuous", &args, st, &out);
+        check::outputs("ocean_wtb_scene_heights_continuous", &args, st, &out);
     }
 }
 

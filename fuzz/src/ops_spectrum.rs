@@ -4,10 +4,10 @@
 use std::ptr::null_mut;
 
 use ocean::{
-    OCEAN_FRESNEL_TABLE_SIZE, OCEAN_OCEAN_UNIFORMS_SIZE, OceanCameraDesc, OceanDVec2,
-    OceanOceanDrawParams, OceanSlopeVariance, OceanSpectrumParams, OceanWaterGridDesc,
-    OceanWaveDesc, ocean_ocean_draw_params_default, ocean_ocean_fresnel_texels,
-    ocean_ocean_uniforms, ocean_ocean_wave_texels, ocean_pixel_footprint,
+    OCEAN_FRESNEL_TABLE_SIZE, OCEAN_SURFACE_UNIFORMS_SIZE, OceanCameraDesc, OceanDVec2,
+    OceanSurfaceDrawParams, OceanSlopeVariance, OceanSpectrumParams, OceanWaterGridDesc,
+    OceanWaveDesc, ocean_surface_draw_params_default, ocean_surface_fresnel_texels,
+    ocean_surface_uniforms, ocean_surface_wave_texels, ocean_pixel_footprint,
     ocean_spectrum_clamped_count, ocean_spectrum_create, ocean_spectrum_height_variance,
     ocean_spectrum_max_amplitude, ocean_spectrum_mean_height_shift, ocean_spectrum_params_default,
     ocean_spectrum_slope_variance, ocean_spectrum_steepness_sum,
@@ -162,10 +162,10 @@ pub fn draw_data(live: &mut Live, inp: &mut Input) {
     let cam = camera(inp);
     let s = pick_or_null(inp, &live.spectra);
     let l = pick_or_null(inp, &live.lightings);
-    let mut params = OceanOceanDrawParams::default();
+    let mut params = OceanSurfaceDrawParams::default();
     // SAFETY: `params` is a local.
-    let st = unsafe { ocean_ocean_draw_params_default(&mut params) };
-    check::status("ocean_ocean_draw_params_default", &(), st);
+    let st = unsafe { ocean_surface_draw_params_default(&mut params) };
+    check::status("ocean_surface_draw_params_default", &(), st);
     for v in [
         &mut params.n_min,
         &mut params.n_max,
@@ -199,14 +199,14 @@ pub fn draw_data(live: &mut Live, inp: &mut Input) {
     let null_mesh = inp.bool();
     let time = inp.f64_near(10.0);
     let (w, h) = (inp.u32(), inp.u32());
-    let len = inp.len_within(OCEAN_OCEAN_UNIFORMS_SIZE);
-    let mut bytes = vec![0u8; OCEAN_OCEAN_UNIFORMS_SIZE];
+    let len = inp.len_within(OCEAN_SURFACE_UNIFORMS_SIZE);
+    let mut bytes = vec![0u8; OCEAN_SURFACE_UNIFORMS_SIZE];
     let args = (cam, params, mesh, null_mesh, time, w, h, len);
     let mesh_ptr: *const OceanWaterGridDesc = if null_mesh { std::ptr::null() } else { &args.2 };
     // SAFETY: `s` and `l` are live or NULL; the camera, parameters and mesh are locals;
     // `bytes` holds `len` bytes at least.
     let st = unsafe {
-        ocean_ocean_uniforms(
+        ocean_surface_uniforms(
             &args.0,
             s,
             l,
@@ -220,7 +220,7 @@ pub fn draw_data(live: &mut Live, inp: &mut Input) {
             &mut 0usize,
         )
     };
-    check::status("ocean_ocean_uniforms", &args, st);
+    check::status("ocean_surface_uniforms", &args, st);
 
     // SAFETY: `s` is live or NULL; the output is a local.
     let count = unsafe {
@@ -232,15 +232,15 @@ pub fn draw_data(live: &mut Live, inp: &mut Input) {
     let n = inp.len_within(cap);
     let mut texels = vec![0f32; cap];
     // SAFETY: `texels` holds `cap` >= `n` floats.
-    let st = unsafe { ocean_ocean_wave_texels(&args.0, s, time, texels.as_mut_ptr(), n) };
-    check::outputs("ocean_ocean_wave_texels", &(args.0, time, n), st, &texels);
+    let st = unsafe { ocean_surface_wave_texels(&args.0, s, time, texels.as_mut_ptr(), n) };
+    check::outputs("ocean_surface_wave_texels", &(args.0, time, n), st, &texels);
 
     let table = OCEAN_FRESNEL_TABLE_SIZE.pow(2);
     let n = inp.len_within(table);
     let mut fresnel = vec![0f32; table];
     // SAFETY: `fresnel` holds `table` >= `n` floats.
-    let st = unsafe { ocean_ocean_fresnel_texels(fresnel.as_mut_ptr(), n) };
-    check::outputs("ocean_ocean_fresnel_texels", &n, st, &fresnel);
+    let st = unsafe { ocean_surface_fresnel_texels(fresnel.as_mut_ptr(), n) };
+    check::outputs("ocean_surface_fresnel_texels", &n, st, &fresnel);
 }
 
 /// Destroys one spectrum.

@@ -106,7 +106,7 @@ fn waves(runs: u32) -> Result<(Value, Waves), String> {
 }
 
 /// The continuous height query of scenario 1 (128², two boxes): `Frame::continuous_heights_par`
-/// against `ocean_scene_heights_continuous`.
+/// against `ocean_wtb_scene_heights_continuous`.
 fn heights(runs: u32) -> Result<Value, String> {
     let n = 128;
     let mut scene = scenario_1(n).map_err(|e| e.to_string())?;
@@ -140,7 +140,7 @@ fn heights(runs: u32) -> Result<Value, String> {
             },
         ],
     );
-    ok(status, "ocean_scene_heights_continuous")?;
+    ok(status, "ocean_wtb_scene_heights_continuous")?;
     if samples
         .iter()
         .zip(&c_samples)

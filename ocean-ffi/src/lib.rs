@@ -90,9 +90,9 @@ pub use lighting_spectrum::{
 };
 #[cfg(feature = "gpu")]
 pub use ocean_draw::{
-    OCEAN_FRESNEL_TABLE_SIZE, OCEAN_OCEAN_UNIFORMS_SIZE, OCEAN_WAVE_TEXTURE_ROWS,
-    OceanOceanDrawParams, ocean_ocean_draw_params_default, ocean_ocean_fresnel_texels,
-    ocean_ocean_uniforms, ocean_ocean_wave_texels,
+    OCEAN_FRESNEL_TABLE_SIZE, OCEAN_SURFACE_UNIFORMS_SIZE, OCEAN_WAVE_TEXTURE_ROWS,
+    OceanSurfaceDrawParams, ocean_surface_draw_params_default, ocean_surface_fresnel_texels,
+    ocean_surface_uniforms, ocean_surface_wave_texels,
 };
 pub use relief::{
     OCEAN_RELIEF_CONES_CONSERVATIVE, OCEAN_RELIEF_CONES_RELAXED, OCEAN_RELIEF_EDGE_CLAMP,
@@ -161,15 +161,15 @@ pub use waves::{
 };
 pub use wtb::{
     OceanBeach, OceanBoxDesc, OceanDVec2, OceanDVec3, OceanDepthConvention, OceanEffects,
-    OceanFrameStats, OceanIrregular, OceanNoise, OceanRefraction, OceanScene, OceanWaterGridDesc,
-    OceanWindDesc, ocean_effects_default, ocean_scene_add_box, ocean_scene_box_count,
-    ocean_scene_create, ocean_scene_destroy, ocean_scene_evaluate,
-    ocean_scene_evaluate_incremental, ocean_scene_remove_box, ocean_scene_reset_coverage,
-    ocean_scene_set_budget_explicit, ocean_scene_set_budget_seconds,
-    ocean_scene_set_budget_unlimited, ocean_scene_set_effects, ocean_scene_set_terrain,
-    ocean_scene_update_box,
+    OceanFrameStats, OceanIrregular, OceanNoise, OceanRefraction, OceanWaterGridDesc,
+    OceanWindDesc, OceanWtbScene, ocean_wtb_effects_default, ocean_wtb_scene_add_box,
+    ocean_wtb_scene_box_count, ocean_wtb_scene_create, ocean_wtb_scene_destroy,
+    ocean_wtb_scene_evaluate, ocean_wtb_scene_evaluate_incremental, ocean_wtb_scene_remove_box,
+    ocean_wtb_scene_reset_coverage, ocean_wtb_scene_set_budget_explicit,
+    ocean_wtb_scene_set_budget_seconds, ocean_wtb_scene_set_budget_unlimited,
+    ocean_wtb_scene_set_effects, ocean_wtb_scene_set_terrain, ocean_wtb_scene_update_box,
 };
 pub use wtb_query::{
-    OceanDrawnSample, OceanHeightSample, ocean_scene_heights_continuous, ocean_scene_heights_drawn,
-    ocean_scene_set_train_filter,
+    OceanDrawnSample, OceanHeightSample, ocean_wtb_scene_heights_continuous,
+    ocean_wtb_scene_heights_drawn, ocean_wtb_scene_set_train_filter,
 };

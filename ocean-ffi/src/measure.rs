@@ -7,7 +7,7 @@ use core::ffi::CStr;
 use crate::lighting::{OceanLighting, OceanSeaColorInput, OceanSeaLight, OceanSkyMap};
 use crate::status::{OceanStatus, ocean_last_error_message};
 use crate::waves::{OceanVec2, OceanVec3, OceanWaveDesc, OceanWaves};
-use crate::wtb::{OceanBoxDesc, OceanDVec2, OceanEffects, OceanScene, OceanWaterGridDesc};
+use crate::wtb::{OceanBoxDesc, OceanDVec2, OceanEffects, OceanWaterGridDesc, OceanWtbScene};
 use crate::wtb_query::OceanHeightSample;
 
 /// `Ok` for `OCEAN_STATUS_OK`, else the status and the thread's last-error message.
@@ -70,11 +70,11 @@ impl Drop for Waves {
     }
 }
 
-/// An `OceanScene` handle.
-pub struct Scene(*mut OceanScene);
+/// An `OceanWtbScene` handle.
+pub struct Scene(*mut OceanWtbScene);
 
 impl Scene {
-    /// `ocean_scene_create`, `ocean_scene_set_effects` and `ocean_scene_add_box` for each box.
+    /// `ocean_wtb_scene_create`, `ocean_wtb_scene_set_effects` and `ocean_wtb_scene_add_box` for each box.
     pub fn new(
         grid: &OceanWaterGridDesc,
         terrain: &[f32],
@@ -83,21 +83,23 @@ impl Scene {
     ) -> Result<Self, String> {
         let mut h = core::ptr::null_mut();
         // SAFETY: a readable grid, `terrain.len()` readable floats, a writable out-pointer.
-        check(unsafe { crate::ocean_scene_create(grid, terrain.as_ptr(), terrain.len(), &mut h) })?;
+        check(unsafe {
+            crate::ocean_wtb_scene_create(grid, terrain.as_ptr(), terrain.len(), &mut h)
+        })?;
         let scene = Self(h);
         // SAFETY: readable effects.
-        check(unsafe { crate::ocean_scene_set_effects(scene.0, effects) })?;
+        check(unsafe { crate::ocean_wtb_scene_set_effects(scene.0, effects) })?;
         for b in boxes {
             let mut id = 0;
             // SAFETY: a readable description, no explicit trains, a writable id.
             check(unsafe {
-                crate::ocean_scene_add_box(scene.0, b, core::ptr::null(), 0, &mut id)
+                crate::ocean_wtb_scene_add_box(scene.0, b, core::ptr::null(), 0, &mut id)
             })?;
         }
         Ok(scene)
     }
 
-    /// `ocean_scene_heights_continuous` (the slices must have one length).
+    /// `ocean_wtb_scene_heights_continuous` (the slices must have one length).
     pub fn heights_continuous(
         &self,
         time: f64,
@@ -107,7 +109,7 @@ impl Scene {
         assert_eq!(out.len(), xz.len());
         // SAFETY: `xz.len()` readable points and writable samples (asserted).
         unsafe {
-            crate::ocean_scene_heights_continuous(
+            crate::ocean_wtb_scene_heights_continuous(
                 self.0,
                 time,
                 xz.as_ptr(),
@@ -120,7 +122,7 @@ impl Scene {
 
 impl Drop for Scene {
     fn drop(&mut self) {
-        crate::ocean_scene_destroy(self.0);
+        crate::ocean_wtb_scene_destroy(self.0);
     }
 }
 
@@ -169,10 +171,10 @@ impl Drop for SeaColor {
     }
 }
 
-/// `ocean_effects_default`.
+/// `ocean_wtb_effects_default`.
 pub fn effects_default() -> Result<OceanEffects, String> {
     let mut e = OceanEffects::default();
     // SAFETY: writable.
-    check(unsafe { crate::ocean_effects_default(&mut e) })?;
+    check(unsafe { crate::ocean_wtb_effects_default(&mut e) })?;
     Ok(e)
 }

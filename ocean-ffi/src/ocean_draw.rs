@@ -1,7 +1,7 @@
 //! The ocean renderer, the shader side: the uniform block and the textures of the exported
 //! `ocean` draw shader, for engines that draw the sea in their own OpenGL (or Vulkan, Metal,
 //! D3D) pipeline with `ocean_shader_export`: a water mesh of their own (a wave train box
-//! scene evaluated on the CPU with `ocean_scene_evaluate`) lit by Algorithm 5.1 (Bruneton,
+//! scene evaluated on the CPU with `ocean_wtb_scene_evaluate`) lit by Algorithm 5.1 (Bruneton,
 //! Neyret & Holzschuch 2010), the projected grid, the sky, and the composition of the mesh's
 //! light with an ambient obscurance.
 //!
@@ -25,25 +25,25 @@ use crate::waves_domain::Reach;
 use crate::wtb::{OceanWaterGridDesc, water_grid};
 
 /// Size in bytes of the exported `ocean` shader's uniform block `Frame` (binding 0, std140);
-/// `ocean_ocean_uniforms` writes it.
-pub const OCEAN_OCEAN_UNIFORMS_SIZE: usize = 352;
+/// `ocean_surface_uniforms` writes it.
+pub const OCEAN_SURFACE_UNIFORMS_SIZE: usize = 352;
 
-/// Rows of the wave texture (binding 1 of the `ocean` shader): `ocean_ocean_wave_texels`.
+/// Rows of the wave texture (binding 1 of the `ocean` shader): `ocean_surface_wave_texels`.
 pub const OCEAN_WAVE_TEXTURE_ROWS: usize = 3;
 
 /// Side of the effective Fresnel table texture (binding 6 of the `ocean` shader), texels:
-/// `ocean_ocean_fresnel_texels`.
+/// `ocean_surface_fresnel_texels`.
 pub const OCEAN_FRESNEL_TABLE_SIZE: usize = 33;
 
-const _: () = assert!(size_of::<ocean_gpu::FrameUniform>() == OCEAN_OCEAN_UNIFORMS_SIZE);
+const _: () = assert!(size_of::<ocean_gpu::FrameUniform>() == OCEAN_SURFACE_UNIFORMS_SIZE);
 const _: () = assert!(ocean_brdf::fresnel_table::FRESNEL_TABLE_SIZE == OCEAN_FRESNEL_TABLE_SIZE);
 
 /// How the exported `ocean` shader draws: the parts of the uniform block that do not come from
-/// the camera, the spectrum or the lighting. `ocean_ocean_draw_params_default` fills in the
+/// the camera, the spectrum or the lighting. `ocean_surface_draw_params_default` fills in the
 /// library's defaults (those of `ocean_renderer_options_default`, the paper's filter).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct OceanOceanDrawParams {
+pub struct OceanSurfaceDrawParams {
     /// N_min of the filter (paper section 7.1): a wave enters a pixel's normal once its
     /// wavelength spans this many pixels (a grid vertex's position: grid cells). > 0.
     pub n_min: f64,
@@ -79,12 +79,12 @@ pub struct OceanOceanDrawParams {
 ///
 /// `out` must be writable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_ocean_draw_params_default(
-    out: *mut OceanOceanDrawParams,
+pub unsafe extern "C" fn ocean_surface_draw_params_default(
+    out: *mut OceanSurfaceDrawParams,
 ) -> OceanStatus {
-    guard("ocean_ocean_draw_params_default", || {
+    guard("ocean_surface_draw_params_default", || {
         let d = OceanOptions::default();
-        let p = OceanOceanDrawParams {
+        let p = OceanSurfaceDrawParams {
             n_min: OCEAN_FILTER_N_MIN,
             n_max: OCEAN_FILTER_N_MAX,
             cell_px: d.cell_px,
@@ -100,7 +100,7 @@ pub unsafe extern "C" fn ocean_ocean_draw_params_default(
 }
 
 /// The renderer's options and filter of `p`, checked.
-fn params_from(p: &OceanOceanDrawParams) -> Result<(OceanOptions, Filter), Error> {
+fn params_from(p: &OceanSurfaceDrawParams) -> Result<(OceanOptions, Filter), Error> {
     check_finite(
         "params->",
         &[
@@ -137,9 +137,9 @@ fn params_from(p: &OceanOceanDrawParams) -> Result<(OceanOptions, Filter), Error
 
 /// Writes the uniform block of the exported `ocean` draw shader for one frame of `width` x
 /// `height` pixels seen by `camera` at `time` seconds into `out` (the
-/// `OCEAN_OCEAN_UNIFORMS_SIZE` bytes of `Frame`, std140, in the machine's byte order: upload
+/// `OCEAN_SURFACE_UNIFORMS_SIZE` bytes of `Frame`, std140, in the machine's byte order: upload
 /// them as they are with `glBufferSubData`): the spectrum's waves filtered by `params->n_min`
-/// and `n_max` (their texture: `ocean_ocean_wave_texels` for the same camera and time), the
+/// and `n_max` (their texture: `ocean_surface_wave_texels` for the same camera and time), the
 /// Sun, sky and sea of `lighting`, and, when `mesh` is not NULL, the water mesh that `mesh_vs`
 /// draws (a wave train box scene's grid: pass the `OceanWaterGridDesc` it was created with).
 /// The camera is the one of `ocean_pixel_footprint`, above the sea (eye y > 0); its
@@ -153,16 +153,16 @@ fn params_from(p: &OceanOceanDrawParams) -> Result<(OceanOptions, Filter), Error
 /// the samplers `_group_0_binding_<b>_vs` / `_fs`):
 /// - binding 0: this block, a uniform buffer;
 /// - binding 1: the wave texture, `GL_RGBA32F`, wave count x `OCEAN_WAVE_TEXTURE_ROWS`, one
-///   level, the texels of `ocean_ocean_wave_texels` (refreshed every frame);
+///   level, the texels of `ocean_surface_wave_texels` (refreshed every frame);
 /// - bindings 2 and 3: the sky map, `GL_RGBA16F` (or `GL_RGBA32F`), `params->sky_map_size`
 ///   square with every level of `ocean_sky_map_copy_level`, sampled with linear min, mag and
 ///   mip filtering and clamp-to-edge (the sampler of binding 3 is folded into binding 2's);
 /// - binding 6: the effective Fresnel table, `GL_R32F`, `OCEAN_FRESNEL_TABLE_SIZE` square, the
-///   texels of `ocean_ocean_fresnel_texels`;
+///   texels of `ocean_surface_fresnel_texels`;
 /// - bindings 7 and 8: local waves, never read when none are set (as here): any complete
 ///   `GL_RG32F` 2D array texture and `GL_RGBA32F` 2D texture;
 /// - pass 1, `mesh_vs` + `mesh_fs`: attribute 0 the positions and attribute 1 the normals that
-///   `ocean_scene_evaluate` writes (3 floats each, point (i, j) at vertex j * nx + i), drawn as
+///   `ocean_wtb_scene_evaluate` writes (3 floats each, point (i, j) at vertex j * nx + i), drawn as
 ///   indexed `GL_TRIANGLES` over the grid's cells, depth test `GL_LESS` (`GL_GREATER`
 ///   reversed) with writes, no culling, into two colour targets of linear radiance: location 0
 ///   the Sun's reflection, location 1 the sky's reflection plus the refracted light, both
@@ -186,7 +186,7 @@ fn params_from(p: &OceanOceanDrawParams) -> Result<(OceanOptions, Filter), Error
 /// `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time`, parameter, camera or mesh member,
 /// `OCEAN_STATUS_INVALID_ARGUMENT` for a parameter, camera or mesh outside its documented
 /// ranges (the message names it) or a camera not above the sea, `OCEAN_STATUS_BUFFER_TOO_SMALL`
-/// if `len` is below `OCEAN_OCEAN_UNIFORMS_SIZE`, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len`
+/// if `len` is below `OCEAN_SURFACE_UNIFORMS_SIZE`, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len`
 /// exceeds `PTRDIFF_MAX`. `out`, `len` and `needed` follow the size query of
 /// `ocean_gpu_context_describe`: `*needed` receives the block's size, on success and with
 /// `OCEAN_STATUS_BUFFER_TOO_SMALL` (the one output written on a failure); `out` NULL and `len`
@@ -199,11 +199,11 @@ fn params_from(p: &OceanOceanDrawParams) -> Result<(OceanOptions, Filter), Error
 /// writable bytes that no other thread touches during the call, and `needed` writable.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn ocean_ocean_uniforms(
+pub unsafe extern "C" fn ocean_surface_uniforms(
     camera: *const OceanCameraDesc,
     spectrum: *const OceanSpectrum,
     lighting: *const OceanLighting,
-    params: *const OceanOceanDrawParams,
+    params: *const OceanSurfaceDrawParams,
     mesh: *const OceanWaterGridDesc,
     time: f64,
     width: u32,
@@ -212,7 +212,7 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
     len: usize,
     needed: *mut usize,
 ) -> OceanStatus {
-    guard("ocean_ocean_uniforms", || {
+    guard("ocean_surface_uniforms", || {
         let s = borrow(spectrum, "spectrum")?;
         let l = borrow(lighting, "lighting")?;
         check_ptr(camera, "camera")?;
@@ -266,7 +266,7 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
 /// `camera` at `time` seconds into `out`: `OCEAN_WAVE_TEXTURE_ROWS` rows of wave count
 /// (`ocean_spectrum_wave_count`) RGBA float texels, row 0 first, one column per wave, longest
 /// first; `len` counts floats and must be exactly 12 * wave count. Upload it as a `GL_RGBA32F`
-/// texture of wave count x 3 texels every frame, with the block of `ocean_ocean_uniforms` for
+/// texture of wave count x 3 texels every frame, with the block of `ocean_surface_uniforms` for
 /// the same camera and time.
 ///
 /// Row 0 holds (wavelength, k_x, k_z, phase at the eye's horizontal position o, k.o - omega t +
@@ -288,14 +288,14 @@ pub unsafe extern "C" fn ocean_ocean_uniforms(
 /// `camera` must be readable, `spectrum` a live handle, and `out` point to `len` writable
 /// floats that no other thread touches during the call.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_ocean_wave_texels(
+pub unsafe extern "C" fn ocean_surface_wave_texels(
     camera: *const OceanCameraDesc,
     spectrum: *const OceanSpectrum,
     time: f64,
     out: *mut f32,
     len: usize,
 ) -> OceanStatus {
-    guard("ocean_ocean_wave_texels", || {
+    guard("ocean_surface_wave_texels", || {
         let s = borrow(spectrum, "spectrum")?;
         check_ptr(camera, "camera")?;
         check_ptr(out.cast_const(), "out")?;
@@ -341,8 +341,8 @@ pub unsafe extern "C" fn ocean_ocean_wave_texels(
 ///
 /// `out` must point to `len` writable floats that no other thread touches during the call.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_ocean_fresnel_texels(out: *mut f32, len: usize) -> OceanStatus {
-    guard("ocean_ocean_fresnel_texels", || {
+pub unsafe extern "C" fn ocean_surface_fresnel_texels(out: *mut f32, len: usize) -> OceanStatus {
+    guard("ocean_surface_fresnel_texels", || {
         check_ptr(out.cast_const(), "out")?;
         byte_len::<f32>(len, "out")?;
         let texels = ocean_gpu::fresnel_table_texels();
@@ -421,10 +421,10 @@ mod tests {
             .len()
     }
 
-    fn default_params() -> OceanOceanDrawParams {
-        let mut p = OceanOceanDrawParams::default();
+    fn default_params() -> OceanSurfaceDrawParams {
+        let mut p = OceanSurfaceDrawParams::default();
         // SAFETY: writable out.
-        let status = unsafe { ocean_ocean_draw_params_default(&mut p) };
+        let status = unsafe { ocean_surface_draw_params_default(&mut p) };
         assert_eq!(status, OceanStatus::Ok);
         p
     }
@@ -449,7 +449,7 @@ mod tests {
         assert_eq!(filter, Filter::PAPER);
         assert_eq!((p.srgb_encode, p.sky_map_size), (1, 512));
         // SAFETY: NULL is refused before any write.
-        let status = unsafe { ocean_ocean_draw_params_default(null_mut()) };
+        let status = unsafe { ocean_surface_draw_params_default(null_mut()) };
         assert_eq!(status, OceanStatus::NullPointer);
     }
 
@@ -461,10 +461,10 @@ mod tests {
         let (spectrum, lighting) = handles();
         let p = default_params();
         let m = mesh();
-        let mut out = [0xAAu8; OCEAN_OCEAN_UNIFORMS_SIZE + 4];
+        let mut out = [0xAAu8; OCEAN_SURFACE_UNIFORMS_SIZE + 4];
         // SAFETY: readable inputs, live handles, `out` holds `len` writable bytes.
         let status = unsafe {
-            ocean_ocean_uniforms(
+            ocean_surface_uniforms(
                 &desc,
                 spectrum,
                 lighting,
@@ -506,10 +506,13 @@ mod tests {
             Some(&mesh_grid),
         )
         .unwrap();
-        assert_eq!(&out[..OCEAN_OCEAN_UNIFORMS_SIZE], bytemuck::bytes_of(&want));
-        assert_eq!(out[OCEAN_OCEAN_UNIFORMS_SIZE..], [0xAA; 4]);
+        assert_eq!(
+            &out[..OCEAN_SURFACE_UNIFORMS_SIZE],
+            bytemuck::bytes_of(&want)
+        );
+        assert_eq!(out[OCEAN_SURFACE_UNIFORMS_SIZE..], [0xAA; 4]);
         let u: ocean_gpu::FrameUniform =
-            bytemuck::pod_read_unaligned(&out[..OCEAN_OCEAN_UNIFORMS_SIZE]);
+            bytemuck::pod_read_unaligned(&out[..OCEAN_SURFACE_UNIFORMS_SIZE]);
         // The mesh's origin relative to the eye, (1e5 − 30, −4e4 − 60) − (1e5 + 2, −4e4) and
         // −6 m down, exact in f32; its spacing and sides.
         assert_eq!(u.mesh_grid, [-32.0, -6.0, -60.0, 0.5]);
@@ -518,10 +521,10 @@ mod tests {
         assert_eq!(u.counts[2..], [60, 1]);
         assert!(u.sun_radiance[..3].iter().all(|&c| c > 0.0));
         // Without a mesh the mesh fields are zero and nothing else changes.
-        let mut no_mesh = [0u8; OCEAN_OCEAN_UNIFORMS_SIZE];
+        let mut no_mesh = [0u8; OCEAN_SURFACE_UNIFORMS_SIZE];
         // SAFETY: as above, `mesh` NULL.
         let status = unsafe {
-            ocean_ocean_uniforms(
+            ocean_surface_uniforms(
                 &desc,
                 spectrum,
                 lighting,
@@ -554,8 +557,9 @@ mod tests {
         let n = wave_count(spectrum);
         let mut out = vec![f32::NAN; 12 * n];
         // SAFETY: readable inputs, `out` holds `len` writable floats.
-        let status =
-            unsafe { ocean_ocean_wave_texels(&desc, spectrum, 3.0e5, out.as_mut_ptr(), out.len()) };
+        let status = unsafe {
+            ocean_surface_wave_texels(&desc, spectrum, 3.0e5, out.as_mut_ptr(), out.len())
+        };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
         let surface = FilteredSurface::new(
             &crate::boundary::borrow(spectrum, "spectrum")
@@ -576,7 +580,7 @@ mod tests {
 
         let mut table = vec![f32::NAN; 33 * 33];
         // SAFETY: `table` holds `len` writable floats.
-        let status = unsafe { ocean_ocean_fresnel_texels(table.as_mut_ptr(), table.len()) };
+        let status = unsafe { ocean_surface_fresnel_texels(table.as_mut_ptr(), table.len()) };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
         // On the σ_v = 0 column the sea is smooth and Schlick's F exact: D vanishes there, to
         // the rounding of the table's quadrature (below 2e-15). Every texel is the f64 table
@@ -593,7 +597,7 @@ mod tests {
         let good = default_params();
         let m = mesh();
         let call = |desc: &OceanCameraDesc,
-                    p: &OceanOceanDrawParams,
+                    p: &OceanSurfaceDrawParams,
                     m: *const OceanWaterGridDesc,
                     time: f64,
                     size: (u32, u32),
@@ -601,7 +605,7 @@ mod tests {
             let mut out = [7u8; 400];
             // SAFETY: readable inputs, live handles, `out` holds at least `len` bytes.
             let status = unsafe {
-                ocean_ocean_uniforms(
+                ocean_surface_uniforms(
                     desc,
                     spectrum,
                     lighting,
@@ -618,7 +622,7 @@ mod tests {
             assert!(out.iter().all(|&b| b == 7), "written on failure");
             (status, last_error())
         };
-        let with = |f: &dyn Fn(&mut OceanOceanDrawParams)| {
+        let with = |f: &dyn Fn(&mut OceanSurfaceDrawParams)| {
             let mut p = good;
             f(&mut p);
             call(&desc, &p, &m, 0.0, (8, 8), 352)
@@ -720,7 +724,7 @@ mod tests {
         unsafe {
             let o = out.as_mut_ptr();
             assert_eq!(
-                ocean_ocean_uniforms(
+                ocean_surface_uniforms(
                     null(),
                     spectrum,
                     lighting,
@@ -736,7 +740,7 @@ mod tests {
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_ocean_uniforms(
+                ocean_surface_uniforms(
                     &desc,
                     null(),
                     lighting,
@@ -752,7 +756,7 @@ mod tests {
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_ocean_uniforms(
+                ocean_surface_uniforms(
                     &desc,
                     spectrum,
                     null(),
@@ -768,7 +772,7 @@ mod tests {
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_ocean_uniforms(
+                ocean_surface_uniforms(
                     &desc,
                     spectrum,
                     lighting,
@@ -784,7 +788,7 @@ mod tests {
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_ocean_uniforms(
+                ocean_surface_uniforms(
                     &desc,
                     spectrum,
                     lighting,
@@ -808,29 +812,29 @@ mod tests {
         unsafe {
             let t = texels.as_mut_ptr();
             assert_eq!(
-                ocean_ocean_wave_texels(&desc, spectrum, 0.0, t, 12 * n + 1),
+                ocean_surface_wave_texels(&desc, spectrum, 0.0, t, 12 * n + 1),
                 OceanStatus::InvalidArgument
             );
             assert!(last_error().contains(&format!("exactly {}", 12 * n)));
             assert_eq!(
-                ocean_ocean_wave_texels(&desc, spectrum, f64::INFINITY, t, 12 * n),
+                ocean_surface_wave_texels(&desc, spectrum, f64::INFINITY, t, 12 * n),
                 OceanStatus::NonFinite
             );
             assert_eq!(
-                ocean_ocean_wave_texels(&desc, null(), 0.0, t, 12 * n),
+                ocean_surface_wave_texels(&desc, null(), 0.0, t, 12 * n),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_ocean_wave_texels(&desc, spectrum, 0.0, null_mut(), 12 * n),
+                ocean_surface_wave_texels(&desc, spectrum, 0.0, null_mut(), 12 * n),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_ocean_fresnel_texels(t, 33 * 32),
+                ocean_surface_fresnel_texels(t, 33 * 32),
                 OceanStatus::InvalidArgument
             );
             assert!(last_error().contains("exactly 1089"));
             assert_eq!(
-                ocean_ocean_fresnel_texels(null_mut(), 1089),
+                ocean_surface_fresnel_texels(null_mut(), 1089),
                 OceanStatus::NullPointer
             );
         }
@@ -847,7 +851,7 @@ mod tests {
         for time in [f64::MAX, 1e300, -1e20] {
             // SAFETY: readable inputs, `out` holds `len` writable floats.
             let s = unsafe {
-                ocean_ocean_wave_texels(&desc, spectrum, time, out.as_mut_ptr(), out.len())
+                ocean_surface_wave_texels(&desc, spectrum, time, out.as_mut_ptr(), out.len())
             };
             assert_eq!(s, OceanStatus::InvalidArgument, "{time}");
             assert!(last_error().contains("`time`"), "{}", last_error());
@@ -855,7 +859,7 @@ mod tests {
         }
         // SAFETY: as above.
         let s =
-            unsafe { ocean_ocean_wave_texels(&desc, spectrum, 1e9, out.as_mut_ptr(), out.len()) };
+            unsafe { ocean_surface_wave_texels(&desc, spectrum, 1e9, out.as_mut_ptr(), out.len()) };
         assert_eq!(s, OceanStatus::Ok, "{}", last_error());
         assert!(out.iter().all(|v| v.is_finite()));
     }

@@ -213,7 +213,7 @@ pub unsafe extern "C" fn ocean_waves_create(
     })
 }
 
-/// Frees a wave set (see `ocean_scene_destroy` for the rules every destroy function follows).
+/// Frees a wave set (see `ocean_wtb_scene_destroy` for the rules every destroy function follows).
 #[unsafe(no_mangle)]
 pub extern "C" fn ocean_waves_destroy(waves: *mut OceanWaves) {
     destroy(waves, "ocean_waves_destroy", "waves");

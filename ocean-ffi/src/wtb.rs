@@ -200,7 +200,7 @@ pub struct OceanBeach {
     pub run_up_depth: f64,
 }
 
-/// The switchable effects of paper section 2.1. `ocean_effects_default` fills in the library's
+/// The switchable effects of paper section 2.1. `ocean_wtb_effects_default` fills in the library's
 /// defaults (phase-shift refraction and shoaling on, everything else off).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -221,7 +221,7 @@ pub struct OceanEffects {
     pub beach: OceanBeach,
 }
 
-/// Depth convention of a view-projection matrix, for `ocean_scene_evaluate`.
+/// Depth convention of a view-projection matrix, for `ocean_wtb_scene_evaluate`.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum OceanDepthConvention {
@@ -254,7 +254,7 @@ pub struct OceanFrameStats {
     /// The cost model's estimate of the frame's work, seconds of one core.
     pub estimated_seconds: f64,
     /// Trains weighted down in the geometry by the scene's train filter (they span too few
-    /// grid cells to be drawn whole; see `ocean_scene_set_train_filter`), those left out
+    /// grid cells to be drawn whole; see `ocean_wtb_scene_set_train_filter`), those left out
     /// included.
     pub filtered_trains: usize,
     /// Of those, the trains left out entirely (shorter than the filter's `min_cells`).
@@ -266,15 +266,15 @@ pub struct OceanFrameStats {
 }
 
 /// A Wave Train Boxes scene (opaque): water grid, terrain, boxes, effects and budget. Create
-/// with `ocean_scene_create`, free with `ocean_scene_destroy`.
+/// with `ocean_wtb_scene_create`, free with `ocean_wtb_scene_destroy`.
 ///
-/// Every function taking an `OceanScene *` may be called from several threads at once on the
+/// Every function taking an `OceanWtbScene *` may be called from several threads at once on the
 /// same scene: a lock inside the scene serialises them (they do not run concurrently with each
 /// other; evaluations and height queries spread their own work over the library's worker
 /// threads). Destroying must not race with any other use.
-pub struct OceanScene {
+pub struct OceanWtbScene {
     scene: Mutex<Scene>,
-    /// What the buffers of `ocean_scene_evaluate_incremental` may hold besides rest.
+    /// What the buffers of `ocean_wtb_scene_evaluate_incremental` may hold besides rest.
     coverage: Mutex<Coverage>,
     /// The frame the last evaluation drew, which drawn height queries answer for.
     evaluated: Mutex<Option<Evaluated>>,
@@ -289,7 +289,7 @@ pub(crate) struct Evaluated {
     pub(crate) revision: u64,
 }
 
-impl OceanScene {
+impl OceanWtbScene {
     /// The record of the last evaluation.
     pub(crate) fn evaluated(&self) -> MutexGuard<'_, Option<Evaluated>> {
         self.evaluated
@@ -306,7 +306,7 @@ impl OceanScene {
 
 const _: () = {
     const fn shareable<T: Send + Sync>() {}
-    shareable::<OceanScene>();
+    shareable::<OceanWtbScene>();
 };
 
 /// The error of a crate call as a status, with the crate's message (`?` converts).
@@ -521,7 +521,7 @@ pub(crate) fn water_grid(g: &OceanWaterGridDesc, name: &str) -> Result<WaterGrid
         .map_err(|e| wtb_error(&format!("{name}: "), e))
 }
 
-/// The pointer checks of [`terrain`], which `ocean_scene_create` makes before the grid's
+/// The pointer checks of [`terrain`], which `ocean_wtb_scene_create` makes before the grid's
 /// counts and values (the header's error order): NULL with a length, or misaligned.
 fn check_terrain_ptr(heights: *const f32, len: usize) -> Result<(), Error> {
     if heights.is_null() {
@@ -741,15 +741,15 @@ fn box_id(scene: &Scene, id: u32) -> Result<BoxId, Error> {
 ///
 /// `out` must be writable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_effects_default(out: *mut OceanEffects) -> OceanStatus {
-    guard("ocean_effects_default", || {
+pub unsafe extern "C" fn ocean_wtb_effects_default(out: *mut OceanEffects) -> OceanStatus {
+    guard("ocean_wtb_effects_default", || {
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out, "out", effects_to(&Effects::default())) }
     })
 }
 
 /// Creates a scene: a water grid over a terrain, no boxes yet, the default effects
-/// (`ocean_effects_default`) and no budget limit. Stores the new handle in `*out`.
+/// (`ocean_wtb_effects_default`) and no budget limit. Stores the new handle in `*out`.
 ///
 /// `terrain_heights` holds one height per grid point, row-major (point (i, j) at j*nx + i):
 /// the ground's height above the sea at rest, metres. A height < 0 is sea floor at depth
@@ -762,20 +762,20 @@ pub unsafe extern "C" fn ocean_effects_default(out: *mut OceanEffects) -> OceanS
 /// for a NaN or infinite origin, spacing or height; `OCEAN_STATUS_INVALID_ARGUMENT` for a side
 /// outside 2 to 4096, a spacing outside [1e-3, 1e4] m, an origin beyond 1e9 m, or
 /// `terrain_len` != nx * nz. On failure `*out` is unchanged. Free the scene with
-/// `ocean_scene_destroy`.
+/// `ocean_wtb_scene_destroy`.
 ///
 /// # Safety
 ///
 /// `grid` must point to a readable `OceanWaterGridDesc`, `terrain_heights` be NULL or point to
 /// `terrain_len` readable floats, and `out` point to a writable pointer; none is retained.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_create(
+pub unsafe extern "C" fn ocean_wtb_scene_create(
     grid: *const OceanWaterGridDesc,
     terrain_heights: *const f32,
     terrain_len: usize,
-    out: *mut *mut OceanScene,
+    out: *mut *mut OceanWtbScene,
 ) -> OceanStatus {
-    guard("ocean_scene_create", || {
+    guard("ocean_wtb_scene_create", || {
         check_ptr(grid, "grid")?;
         check_terrain_ptr(terrain_heights, terrain_len)?;
         check_ptr(out.cast_const(), "out")?;
@@ -785,7 +785,7 @@ pub unsafe extern "C" fn ocean_scene_create(
         let t = unsafe { terrain(&g, terrain_heights, terrain_len) }?;
         let scene = Scene::new(g, t)?;
         let coverage = Coverage::everything(scene.grid());
-        let value = OceanScene {
+        let value = OceanWtbScene {
             scene: Mutex::new(scene),
             coverage: Mutex::new(coverage),
             evaluated: Mutex::new(None),
@@ -802,11 +802,11 @@ pub unsafe extern "C" fn ocean_scene_create(
 /// the last call using it on another thread returns. A successful destroy leaves the last-error
 /// message alone.
 #[unsafe(no_mangle)]
-pub extern "C" fn ocean_scene_destroy(scene: *mut OceanScene) {
-    destroy(scene, "ocean_scene_destroy", "scene");
+pub extern "C" fn ocean_wtb_scene_destroy(scene: *mut OceanWtbScene) {
+    destroy(scene, "ocean_wtb_scene_destroy", "scene");
 }
 
-/// Replaces the scene's terrain (same format as in `ocean_scene_create`; NULL and 0 for a deep
+/// Replaces the scene's terrain (same format as in `ocean_wtb_scene_create`; NULL and 0 for a deep
 /// sea). Every box's land, depth and refraction along its rays is recomputed at the next
 /// evaluation.
 ///
@@ -819,12 +819,12 @@ pub extern "C" fn ocean_scene_destroy(scene: *mut OceanScene) {
 ///
 /// `terrain_heights` must be NULL or point to `terrain_len` readable floats.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_set_terrain(
-    scene: *mut OceanScene,
+pub unsafe extern "C" fn ocean_wtb_scene_set_terrain(
+    scene: *mut OceanWtbScene,
     terrain_heights: *const f32,
     terrain_len: usize,
 ) -> OceanStatus {
-    guard("ocean_scene_set_terrain", || {
+    guard("ocean_wtb_scene_set_terrain", || {
         let scene = borrow(scene, "scene")?;
         let mut scene = scene.lock();
         let grid = *scene.grid();
@@ -860,14 +860,14 @@ pub unsafe extern "C" fn ocean_scene_set_terrain(
 /// `desc` readable, `trains` NULL or `n_trains` readable
 /// descriptions, `out_id` writable; nothing is retained.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_add_box(
-    scene: *mut OceanScene,
+pub unsafe extern "C" fn ocean_wtb_scene_add_box(
+    scene: *mut OceanWtbScene,
     desc: *const OceanBoxDesc,
     trains: *const OceanWaveDesc,
     n_trains: usize,
     out_id: *mut u32,
 ) -> OceanStatus {
-    guard("ocean_scene_add_box", || {
+    guard("ocean_wtb_scene_add_box", || {
         let scene = borrow(scene, "scene")?;
         check_ptr(out_id.cast_const(), "out_id")?;
         let mut scene = scene.lock();
@@ -881,25 +881,25 @@ pub unsafe extern "C" fn ocean_scene_add_box(
     })
 }
 
-/// Replaces box `id`'s description (same arguments as `ocean_scene_add_box`): move or turn it
+/// Replaces box `id`'s description (same arguments as `ocean_wtb_scene_add_box`): move or turn it
 /// (a boat's wake), change its wind or trains. A moved box's action points along its rays are
 /// recomputed at the next evaluation.
 ///
 /// Returns `OCEAN_STATUS_NOT_FOUND` for an id that is not in the scene (removed, never issued)
-/// and otherwise as `ocean_scene_add_box`. On failure the box is unchanged.
+/// and otherwise as `ocean_wtb_scene_add_box`. On failure the box is unchanged.
 ///
 /// # Safety
 ///
-/// As `ocean_scene_add_box`.
+/// As `ocean_wtb_scene_add_box`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_update_box(
-    scene: *mut OceanScene,
+pub unsafe extern "C" fn ocean_wtb_scene_update_box(
+    scene: *mut OceanWtbScene,
     id: u32,
     desc: *const OceanBoxDesc,
     trains: *const OceanWaveDesc,
     n_trains: usize,
 ) -> OceanStatus {
-    guard("ocean_scene_update_box", || {
+    guard("ocean_wtb_scene_update_box", || {
         let scene = borrow(scene, "scene")?;
         let mut scene = scene.lock();
         let grid = *scene.grid();
@@ -913,8 +913,8 @@ pub unsafe extern "C" fn ocean_scene_update_box(
 /// Removes box `id`. Returns `OCEAN_STATUS_NOT_FOUND` for an id not in the scene (also when
 /// it was removed already).
 #[unsafe(no_mangle)]
-pub extern "C" fn ocean_scene_remove_box(scene: *mut OceanScene, id: u32) -> OceanStatus {
-    guard("ocean_scene_remove_box", || {
+pub extern "C" fn ocean_wtb_scene_remove_box(scene: *mut OceanWtbScene, id: u32) -> OceanStatus {
+    guard("ocean_wtb_scene_remove_box", || {
         let scene = borrow(scene, "scene")?;
         let mut scene = scene.lock();
         let id = box_id(&scene, id)?;
@@ -928,11 +928,11 @@ pub extern "C" fn ocean_scene_remove_box(scene: *mut OceanScene, id: u32) -> Oce
 ///
 /// `out_count` must be writable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_box_count(
-    scene: *mut OceanScene,
+pub unsafe extern "C" fn ocean_wtb_scene_box_count(
+    scene: *mut OceanWtbScene,
     out_count: *mut usize,
 ) -> OceanStatus {
-    guard("ocean_scene_box_count", || {
+    guard("ocean_wtb_scene_box_count", || {
         let scene = borrow(scene, "scene")?;
         let count = scene.lock().box_ids().count();
         // SAFETY: forwarded from this function's contract.
@@ -951,11 +951,11 @@ pub unsafe extern "C" fn ocean_scene_box_count(
 ///
 /// `effects` must be readable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_set_effects(
-    scene: *mut OceanScene,
+pub unsafe extern "C" fn ocean_wtb_scene_set_effects(
+    scene: *mut OceanWtbScene,
     effects: *const OceanEffects,
 ) -> OceanStatus {
-    guard("ocean_scene_set_effects", || {
+    guard("ocean_wtb_scene_set_effects", || {
         let scene = borrow(scene, "scene")?;
         check_ptr(effects, "effects")?;
         // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
@@ -969,8 +969,8 @@ pub unsafe extern "C" fn ocean_scene_set_effects(
 
 /// Removes any budget limit: every enabled train and effect runs (the default).
 #[unsafe(no_mangle)]
-pub extern "C" fn ocean_scene_set_budget_unlimited(scene: *mut OceanScene) -> OceanStatus {
-    guard("ocean_scene_set_budget_unlimited", || {
+pub extern "C" fn ocean_wtb_scene_set_budget_unlimited(scene: *mut OceanWtbScene) -> OceanStatus {
+    guard("ocean_wtb_scene_set_budget_unlimited", || {
         let scene = borrow(scene, "scene")?;
         scene
             .lock()
@@ -988,11 +988,11 @@ pub extern "C" fn ocean_scene_set_budget_unlimited(scene: *mut OceanScene) -> Oc
 /// Returns `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `seconds`,
 /// `OCEAN_STATUS_INVALID_ARGUMENT` for a negative one; the budget is then unchanged.
 #[unsafe(no_mangle)]
-pub extern "C" fn ocean_scene_set_budget_seconds(
-    scene: *mut OceanScene,
+pub extern "C" fn ocean_wtb_scene_set_budget_seconds(
+    scene: *mut OceanWtbScene,
     seconds: f64,
 ) -> OceanStatus {
-    guard("ocean_scene_set_budget_seconds", || {
+    guard("ocean_wtb_scene_set_budget_seconds", || {
         let scene = borrow(scene, "scene")?;
         check_finite("", &[("seconds", seconds)])?;
         scene
@@ -1004,18 +1004,18 @@ pub extern "C" fn ocean_scene_set_budget_seconds(
 
 /// Fixes each evaluation's work explicitly: at most `max_trains` trains per box (its largest;
 /// `SIZE_MAX` for all, 0 for none) and exactly the effects in `*effects` (validated as in
-/// `ocean_scene_set_effects`), whatever the effects enabled with `ocean_scene_set_effects`.
+/// `ocean_wtb_scene_set_effects`), whatever the effects enabled with `ocean_wtb_scene_set_effects`.
 ///
 /// # Safety
 ///
 /// `effects` must be readable.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_set_budget_explicit(
-    scene: *mut OceanScene,
+pub unsafe extern "C" fn ocean_wtb_scene_set_budget_explicit(
+    scene: *mut OceanWtbScene,
     max_trains: usize,
     effects: *const OceanEffects,
 ) -> OceanStatus {
-    guard("ocean_scene_set_budget_explicit", || {
+    guard("ocean_wtb_scene_set_budget_explicit", || {
         let scene = borrow(scene, "scene")?;
         check_ptr(effects, "effects")?;
         // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
@@ -1105,8 +1105,8 @@ unsafe fn frustum(m: *const f32, depth: u32) -> Result<Option<Frustum>, Error> {
 /// may touch the buffers during the call.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn ocean_scene_evaluate(
-    scene: *mut OceanScene,
+pub unsafe extern "C" fn ocean_wtb_scene_evaluate(
+    scene: *mut OceanWtbScene,
     time: f64,
     view_projection: *const f32,
     depth_convention: u32,
@@ -1118,7 +1118,7 @@ pub unsafe extern "C" fn ocean_scene_evaluate(
     // SAFETY: forwarded from this function's contract.
     unsafe {
         evaluate(
-            "ocean_scene_evaluate",
+            "ocean_wtb_scene_evaluate",
             false,
             scene,
             time,
@@ -1132,24 +1132,24 @@ pub unsafe extern "C" fn ocean_scene_evaluate(
     }
 }
 
-/// `ocean_scene_evaluate` for buffers kept from frame to frame (an engine's vertex buffers):
+/// `ocean_wtb_scene_evaluate` for buffers kept from frame to frame (an engine's vertex buffers):
 /// only the part of the grid that the visible boxes cover now, or covered at the previous call,
-/// is written, with exactly the values `ocean_scene_evaluate` would write; the rest of the
+/// is written, with exactly the values `ocean_wtb_scene_evaluate` would write; the rest of the
 /// buffers already holds the sea at rest. A frame in which no box is visible, after one with
 /// none either, writes nothing.
 ///
-/// Pass the same two buffers to every call. The first call after `ocean_scene_create` or
-/// `ocean_scene_reset_coverage` writes the whole grid. With noise or run-up enabled the whole
+/// Pass the same two buffers to every call. The first call after `ocean_wtb_scene_create` or
+/// `ocean_wtb_scene_reset_coverage` writes the whole grid. With noise or run-up enabled the whole
 /// grid changes and is written every time. Arguments, statuses and safety as for
-/// `ocean_scene_evaluate`.
+/// `ocean_wtb_scene_evaluate`.
 ///
 /// # Safety
 ///
-/// As `ocean_scene_evaluate`.
+/// As `ocean_wtb_scene_evaluate`.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
-pub unsafe extern "C" fn ocean_scene_evaluate_incremental(
-    scene: *mut OceanScene,
+pub unsafe extern "C" fn ocean_wtb_scene_evaluate_incremental(
+    scene: *mut OceanWtbScene,
     time: f64,
     view_projection: *const f32,
     depth_convention: u32,
@@ -1161,7 +1161,7 @@ pub unsafe extern "C" fn ocean_scene_evaluate_incremental(
     // SAFETY: forwarded from this function's contract.
     unsafe {
         evaluate(
-            "ocean_scene_evaluate_incremental",
+            "ocean_wtb_scene_evaluate_incremental",
             true,
             scene,
             time,
@@ -1175,13 +1175,13 @@ pub unsafe extern "C" fn ocean_scene_evaluate_incremental(
     }
 }
 
-/// Forgets what `ocean_scene_evaluate_incremental` wrote: its next call writes the whole grid.
+/// Forgets what `ocean_wtb_scene_evaluate_incremental` wrote: its next call writes the whole grid.
 /// Call it before passing other buffers.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` or `OCEAN_STATUS_MISALIGNED_POINTER` for a bad handle.
 #[unsafe(no_mangle)]
-pub extern "C" fn ocean_scene_reset_coverage(scene: *mut OceanScene) -> OceanStatus {
-    guard("ocean_scene_reset_coverage", || {
+pub extern "C" fn ocean_wtb_scene_reset_coverage(scene: *mut OceanWtbScene) -> OceanStatus {
+    guard("ocean_wtb_scene_reset_coverage", || {
         let scene = borrow(scene, "scene")?;
         let grid = *scene.lock().grid();
         *scene
@@ -1192,16 +1192,16 @@ pub extern "C" fn ocean_scene_reset_coverage(scene: *mut OceanScene) -> OceanSta
     })
 }
 
-/// The body of `ocean_scene_evaluate` and `ocean_scene_evaluate_incremental`.
+/// The body of `ocean_wtb_scene_evaluate` and `ocean_wtb_scene_evaluate_incremental`.
 ///
 /// # Safety
 ///
-/// As `ocean_scene_evaluate`.
+/// As `ocean_wtb_scene_evaluate`.
 #[allow(clippy::too_many_arguments)]
 unsafe fn evaluate(
     name: &'static str,
     incremental: bool,
-    scene: *mut OceanScene,
+    scene: *mut OceanWtbScene,
     time: f64,
     view_projection: *const f32,
     depth_convention: u32,
@@ -1296,8 +1296,8 @@ mod tests {
 
     use crate::status::last_error;
     use crate::wtb_query::{
-        OceanDrawnSample, OceanHeightSample, ocean_scene_heights_continuous,
-        ocean_scene_heights_drawn,
+        OceanDrawnSample, OceanHeightSample, ocean_wtb_scene_heights_continuous,
+        ocean_wtb_scene_heights_drawn,
     };
 
     const GRID: OceanWaterGridDesc = OceanWaterGridDesc {
@@ -1334,20 +1334,22 @@ mod tests {
     }
 
     /// Scenario 1 of `ocean_wtb::scenarios` built through the C ABI.
-    fn scenario_1() -> *mut OceanScene {
+    fn scenario_1() -> *mut OceanWtbScene {
         let (grid, terrain) = scenarios::sloping(64).unwrap();
         let heights = terrain.heights().unwrap().to_vec();
         assert_eq!(grid.len(), heights.len());
         let mut s = core::ptr::null_mut();
         // SAFETY: valid pointers and lengths.
-        let st = unsafe { ocean_scene_create(&GRID, heights.as_ptr(), heights.len(), &mut s) };
+        let st = unsafe { ocean_wtb_scene_create(&GRID, heights.as_ptr(), heights.len(), &mut s) };
         assert_eq!(st, OceanStatus::Ok, "{}", last_error());
         let mut e = OceanEffects::default();
         // SAFETY: valid pointer.
-        assert_eq!(unsafe { ocean_effects_default(&mut e) }, OceanStatus::Ok);
+        let st = unsafe { ocean_wtb_effects_default(&mut e) };
+        assert_eq!(st, OceanStatus::Ok);
         e.shoaling = 0;
         // SAFETY: live scene, valid pointer.
-        assert_eq!(unsafe { ocean_scene_set_effects(s, &e) }, OceanStatus::Ok);
+        let st = unsafe { ocean_wtb_scene_set_effects(s, &e) };
+        assert_eq!(st, OceanStatus::Ok);
         for (w, trains, seed) in [
             (wind(7.0, (1.0, 0.15), (-2.0, -4.0), 66.0, 70.0), 1, 11),
             (wind(5.0, (0.7, 1.0), (30.0, -30.0), 60.0, 90.0), 2, 12),
@@ -1360,7 +1362,7 @@ mod tests {
             };
             let mut id = u32::MAX;
             // SAFETY: live scene, valid pointers, no explicit trains.
-            let st = unsafe { ocean_scene_add_box(s, &desc, core::ptr::null(), 0, &mut id) };
+            let st = unsafe { ocean_wtb_scene_add_box(s, &desc, core::ptr::null(), 0, &mut id) };
             assert_eq!(st, OceanStatus::Ok, "{}", last_error());
         }
         s
@@ -1379,7 +1381,7 @@ mod tests {
             let mut stats = OceanFrameStats::default();
             // SAFETY: n elements in each buffer.
             let st = unsafe {
-                ocean_scene_evaluate(
+                ocean_wtb_scene_evaluate(
                     s,
                     t,
                     core::ptr::null(),
@@ -1416,8 +1418,9 @@ mod tests {
             ];
             let mut out = [OceanHeightSample::default(); 2];
             // SAFETY: two elements each.
-            let st =
-                unsafe { ocean_scene_heights_continuous(s, t, xz.as_ptr(), 2, out.as_mut_ptr()) };
+            let st = unsafe {
+                ocean_wtb_scene_heights_continuous(s, t, xz.as_ptr(), 2, out.as_mut_ptr())
+            };
             assert_eq!(st, OceanStatus::Ok, "{}", last_error());
             for (q, o) in xz.iter().zip(&out) {
                 let h = frame.continuous_height_at(DVec2::new(q.x, q.z)).unwrap();
@@ -1426,7 +1429,7 @@ mod tests {
                 assert_eq!([o.normal.x, o.normal.y, o.normal.z], h.normal.to_array());
             }
         }
-        ocean_scene_destroy(s);
+        ocean_wtb_scene_destroy(s);
     }
 
     /// Drawn queries answer for the last evaluation, culling included, and refuse a scene
@@ -1445,7 +1448,7 @@ mod tests {
         let mut out = [marker; 2];
         // SAFETY: live scene, two elements each.
         let query = |out: &mut [OceanDrawnSample; 2]| unsafe {
-            ocean_scene_heights_drawn(s, xz.as_ptr(), 2, out.as_mut_ptr())
+            ocean_wtb_scene_heights_drawn(s, xz.as_ptr(), 2, out.as_mut_ptr())
         };
         assert_eq!(query(&mut out), OceanStatus::NotEvaluated);
         assert!(
@@ -1476,7 +1479,7 @@ mod tests {
             let m = view.map(|m| m.to_cols_array());
             // SAFETY: n elements in each buffer, 16 floats or NULL.
             let st = unsafe {
-                ocean_scene_evaluate(
+                ocean_wtb_scene_evaluate(
                     s,
                     4.5,
                     m.as_ref().map_or(core::ptr::null(), |m| m.as_ptr()),
@@ -1509,18 +1512,18 @@ mod tests {
             "culled: drawn at rest"
         );
         // Any change of the description needs a new evaluation.
-        let st = ocean_scene_set_budget_unlimited(s);
+        let st = ocean_wtb_scene_set_budget_unlimited(s);
         assert_eq!(st, OceanStatus::Ok);
         assert_eq!(query(&mut out), OceanStatus::NotEvaluated);
         assert!(last_error().contains("changed"), "{}", last_error());
-        ocean_scene_destroy(s);
+        ocean_wtb_scene_destroy(s);
     }
 
     /// Misaligned pointers are refused before any access, and nothing is written.
     #[test]
     fn incremental_evaluation_matches_full_evaluation() {
-        // Kept buffers updated by ocean_scene_evaluate_incremental must equal what
-        // ocean_scene_evaluate writes, frame after frame, while culling switches every box off
+        // Kept buffers updated by ocean_wtb_scene_evaluate_incremental must equal what
+        // ocean_wtb_scene_evaluate writes, frame after frame, while culling switches every box off
         // (a view of the sky, column-major like GLM) and on again.
         let s = scenario_1();
         let n = 64 * 64;
@@ -1557,7 +1560,7 @@ mod tests {
             // SAFETY: live scene; buffers of n elements; 16 floats or NULL; stats writable.
             let (a, b) = unsafe {
                 (
-                    ocean_scene_evaluate_incremental(
+                    ocean_wtb_scene_evaluate_incremental(
                         s,
                         t,
                         vp,
@@ -1567,7 +1570,7 @@ mod tests {
                         n,
                         &mut stats,
                     ),
-                    ocean_scene_evaluate(
+                    ocean_wtb_scene_evaluate(
                         s,
                         t,
                         vp,
@@ -1594,11 +1597,11 @@ mod tests {
             y: 9.0,
             z: 9.0,
         });
-        assert_eq!(ocean_scene_reset_coverage(s), OceanStatus::Ok);
+        assert_eq!(ocean_wtb_scene_reset_coverage(s), OceanStatus::Ok);
         let mut full = (vec![OceanVec3::default(); n], vec![OceanVec3::default(); n]);
         // SAFETY: as above.
         unsafe {
-            ocean_scene_evaluate_incremental(
+            ocean_wtb_scene_evaluate_incremental(
                 s,
                 9.0,
                 sky.as_ptr(),
@@ -1608,7 +1611,7 @@ mod tests {
                 n,
                 core::ptr::null_mut(),
             );
-            ocean_scene_evaluate(
+            ocean_wtb_scene_evaluate(
                 s,
                 9.0,
                 sky.as_ptr(),
@@ -1620,9 +1623,9 @@ mod tests {
             );
         }
         assert!(kept == full);
-        let st = ocean_scene_reset_coverage(core::ptr::null_mut());
+        let st = ocean_wtb_scene_reset_coverage(core::ptr::null_mut());
         assert_eq!(st, OceanStatus::NullPointer);
-        ocean_scene_destroy(s);
+        ocean_wtb_scene_destroy(s);
     }
 
     #[test]
@@ -1634,7 +1637,7 @@ mod tests {
         let good = base.wrapping_add(256).cast::<OceanVec3>();
         // SAFETY: refused before any access.
         let st = unsafe {
-            ocean_scene_evaluate(
+            ocean_wtb_scene_evaluate(
                 s,
                 0.0,
                 core::ptr::null(),
@@ -1652,7 +1655,7 @@ mod tests {
         let mut nrm = pos.clone();
         // SAFETY: refused before any access.
         let st = unsafe {
-            ocean_scene_evaluate(
+            ocean_wtb_scene_evaluate(
                 s,
                 0.0,
                 core::ptr::null(),
@@ -1668,18 +1671,18 @@ mod tests {
         let bad_xz = base.wrapping_add(4).cast::<OceanDVec2>().cast_const();
         let mut out = [OceanHeightSample::default(); 1];
         // SAFETY: refused before any access.
-        let st = unsafe { ocean_scene_heights_continuous(s, 0.0, bad_xz, 1, out.as_mut_ptr()) };
+        let st = unsafe { ocean_wtb_scene_heights_continuous(s, 0.0, bad_xz, 1, out.as_mut_ptr()) };
         assert_eq!(st, OceanStatus::MisalignedPointer);
-        let bad_scene = base.wrapping_add(4).cast::<OceanScene>();
-        let st = ocean_scene_remove_box(bad_scene, 0);
+        let bad_scene = base.wrapping_add(4).cast::<OceanWtbScene>();
+        let st = ocean_wtb_scene_remove_box(bad_scene, 0);
         // A handle is an id, never an address: a pointer into the caller's memory is not one.
         assert_eq!(st, OceanStatus::InvalidHandle);
         assert!(
             storage.iter().all(|&v| v == 0),
             "a refused call wrote memory"
         );
-        ocean_scene_destroy(bad_scene);
-        ocean_scene_destroy(s);
+        ocean_wtb_scene_destroy(bad_scene);
+        ocean_wtb_scene_destroy(s);
     }
 
     /// Error statuses of the mapping that the C test cannot reach by a single bad member.

@@ -7,7 +7,7 @@ use ocean_wtb::scene::{DrawnSample, HeightSample};
 
 use crate::boundary::{borrow, byte_len, check_disjoint, check_ptr, check_time};
 use crate::status::{Error, OceanStatus, guard};
-use crate::wtb::{OceanDVec2, OceanDVec3, OceanScene};
+use crate::wtb::{OceanDVec2, OceanDVec3, OceanWtbScene};
 
 /// The answer of a drawn height query at world (x, z): the triangle of the evaluated grid's
 /// mesh that lies over it.
@@ -118,8 +118,8 @@ unsafe fn query_points(
 }
 
 /// Answers `n` height queries at world (x, z) = `xz[k]` on the **drawn** surface, into
-/// `out[k]`: the triangles of the grid that the last `ocean_scene_evaluate` or
-/// `ocean_scene_evaluate_incremental` wrote, culling included (a culled box's water is drawn at
+/// `out[k]`: the triangles of the grid that the last `ocean_wtb_scene_evaluate` or
+/// `ocean_wtb_scene_evaluate_incremental` wrote, culling included (a culled box's water is drawn at
 /// rest, and answered at rest). This is the surface to float objects on where the grid is what
 /// is drawn.
 ///
@@ -150,13 +150,13 @@ unsafe fn query_points(
 /// `xz` `n` readable `OceanDVec2`s and `out` `n` writable
 /// `OceanDrawnSample`s, untouched by other threads during the call.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_heights_drawn(
-    scene: *mut OceanScene,
+pub unsafe extern "C" fn ocean_wtb_scene_heights_drawn(
+    scene: *mut OceanWtbScene,
     xz: *const OceanDVec2,
     n: usize,
     out: *mut OceanDrawnSample,
 ) -> OceanStatus {
-    guard("ocean_scene_heights_drawn", || {
+    guard("ocean_wtb_scene_heights_drawn", || {
         let scene = borrow(scene, "scene")?;
         check_ptr(out.cast_const(), "out")?;
         let out_bytes = byte_len::<OceanDrawnSample>(n, "out");
@@ -169,7 +169,7 @@ pub unsafe extern "C" fn ocean_scene_heights_drawn(
                 return Err(Error::new(
                     OceanStatus::NotEvaluated,
                     "the scene has not been evaluated: drawn heights answer for the grid the \
-                     last ocean_scene_evaluate (or _incremental) wrote; call it first",
+                     last ocean_wtb_scene_evaluate (or _incremental) wrote; call it first",
                 ));
             };
             if e.revision != s.revision() {
@@ -195,7 +195,7 @@ pub unsafe extern "C" fn ocean_scene_heights_drawn(
 
 /// Answers `n` height queries at world (x, z) = `xz[k]` and `time` seconds on the
 /// **continuous** surface, into `out[k]`: the model between grid points (the same boxes, depth,
-/// land, effects, budget and train filter as `ocean_scene_evaluate`, but never culled), the
+/// land, effects, budget and train filter as `ocean_wtb_scene_evaluate`, but never culled), the
 /// limit of an ever finer grid, and what a renderer evaluating the trains per vertex of a
 /// view-dependent grid approaches. The modulation and the height field are bilinear between
 /// grid points; the surface is the image of the grid's rectangle, beyond which (and where an
@@ -211,7 +211,7 @@ pub unsafe extern "C" fn ocean_scene_heights_drawn(
 /// `OceanHeightSample::residual`), then the height and normal are taken there. The library's
 /// tests hold it within 5 micrometres of a forward double-precision evaluation of the model.
 ///
-/// Statuses as `ocean_scene_heights_drawn`, without `OCEAN_STATUS_NOT_EVALUATED`, plus
+/// Statuses as `ocean_wtb_scene_heights_drawn`, without `OCEAN_STATUS_NOT_EVALUATED`, plus
 /// `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time`. Nothing is written on failure.
 ///
 /// # Safety
@@ -219,14 +219,14 @@ pub unsafe extern "C" fn ocean_scene_heights_drawn(
 /// `xz` `n` readable `OceanDVec2`s and `out` `n` writable
 /// `OceanHeightSample`s, untouched by other threads during the call.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_scene_heights_continuous(
-    scene: *mut OceanScene,
+pub unsafe extern "C" fn ocean_wtb_scene_heights_continuous(
+    scene: *mut OceanWtbScene,
     time: f64,
     xz: *const OceanDVec2,
     n: usize,
     out: *mut OceanHeightSample,
 ) -> OceanStatus {
-    guard("ocean_scene_heights_continuous", || {
+    guard("ocean_wtb_scene_heights_continuous", || {
         let scene = borrow(scene, "scene")?;
         check_ptr(out.cast_const(), "out")?;
         let out_bytes = byte_len::<OceanHeightSample>(n, "out");
@@ -239,7 +239,7 @@ pub unsafe extern "C" fn ocean_scene_heights_continuous(
             let frame = s.frame(time, None)?;
             frame.continuous_heights_par(&at, &mut samples)?;
         }
-        // SAFETY: as in `ocean_scene_heights_drawn`.
+        // SAFETY: as in `ocean_wtb_scene_heights_drawn`.
         let dst = unsafe { core::slice::from_raw_parts_mut(out, n) };
         for (d, s) in dst.iter_mut().zip(&samples) {
             *d = OceanHeightSample {
@@ -273,12 +273,12 @@ pub unsafe extern "C" fn ocean_scene_heights_continuous(
 /// `OCEAN_STATUS_INVALID_ARGUMENT` unless 0 <= `min_cells` < `max_cells` <= 1e6 (or both 0);
 /// nothing changes then.
 #[unsafe(no_mangle)]
-pub extern "C" fn ocean_scene_set_train_filter(
-    scene: *mut OceanScene,
+pub extern "C" fn ocean_wtb_scene_set_train_filter(
+    scene: *mut OceanWtbScene,
     min_cells: f64,
     max_cells: f64,
 ) -> OceanStatus {
-    guard("ocean_scene_set_train_filter", || {
+    guard("ocean_wtb_scene_set_train_filter", || {
         let scene = borrow(scene, "scene")?;
         let filter = if min_cells == 0.0 && max_cells == 0.0 {
             None

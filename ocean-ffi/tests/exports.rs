@@ -80,7 +80,7 @@ fn every_c_abi_item_is_reexported() {
     let declared = declared();
     // The scan finds the C ABI (more than 130 functions, the handle types, the constants).
     assert!(declared.len() > 200, "only {} items found", declared.len());
-    assert!(declared.contains("ocean_waves_evaluate") && declared.contains("OceanScene"));
+    assert!(declared.contains("ocean_waves_evaluate") && declared.contains("OceanWtbScene"));
     let reexported = reexported();
     let missing: Vec<_> = declared.difference(&reexported).collect();
     assert!(

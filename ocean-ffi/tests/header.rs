@@ -72,7 +72,7 @@ fn header_has_the_promised_shape() {
         "OCEAN_STATUS_NOT_FOUND = 9,",
         "OCEAN_STATUS_OUTSIDE_GRID = 10,",
         "typedef struct OceanWaves OceanWaves;",
-        "typedef struct OceanScene OceanScene;",
+        "typedef struct OceanWtbScene OceanWtbScene;",
         "OCEAN_REFRACTION_PHASE_SHIFT = 1,",
         "OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE = 2,",
         "size_t n,",

@@ -560,7 +560,7 @@ static inline void plausible_OceanGrid(OceanGrid *p)
 
 static inline void plausible_OceanWaterGridDesc(OceanWaterGridDesc *p)
 {
-    /* The grid of the scene handle (make_OceanScene). */
+    /* The grid of the scene handle (make_OceanWtbScene). */
     p->origin_x = 0.0;
     p->origin_z = 0.0;
     p->spacing = 1.0;
@@ -754,26 +754,26 @@ static inline void *make_OceanWaves(void)
     return ocean_waves_create(w, 3, &h) == OCEAN_STATUS_OK ? (void *)h : NULL;
 }
 
-static inline void *make_OceanScene(void)
+static inline void *make_OceanWtbScene(void)
 {
     /* A 16 x 16 grid (1 m spacing) over a sloping sea floor, two boxes, evaluated once so that
      * the drawn height queries have a frame to answer for. */
     OceanWaterGridDesc grid;
     OceanBoxDesc box;
-    OceanScene *h = NULL;
+    OceanWtbScene *h = NULL;
     float terrain[16 * 16];
     static OceanVec3 pos[16 * 16], nrm[16 * 16];
     int i;
     plausible_OceanWaterGridDesc(&grid);
     for (i = 0; i < 16 * 16; i++)
         terrain[i] = -20.0f + (float)(i % 16);
-    if (ocean_scene_create(&grid, terrain, 16 * 16, &h) != OCEAN_STATUS_OK)
+    if (ocean_wtb_scene_create(&grid, terrain, 16 * 16, &h) != OCEAN_STATUS_OK)
         return NULL;
     plausible_OceanBoxDesc(&box);
-    if (ocean_scene_add_box(h, &box, NULL, 0, &matrix_box_a) != OCEAN_STATUS_OK ||
-        ocean_scene_add_box(h, &box, NULL, 0, &matrix_box_b) != OCEAN_STATUS_OK ||
-        ocean_scene_evaluate(h, 2.0, NULL, 0, pos, nrm, 16 * 16, NULL) != OCEAN_STATUS_OK) {
-        ocean_scene_destroy(h);
+    if (ocean_wtb_scene_add_box(h, &box, NULL, 0, &matrix_box_a) != OCEAN_STATUS_OK ||
+        ocean_wtb_scene_add_box(h, &box, NULL, 0, &matrix_box_b) != OCEAN_STATUS_OK ||
+        ocean_wtb_scene_evaluate(h, 2.0, NULL, 0, pos, nrm, 16 * 16, NULL) != OCEAN_STATUS_OK) {
+        ocean_wtb_scene_destroy(h);
         return NULL;
     }
     return h;

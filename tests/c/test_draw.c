@@ -1,5 +1,5 @@
 /*
- * C11 test of the shader side of the ocean renderer in the C ABI (ocean_ocean_*): the uniform
+ * C11 test of the shader side of the ocean renderer in the C ABI (ocean_surface_*): the uniform
  * block and the textures an engine uploads to draw the exported `ocean` shader in its own
  * pipeline, linked against libocean.a. No GPU is needed.
  *
@@ -102,30 +102,30 @@ static OceanWaterGridDesc mesh_desc(void)
 
 static void test_defaults(void)
 {
-    OceanOceanDrawParams p;
-    OK(ocean_ocean_draw_params_default(&p));
+    OceanSurfaceDrawParams p;
+    OK(ocean_surface_draw_params_default(&p));
     CHECK(p.n_min == OCEAN_FILTER_N_MIN && p.n_max == OCEAN_FILTER_N_MAX, "filter %g %g",
           p.n_min, p.n_max);
     CHECK(p.sky_map_size == 512 && p.srgb_encode == 1, "sky map %u, srgb %u", p.sky_map_size,
           (unsigned)p.srgb_encode);
     CHECK(p.exposure == OCEAN_DEFAULT_EXPOSURE, "exposure %g", p.exposure);
-    EXPECT(ocean_ocean_draw_params_default(NULL), OCEAN_STATUS_NULL_POINTER);
+    EXPECT(ocean_surface_draw_params_default(NULL), OCEAN_STATUS_NULL_POINTER);
 }
 
 static void test_uniforms(OceanSpectrum *spectrum, OceanLighting *lighting, size_t waves)
 {
-    OceanOceanDrawParams p;
+    OceanSurfaceDrawParams p;
     OceanCameraDesc cam = camera_at(10.0, 4.0, -20.0);
     OceanWaterGridDesc mesh = mesh_desc();
-    static uint8_t block[OCEAN_OCEAN_UNIFORMS_SIZE + 8], plain[OCEAN_OCEAN_UNIFORMS_SIZE],
-        later[OCEAN_OCEAN_UNIFORMS_SIZE];
+    static uint8_t block[OCEAN_SURFACE_UNIFORMS_SIZE + 8], plain[OCEAN_SURFACE_UNIFORMS_SIZE],
+        later[OCEAN_SURFACE_UNIFORMS_SIZE];
 
-    OK(ocean_ocean_draw_params_default(&p));
+    OK(ocean_surface_draw_params_default(&p));
     memset(block, 0xA5, sizeof block);
-    if (!OK(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, 2.0, W, H, block,
+    if (!OK(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, 2.0, W, H, block,
                                  sizeof block, &needed_size)))
         return;
-    CHECK(all_bytes(block + OCEAN_OCEAN_UNIFORMS_SIZE, 8, 0xA5), "wrote past the block");
+    CHECK(all_bytes(block + OCEAN_SURFACE_UNIFORMS_SIZE, 8, 0xA5), "wrote past the block");
     /* mesh_grid: (0 - 10, -4, -100 - (-20)), spacing 0.5; mesh_counts 64 x 32. */
     CHECK(f32_at(block, 320) == -10.0f && f32_at(block, 324) == -4.0f &&
               f32_at(block, 328) == -80.0f && f32_at(block, 332) == 0.5f,
@@ -150,13 +150,13 @@ static void test_uniforms(OceanSpectrum *spectrum, OceanLighting *lighting, size
           "sky (%g, %g)", f32_at(block, 256), f32_at(block, 260));
 
     /* Without a mesh: the mesh fields are zero, nothing else differs. */
-    OK(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, NULL, 2.0, W, H, plain, sizeof plain, &needed_size));
+    OK(ocean_surface_uniforms(&cam, spectrum, lighting, &p, NULL, 2.0, W, H, plain, sizeof plain, &needed_size));
     CHECK(memcmp(plain, block, 320) == 0, "the block depends on the mesh beyond its fields");
     CHECK(all_bytes(plain + 320, 32, 0), "mesh fields not zero without a mesh");
     /* Another time: the same block. */
-    OK(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, 1.0e6, W, H, later,
+    OK(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, 1.0e6, W, H, later,
                             sizeof later, &needed_size));
-    CHECK(memcmp(later, block, OCEAN_OCEAN_UNIFORMS_SIZE) == 0, "the block depends on time");
+    CHECK(memcmp(later, block, OCEAN_SURFACE_UNIFORMS_SIZE) == 0, "the block depends on time");
 }
 
 static void test_wave_texels(OceanSpectrum *spectrum, size_t n)
@@ -174,8 +174,8 @@ static void test_wave_texels(OceanSpectrum *spectrum, size_t n)
         free(t1);
         return;
     }
-    OK(ocean_ocean_wave_texels(&cam, spectrum, 0.0, t0, 12 * n));
-    OK(ocean_ocean_wave_texels(&cam, spectrum, 1.0e6, t1, 12 * n));
+    OK(ocean_surface_wave_texels(&cam, spectrum, 0.0, t0, 12 * n));
+    OK(ocean_surface_wave_texels(&cam, spectrum, 1.0e6, t1, 12 * n));
     OK(ocean_spectrum_total_slope_variance(spectrum, &total));
     for (i = 0; i < n; i++) {
         const float *r0 = t0 + 4 * i, *r1 = t0 + 4 * (n + i), *r2 = t0 + 4 * (2 * n + i);
@@ -207,7 +207,7 @@ static void test_fresnel_texels(void)
 {
     static float table[OCEAN_FRESNEL_TABLE_SIZE * OCEAN_FRESNEL_TABLE_SIZE];
     int i, j, bad = 0;
-    if (!OK(ocean_ocean_fresnel_texels(table, sizeof table / sizeof table[0])))
+    if (!OK(ocean_surface_fresnel_texels(table, sizeof table / sizeof table[0])))
         return;
     for (i = 0; i < OCEAN_FRESNEL_TABLE_SIZE; i++) {
         for (j = 0; j < OCEAN_FRESNEL_TABLE_SIZE; j++) {
@@ -223,71 +223,71 @@ static void test_fresnel_texels(void)
 
 static void test_errors(OceanSpectrum *spectrum, OceanLighting *lighting, size_t n)
 {
-    OceanOceanDrawParams p, q;
+    OceanSurfaceDrawParams p, q;
     OceanCameraDesc cam = camera_at(10.0, 4.0, -20.0), below = camera_at(0.0, -1.0, 0.0);
     OceanWaterGridDesc mesh = mesh_desc(), bad_mesh = mesh_desc();
-    static uint8_t block[OCEAN_OCEAN_UNIFORMS_SIZE];
+    static uint8_t block[OCEAN_SURFACE_UNIFORMS_SIZE];
     static float texels[4096];
     const size_t len = sizeof block;
     size_t i, written = 0;
 
-    OK(ocean_ocean_draw_params_default(&p));
+    OK(ocean_surface_draw_params_default(&p));
     memset(block, 0x5A, sizeof block);
-    EXPECT_MSG(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, W, H, block,
+    EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, W, H, block,
                                     len - 1, &needed_size),
                OCEAN_STATUS_BUFFER_TOO_SMALL, "352");
-    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, 0, H, block, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, 0, H, block, len, &needed_size),
            OCEAN_STATUS_EMPTY);
-    EXPECT_MSG(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, NAN, W, H, block, len, &needed_size),
+    EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, NAN, W, H, block, len, &needed_size),
                OCEAN_STATUS_NON_FINITE, "time");
-    EXPECT_MSG(ocean_ocean_uniforms(&below, spectrum, lighting, &p, &mesh, 0.0, W, H, block,
+    EXPECT_MSG(ocean_surface_uniforms(&below, spectrum, lighting, &p, &mesh, 0.0, W, H, block,
                                     len, &needed_size),
                OCEAN_STATUS_INVALID_ARGUMENT, "above the sea");
     q = p;
     q.srgb_encode = 2;
-    EXPECT_MSG(ocean_ocean_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len, &needed_size),
                OCEAN_STATUS_INVALID_ARGUMENT, "srgb_encode");
     q = p;
     q.n_max = 0.5;
-    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len, &needed_size),
            OCEAN_STATUS_INVALID_ARGUMENT);
     q = p;
     q.sky_map_size = 100;
-    EXPECT_MSG(ocean_ocean_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len, &needed_size),
                OCEAN_STATUS_INVALID_ARGUMENT, "sky_map_size");
     bad_mesh.spacing = 0.0;
-    EXPECT_MSG(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &bad_mesh, 0.0, W, H, block,
+    EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &bad_mesh, 0.0, W, H, block,
                                     len, &needed_size),
                OCEAN_STATUS_INVALID_ARGUMENT, "mesh");
     bad_mesh = mesh;
     bad_mesh.nz = 0;
-    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &bad_mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &bad_mesh, 0.0, W, H, block, len, &needed_size),
            OCEAN_STATUS_EMPTY);
-    EXPECT(ocean_ocean_uniforms(NULL, spectrum, lighting, &p, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(NULL, spectrum, lighting, &p, &mesh, 0.0, W, H, block, len, &needed_size),
            OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_ocean_uniforms(&cam, NULL, lighting, &p, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(&cam, NULL, lighting, &p, &mesh, 0.0, W, H, block, len, &needed_size),
            OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_ocean_uniforms(&cam, spectrum, NULL, &p, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(&cam, spectrum, NULL, &p, &mesh, 0.0, W, H, block, len, &needed_size),
            OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, NULL, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, NULL, &mesh, 0.0, W, H, block, len, &needed_size),
            OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_ocean_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, W, H, NULL, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, W, H, NULL, len, &needed_size),
            OCEAN_STATUS_NULL_POINTER);
     CHECK(all_bytes(block, sizeof block, 0x5A), "the block was written on failure");
 
     for (i = 0; i < sizeof texels / sizeof texels[0]; i++)
         texels[i] = 7.0f;
     if (12 * n + 1 <= sizeof texels / sizeof texels[0]) {
-        EXPECT_MSG(ocean_ocean_wave_texels(&cam, spectrum, 0.0, texels, 12 * n + 1),
+        EXPECT_MSG(ocean_surface_wave_texels(&cam, spectrum, 0.0, texels, 12 * n + 1),
                    OCEAN_STATUS_INVALID_ARGUMENT, "exactly");
     }
-    EXPECT(ocean_ocean_wave_texels(&cam, spectrum, INFINITY, texels, 12 * n),
+    EXPECT(ocean_surface_wave_texels(&cam, spectrum, INFINITY, texels, 12 * n),
            OCEAN_STATUS_NON_FINITE);
-    EXPECT(ocean_ocean_wave_texels(&cam, NULL, 0.0, texels, 12 * n), OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_ocean_wave_texels(&cam, spectrum, 0.0, NULL, 12 * n), OCEAN_STATUS_NULL_POINTER);
-    EXPECT_MSG(ocean_ocean_fresnel_texels(texels, 33 * 32), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT(ocean_surface_wave_texels(&cam, NULL, 0.0, texels, 12 * n), OCEAN_STATUS_NULL_POINTER);
+    EXPECT(ocean_surface_wave_texels(&cam, spectrum, 0.0, NULL, 12 * n), OCEAN_STATUS_NULL_POINTER);
+    EXPECT_MSG(ocean_surface_fresnel_texels(texels, 33 * 32), OCEAN_STATUS_INVALID_ARGUMENT,
                "1089");
-    EXPECT(ocean_ocean_fresnel_texels(NULL, 33 * 33), OCEAN_STATUS_NULL_POINTER);
+    EXPECT(ocean_surface_fresnel_texels(NULL, 33 * 33), OCEAN_STATUS_NULL_POINTER);
     for (i = 0; i < sizeof texels / sizeof texels[0]; i++)
         written += texels[i] != 7.0f;
     CHECK(written == 0, "%zu texels written on failure", written);

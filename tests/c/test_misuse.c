@@ -18,7 +18,7 @@
 enum { WAVES, SCENE, SPECTRUM, LIGHTING, SKY_MAP, MAP, CONES, MIPS, QUAD, SAO, EXPORT, KINDS };
 
 static const char *const NAMES[KINDS] = {
-    "OceanWaves",      "OceanScene",      "OceanSpectrum",        "OceanLighting",
+    "OceanWaves",      "OceanWtbScene",      "OceanSpectrum",        "OceanLighting",
     "OceanSkyMap",     "OceanReliefMap",  "OceanReliefCones",     "OceanReliefMips",
     "OceanReliefQuadCones", "OceanSao",   "OceanShaderExport",
 };
@@ -36,7 +36,7 @@ static OceanStatus query(int kind, const void *h, uint64_t *out)
     OceanStatus s;
     switch (kind) {
     case WAVES: s = ocean_waves_count((const OceanWaves *)h, &n); break;
-    case SCENE: s = ocean_scene_box_count((OceanScene *)h, &n); break;
+    case SCENE: s = ocean_wtb_scene_box_count((OceanWtbScene *)h, &n); break;
     case SPECTRUM: s = ocean_spectrum_wave_count((const OceanSpectrum *)h, &n); break;
     case LIGHTING:
         s = ocean_lighting_sun_solid_angle((const OceanLighting *)h, &d);
@@ -65,7 +65,7 @@ static void destroy(int kind, void *h)
 {
     switch (kind) {
     case WAVES: ocean_waves_destroy((OceanWaves *)h); break;
-    case SCENE: ocean_scene_destroy((OceanScene *)h); break;
+    case SCENE: ocean_wtb_scene_destroy((OceanWtbScene *)h); break;
     case SPECTRUM: ocean_spectrum_destroy((OceanSpectrum *)h); break;
     case LIGHTING: ocean_lighting_destroy((OceanLighting *)h); break;
     case SKY_MAP: ocean_sky_map_destroy((OceanSkyMap *)h); break;
@@ -104,7 +104,7 @@ static int create_all(void *h[KINDS])
     cam.depth_source = OCEAN_SAO_DEPTH_WINDOW;
     memset(h, 0, KINDS * sizeof h[0]);
     return OK(ocean_waves_create(&wave, 1, (OceanWaves **)&h[WAVES])) &&
-           OK(ocean_scene_create(&grid, NULL, 0, (OceanScene **)&h[SCENE])) &&
+           OK(ocean_wtb_scene_create(&grid, NULL, 0, (OceanWtbScene **)&h[SCENE])) &&
            OK(ocean_spectrum_params_default(&sp)) &&
            OK(ocean_spectrum_create(&sp, (OceanSpectrum **)&h[SPECTRUM])) &&
            OK(ocean_sky_params_default(&sky)) && OK(ocean_sea_params_default(&sea)) &&
@@ -218,13 +218,13 @@ static void scene_calls_with_other_handles_return(void *h[KINDS])
     memset(&box, 0, sizeof box);
     memset(&sample, 0x5a, sizeof sample);
     for (i = 0; i < sizeof others / sizeof others[0]; i++) {
-        OceanScene *wrong = (OceanScene *)h[others[i]];
-        expect_invalid(ocean_scene_heights_continuous(wrong, 0.0, &xz, 1, &sample),
-                       "ocean_scene_heights_continuous", NAMES[others[i]], "not an OceanScene");
-        expect_invalid(ocean_scene_evaluate(wrong, 0.0, NULL, 0, pos, nrm, 16 * 16, NULL),
-                       "ocean_scene_evaluate", NAMES[others[i]], "not an OceanScene");
-        expect_invalid(ocean_scene_add_box(wrong, &box, &train, 1, &id), "ocean_scene_add_box",
-                       NAMES[others[i]], "not an OceanScene");
+        OceanWtbScene *wrong = (OceanWtbScene *)h[others[i]];
+        expect_invalid(ocean_wtb_scene_heights_continuous(wrong, 0.0, &xz, 1, &sample),
+                       "ocean_wtb_scene_heights_continuous", NAMES[others[i]], "not an OceanWtbScene");
+        expect_invalid(ocean_wtb_scene_evaluate(wrong, 0.0, NULL, 0, pos, nrm, 16 * 16, NULL),
+                       "ocean_wtb_scene_evaluate", NAMES[others[i]], "not an OceanWtbScene");
+        expect_invalid(ocean_wtb_scene_add_box(wrong, &box, &train, 1, &id), "ocean_wtb_scene_add_box",
+                       NAMES[others[i]], "not an OceanWtbScene");
     }
     CHECK(id == 77, "box id written on failure");
     /* A spectrum where a lighting is wanted, mips where cones are wanted. */
@@ -262,9 +262,9 @@ static void destroyed_handles_are_refused(void *h[KINDS])
     {
         OceanDVec2 xz = {1.0, 1.0};
         OceanHeightSample sample;
-        expect_invalid(ocean_scene_heights_continuous((OceanScene *)h[SCENE], 0.0, &xz, 1,
+        expect_invalid(ocean_wtb_scene_heights_continuous((OceanWtbScene *)h[SCENE], 0.0, &xz, 1,
                                                       &sample),
-                       "heights of a destroyed scene", "was destroyed", "OceanScene");
+                       "heights of a destroyed scene", "was destroyed", "OceanWtbScene");
     }
 }
 

@@ -10,7 +10,7 @@
  * What include/ocean.h promises: every function may be called from any thread; a const handle
  * may be used by many threads at once (OceanWaves, OceanSpectrum, OceanLighting, OceanSkyMap,
  * OceanReliefMap, OceanReliefCones, OceanReliefMips, OceanSao, OceanShaderExport are each
- * documented as immutable and shareable); an OceanScene may be used by several threads at once
+ * documented as immutable and shareable); an OceanWtbScene may be used by several threads at once
  * (a lock inside serialises the calls); the last-error message is per thread.
  *
  * Phases:
@@ -360,11 +360,11 @@ static OceanBoxDesc box(double speed, double dx, double dz, double ox, double oz
 
 /* A 32 x 32 scene at 1 m spacing with a sloping floor and an island whose place depends on
  * `variant`, and two boxes. */
-static OceanScene *make_scene(Worker *w, int variant, uint32_t ids[2])
+static OceanWtbScene *make_scene(Worker *w, int variant, uint32_t ids[2])
 {
     static const OceanWaterGridDesc grid = {1000.0, -500.0, 1.0, SCENE_N, SCENE_N};
     float *terrain = xmalloc(SCENE_PTS * sizeof *terrain);
-    OceanScene *s = NULL;
+    OceanWtbScene *s = NULL;
     OceanBoxDesc a = box(7.0, 1.0, 0.2, -4.0, -3.0, 1, 11u + (uint64_t)variant);
     OceanBoxDesc b = box(5.0, 0.6, 1.0, 6.0, -20.0, 2, 12u + (uint64_t)variant);
     int i, j, ci = 10 + (variant + 8) % 12, cj = 12 + (variant + 8) % 9;
@@ -373,9 +373,9 @@ static OceanScene *make_scene(Worker *w, int variant, uint32_t ids[2])
             terrain[j * SCENE_N + i] = ((i - ci) * (i - ci) + (j - cj) * (j - cj) < 10)
                                            ? 1.5f
                                            : (float)-(20.0 - 18.0 * i / (SCENE_N - 1.0));
-    if (CALL(w, ocean_scene_create(&grid, terrain, SCENE_PTS, &s))) {
-        CALL(w, ocean_scene_add_box(s, &a, NULL, 0, &ids[0]));
-        CALL(w, ocean_scene_add_box(s, &b, NULL, 0, &ids[1]));
+    if (CALL(w, ocean_wtb_scene_create(&grid, terrain, SCENE_PTS, &s))) {
+        CALL(w, ocean_wtb_scene_add_box(s, &a, NULL, 0, &ids[0]));
+        CALL(w, ocean_wtb_scene_add_box(s, &b, NULL, 0, &ids[1]));
         log_u32(w, ids[0]);
         log_u32(w, ids[1]);
     }
@@ -423,22 +423,22 @@ static void log_stats(Worker *w, const OceanFrameStats *st)
 }
 
 /* Evaluates `s` at `t`, then asks both height queries. */
-static void scene_frame(Worker *w, OceanScene *s, double t)
+static void scene_frame(Worker *w, OceanWtbScene *s, double t)
 {
     OceanVec3 *pos = xmalloc(SCENE_PTS * sizeof *pos), *nrm = xmalloc(SCENE_PTS * sizeof *nrm);
     OceanDrawnSample drawn[NQUERY];
     OceanHeightSample cont[NQUERY];
     OceanFrameStats st;
     memset(&st, 0, sizeof st);
-    if (CALL(w, ocean_scene_evaluate(s, t, NULL, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE, pos, nrm,
+    if (CALL(w, ocean_wtb_scene_evaluate(s, t, NULL, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE, pos, nrm,
                                      SCENE_PTS, &st))) {
         log_vec3s(w, pos, SCENE_PTS);
         log_vec3s(w, nrm, SCENE_PTS);
         log_stats(w, &st);
     }
-    if (CALL(w, ocean_scene_heights_drawn(s, queries, NQUERY, drawn)))
+    if (CALL(w, ocean_wtb_scene_heights_drawn(s, queries, NQUERY, drawn)))
         log_drawn(w, drawn, NQUERY);
-    if (CALL(w, ocean_scene_heights_continuous(s, t + 0.5, queries, NQUERY, cont)))
+    if (CALL(w, ocean_wtb_scene_heights_continuous(s, t + 0.5, queries, NQUERY, cont)))
         log_continuous(w, cont, NQUERY);
     free(pos);
     free(nrm);
@@ -501,7 +501,7 @@ typedef struct Shared {
     OceanReliefMips *mips;
     OceanSao *sao;
     OceanShaderExport *shader;
-    OceanScene *scene;
+    OceanWtbScene *scene;
     float sao_depth[SAO_IN];
 } Shared;
 
@@ -674,7 +674,7 @@ static void own_job(Worker *w, int id, int k)
     OceanSao *sao = NULL;
     OceanSaoParams sao_params;
     OceanSaoCamera camera = sao_camera();
-    OceanScene *scene = NULL;
+    OceanWtbScene *scene = NULL;
     OceanWaveDesc *descs;
     OceanSeaLight sea[NSEA];
     OceanReliefHit hits[NRAYS];
@@ -753,13 +753,13 @@ static void own_job(Worker *w, int id, int k)
     if (scene != NULL) {
         OceanBoxDesc moved = box(6.0, 0.0, 1.0, 2.0 + k, -10.0, 1, 77);
         scene_frame(w, scene, t);
-        if (CALL(w, ocean_scene_update_box(scene, ids[1], &moved, NULL, 0)))
+        if (CALL(w, ocean_wtb_scene_update_box(scene, ids[1], &moved, NULL, 0)))
             scene_frame(w, scene, t + 1.0);
-        if (CALL(w, ocean_scene_remove_box(scene, ids[0])) &&
-            CALL(w, ocean_scene_box_count(scene, &count)))
+        if (CALL(w, ocean_wtb_scene_remove_box(scene, ids[0])) &&
+            CALL(w, ocean_wtb_scene_box_count(scene, &count)))
             log_u64(w, count);
         scene_frame(w, scene, t + 2.0);
-        ocean_scene_destroy(scene);
+        ocean_wtb_scene_destroy(scene);
     }
 
     free(pos);
@@ -915,7 +915,7 @@ static void make_shared(Worker *w)
         /* Evaluated once before the threads, so the drawn-height queries have a mesh. */
         OceanVec3 *pos = xmalloc(SCENE_PTS * sizeof *pos);
         OceanVec3 *nrm = xmalloc(SCENE_PTS * sizeof *nrm);
-        CALL(w, ocean_scene_evaluate(shared.scene, SHARED_SCENE_TIME, NULL,
+        CALL(w, ocean_wtb_scene_evaluate(shared.scene, SHARED_SCENE_TIME, NULL,
                                      OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE, pos, nrm, SCENE_PTS,
                                      NULL));
         free(pos);
@@ -925,7 +925,7 @@ static void make_shared(Worker *w)
 
 static void destroy_shared(void)
 {
-    ocean_scene_destroy(shared.scene);
+    ocean_wtb_scene_destroy(shared.scene);
     ocean_shader_export_destroy(shared.shader);
     ocean_sao_destroy(shared.sao);
     ocean_relief_mips_destroy(shared.mips);

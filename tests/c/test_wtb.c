@@ -1,5 +1,5 @@
 /*
- * C11 test of the Wave Train Boxes part of the ocean C ABI (ocean_scene_*), linked against
+ * C11 test of the Wave Train Boxes part of the ocean C ABI (ocean_wtb_scene_*), linked against
  * libocean.a.
  *
  * Built and run by tests/tests/c_abi.rs with
@@ -134,9 +134,9 @@ static int untouched(const OceanVec3 *v, size_t n)
     return 1;
 }
 
-static int evaluate(OceanScene *s, double t, OceanVec3 *p, OceanVec3 *n, OceanFrameStats *st)
+static int evaluate(OceanWtbScene *s, double t, OceanVec3 *p, OceanVec3 *n, OceanFrameStats *st)
 {
-    return OK(ocean_scene_evaluate(s, t, NULL, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE, p, n, NPTS,
+    return OK(ocean_wtb_scene_evaluate(s, t, NULL, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE, p, n, NPTS,
                                    st));
 }
 
@@ -293,7 +293,7 @@ static void view_projection(const double eye[3], const double dir[3], int zero_t
         out[i] = (float)vp[i];
 }
 
-static void test_culling(OceanScene *s, double t)
+static void test_culling(OceanWtbScene *s, double t)
 {
     /* Above the grid's centre (world coordinates), 30 m up. */
     const double eye_up[3] = {OX + 32.0 * SP, 30.0, OZ + 32.0 * SP};
@@ -309,7 +309,7 @@ static void test_culling(OceanScene *s, double t)
      * box's bounding volume ends ~1.2 m above the sea: both boxes are culled, the grid is at
      * rest. */
     view_projection(eye_up, up_dir, 1, m);
-    OK(ocean_scene_evaluate(s, t, m, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE, pos2, nrm2, NPTS, &st));
+    OK(ocean_wtb_scene_evaluate(s, t, m, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE, pos2, nrm2, NPTS, &st));
     CHECK(st.alive == 2 && st.culled == 2 && st.trains == 0,
           "looking away: alive %zu, culled %zu, trains %zu", st.alive, st.culled, st.trains);
     for (j = 0; j < NZ; j++)
@@ -321,7 +321,7 @@ static void test_culling(OceanScene *s, double t)
      * footprint at sea level is 160 m wide, covering the 63 m grid, so nothing is culled and the
      * result is the unculled one, bit for bit. */
     view_projection(eye_high, down_dir, 0, m);
-    OK(ocean_scene_evaluate(s, t, m, OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE, pos2, nrm2, NPTS,
+    OK(ocean_wtb_scene_evaluate(s, t, m, OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE, pos2, nrm2, NPTS,
                             &st));
     CHECK(st.alive == 2 && st.culled == 0, "looking down: alive %zu, culled %zu", st.alive,
           st.culled);
@@ -369,7 +369,7 @@ static double mesh_height(double x, double z, double reach, int *covered)
 /* Drawn queries equal the triangles drawn from the evaluated grid (within 0.1 mm) at every
  * vertex, along both diagonals of every cell and at points scattered over and around the
  * grid; a scene never evaluated, or changed since, is refused with nothing written. */
-static void test_drawn(OceanScene *s, double t)
+static void test_drawn(OceanWtbScene *s, double t)
 {
     size_t n = 0, k;
     int i, j, f, covered, misses = 0;
@@ -397,7 +397,7 @@ static void test_drawn(OceanScene *s, double t)
         dxz[n].x = OX - 4.0 + fmod(0.618034 * (double)k, 1.0) * ((NX - 1) * SP + 8.0);
         dxz[n++].z = OZ - 4.0 + fmod(0.754878 * (double)k, 1.0) * ((NZ - 1) * SP + 8.0);
     }
-    if (!OK(ocean_scene_heights_drawn(s, dxz, n, dout)))
+    if (!OK(ocean_wtb_scene_heights_drawn(s, dxz, n, dout)))
         return;
     for (k = 0; k < n; k++) {
         double want = mesh_height(dxz[k].x, dxz[k].z, reach + 1.0, &covered);
@@ -411,14 +411,14 @@ static void test_drawn(OceanScene *s, double t)
     printf("test_wtb.c: %zu drawn queries at t = %g: worst |drawn - mesh| %.3g m\n", n, t, worst);
 
     /* Any change of the scene needs a new evaluation first; nothing is written meanwhile. */
-    OK(ocean_effects_default(&e));
-    OK(ocean_scene_set_effects(s, &e));
+    OK(ocean_wtb_effects_default(&e));
+    OK(ocean_wtb_scene_set_effects(s, &e));
     dout[0].height = 42.0;
-    expect(ocean_scene_heights_drawn(s, dxz, 1, dout), OCEAN_STATUS_NOT_EVALUATED,
+    expect(ocean_wtb_scene_heights_drawn(s, dxz, 1, dout), OCEAN_STATUS_NOT_EVALUATED,
            "drawn query after a change");
     CHECK(dout[0].height == 42.0, "a refused drawn query wrote its output");
     evaluate(s, t, pos, nrm, NULL);
-    OK(ocean_scene_heights_drawn(s, dxz, 1, dout));
+    OK(ocean_wtb_scene_heights_drawn(s, dxz, 1, dout));
 }
 
 static OceanDVec2 qxz[NPTS];
@@ -428,7 +428,7 @@ static OceanHeightSample qout[NPTS];
  * query inverts the horizontal displacement to a residual of at most 1 mm (checked below), and
  * with surface slopes below 0.5 that moves the height by at most 0.5 mm; the float grid itself
  * is exact to ~1e-6 m. */
-static void test_heights(OceanScene *s, double t, double lipschitz)
+static void test_heights(OceanWtbScene *s, double t, double lipschitz)
 {
     size_t n = 0, k;
     int i, j;
@@ -441,7 +441,7 @@ static void test_heights(OceanScene *s, double t, double lipschitz)
             qxz[n].z = OZ + pos[k].z;
             n++;
         }
-    if (!OK(ocean_scene_heights_continuous(s, t, qxz, n, qout)))
+    if (!OK(ocean_wtb_scene_heights_continuous(s, t, qxz, n, qout)))
         return;
     n = 0;
     for (j = 2; j < NZ - 2; j++)
@@ -477,7 +477,7 @@ static void test_heights(OceanScene *s, double t, double lipschitz)
     /* Outside the grid the water is at rest. */
     qxz[0].x = OX - 50.0;
     qxz[0].z = OZ + 10.0;
-    OK(ocean_scene_heights_continuous(s, t, qxz, 1, qout));
+    OK(ocean_wtb_scene_heights_continuous(s, t, qxz, 1, qout));
     CHECK(qout[0].height == 0.0 && qout[0].normal.y == 1.0, "outside the grid: height %g",
           qout[0].height);
 }
@@ -489,7 +489,7 @@ static void test_heights(OceanScene *s, double t, double lipschitz)
 static void test_explicit_train(void)
 {
     OceanWaterGridDesc g = grid_desc();
-    OceanScene *s = NULL;
+    OceanWtbScene *s = NULL;
     OceanEffects e;
     OceanBoxDesc b = box_of(steady_wind(6.0, 1.0, 0.0, -10.0, -10.0, 90.0, 90.0, 1, 1));
     const OceanWaveDesc w = {0.3, 16.0, 1.0, 0.5, 0.7, INFINITY};
@@ -497,15 +497,15 @@ static void test_explicit_train(void)
     double t = 7.25, worst = 0.0, len = sqrt(1.25), hx = 1.0 / len, hz = 0.5 / len;
     double k = 2.0 * PI / 16.0, omega = sqrt(G * k);
     int i, j;
-    if (!OK(ocean_scene_create(&g, NULL, 0, &s)))
+    if (!OK(ocean_wtb_scene_create(&g, NULL, 0, &s)))
         return;
-    OK(ocean_effects_default(&e));
+    OK(ocean_wtb_effects_default(&e));
     CHECK(e.refraction == OCEAN_REFRACTION_PHASE_SHIFT && e.shoaling == 1 && e.noise.enabled == 0,
           "defaults: refraction %u shoaling %u", (unsigned)e.refraction, (unsigned)e.shoaling);
     e.refraction = OCEAN_REFRACTION_OFF;
     e.shoaling = 0;
-    OK(ocean_scene_set_effects(s, &e));
-    OK(ocean_scene_add_box(s, &b, &w, 1, &id));
+    OK(ocean_wtb_scene_set_effects(s, &e));
+    OK(ocean_wtb_scene_add_box(s, &b, &w, 1, &id));
     evaluate(s, t, pos, nrm, NULL);
     for (j = 0; j < NZ; j++)
         for (i = 0; i < NX; i++) {
@@ -525,12 +525,12 @@ static void test_explicit_train(void)
      * the displacement's Jacobian is within 0.118 of the identity, so the inverse is
      * 1/(1 - 0.118) = 1.13-Lipschitz; 1.2 covers it. */
     test_heights(s, t, 1.2);
-    ocean_scene_destroy(s);
+    ocean_wtb_scene_destroy(s);
 }
 
 /* Remove box B, then move box A: points outside the (new) box rest, points well inside move;
  * removing the last box leaves the whole grid at rest. */
-static void test_move_and_remove(OceanScene *s, uint32_t id_a, uint32_t id_b)
+static void test_move_and_remove(OceanWtbScene *s, uint32_t id_a, uint32_t id_b)
 {
     OceanBoxDesc a = box_a();
     OceanFrameStats st;
@@ -539,11 +539,11 @@ static void test_move_and_remove(OceanScene *s, uint32_t id_a, uint32_t id_b)
     for (pass = 0; pass < 2; pass++) {
         int i, j, outside = 0, inside = 0, moved = 0, rest = 1;
         if (pass == 0) {
-            OK(ocean_scene_remove_box(s, id_b));
+            OK(ocean_wtb_scene_remove_box(s, id_b));
         } else {
             a.wind.origin_x += 30.0;
             a.wind.origin_z += 20.0;
-            OK(ocean_scene_update_box(s, id_a, &a, NULL, 0));
+            OK(ocean_wtb_scene_update_box(s, id_a, &a, NULL, 0));
         }
         evaluate(s, 12.5, pos, nrm, &st);
         CHECK(st.alive == 1 && st.trains == 1, "pass %d: alive %zu trains %zu", pass, st.alive,
@@ -568,11 +568,11 @@ static void test_move_and_remove(OceanScene *s, uint32_t id_a, uint32_t id_b)
         CHECK(inside > 100 && moved > inside / 2, "pass %d: %d of %d interior points moved",
               pass, moved, inside);
     }
-    OK(ocean_scene_box_count(s, &count));
+    OK(ocean_wtb_scene_box_count(s, &count));
     CHECK(count == 1, "box count %zu", count);
-    OK(ocean_scene_remove_box(s, id_a));
-    expect(ocean_scene_remove_box(s, id_a), OCEAN_STATUS_NOT_FOUND, "remove twice");
-    expect(ocean_scene_update_box(s, id_b, &a, NULL, 0), OCEAN_STATUS_NOT_FOUND,
+    OK(ocean_wtb_scene_remove_box(s, id_a));
+    expect(ocean_wtb_scene_remove_box(s, id_a), OCEAN_STATUS_NOT_FOUND, "remove twice");
+    expect(ocean_wtb_scene_update_box(s, id_b, &a, NULL, 0), OCEAN_STATUS_NOT_FOUND,
            "update removed");
     evaluate(s, 12.5, pos, nrm, &st);
     {
@@ -590,21 +590,21 @@ static void test_move_and_remove(OceanScene *s, uint32_t id_a, uint32_t id_b)
 static void test_create_errors(void)
 {
     static char storage[16];
-    OceanScene *const SENT = (OceanScene *)(void *)storage;
-    OceanScene *s = SENT;
+    OceanWtbScene *const SENT = (OceanWtbScene *)(void *)storage;
+    OceanWtbScene *s = SENT;
     OceanWaterGridDesc g;
     float bad[NPTS];
 
 #define CREATE_FAILS(gd, h, n, want, what)                                                 \
     do {                                                                                   \
         s = SENT;                                                                          \
-        expect(ocean_scene_create((gd), (h), (n), &s), (want), (what));                   \
+        expect(ocean_wtb_scene_create((gd), (h), (n), &s), (want), (what));                   \
         CHECK(s == SENT, "%s wrote *out", (what));                                         \
     } while (0)
 
     g = grid_desc();
     CREATE_FAILS(NULL, terrain, NPTS, OCEAN_STATUS_NULL_POINTER, "create(grid NULL)");
-    expect(ocean_scene_create(&g, terrain, NPTS, NULL), OCEAN_STATUS_NULL_POINTER,
+    expect(ocean_wtb_scene_create(&g, terrain, NPTS, NULL), OCEAN_STATUS_NULL_POINTER,
            "create(out NULL)");
     g.nx = 0;
     CREATE_FAILS(&g, NULL, 0, OCEAN_STATUS_EMPTY, "create(nx 0)");
@@ -638,7 +638,7 @@ static void test_create_errors(void)
 #undef CREATE_FAILS
 }
 
-static void test_box_errors(OceanScene *s)
+static void test_box_errors(OceanWtbScene *s)
 {
     static OceanWaveDesc many[65];
     const OceanWaveDesc steep = {3.0, 16.0, 1.0, 0.0, 0.0, INFINITY};    /* k*A = 1.18 */
@@ -653,12 +653,12 @@ static void test_box_errors(OceanScene *s)
         OceanWaveDesc w = {0.01, 16.0, 1.0, 0.0, 0.0, INFINITY};
         many[i] = w;
     }
-    OK(ocean_scene_box_count(s, &before));
+    OK(ocean_wtb_scene_box_count(s, &before));
 
 #define ADD_FAILS(desc, tr, n, want, what)                                                  \
     do {                                                                                    \
         id = 0xdeadbeefu;                                                                   \
-        expect(ocean_scene_add_box(s, (desc), (tr), (n), &id), (want), (what));            \
+        expect(ocean_wtb_scene_add_box(s, (desc), (tr), (n), &id), (want), (what));            \
         CHECK(id == 0xdeadbeefu, "%s wrote *out_id", (what));                               \
     } while (0)
 #define BAD_FIELD(field, value, want)                                                       \
@@ -669,10 +669,10 @@ static void test_box_errors(OceanScene *s)
     } while (0)
 
     d = box_a();
-    expect(ocean_scene_add_box(NULL, &d, NULL, 0, &id), OCEAN_STATUS_NULL_POINTER,
+    expect(ocean_wtb_scene_add_box(NULL, &d, NULL, 0, &id), OCEAN_STATUS_NULL_POINTER,
            "add(scene NULL)");
     ADD_FAILS(NULL, NULL, 0, OCEAN_STATUS_NULL_POINTER, "add(desc NULL)");
-    expect(ocean_scene_add_box(s, &d, NULL, 0, NULL), OCEAN_STATUS_NULL_POINTER,
+    expect(ocean_wtb_scene_add_box(s, &d, NULL, 0, NULL), OCEAN_STATUS_NULL_POINTER,
            "add(out_id NULL)");
     BAD_FIELD(wind.speed, 0.0, OCEAN_STATUS_INVALID_ARGUMENT);
     CHECK(strstr(last_error(), "speed") != NULL, "zero wind message: %s", last_error());
@@ -717,8 +717,8 @@ static void test_box_errors(OceanScene *s)
     ADD_FAILS(&d, NULL, 0, OCEAN_STATUS_OUTSIDE_GRID, "add(box ending before the grid)");
     /* Touching the grid's edge counts as reaching it (a grid point lies on the box's edge). */
     d = box_of(steady_wind(7.0, 1.0, 0.0, -60.0 * SP, 0.0, 50.0, 60.0 * SP, 1, 3));
-    if (OK(ocean_scene_add_box(s, &d, NULL, 0, &id)))
-        OK(ocean_scene_remove_box(s, id));
+    if (OK(ocean_wtb_scene_add_box(s, &d, NULL, 0, &id)))
+        OK(ocean_wtb_scene_remove_box(s, id));
 
     /* Explicit trains. */
     d = box_a();
@@ -730,10 +730,10 @@ static void test_box_errors(OceanScene *s)
     ADD_FAILS(&d, &nan_train, 1, OCEAN_STATUS_NON_FINITE, "add(train NaN)");
     CHECK(strstr(last_error(), "trains[0]") != NULL, "train message: %s", last_error());
     /* 64 trains is the cap, and is accepted. */
-    if (OK(ocean_scene_add_box(s, &d, many, 64, &id)))
-        OK(ocean_scene_remove_box(s, id));
+    if (OK(ocean_wtb_scene_add_box(s, &d, many, 64, &id)))
+        OK(ocean_wtb_scene_remove_box(s, id));
 
-    OK(ocean_scene_box_count(s, &after));
+    OK(ocean_wtb_scene_box_count(s, &after));
     CHECK(before == after, "failed adds changed the box count: %zu -> %zu", before, after);
 #undef BAD_FIELD
 #undef ADD_FAILS
@@ -741,7 +741,7 @@ static void test_box_errors(OceanScene *s)
 
 /* Failed updates, effect and budget changes, and terrain changes leave the scene as it was:
  * the evaluation stays bit-identical. */
-static void test_unchanged_after_errors(OceanScene *s, uint32_t id_a)
+static void test_unchanged_after_errors(OceanWtbScene *s, uint32_t id_a)
 {
     const double t = 3.5;
     OceanBoxDesc d = box_a();
@@ -750,52 +750,52 @@ static void test_unchanged_after_errors(OceanScene *s, uint32_t id_a)
     evaluate(s, t, pos, nrm, NULL);
 
     d.wind.speed = NAN;
-    expect(ocean_scene_update_box(s, id_a, &d, NULL, 0), OCEAN_STATUS_NON_FINITE, "update(NaN)");
+    expect(ocean_wtb_scene_update_box(s, id_a, &d, NULL, 0), OCEAN_STATUS_NON_FINITE, "update(NaN)");
     d = box_of(steady_wind(7.0, -1.0, 0.0, -200.0, 0.0, 50.0, 60.0, 1, 3));
-    expect(ocean_scene_update_box(s, id_a, &d, NULL, 0), OCEAN_STATUS_OUTSIDE_GRID,
+    expect(ocean_wtb_scene_update_box(s, id_a, &d, NULL, 0), OCEAN_STATUS_OUTSIDE_GRID,
            "update(outside)");
     d = box_a();
-    expect(ocean_scene_update_box(s, 999999u, &d, NULL, 0), OCEAN_STATUS_NOT_FOUND,
+    expect(ocean_wtb_scene_update_box(s, 999999u, &d, NULL, 0), OCEAN_STATUS_NOT_FOUND,
            "update(unknown id)");
-    expect(ocean_scene_update_box(s, id_a, NULL, NULL, 0), OCEAN_STATUS_NULL_POINTER,
+    expect(ocean_wtb_scene_update_box(s, id_a, NULL, NULL, 0), OCEAN_STATUS_NULL_POINTER,
            "update(desc NULL)");
-    expect(ocean_scene_remove_box(s, 999999u), OCEAN_STATUS_NOT_FOUND, "remove(unknown id)");
-    expect(ocean_scene_remove_box(NULL, id_a), OCEAN_STATUS_NULL_POINTER, "remove(scene NULL)");
+    expect(ocean_wtb_scene_remove_box(s, 999999u), OCEAN_STATUS_NOT_FOUND, "remove(unknown id)");
+    expect(ocean_wtb_scene_remove_box(NULL, id_a), OCEAN_STATUS_NULL_POINTER, "remove(scene NULL)");
 
-    OK(ocean_effects_default(&e));
-    expect(ocean_scene_set_effects(s, NULL), OCEAN_STATUS_NULL_POINTER, "effects(NULL)");
+    OK(ocean_wtb_effects_default(&e));
+    expect(ocean_wtb_scene_set_effects(s, NULL), OCEAN_STATUS_NULL_POINTER, "effects(NULL)");
     e.refraction = 3;
-    expect(ocean_scene_set_effects(s, &e), OCEAN_STATUS_INVALID_ARGUMENT, "effects(refraction 3)");
-    OK(ocean_effects_default(&e));
+    expect(ocean_wtb_scene_set_effects(s, &e), OCEAN_STATUS_INVALID_ARGUMENT, "effects(refraction 3)");
+    OK(ocean_wtb_effects_default(&e));
     e.shoaling = 2;
-    expect(ocean_scene_set_effects(s, &e), OCEAN_STATUS_INVALID_ARGUMENT, "effects(shoaling 2)");
-    OK(ocean_effects_default(&e));
+    expect(ocean_wtb_scene_set_effects(s, &e), OCEAN_STATUS_INVALID_ARGUMENT, "effects(shoaling 2)");
+    OK(ocean_wtb_effects_default(&e));
     e.noise.enabled = 1;
     e.noise.amplitude = NAN;
-    expect(ocean_scene_set_effects(s, &e), OCEAN_STATUS_NON_FINITE, "effects(noise NaN)");
+    expect(ocean_wtb_scene_set_effects(s, &e), OCEAN_STATUS_NON_FINITE, "effects(noise NaN)");
     e.noise.amplitude = -0.1;
-    expect(ocean_scene_set_effects(s, &e), OCEAN_STATUS_INVALID_ARGUMENT, "effects(noise < 0)");
-    OK(ocean_effects_default(&e));
+    expect(ocean_wtb_scene_set_effects(s, &e), OCEAN_STATUS_INVALID_ARGUMENT, "effects(noise < 0)");
+    OK(ocean_wtb_effects_default(&e));
     e.irregular.enabled = 1;
     e.irregular.scale = 2.0; /* a share, at most 1 */
-    expect(ocean_scene_set_effects(s, &e), OCEAN_STATUS_INVALID_ARGUMENT, "effects(irregular 2)");
-    OK(ocean_effects_default(&e));
+    expect(ocean_wtb_scene_set_effects(s, &e), OCEAN_STATUS_INVALID_ARGUMENT, "effects(irregular 2)");
+    OK(ocean_wtb_effects_default(&e));
     e.beach.enabled = 1;
     e.beach.max_depth_share = 0.0;
-    expect(ocean_scene_set_effects(s, &e), OCEAN_STATUS_INVALID_ARGUMENT, "effects(beach 0)");
+    expect(ocean_wtb_scene_set_effects(s, &e), OCEAN_STATUS_INVALID_ARGUMENT, "effects(beach 0)");
 
-    expect(ocean_scene_set_budget_seconds(s, NAN), OCEAN_STATUS_NON_FINITE, "budget(NaN)");
-    expect(ocean_scene_set_budget_seconds(s, INFINITY), OCEAN_STATUS_NON_FINITE, "budget(inf)");
-    expect(ocean_scene_set_budget_seconds(s, -1.0), OCEAN_STATUS_INVALID_ARGUMENT, "budget(-1)");
-    expect(ocean_scene_set_budget_explicit(s, 1, NULL), OCEAN_STATUS_NULL_POINTER,
+    expect(ocean_wtb_scene_set_budget_seconds(s, NAN), OCEAN_STATUS_NON_FINITE, "budget(NaN)");
+    expect(ocean_wtb_scene_set_budget_seconds(s, INFINITY), OCEAN_STATUS_NON_FINITE, "budget(inf)");
+    expect(ocean_wtb_scene_set_budget_seconds(s, -1.0), OCEAN_STATUS_INVALID_ARGUMENT, "budget(-1)");
+    expect(ocean_wtb_scene_set_budget_explicit(s, 1, NULL), OCEAN_STATUS_NULL_POINTER,
            "budget(explicit NULL)");
 
-    expect(ocean_scene_set_terrain(s, terrain, NPTS - 1), OCEAN_STATUS_INVALID_ARGUMENT,
+    expect(ocean_wtb_scene_set_terrain(s, terrain, NPTS - 1), OCEAN_STATUS_INVALID_ARGUMENT,
            "terrain(short)");
-    expect(ocean_scene_set_terrain(s, NULL, NPTS), OCEAN_STATUS_NULL_POINTER, "terrain(NULL)");
+    expect(ocean_wtb_scene_set_terrain(s, NULL, NPTS), OCEAN_STATUS_NULL_POINTER, "terrain(NULL)");
     memcpy(bad, terrain, sizeof bad);
     bad[NPTS - 1] = INFINITY;
-    expect(ocean_scene_set_terrain(s, bad, NPTS), OCEAN_STATUS_NON_FINITE, "terrain(inf)");
+    expect(ocean_wtb_scene_set_terrain(s, bad, NPTS), OCEAN_STATUS_NON_FINITE, "terrain(inf)");
 
     evaluate(s, t, pos2, nrm2, NULL);
     CHECK(memcmp(pos, pos2, sizeof pos) == 0 && memcmp(nrm, nrm2, sizeof nrm) == 0,
@@ -803,12 +803,12 @@ static void test_unchanged_after_errors(OceanScene *s, uint32_t id_a)
 
     /* Disabled effects' parameters are ignored, as documented: NaN noise amplitude is fine
      * while the noise is off. */
-    OK(ocean_effects_default(&e));
+    OK(ocean_wtb_effects_default(&e));
     e.noise.amplitude = NAN;
-    OK(ocean_scene_set_effects(s, &e));
+    OK(ocean_wtb_scene_set_effects(s, &e));
 
     /* A deep sea has no island: some former land points now move. Then restore. */
-    OK(ocean_scene_set_terrain(s, NULL, 0));
+    OK(ocean_wtb_scene_set_terrain(s, NULL, 0));
     evaluate(s, t, pos2, nrm2, NULL);
     {
         int i, j, moved = 0;
@@ -818,18 +818,18 @@ static void test_unchanged_after_errors(OceanScene *s, uint32_t id_a)
                     moved += fabs(pos2[(size_t)j * NX + (size_t)i].y) > 1e-3f;
         CHECK(moved > 0, "without terrain the island's points still rest");
     }
-    OK(ocean_scene_set_terrain(s, terrain, NPTS));
+    OK(ocean_wtb_scene_set_terrain(s, terrain, NPTS));
     evaluate(s, t, pos2, nrm2, NULL);
     CHECK(memcmp(pos, pos2, sizeof pos) == 0, "restoring the terrain did not restore the surface");
 }
 
-static void test_budget(OceanScene *s)
+static void test_budget(OceanWtbScene *s)
 {
     OceanFrameStats st;
     OceanEffects e;
     int i, j, rest = 1;
     /* Nothing fits in a picosecond, not even one train: the grid rests. */
-    OK(ocean_scene_set_budget_seconds(s, 1e-12));
+    OK(ocean_wtb_scene_set_budget_seconds(s, 1e-12));
     evaluate(s, 2.0, pos, nrm, &st);
     CHECK(st.max_trains == 0 && st.trains == 0, "tiny budget: max_trains %zu trains %zu",
           st.max_trains, st.trains);
@@ -838,18 +838,18 @@ static void test_budget(OceanScene *s)
             rest &= at_rest(pos, nrm, i, j);
     CHECK(rest, "tiny budget: grid not at rest");
     /* Explicitly one train per box (each box's largest): 2 of the 3 trains run. */
-    OK(ocean_effects_default(&e));
-    OK(ocean_scene_set_budget_explicit(s, 1, &e));
+    OK(ocean_wtb_effects_default(&e));
+    OK(ocean_wtb_scene_set_budget_explicit(s, 1, &e));
     evaluate(s, 2.0, pos, nrm, &st);
     CHECK(st.max_trains == 1 && st.trains == 2, "explicit: max_trains %zu trains %zu",
           st.max_trains, st.trains);
-    OK(ocean_scene_set_budget_unlimited(s));
+    OK(ocean_wtb_scene_set_budget_unlimited(s));
     evaluate(s, 2.0, pos, nrm, &st);
     CHECK(st.max_trains == SIZE_MAX && st.trains == 3 && st.effects.shoaling == 1,
           "unlimited: max_trains %zu trains %zu", st.max_trains, st.trains);
 }
 
-static void test_evaluate_errors(OceanScene *s)
+static void test_evaluate_errors(OceanWtbScene *s)
 {
     static OceanVec3 big[2 * NPTS];
     float m[16];
@@ -867,46 +867,46 @@ static void test_evaluate_errors(OceanScene *s)
         CHECK(untouched(pos, NPTS) && untouched(nrm, NPTS), "%s wrote outputs", (what));    \
     } while (0)
 
-    EVAL_FAILS(ocean_scene_evaluate(NULL, 0.0, NULL, 0, pos, nrm, NPTS, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(NULL, 0.0, NULL, 0, pos, nrm, NPTS, NULL),
                OCEAN_STATUS_NULL_POINTER, "evaluate(scene NULL)");
-    EVAL_FAILS(ocean_scene_evaluate(s, 0.0, NULL, 0, NULL, nrm, NPTS, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, NULL, nrm, NPTS, NULL),
                OCEAN_STATUS_NULL_POINTER, "evaluate(out_pos NULL)");
-    EVAL_FAILS(ocean_scene_evaluate(s, 0.0, NULL, 0, pos, NULL, NPTS, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, pos, NULL, NPTS, NULL),
                OCEAN_STATUS_NULL_POINTER, "evaluate(out_normal NULL)");
-    EVAL_FAILS(ocean_scene_evaluate(s, 0.0, NULL, 0, pos, nrm, 0, NULL), OCEAN_STATUS_EMPTY,
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, pos, nrm, 0, NULL), OCEAN_STATUS_EMPTY,
                "evaluate(n 0)");
-    EVAL_FAILS(ocean_scene_evaluate(s, 0.0, NULL, 0, pos, nrm, NPTS - 1, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, pos, nrm, NPTS - 1, NULL),
                OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(n != nx*nz)");
-    EVAL_FAILS(ocean_scene_evaluate(s, 0.0, NULL, 0, pos, nrm, SIZE_MAX, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, pos, nrm, SIZE_MAX, NULL),
                OCEAN_STATUS_LENGTH_OVERFLOW, "evaluate(n SIZE_MAX)");
-    EVAL_FAILS(ocean_scene_evaluate(s, NAN, NULL, 0, pos, nrm, NPTS, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, NAN, NULL, 0, pos, nrm, NPTS, NULL),
                OCEAN_STATUS_NON_FINITE, "evaluate(time NaN)");
-    EVAL_FAILS(ocean_scene_evaluate(s, -INFINITY, NULL, 0, pos, nrm, NPTS, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, -INFINITY, NULL, 0, pos, nrm, NPTS, NULL),
                OCEAN_STATUS_NON_FINITE, "evaluate(time -inf)");
     /* The stats struct inside the positions buffer (an 8-aligned address in it). */
-    EVAL_FAILS(ocean_scene_evaluate(s, 0.0, NULL, 0, pos, nrm, NPTS,
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, pos, nrm, NPTS,
                                     (OceanFrameStats *)(void *)((char *)pos + 24)),
                OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(stats overlaps out_pos)");
     /* Normals starting inside the positions. */
     fill(big, 2 * NPTS);
-    expect(ocean_scene_evaluate(s, 0.0, NULL, 0, big, big + NPTS - 1, NPTS, NULL),
+    expect(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, big, big + NPTS - 1, NPTS, NULL),
            OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(overlap)");
     CHECK(untouched(big, 2 * NPTS), "overlap wrote outputs");
     for (i = 0; i < 16; i++)
         m[i] = 0.0f;
-    EVAL_FAILS(ocean_scene_evaluate(s, 0.0, m, 0, pos, nrm, NPTS, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, m, 0, pos, nrm, NPTS, NULL),
                OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(zero matrix)");
     m[5] = NAN;
-    EVAL_FAILS(ocean_scene_evaluate(s, 0.0, m, 0, pos, nrm, NPTS, NULL), OCEAN_STATUS_NON_FINITE,
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, m, 0, pos, nrm, NPTS, NULL), OCEAN_STATUS_NON_FINITE,
                "evaluate(matrix NaN)");
     {
         const double eye[3] = {OX, 50.0, OZ}, dir[3] = {0.0, -1.0, 0.0};
         view_projection(eye, dir, 1, m);
     }
-    EVAL_FAILS(ocean_scene_evaluate(s, 0.0, m, 7, pos, nrm, NPTS, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, m, 7, pos, nrm, NPTS, NULL),
                OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(depth convention 7)");
     /* Adjacent, non-overlapping buffers are fine. */
-    OK(ocean_scene_evaluate(s, 0.0, m, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE_REVERSED, big,
+    OK(ocean_wtb_scene_evaluate(s, 0.0, m, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE_REVERSED, big,
                             big + NPTS, NPTS, &st));
 #undef EVAL_FAILS
 
@@ -918,36 +918,36 @@ static void test_evaluate_errors(OceanScene *s)
                   memcmp(&out[3], &zero_sample, sizeof zero_sample) == 0,                    \
               "%s wrote outputs", (what));                                                   \
     } while (0)
-    HEIGHTS_FAILS(ocean_scene_heights_continuous(NULL, 0.0, xz, 4, out), OCEAN_STATUS_NULL_POINTER,
+    HEIGHTS_FAILS(ocean_wtb_scene_heights_continuous(NULL, 0.0, xz, 4, out), OCEAN_STATUS_NULL_POINTER,
                   "heights(scene NULL)");
-    HEIGHTS_FAILS(ocean_scene_heights_continuous(s, 0.0, NULL, 4, out), OCEAN_STATUS_NULL_POINTER,
+    HEIGHTS_FAILS(ocean_wtb_scene_heights_continuous(s, 0.0, NULL, 4, out), OCEAN_STATUS_NULL_POINTER,
                   "heights(xz NULL)");
-    HEIGHTS_FAILS(ocean_scene_heights_continuous(s, 0.0, xz, 4, NULL), OCEAN_STATUS_NULL_POINTER,
+    HEIGHTS_FAILS(ocean_wtb_scene_heights_continuous(s, 0.0, xz, 4, NULL), OCEAN_STATUS_NULL_POINTER,
                   "heights(out NULL)");
-    HEIGHTS_FAILS(ocean_scene_heights_continuous(s, 0.0, xz, 0, out), OCEAN_STATUS_EMPTY, "heights(n 0)");
-    HEIGHTS_FAILS(ocean_scene_heights_continuous(s, 0.0, xz, SIZE_MAX, out), OCEAN_STATUS_LENGTH_OVERFLOW,
+    HEIGHTS_FAILS(ocean_wtb_scene_heights_continuous(s, 0.0, xz, 0, out), OCEAN_STATUS_EMPTY, "heights(n 0)");
+    HEIGHTS_FAILS(ocean_wtb_scene_heights_continuous(s, 0.0, xz, SIZE_MAX, out), OCEAN_STATUS_LENGTH_OVERFLOW,
                   "heights(n SIZE_MAX)");
-    HEIGHTS_FAILS(ocean_scene_heights_continuous(s, INFINITY, xz, 4, out), OCEAN_STATUS_NON_FINITE,
+    HEIGHTS_FAILS(ocean_wtb_scene_heights_continuous(s, INFINITY, xz, 4, out), OCEAN_STATUS_NON_FINITE,
                   "heights(time inf)");
     xz[3].z = NAN;
-    HEIGHTS_FAILS(ocean_scene_heights_continuous(s, 0.0, xz, 4, out), OCEAN_STATUS_NON_FINITE,
+    HEIGHTS_FAILS(ocean_wtb_scene_heights_continuous(s, 0.0, xz, 4, out), OCEAN_STATUS_NON_FINITE,
                   "heights(xz NaN)");
     CHECK(strstr(last_error(), "xz[3]") != NULL, "heights message lacks the index: %s",
           last_error());
     xz[3].z = OZ;
     /* Output over the input. */
-    expect(ocean_scene_heights_continuous(s, 0.0, xz, 4, (OceanHeightSample *)(void *)xz),
+    expect(ocean_wtb_scene_heights_continuous(s, 0.0, xz, 4, (OceanHeightSample *)(void *)xz),
            OCEAN_STATUS_INVALID_ARGUMENT, "heights(overlap)");
     CHECK(xz[3].z == OZ && xz[0].x == OX, "overlapping heights wrote the input");
 #undef HEIGHTS_FAILS
 
     /* Functions that return no status leave the last error alone. */
-    expect(ocean_scene_remove_box(s, 424242u), OCEAN_STATUS_NOT_FOUND, "remove(unknown)");
-    ocean_scene_destroy(NULL);
+    expect(ocean_wtb_scene_remove_box(s, 424242u), OCEAN_STATUS_NOT_FOUND, "remove(unknown)");
+    ocean_wtb_scene_destroy(NULL);
     CHECK(last_error()[0] != '\0', "destroy(NULL) cleared the last error");
     {
         size_t c = 0;
-        OK(ocean_scene_box_count(s, &c));
+        OK(ocean_wtb_scene_box_count(s, &c));
         CHECK(last_error()[0] == '\0', "success left the last error \"%s\"", last_error());
     }
 }
@@ -956,7 +956,7 @@ static void test_evaluate_errors(OceanScene *s)
 static void scenario_at_spacing(double spacing)
 {
     OceanWaterGridDesc g;
-    OceanScene *s = NULL;
+    OceanWtbScene *s = NULL;
     OceanBoxDesc a, b;
     OceanFrameStats st;
     uint32_t id = 0;
@@ -967,9 +967,9 @@ static void scenario_at_spacing(double spacing)
     b = box_b();
     snprintf(what, sizeof what, "scenario 1 at %g m", spacing);
     make_terrain();
-    if (OK(ocean_scene_create(&g, terrain, NPTS, &s)) && s != NULL) {
-        OK(ocean_scene_add_box(s, &a, NULL, 0, &id));
-        OK(ocean_scene_add_box(s, &b, NULL, 0, &id));
+    if (OK(ocean_wtb_scene_create(&g, terrain, NPTS, &s)) && s != NULL) {
+        OK(ocean_wtb_scene_add_box(s, &a, NULL, 0, &id));
+        OK(ocean_wtb_scene_add_box(s, &b, NULL, 0, &id));
         if (evaluate(s, 12.5, pos, nrm, &st)) {
             CHECK(st.alive == 2 && st.trains == 3, "%s: alive %zu trains %zu", what, st.alive,
                   st.trains);
@@ -978,7 +978,7 @@ static void scenario_at_spacing(double spacing)
         test_heights(s, 12.5, 0.0);
         test_heights(s, 1000.25, 0.0);
     }
-    ocean_scene_destroy(s);
+    ocean_wtb_scene_destroy(s);
     SP = 1.0;
     make_terrain();
 }
@@ -986,7 +986,7 @@ static void scenario_at_spacing(double spacing)
 int main(void)
 {
     OceanWaterGridDesc g = grid_desc();
-    OceanScene *s = NULL;
+    OceanWtbScene *s = NULL;
     OceanBoxDesc a = box_a(), b = box_b();
     uint32_t id_a = 0, id_b = 0;
     OceanFrameStats st;
@@ -996,7 +996,7 @@ int main(void)
     scenario_at_spacing(0.5);
     scenario_at_spacing(2.0);
     make_terrain();
-    if (!OK(ocean_scene_create(&g, terrain, NPTS, &s)) || s == NULL) {
+    if (!OK(ocean_wtb_scene_create(&g, terrain, NPTS, &s)) || s == NULL) {
         fprintf(stderr, "test_wtb.c: cannot continue without a scene\n");
         return 1;
     }
@@ -1004,11 +1004,11 @@ int main(void)
         /* A scene never evaluated has no drawn surface to answer for. */
         OceanDVec2 p = {OX + 10.0, OZ + 10.0};
         OceanDrawnSample d = {0};
-        expect(ocean_scene_heights_drawn(s, &p, 1, &d), OCEAN_STATUS_NOT_EVALUATED,
+        expect(ocean_wtb_scene_heights_drawn(s, &p, 1, &d), OCEAN_STATUS_NOT_EVALUATED,
                "drawn query before any evaluation");
     }
-    OK(ocean_scene_add_box(s, &a, NULL, 0, &id_a));
-    OK(ocean_scene_add_box(s, &b, NULL, 0, &id_b));
+    OK(ocean_wtb_scene_add_box(s, &a, NULL, 0, &id_a));
+    OK(ocean_wtb_scene_add_box(s, &b, NULL, 0, &id_b));
     CHECK(id_a != id_b, "two boxes share id %u", (unsigned)id_a);
 
     for (i = 0; i < sizeof times / sizeof times[0]; i++) {
@@ -1041,8 +1041,8 @@ int main(void)
     test_explicit_train();
     test_move_and_remove(s, id_a, id_b);
 
-    ocean_scene_destroy(s);
-    ocean_scene_destroy(NULL); /* NULL-safe */
+    ocean_wtb_scene_destroy(s);
+    ocean_wtb_scene_destroy(NULL); /* NULL-safe */
 
     printf("test_wtb.c: library %s, %d checks, %d failures; bound on |y| %.4f m (Eq. 1, "
            "shoaling cap 1.5)\n",

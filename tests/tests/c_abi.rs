@@ -327,7 +327,7 @@ fn c11_handle_misuse_against_the_static_library() {
     );
 }
 
-/// The Wave Train Boxes scene API (`ocean_scene_*`) from C11: scenario 1 with an island,
+/// The Wave Train Boxes scene API (`ocean_wtb_scene_*`) from C11: scenario 1 with an island,
 /// culling, height queries, moving and removing boxes, and every error path.
 #[test]
 fn c11_wave_train_boxes_against_the_static_library() {
@@ -386,7 +386,7 @@ fn c11_relief_against_the_static_library() {
     );
 }
 
-/// The shader side of the ocean renderer (`ocean_ocean_*`) from C11: the uniform block of the
+/// The shader side of the ocean renderer (`ocean_surface_*`) from C11: the uniform block of the
 /// exported `ocean` shader field by field (the mesh's origin relative to the eye, the
 /// projected grid, the waves, the Sun, the sky map), the wave texture (order, phases per
 /// frame, steepness, the suffix variances summing to the spectrum's total), the Fresnel table
@@ -600,7 +600,10 @@ fn readme_c_examples_build_as_c11_and_cpp17_and_run() {
                 .args(NATIVE_STATIC_LIBS)
                 .arg("-o")
                 .arg(&exe);
-            run(cc, &format!("compile README example {i} as {lang} {std_flag}"));
+            run(
+                cc,
+                &format!("compile README example {i} as {lang} {std_flag}"),
+            );
             run(
                 Command::new(&exe),
                 &format!("run README example {i} ({lang})"),

@@ -1,7 +1,7 @@
 //! The ocean renderer drawing a caller's water mesh (`mesh_vs`, `mesh_fs`) and composing its
 //! light with an ambient obscurance (`compose_fs`), through
 //! `ocean_gpu::OceanRenderer::render_mesh_image`: the shaders an engine runs in its own
-//! pipeline with the C ABI's `ocean_ocean_uniforms` (examples/cpp-glfw).
+//! pipeline with the C ABI's `ocean_surface_uniforms` (examples/cpp-glfw).
 //!
 //! Run with `OCEAN_REQUIRE_GPU=1` to turn a missing adapter into a failure (CI runs these on
 //! lavapipe with `WGPU_BACKEND=vulkan` and on llvmpipe with `WGPU_BACKEND=gl`).

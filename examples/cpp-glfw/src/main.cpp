@@ -1,7 +1,7 @@
 // ocean_glfw: the ocean library in a C++ OpenGL 4.3 engine of its own.
 //
 // Every frame:
-// 1. Wave Train Boxes on the CPU (C ABI ocean_scene_*): a water grid over a sea floor that rises
+// 1. Wave Train Boxes on the CPU (C ABI ocean_wtb_scene_*): a water grid over a sea floor that rises
 //    towards a shallow bank, one wind-driven box of wave trains, evaluated into the vertex
 //    buffers (positions relative to the grid origin, unit normals): a steep cross sea shoaling
 //    and refracting over the floor.
@@ -9,7 +9,7 @@
 //    mesh_vs and mesh_fs): the ocean lighting of Bruneton et al. 2010 (Algorithm 5.1) with the
 //    open sea's spectrum filtered per pixel on top of the mesh, into two float targets (the
 //    Sun's term, and the sky's and the sea's) and a depth texture. Uniform block and textures
-//    from ocean_ocean_uniforms, ocean_ocean_wave_texels, ocean_ocean_fresnel_texels and the sky
+//    from ocean_surface_uniforms, ocean_surface_wave_texels, ocean_surface_fresnel_texels and the sky
 //    map (ocean_lighting_sky_map_create).
 // 3. Scalable Ambient Obscurance over that depth with the exported compute shaders (sao_z,
 //    sao_mip, sao_ao, sao_blur) and their uniform block (ocean_sao_uniforms).
@@ -304,7 +304,7 @@ float floor_height(double x, double z)
     return float(-20.0 + 18.5 * t + shoal);
 }
 
-OceanScene *make_scene()
+OceanWtbScene *make_scene()
 {
     OceanWaterGridDesc grid{};
     grid.origin_x = kOriginX;
@@ -312,16 +312,16 @@ OceanScene *make_scene()
     grid.spacing = kSpacing;
     grid.nx = kNx;
     grid.nz = kNz;
-    OceanScene *scene = nullptr;
-    check(ocean_scene_create(&grid, nullptr, 0, &scene), "ocean_scene_create");
+    OceanWtbScene *scene = nullptr;
+    check(ocean_wtb_scene_create(&grid, nullptr, 0, &scene), "ocean_wtb_scene_create");
 
     std::vector<float> terrain(kNx * kNz);
     for (size_t j = 0; j < kNz; j++)
         for (size_t i = 0; i < kNx; i++)
             terrain[j * kNx + i] = floor_height(kOriginX + double(i) * kSpacing,
                                                 kOriginZ + double(j) * kSpacing);
-    check(ocean_scene_set_terrain(scene, terrain.data(), terrain.size()),
-          "ocean_scene_set_terrain");
+    check(ocean_wtb_scene_set_terrain(scene, terrain.data(), terrain.size()),
+          "ocean_wtb_scene_set_terrain");
 
     // A box over the whole grid, its wind blowing away from the camera and a little to the
     // right, fully developed since long before t = 0. Its trains are given explicitly: a
@@ -361,7 +361,7 @@ OceanScene *make_scene()
         trains[k].depth = INFINITY;
     }
     uint32_t id = 0;
-    check(ocean_scene_add_box(scene, &box, trains, 5, &id), "ocean_scene_add_box");
+    check(ocean_wtb_scene_add_box(scene, &box, trains, 5, &id), "ocean_wtb_scene_add_box");
     return scene;
 }
 
@@ -452,7 +452,7 @@ int main(int argc, char **argv)
                 reinterpret_cast<const char *>(gl::GetString(GL_RENDERER)), W, H);
 
     // --- The library's objects. --------------------------------------------------------------
-    OceanScene *scene = make_scene();
+    OceanWtbScene *scene = make_scene();
     OceanSpectrumParams sp{};
     check(ocean_spectrum_params_default(&sp), "ocean_spectrum_params_default");
     // The open sea's spectrum adds what the 1 m mesh cannot carry: waves from 2 cm to 4 m under
@@ -473,8 +473,8 @@ int main(int argc, char **argv)
     check(ocean_sea_params_default(&sea), "ocean_sea_params_default");
     OceanLighting *lighting = nullptr;
     check(ocean_lighting_create(&sky, &sea, &lighting), "ocean_lighting_create");
-    OceanOceanDrawParams draw{};
-    check(ocean_ocean_draw_params_default(&draw), "ocean_ocean_draw_params_default");
+    OceanSurfaceDrawParams draw{};
+    check(ocean_surface_draw_params_default(&draw), "ocean_surface_draw_params_default");
 
     const View view;
     const double aspect = double(W) / double(H);
@@ -520,7 +520,7 @@ int main(int argc, char **argv)
     GLuint frame_ubo = 0, sao_ubo = 0;
     gl::GenBuffers(1, &frame_ubo);
     gl::BindBuffer(GL_UNIFORM_BUFFER, frame_ubo);
-    gl::BufferData(GL_UNIFORM_BUFFER, OCEAN_OCEAN_UNIFORMS_SIZE, nullptr, GL_DYNAMIC_DRAW);
+    gl::BufferData(GL_UNIFORM_BUFFER, OCEAN_SURFACE_UNIFORMS_SIZE, nullptr, GL_DYNAMIC_DRAW);
     gl::GenBuffers(1, &sao_ubo);
     gl::BindBuffer(GL_UNIFORM_BUFFER, sao_ubo);
     gl::BufferData(GL_UNIFORM_BUFFER, GLsizeiptr(sao_block.size()), sao_block.data(),
@@ -531,7 +531,7 @@ int main(int argc, char **argv)
     GLuint wave_tex = texture2d(GL_RGBA32F, int(waves), OCEAN_WAVE_TEXTURE_ROWS, GL_RGBA,
                                 GL_FLOAT, nullptr);
     std::vector<float> fresnel(OCEAN_FRESNEL_TABLE_SIZE * OCEAN_FRESNEL_TABLE_SIZE);
-    check(ocean_ocean_fresnel_texels(fresnel.data(), fresnel.size()), "ocean_ocean_fresnel_texels");
+    check(ocean_surface_fresnel_texels(fresnel.data(), fresnel.size()), "ocean_surface_fresnel_texels");
     GLuint fresnel_tex = texture2d(GL_R32F, OCEAN_FRESNEL_TABLE_SIZE, OCEAN_FRESNEL_TABLE_SIZE,
                                    GL_RED, GL_FLOAT, fresnel.data());
     GLuint sky_tex = 0;
@@ -634,7 +634,7 @@ int main(int argc, char **argv)
     };
 
     // --- Frames. -----------------------------------------------------------------------------
-    std::vector<uint8_t> block(OCEAN_OCEAN_UNIFORMS_SIZE);
+    std::vector<uint8_t> block(OCEAN_SURFACE_UNIFORMS_SIZE);
     const auto start = std::chrono::steady_clock::now();
     double evaluate_ms = 0.0;
     int frame = 0;
@@ -646,10 +646,10 @@ int main(int argc, char **argv)
         // 1. The waves on the CPU, culled by the view.
         const auto t0 = std::chrono::steady_clock::now();
         OceanFrameStats fs{};
-        check(ocean_scene_evaluate(scene, time, glm::value_ptr(view_proj),
+        check(ocean_wtb_scene_evaluate(scene, time, glm::value_ptr(view_proj),
                                    OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE, positions.data(),
                                    normals.data(), points, &fs),
-              "ocean_scene_evaluate");
+              "ocean_wtb_scene_evaluate");
         evaluate_ms +=
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count();
@@ -668,14 +668,14 @@ int main(int argc, char **argv)
         mesh.nx = kNx;
         mesh.nz = kNz;
         size_t written = 0;
-        check(ocean_ocean_uniforms(&camera, spectrum, lighting, &draw, &mesh, time, uint32_t(W),
+        check(ocean_surface_uniforms(&camera, spectrum, lighting, &draw, &mesh, time, uint32_t(W),
                                    uint32_t(H), block.data(), block.size(), &written),
-              "ocean_ocean_uniforms");
+              "ocean_surface_uniforms");
         gl::BindBuffer(GL_UNIFORM_BUFFER, frame_ubo);
         gl::BufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(block.size()), block.data());
-        check(ocean_ocean_wave_texels(&camera, spectrum, time, wave_texels.data(),
+        check(ocean_surface_wave_texels(&camera, spectrum, time, wave_texels.data(),
                                       wave_texels.size()),
-              "ocean_ocean_wave_texels");
+              "ocean_surface_wave_texels");
         gl::BindTexture(GL_TEXTURE_2D, wave_tex);
         gl::TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, GLsizei(waves), OCEAN_WAVE_TEXTURE_ROWS,
                           GL_RGBA, GL_FLOAT, wave_texels.data());
@@ -824,7 +824,7 @@ int main(int argc, char **argv)
     ocean_sao_destroy(sao);
     ocean_lighting_destroy(lighting);
     ocean_spectrum_destroy(spectrum);
-    ocean_scene_destroy(scene);
+    ocean_wtb_scene_destroy(scene);
     for (Exported *e : {&ocean_export, &z_export, &mip_export, &ao_export, &blur_export})
         ocean_shader_export_destroy(e->handle);
     glfwDestroyWindow(window);

@@ -49,7 +49,7 @@ macro_rules! handles {
 
 handles!(
     waves::OceanWaves,
-    wtb::OceanScene,
+    wtb::OceanWtbScene,
     lighting_spectrum::OceanSpectrum,
     lighting::OceanLighting,
     lighting::OceanSkyMap,
@@ -75,7 +75,7 @@ const STRIDE: usize = 16;
 /// sentinel) are never ids.
 const FIRST: usize = 0x1_0000;
 
-/// How many destroyed handles keep their kind for messages ("a destroyed OceanScene"); older
+/// How many destroyed handles keep their kind for messages ("a destroyed OceanWtbScene"); older
 /// ones are still recognised as destroyed, without the kind.
 const REMEMBERED_DESTROYED: usize = 1024;
 

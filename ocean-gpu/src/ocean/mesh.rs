@@ -1,6 +1,6 @@
 //! A caller's water mesh drawn by the ocean renderer (`mesh_vs`, `mesh_fs`) and its light
 //! composed with an ambient obscurance (`sky_vs`, `compose_fs`): on wgpu, what an engine does
-//! in its own pipeline with the exported shaders and `ocean_ocean_uniforms`
+//! in its own pipeline with the exported shaders and `ocean_surface_uniforms`
 //! (examples/cpp-glfw). [`OceanRenderer::render_mesh_image`] is a one-off (it allocates its
 //! targets and waits for the GPU), for tests, tools and thumbnails.
 

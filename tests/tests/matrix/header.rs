@@ -145,13 +145,15 @@ enum Tok {
 }
 
 /// The value of the `#if` conditions the header uses, for a C11 compiler (no `__cplusplus`,
-/// `__STDC_VERSION__` 201112L). Unknown conditions are errors.
+/// `__STDC_VERSION__` 201112L) building against the full library (`OCEAN_GPU` defined, as the
+/// matrix program is compiled: `c_build::FULL_LIBRARY`). Unknown conditions are errors.
 fn condition(directive: &str, rest: &str) -> Result<bool, String> {
     let rest = rest.split("//").next().unwrap_or("").trim();
     match (directive, rest) {
         ("ifndef", "OCEAN_H") => Ok(true),
         ("ifdef", "__cplusplus") => Ok(false),
         ("ifndef", "__cplusplus") => Ok(true),
+        ("if", "defined(OCEAN_GPU)") => Ok(true),
         ("if", "__STDC_VERSION__ >= 202311L") => Ok(false),
         ("if", "defined(__cplusplus) || __STDC_VERSION__ >= 202311L") => Ok(false),
         _ => Err(format!(
