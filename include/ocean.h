@@ -1,7 +1,38 @@
 /*
  * ocean: real-time water rendering. C ABI (C99 or later, and C++).
  *
+ * Contents (functions by prefix)
+ * - The library: ocean_version, ocean_version_number, ocean_check_version,
+ *   ocean_status_message, ocean_last_error_message.
+ * - Waves, trochoid (Gerstner) sums: ocean_waves_*.
+ * - Wave train boxes (Yrjola & Larsson): ocean_wtb_scene_* on an OceanWtbScene,
+ *   ocean_wtb_*_default for its boxes, winds and effects.
+ * - Ocean lighting (Bruneton, Neyret & Holzschuch 2010): ocean_spectrum_*, ocean_lighting_*,
+ *   ocean_sky_map_*, ocean_sea_color*, ocean_ross_brdf, ocean_schlick,
+ *   ocean_effective_fresnel_*, ocean_sun_radiance, ocean_tone_map, ocean_linear_to_srgb,
+ *   ocean_pixel_footprint.
+ * - Scalable Ambient Obscurance (McGuire, Mara & Luebke 2012), CPU reference: ocean_sao_*.
+ * - Relief mapping by relaxed cone stepping (Policarpo & Oliveira): ocean_relief_map_*,
+ *   ocean_relief_cones_*, ocean_relief_quad_*, ocean_relief_mips_*, ocean_relief_trace,
+ *   ocean_relief_shadow and their helpers.
+ * - GPU, declared only where OCEAN_GPU is defined (the full library, libocean; the CPU-only
+ *   libocean-cpu lacks them): ocean_gpu_context_*, ocean_renderer_*, ocean_sao_gpu_*,
+ *   ocean_shader_* (every pass exported to GLSL, HLSL, MSL, SPIR-V), and the uniform blocks
+ *   and textures of the library's shaders for your own pipeline: ocean_surface_* (the ocean
+ *   surface), ocean_sao_uniforms, ocean_relief_uniforms.
+ *
  * Conventions
+ * - Version: call ocean_check_version(OCEAN_VERSION) once at start-up; it refuses a library
+ *   whose ABI differs from this header's.
+ * - Parameter structs (the options a caller tunes: OceanSpectrumParams, OceanSkyParams,
+ *   OceanSeaParams, OceanWindDesc, OceanBoxDesc, OceanEffects, OceanSaoParams,
+ *   OceanReliefConeParams, OceanReliefMethod, OceanReliefScene, OceanSurfaceDrawParams,
+ *   OceanRendererOptions) each have an ocean_*_default(&out) function: start from it and set
+ *   what you need. Descriptions of the caller's own data (a wave, a grid, a camera, a ray)
+ *   have none. Flags are uint32_t members, 0 or 1 (other values are refused). No struct has
+ *   padding the compiler inserts unseen: where alignment would leave a hole, a `reserved`
+ *   member fills it, which callers must set to 0 (the _default functions do) and which the
+ *   library writes as 0.
  * - Units: metres, seconds, radians. Time is a double, in seconds, everywhere.
  * - Axes: right-handed, y up; the sea at rest is the plane y = 0, so rest positions and wave
  *   directions are (x, z) pairs on it.
@@ -46,7 +77,6 @@
 
 #include <stdint.h>
 #include <stddef.h>
-#include <stdbool.h>
 
 /**
  * Half-width E of the square of the stereographic plane a sky map covers: texel (i, j) of a
@@ -389,6 +419,12 @@
 #define OCEAN_VERSION_PATCH 0
 
 /**
+ * The header's version as one number, (MAJOR << 16) | (MINOR << 8) | PATCH, for
+ * `ocean_check_version(OCEAN_VERSION)` and for comparisons in the preprocessor.
+ */
+#define OCEAN_VERSION (((OCEAN_VERSION_MAJOR << 16) | (OCEAN_VERSION_MINOR << 8)) | OCEAN_VERSION_PATCH)
+
+/**
  * Result of every fallible `ocean_*` function.
  *
  * `OCEAN_STATUS_OK` (0) is success; any other value is a failure, after which no output
@@ -487,6 +523,12 @@ enum OceanStatus
    * it. A destroy function given such a handle frees nothing and sets this message.
    */
   OCEAN_STATUS_INVALID_HANDLE = 16,
+  /**
+   * `ocean_check_version`: the program was compiled against a header whose ABI this library
+   * does not provide (another major version, another minor version before 1.0, or a newer
+   * header than the library).
+   */
+  OCEAN_STATUS_VERSION_MISMATCH = 17,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -879,7 +921,7 @@ typedef struct OceanRendererOptions {
    * 1: draw the sky background (the sky map's radiance towards each pixel and the Sun's
    * disc) behind the sea; 0: leave those pixels black (alpha 255). Other values are refused.
    */
-  uint8_t draw_sky;
+  uint32_t draw_sky;
 } OceanRendererOptions;
 #endif
 
@@ -903,7 +945,7 @@ typedef struct OceanCameraDesc {
   /**
    * 0: perspective; 1: orthographic. Other values are refused.
    */
-  uint8_t orthographic;
+  uint32_t orthographic;
   /**
    * An `OceanDepthConvention` value (other values are refused). The footprint does not
    * depend on it; it only has to describe the projection consistently.
@@ -1286,7 +1328,7 @@ typedef struct OceanSurfaceDrawParams {
    * 1: the shader sRGB-encodes its colour (for a linear `GL_RGBA8` target); 0: it writes
    * linear colour (for an sRGB target with `GL_FRAMEBUFFER_SRGB`). Other values are refused.
    */
-  uint8_t srgb_encode;
+  uint32_t srgb_encode;
 } OceanSurfaceDrawParams;
 #endif
 
@@ -1416,7 +1458,7 @@ typedef struct OceanReliefScene {
   /**
    * 1: trace the light ray for self-shadowing; 0: do not. Other values are refused.
    */
-  uint8_t shadows;
+  uint32_t shadows;
   /**
    * How far (depth units) above a point the light ray must stop to shadow it, in [0, 1].
    */
@@ -1631,7 +1673,7 @@ typedef struct OceanSaoParams {
   /**
    * 1: the 2x2 quad bilateral of section 2.3 (default); 0: off. Other values are refused.
    */
-  uint8_t quad_filter;
+  uint32_t quad_filter;
   /**
    * The quad bilateral averages two neighbours when their z differ by less than this many
    * metres, in [0, 1e6] (default 0.02). Read only when `quad_filter` is 1.
@@ -1646,7 +1688,7 @@ typedef struct OceanSaoParams {
    * 1: treat pixels whose reconstructed normal is unreliable (a depth edge inside their 2x2
    * quad) as unoccluded; 0: the paper's behaviour (default). Other values are refused.
    */
-  uint8_t normal_rejection;
+  uint32_t normal_rejection;
   /**
    * The rejection's largest apparent incidence angle, radians, in [1e-3, pi/2 - 1e-3]
    * (default 85 degrees, 1.4835 rad). Read only when `normal_rejection` is 1.
@@ -1738,7 +1780,7 @@ typedef struct OceanSaoInfo {
   /**
    * 1 for an orthographic projection, 0 for a perspective.
    */
-  uint8_t orthographic;
+  uint32_t orthographic;
   /**
    * Near-plane distance read from the matrix, metres (in front of the camera; an
    * orthographic box may start at or behind it: <= 0).
@@ -1767,6 +1809,10 @@ typedef struct OceanSaoInfo {
    * camera, pixels per metre everywhere for an orthographic one.
    */
   float pixels_per_metre;
+  /**
+   * Written as 0: room for a later member, and no padding the caller cannot see.
+   */
+  uint32_t reserved;
 } OceanSaoInfo;
 
 #if defined(OCEAN_GPU)
@@ -1797,6 +1843,10 @@ typedef struct OceanShaderBinding {
    * 3.10); `OCEAN_NO_GLSL_BINDING` otherwise (see there).
    */
   uint32_t glsl_binding;
+  /**
+   * Written as 0: room for a later member, and no padding the caller cannot see.
+   */
+  uint32_t reserved;
   /**
    * The variable's name in the WGSL source.
    */
@@ -1892,7 +1942,12 @@ typedef struct OceanIrregular {
   /**
    * 1: on; 0: off (the other members are then ignored). Other values are refused.
    */
-  uint8_t enabled;
+  uint32_t enabled;
+  /**
+   * Must be 0: room for a later member (the `_default` functions set it), and no padding
+   * the caller cannot see.
+   */
+  uint32_t reserved;
   /**
    * Share of the amplitude, in [0, 1].
    */
@@ -1920,7 +1975,12 @@ typedef struct OceanNoise {
   /**
    * 1: on; 0: off (the other members are then ignored). Other values are refused.
    */
-  uint8_t enabled;
+  uint32_t enabled;
+  /**
+   * Must be 0: room for a later member (the `_default` functions set it), and no padding
+   * the caller cannot see.
+   */
+  uint32_t reserved;
   /**
    * Amplitude, metres, finite and >= 0.
    */
@@ -1940,7 +2000,12 @@ typedef struct OceanBeach {
   /**
    * 1: on; 0: off (the other members are then ignored). Other values are refused.
    */
-  uint8_t enabled;
+  uint32_t enabled;
+  /**
+   * Must be 0: room for a later member (the `_default` functions set it), and no padding
+   * the caller cannot see.
+   */
+  uint32_t reserved;
   /**
    * Largest share of the local depth the summed amplitude may take, in (0, 1].
    */
@@ -1968,12 +2033,17 @@ typedef struct OceanEffects {
    * 1: shoaling on (Green's law: the amplitude grows as (D_ref/D)^(1/4) in water shallower
    * than half a wavelength, at most 1.5 times); 0: off. Other values are refused.
    */
-  uint8_t shoaling;
+  uint32_t shoaling;
   /**
    * 1: round waves on (Eq. 10: fronts curve forward around the middle of each box); 0: off.
    * Other values are refused.
    */
-  uint8_t round_waves;
+  uint32_t round_waves;
+  /**
+   * Must be 0: room for a later member (the `_default` functions set it), and no padding
+   * the caller cannot see.
+   */
+  uint32_t reserved;
   /**
    * Irregular height (Eq. 8).
    */
@@ -2058,6 +2128,11 @@ typedef struct OceanWindDesc {
    * Number of wave trains the wind raises, 1 to 8 (ignored when explicit trains are given).
    */
   uint32_t trains;
+  /**
+   * Must be 0: room for a later member (the `_default` functions set it), and no padding
+   * the caller cannot see.
+   */
+  uint32_t reserved;
 } OceanWindDesc;
 
 /**
@@ -2078,7 +2153,12 @@ typedef struct OceanBoxDesc {
    * 1: `recovery` is used; 0: the recovery distance is the default, two peak wavelengths.
    * Other values are refused.
    */
-  uint8_t has_recovery;
+  uint32_t has_recovery;
+  /**
+   * Must be 0: room for a later member (the `_default` functions set it), and no padding
+   * the caller cannot see.
+   */
+  uint32_t reserved;
   /**
    * Distance behind land over which the amplitude recovers linearly to full, metres, finite
    * and >= 0 (0: at once). Read only when `has_recovery` is 1.
@@ -3684,7 +3764,7 @@ OceanStatus ocean_relief_uniforms(const struct OceanCameraDesc *camera,
                                   uint32_t size,
                                   uint32_t edge,
                                   uint32_t levels,
-                                  uint8_t srgb_encode,
+                                  uint32_t srgb_encode,
                                   uint8_t *out,
                                   size_t len,
                                   size_t *needed);
@@ -3906,6 +3986,20 @@ OceanStatus ocean_relief_quad_shadow(const struct OceanReliefQuadCones *cones,
                                      float depth_scale,
                                      float bias,
                                      uint8_t *in_shadow);
+
+/**
+ * Stores the tracer that `ocean_relief_scene_default` draws with in `*out`: relaxed cone
+ * stepping (Listing 18-3) with the book's 15 cone steps and 6 bisections, refining the last
+ * step (`OCEAN_RELIEF_SEARCH_LAST_STEP`). Trace with a relaxed cone map.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_relief_method_default(struct OceanReliefMethod *out);
 
 /**
  * Stores in `*out` the ray of the tangent-space view vector (view_x, view_y, view_z) (x along
@@ -4429,6 +4523,27 @@ const char *ocean_last_error_message(void);
 const char *ocean_version(void);
 
 /**
+ * The linked library's version as one number, (MAJOR << 16) | (MINOR << 8) | PATCH: the
+ * `OCEAN_VERSION` of the header it was built with. Never fails, safe from any thread.
+ */
+uint32_t ocean_version_number(void);
+
+/**
+ * Whether the linked library provides the ABI of the header a program was compiled against:
+ * call `ocean_check_version(OCEAN_VERSION)` once at start-up, before anything else (a program
+ * linked against a shared library of another version would otherwise misread structs).
+ *
+ * Compatible: the same major version, and before 1.0 the same minor version too (a minor
+ * version may change the ABI until then, as the shared library's SONAME `libocean.so.0.MINOR`
+ * says), and a library at least as new as the header (a newer header may declare what an
+ * older library lacks).
+ *
+ * Returns `OCEAN_STATUS_OK`, or `OCEAN_STATUS_VERSION_MISMATCH` with both versions in the
+ * last-error message.
+ */
+OceanStatus ocean_check_version(uint32_t header_version);
+
+/**
  * Builds a wave set from `n` wave descriptions and stores a new handle in `*out`.
  *
  * The waves are summed as trochoids (Gerstner waves, Yrjola & Larsson Eq. 6, 7); see
@@ -4584,6 +4699,35 @@ OceanStatus ocean_waves_max_amplitude(const struct OceanWaves *waves, double *ou
 OceanStatus ocean_wtb_effects_default(struct OceanEffects *out);
 
 /**
+ * Stores a valid wind in `*out`: 10 m/s (H = 2.14 m fully developed, Eq. 1) towards +x from
+ * the origin, a box 100 m wide with a fetch of 200 m, full from time 0 and never dying
+ * (`sustain` = `INFINITY`), seed 0, 3 trains. Set at least the origin, direction and extent
+ * for your grid.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_wtb_wind_desc_default(struct OceanWindDesc *out);
+
+/**
+ * Stores a valid box in `*out`: the wind of `ocean_wtb_wind_desc_default`, edges smoothed
+ * over 10 m (Fig. 4), and the default recovery behind land (two peak wavelengths:
+ * `has_recovery` = 0).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_wtb_box_desc_default(struct OceanBoxDesc *out);
+
+/**
  * Creates a scene: a water grid over a terrain, no boxes yet, the default effects
  * (`ocean_wtb_effects_default`) and no budget limit. Stores the new handle in `*out`.
  *
@@ -4702,7 +4846,7 @@ OceanStatus ocean_wtb_scene_remove_box(struct OceanWtbScene *scene, uint32_t id)
  *
  * `out_count` must be writable.
  */
-OceanStatus ocean_wtb_scene_box_count(struct OceanWtbScene *scene, size_t *out_count);
+OceanStatus ocean_wtb_scene_box_count(const struct OceanWtbScene *scene, size_t *out_count);
 
 /**
  * Enables and parameterises the effects (a budget may run fewer of them).
@@ -4858,7 +5002,7 @@ OceanStatus ocean_wtb_scene_reset_coverage(struct OceanWtbScene *scene);
  * `xz` `n` readable `OceanDVec2`s and `out` `n` writable
  * `OceanDrawnSample`s, untouched by other threads during the call.
  */
-OceanStatus ocean_wtb_scene_heights_drawn(struct OceanWtbScene *scene,
+OceanStatus ocean_wtb_scene_heights_drawn(const struct OceanWtbScene *scene,
                                           const struct OceanDVec2 *xz,
                                           size_t n,
                                           struct OceanDrawnSample *out);
@@ -4890,7 +5034,7 @@ OceanStatus ocean_wtb_scene_heights_drawn(struct OceanWtbScene *scene,
  * `xz` `n` readable `OceanDVec2`s and `out` `n` writable
  * `OceanHeightSample`s, untouched by other threads during the call.
  */
-OceanStatus ocean_wtb_scene_heights_continuous(struct OceanWtbScene *scene,
+OceanStatus ocean_wtb_scene_heights_continuous(const struct OceanWtbScene *scene,
                                                double time,
                                                const struct OceanDVec2 *xz,
                                                size_t n,

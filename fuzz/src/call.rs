@@ -50,7 +50,7 @@ pub fn tweak_u32(inp: &mut Input, v: &mut u32) {
 }
 
 /// Replaces a u8 flag one time in four by any [`Input::flag`].
-pub fn tweak_flag(inp: &mut Input, v: &mut u8) {
+pub fn tweak_flag(inp: &mut Input, v: &mut u32) {
     if inp.u8() % 4 == 3 {
         *v = inp.flag();
     }

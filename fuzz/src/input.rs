@@ -132,13 +132,13 @@ impl<'a> Input<'a> {
         u64::from_le_bytes(self.bytes())
     }
 
-    /// A u8 flag field of the C ABI: 0 or 1 mostly, sometimes another value (which the
+    /// A flag member of the C ABI (a uint32_t): 0 or 1 mostly, sometimes another value (which the
     /// library must refuse).
-    pub fn flag(&mut self) -> u8 {
-        match self.u8() {
+    pub fn flag(&mut self) -> u32 {
+        u32::from(match self.u8() {
             b @ 0..=250 => b & 1,
             b => b,
-        }
+        })
     }
 
     /// A float: special, ordinary (a small multiple of 1/8 in [-16, 16)) or raw bits.

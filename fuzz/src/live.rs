@@ -3,10 +3,10 @@
 
 use ocean::{
     OceanLighting, OceanReliefCones, OceanReliefMap, OceanReliefMips, OceanReliefQuadCones,
-    OceanSao, OceanWtbScene, OceanSkyMap, OceanSpectrum, OceanWaves, ocean_lighting_destroy,
+    OceanSao, OceanSkyMap, OceanSpectrum, OceanWaves, OceanWtbScene, ocean_lighting_destroy,
     ocean_relief_cones_destroy, ocean_relief_map_destroy, ocean_relief_mips_destroy,
-    ocean_relief_quad_cones_destroy, ocean_sao_destroy, ocean_wtb_scene_destroy, ocean_sky_map_destroy,
-    ocean_spectrum_destroy, ocean_waves_destroy,
+    ocean_relief_quad_cones_destroy, ocean_sao_destroy, ocean_sky_map_destroy,
+    ocean_spectrum_destroy, ocean_waves_destroy, ocean_wtb_scene_destroy,
 };
 
 use crate::input::Input;

@@ -9,7 +9,8 @@ use std::ffi::c_void;
 use ocean::{
     OceanStatus, ocean_lighting_sun_solid_angle, ocean_relief_cones_size, ocean_relief_map_size,
     ocean_relief_mips_level_count, ocean_relief_quad_cones_size, ocean_sao_describe,
-    ocean_wtb_scene_box_count, ocean_sky_map_level_count, ocean_spectrum_wave_count, ocean_waves_count,
+    ocean_sky_map_level_count, ocean_spectrum_wave_count, ocean_waves_count,
+    ocean_wtb_scene_box_count,
 };
 
 use crate::check;

@@ -5,12 +5,13 @@ use std::ptr::null_mut;
 
 use ocean::{
     OceanBoxDesc, OceanDVec2, OceanDrawnSample, OceanEffects, OceanFrameStats, OceanHeightSample,
-    OceanWtbScene, OceanStatus, OceanVec3, OceanWaterGridDesc, OceanWaveDesc, OceanWindDesc,
-    ocean_wtb_effects_default, ocean_wtb_scene_add_box, ocean_wtb_scene_box_count, ocean_wtb_scene_create,
-    ocean_wtb_scene_evaluate, ocean_wtb_scene_heights_continuous, ocean_wtb_scene_heights_drawn,
-    ocean_wtb_scene_remove_box, ocean_wtb_scene_set_budget_explicit, ocean_wtb_scene_set_budget_seconds,
-    ocean_wtb_scene_set_budget_unlimited, ocean_wtb_scene_set_effects, ocean_wtb_scene_set_terrain,
-    ocean_wtb_scene_set_train_filter, ocean_wtb_scene_update_box,
+    OceanStatus, OceanVec3, OceanWaterGridDesc, OceanWaveDesc, OceanWindDesc, OceanWtbScene,
+    ocean_wtb_effects_default, ocean_wtb_scene_add_box, ocean_wtb_scene_box_count,
+    ocean_wtb_scene_create, ocean_wtb_scene_evaluate, ocean_wtb_scene_heights_continuous,
+    ocean_wtb_scene_heights_drawn, ocean_wtb_scene_remove_box, ocean_wtb_scene_set_budget_explicit,
+    ocean_wtb_scene_set_budget_seconds, ocean_wtb_scene_set_budget_unlimited,
+    ocean_wtb_scene_set_effects, ocean_wtb_scene_set_terrain, ocean_wtb_scene_set_train_filter,
+    ocean_wtb_scene_update_box,
 };
 
 use crate::call::{matrix_f32, query, tweak, tweak_flag, tweak_u32};
@@ -139,6 +140,7 @@ fn box_desc(inp: &mut Input) -> OceanBoxDesc {
         decay: 5.0,
         seed: u64::from(inp.u8()),
         trains: 1 + inp.upto(MAX_TRAINS as usize - 1) as u32,
+        reserved: 0,
     };
     for v in [
         &mut w.speed,
@@ -162,6 +164,7 @@ fn box_desc(inp: &mut Input) -> OceanBoxDesc {
         wind: w,
         smoothing: 2.0,
         has_recovery: 0,
+        reserved: 0,
         recovery: 10.0,
     };
     tweak(inp, &mut b.smoothing);

@@ -5,14 +5,13 @@ use std::ptr::null_mut;
 
 use ocean::{
     OCEAN_FRESNEL_TABLE_SIZE, OCEAN_SURFACE_UNIFORMS_SIZE, OceanCameraDesc, OceanDVec2,
-    OceanSurfaceDrawParams, OceanSlopeVariance, OceanSpectrumParams, OceanWaterGridDesc,
-    OceanWaveDesc, ocean_surface_draw_params_default, ocean_surface_fresnel_texels,
-    ocean_surface_uniforms, ocean_surface_wave_texels, ocean_pixel_footprint,
-    ocean_spectrum_clamped_count, ocean_spectrum_create, ocean_spectrum_height_variance,
-    ocean_spectrum_max_amplitude, ocean_spectrum_mean_height_shift, ocean_spectrum_params_default,
-    ocean_spectrum_slope_variance, ocean_spectrum_steepness_sum,
+    OceanSlopeVariance, OceanSpectrumParams, OceanSurfaceDrawParams, OceanWaterGridDesc,
+    OceanWaveDesc, ocean_pixel_footprint, ocean_spectrum_clamped_count, ocean_spectrum_create,
+    ocean_spectrum_height_variance, ocean_spectrum_max_amplitude, ocean_spectrum_mean_height_shift,
+    ocean_spectrum_params_default, ocean_spectrum_slope_variance, ocean_spectrum_steepness_sum,
     ocean_spectrum_total_slope_variance, ocean_spectrum_wave_count, ocean_spectrum_waves,
-    ocean_spectrum_wind_direction,
+    ocean_spectrum_wind_direction, ocean_surface_draw_params_default, ocean_surface_fresnel_texels,
+    ocean_surface_uniforms, ocean_surface_wave_texels,
 };
 
 use crate::call::{query, tweak, tweak_flag, tweak_u32};
@@ -109,7 +108,7 @@ pub fn camera(inp: &mut Input) -> OceanCameraDesc {
         view: [
             1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, -10.0, 0.0, 1.0,
         ],
-        orthographic: u8::from(inp.u8() % 4 == 3),
+        orthographic: u32::from(inp.u8() % 4 == 3),
         depth_convention: 0,
         fov_y: 1.0,
         aspect: 1.5,

@@ -16,8 +16,8 @@ use ocean_brdf::{Filter, FilteredSurface};
 use ocean_gpu::{GpuContext, GpuError, OceanOptions, OceanRenderer as GpuRenderer};
 
 use crate::boundary::{
-    borrow, byte_len, check_finite, check_ptr, check_time, destroy, read_in, write_handle,
-    write_out, write_sized,
+    borrow, byte_len, check_finite, check_flag, check_ptr, check_time, destroy, read_in,
+    write_handle, write_out, write_sized,
 };
 use crate::lighting::{OceanLighting, brdf_error};
 
@@ -60,7 +60,7 @@ pub struct OceanRendererOptions {
     pub sky_map_size: u32,
     /// 1: draw the sky background (the sky map's radiance towards each pixel and the Sun's
     /// disc) behind the sea; 0: leave those pixels black (alpha 255). Other values are refused.
-    pub draw_sky: u8,
+    pub draw_sky: u32,
 }
 
 /// The GPU ocean renderer (opaque): a projected screen-space grid displaced by the filtered
@@ -245,7 +245,7 @@ fn options_from_default() -> OceanRendererOptions {
         max_distance: d.max_distance,
         exposure: d.exposure,
         sky_map_size: d.sky_map_size,
-        draw_sky: u8::from(d.draw_sky),
+        draw_sky: u32::from(d.draw_sky),
     }
 }
 
@@ -278,16 +278,7 @@ fn options_to_gpu(o: &OceanRendererOptions) -> Result<OceanOptions, Error> {
             ("exposure", o.exposure),
         ],
     )?;
-    let draw_sky = match o.draw_sky {
-        0 => false,
-        1 => true,
-        v => {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!("options->draw_sky must be 0 or 1, got {v}"),
-            ));
-        }
-    };
+    let draw_sky = check_flag("options->draw_sky", o.draw_sky)?;
     Ok(OceanOptions {
         color_format: ocean_gpu::wgpu::TextureFormat::Rgba8Unorm,
         depth_format: Some(ocean_gpu::wgpu::TextureFormat::Depth32Float),

@@ -127,7 +127,8 @@ pub use relief_trace::{
     OCEAN_RELIEF_MAX_STEPS, OCEAN_RELIEF_METHOD_CONE_STEP, OCEAN_RELIEF_METHOD_LINEAR,
     OCEAN_RELIEF_METHOD_RELAXED, OCEAN_RELIEF_SEARCH_BOOK, OCEAN_RELIEF_SEARCH_LAST_STEP,
     OCEAN_RELIEF_SEARCH_SHARED, OceanReliefHit, OceanReliefMethod, OceanReliefPoint,
-    OceanReliefRay, ocean_relief_ray_from_view, ocean_relief_shadow, ocean_relief_trace,
+    OceanReliefRay, ocean_relief_method_default, ocean_relief_ray_from_view, ocean_relief_shadow,
+    ocean_relief_trace,
 };
 pub use sao::{
     OCEAN_SAO_BLUR_WEIGHT_DEPTH, OCEAN_SAO_BLUR_WEIGHT_PLANE, OCEAN_SAO_ESTIMATOR_ALCHEMY,
@@ -153,7 +154,10 @@ pub use shader_export::{
     ocean_shader_export_file_stage, ocean_shader_name,
 };
 pub use status::{OceanStatus, ocean_last_error_message, ocean_status_message};
-pub use version::{OCEAN_VERSION_MAJOR, OCEAN_VERSION_MINOR, OCEAN_VERSION_PATCH, ocean_version};
+pub use version::{
+    OCEAN_VERSION, OCEAN_VERSION_MAJOR, OCEAN_VERSION_MINOR, OCEAN_VERSION_PATCH,
+    ocean_check_version, ocean_version, ocean_version_number,
+};
 pub use waves::{
     OceanGrid, OceanVec2, OceanVec3, OceanWaveDesc, OceanWaves, ocean_waves_count,
     ocean_waves_create, ocean_waves_destroy, ocean_waves_evaluate, ocean_waves_evaluate_grid,
@@ -162,12 +166,13 @@ pub use waves::{
 pub use wtb::{
     OceanBeach, OceanBoxDesc, OceanDVec2, OceanDVec3, OceanDepthConvention, OceanEffects,
     OceanFrameStats, OceanIrregular, OceanNoise, OceanRefraction, OceanWaterGridDesc,
-    OceanWindDesc, OceanWtbScene, ocean_wtb_effects_default, ocean_wtb_scene_add_box,
-    ocean_wtb_scene_box_count, ocean_wtb_scene_create, ocean_wtb_scene_destroy,
-    ocean_wtb_scene_evaluate, ocean_wtb_scene_evaluate_incremental, ocean_wtb_scene_remove_box,
-    ocean_wtb_scene_reset_coverage, ocean_wtb_scene_set_budget_explicit,
-    ocean_wtb_scene_set_budget_seconds, ocean_wtb_scene_set_budget_unlimited,
-    ocean_wtb_scene_set_effects, ocean_wtb_scene_set_terrain, ocean_wtb_scene_update_box,
+    OceanWindDesc, OceanWtbScene, ocean_wtb_box_desc_default, ocean_wtb_effects_default,
+    ocean_wtb_scene_add_box, ocean_wtb_scene_box_count, ocean_wtb_scene_create,
+    ocean_wtb_scene_destroy, ocean_wtb_scene_evaluate, ocean_wtb_scene_evaluate_incremental,
+    ocean_wtb_scene_remove_box, ocean_wtb_scene_reset_coverage,
+    ocean_wtb_scene_set_budget_explicit, ocean_wtb_scene_set_budget_seconds,
+    ocean_wtb_scene_set_budget_unlimited, ocean_wtb_scene_set_effects, ocean_wtb_scene_set_terrain,
+    ocean_wtb_scene_update_box, ocean_wtb_wind_desc_default,
 };
 pub use wtb_query::{
     OceanDrawnSample, OceanHeightSample, ocean_wtb_scene_heights_continuous,

@@ -96,7 +96,7 @@ pub struct OceanCameraDesc {
     /// element finite, the matrix invertible.
     pub view: [f64; 16],
     /// 0: perspective; 1: orthographic. Other values are refused.
-    pub orthographic: u8,
+    pub orthographic: u32,
     /// An `OceanDepthConvention` value (other values are refused). The footprint does not
     /// depend on it; it only has to describe the projection consistently.
     pub depth_convention: u32,

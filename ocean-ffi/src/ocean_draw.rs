@@ -65,7 +65,7 @@ pub struct OceanSurfaceDrawParams {
     pub sky_map_size: u32,
     /// 1: the shader sRGB-encodes its colour (for a linear `GL_RGBA8` target); 0: it writes
     /// linear colour (for an sRGB target with `GL_FRAMEBUFFER_SRGB`). Other values are refused.
-    pub srgb_encode: u8,
+    pub srgb_encode: u32,
 }
 
 /// Stores the default draw parameters in `*out`: the paper's filter (`OCEAN_FILTER_N_MIN`,

@@ -11,7 +11,9 @@ use ocean_gpu::ReliefScene;
 use ocean_relief::Method;
 use ocean_relief::gpu_params::ReliefUniforms;
 
-use crate::boundary::{check_finite, check_ptr, check_sized, read_in, write_block, write_out};
+use crate::boundary::{
+    check_finite, check_flag, check_ptr, check_sized, read_in, write_block, write_out,
+};
 use crate::lighting::{OceanIrradiance, finite_dvec3};
 use crate::lighting_spectrum::{OceanCameraDesc, camera_from};
 use crate::relief::edge_from;
@@ -54,7 +56,7 @@ pub struct OceanReliefScene {
     /// The tracer of the viewing ray and of the light ray.
     pub method: OceanReliefMethod,
     /// 1: trace the light ray for self-shadowing; 0: do not. Other values are refused.
-    pub shadows: u8,
+    pub shadows: u32,
     /// How far (depth units) above a point the light ray must stop to shadow it, in [0, 1].
     pub shadow_bias: f32,
     /// World direction towards the (directional) light; any length but zero.
@@ -91,16 +93,7 @@ fn method_to(m: &Method) -> OceanReliefMethod {
 }
 
 fn scene_from(s: &OceanReliefScene) -> Result<ReliefScene, Error> {
-    let shadows = match s.shadows {
-        0 => false,
-        1 => true,
-        v => {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!("scene->shadows = {v} is neither 0 nor 1"),
-            ));
-        }
-    };
+    let shadows = check_flag("scene->shadows", s.shadows)?;
     check_finite(
         "scene->",
         &[
@@ -168,7 +161,7 @@ pub unsafe extern "C" fn ocean_relief_scene_default(out: *mut OceanReliefScene) 
             tiles_v: d.tiles.y,
             depth: d.depth,
             method: method_to(&d.method),
-            shadows: u8::from(d.shadows),
+            shadows: u32::from(d.shadows),
             shadow_bias: d.shadow_bias,
             light_dir: OceanDVec3::from_dvec3(d.light_dir),
             light_intensity: d.light_intensity,
@@ -241,7 +234,7 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
     size: u32,
     edge: u32,
     levels: u32,
-    srgb_encode: u8,
+    srgb_encode: u32,
     out: *mut u8,
     len: usize,
     needed: *mut usize,
@@ -255,16 +248,7 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
         // SAFETY: forwarded from this function's contract.
         let scene = scene_from(&unsafe { read_in(scene, "scene") }?)?;
         let edge = edge_from(edge)?;
-        let srgb_encode = match srgb_encode {
-            0 => false,
-            1 => true,
-            v => {
-                return Err(Error::new(
-                    OceanStatus::InvalidArgument,
-                    format!("`srgb_encode` = {v} is neither 0 nor 1"),
-                ));
-            }
-        };
+        let srgb_encode = check_flag("srgb_encode", srgb_encode)?;
         let u = ocean_gpu::scene_uniforms(
             &camera,
             &scene,
@@ -291,6 +275,21 @@ mod tests {
     use crate::wtb::OceanDepthConvention;
 
     use crate::status::last_error;
+
+    /// `ocean_relief_method_default` (CPU part of the library) is the tracer of the default
+    /// scene (whose defaults are the GPU renderer's).
+    #[test]
+    fn the_default_method_is_the_default_scenes() {
+        let mut scene = OceanReliefScene::default();
+        // SAFETY: valid pointer.
+        let st = unsafe { ocean_relief_scene_default(&mut scene) };
+        assert_eq!(st, OceanStatus::Ok);
+        let mut method = OceanReliefMethod::default();
+        // SAFETY: valid pointer.
+        let st = unsafe { crate::relief_trace::ocean_relief_method_default(&mut method) };
+        assert_eq!(st, OceanStatus::Ok);
+        assert_eq!(method, scene.method);
+    }
 
     /// A camera 3 m above and 2 m beside a quad far from the origin, looking at it, in OpenGL's
     /// depth convention (the block folds it into WebGPU's).

@@ -60,6 +60,30 @@ pub struct OceanReliefMethod {
     pub search: u32,
 }
 
+/// Stores the tracer that `ocean_relief_scene_default` draws with in `*out`: relaxed cone
+/// stepping (Listing 18-3) with the book's 15 cone steps and 6 bisections, refining the last
+/// step (`OCEAN_RELIEF_SEARCH_LAST_STEP`). Trace with a relaxed cone map.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+/// then left unchanged.
+///
+/// # Safety
+///
+/// `out` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_relief_method_default(out: *mut OceanReliefMethod) -> OceanStatus {
+    guard("ocean_relief_method_default", || {
+        let method = OceanReliefMethod {
+            method: OCEAN_RELIEF_METHOD_RELAXED,
+            steps: 15,
+            binary: 6,
+            search: OCEAN_RELIEF_SEARCH_LAST_STEP,
+        };
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out, "out", method) }
+    })
+}
+
 /// A point of the relief: texture coordinates and normalised depth (0 at the polygon, 1 at the
 /// bottom of the relief).
 #[repr(C)]

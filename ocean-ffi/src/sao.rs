@@ -14,7 +14,8 @@ use ocean_sao::{
 };
 
 use crate::boundary::{
-    borrow, byte_len, check_disjoint, check_ptr, destroy, read_in, write_handle, write_out,
+    borrow, byte_len, check_disjoint, check_flag, check_ptr, destroy, read_in, write_handle,
+    write_out,
 };
 use crate::sao_camera::{OceanSaoCamera, camera_status, sao_camera_from};
 use crate::status::{Error, OceanStatus, guard};
@@ -128,7 +129,7 @@ pub struct OceanSaoParams {
     /// epsilon of both estimators, square metres, in [1e-12, 1e4] (default 0.01).
     pub epsilon: f32,
     /// 1: the 2x2 quad bilateral of section 2.3 (default); 0: off. Other values are refused.
-    pub quad_filter: u8,
+    pub quad_filter: u32,
     /// The quad bilateral averages two neighbours when their z differ by less than this many
     /// metres, in [0, 1e6] (default 0.02). Read only when `quad_filter` is 1.
     pub quad_depth_threshold: f32,
@@ -137,7 +138,7 @@ pub struct OceanSaoParams {
     pub normals: u32,
     /// 1: treat pixels whose reconstructed normal is unreliable (a depth edge inside their 2x2
     /// quad) as unoccluded; 0: the paper's behaviour (default). Other values are refused.
-    pub normal_rejection: u8,
+    pub normal_rejection: u32,
     /// The rejection's largest apparent incidence angle, radians, in [1e-3, pi/2 - 1e-3]
     /// (default 85 degrees, 1.4835 rad). Read only when `normal_rejection` is 1.
     pub normal_max_incidence: f32,
@@ -225,17 +226,6 @@ impl OceanSaoParams {
     }
 }
 
-fn flag(name: &str, v: u8) -> Result<bool, Error> {
-    match v {
-        0 => Ok(false),
-        1 => Ok(true),
-        _ => Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!("params->{name} must be 0 or 1, got {v}"),
-        )),
-    }
-}
-
 /// Converts and validates the caller's parameters (ocean-sao's ranges).
 fn params_from(p: &OceanSaoParams) -> Result<SaoParams, Error> {
     let mip_filter = match p.mip_filter {
@@ -298,9 +288,9 @@ fn params_from(p: &OceanSaoParams) -> Result<SaoParams, Error> {
         }
     };
     let quad_depth_threshold =
-        flag("quad_filter", p.quad_filter)?.then_some(p.quad_depth_threshold);
+        check_flag("params->quad_filter", p.quad_filter)?.then_some(p.quad_depth_threshold);
     let normal_rejection =
-        flag("normal_rejection", p.normal_rejection)?.then_some(NormalRejection {
+        check_flag("params->normal_rejection", p.normal_rejection)?.then_some(NormalRejection {
             max_incidence: p.normal_max_incidence,
         });
     let params = SaoParams {
@@ -398,7 +388,7 @@ pub struct OceanSaoInfo {
     /// Height of the AO image: input_height - 2 guard.
     pub output_height: u32,
     /// 1 for an orthographic projection, 0 for a perspective.
-    pub orthographic: u8,
+    pub orthographic: u32,
     /// Near-plane distance read from the matrix, metres (in front of the camera; an
     /// orthographic box may start at or behind it: <= 0).
     pub near: f64,
@@ -415,6 +405,8 @@ pub struct OceanSaoInfo {
     /// Eq. 5's S' = input_height P11 / 2: pixels per metre at 1 m in front of a perspective
     /// camera, pixels per metre everywhere for an orthographic one.
     pub pixels_per_metre: f32,
+    /// Written as 0: room for a later member, and no padding the caller cannot see.
+    pub reserved: u32,
 }
 
 /// Stores ocean-sao's default parameters in `*out` (the paper's set-up: r = 1 m, 9 samples,
@@ -551,13 +543,14 @@ pub unsafe extern "C" fn ocean_sao_describe(
             guard: side(v.guard()),
             output_width: side(v.output_width()),
             output_height: side(v.output_height()),
-            orthographic: u8::from(s.orthographic),
+            orthographic: u32::from(s.orthographic),
             near: s.near,
             far: s.far,
             z_constants: z.c,
             near_depth: z.near_depth,
             far_depth: z.far_depth,
             pixels_per_metre: s.sao.projection_info().pixels_per_metre,
+            reserved: 0,
         };
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out, "out", info) }

@@ -99,6 +99,8 @@ pub struct OceanShaderBinding {
     /// GLSL exports: the flattened binding number (`layout(binding = n)` in GLSL 4.30 and ES
     /// 3.10); `OCEAN_NO_GLSL_BINDING` otherwise (see there).
     pub glsl_binding: u32,
+    /// Written as 0: room for a later member, and no padding the caller cannot see.
+    pub reserved: u32,
     /// The variable's name in the WGSL source.
     pub name: *const c_char,
     /// Its WGSL type, e.g. `Frame` or `texture_2d<f32>`.
@@ -522,6 +524,7 @@ pub unsafe extern "C" fn ocean_shader_export_binding(
             kind: b.kind as u32,
             size: b.size,
             glsl_binding: b.glsl_binding,
+            reserved: 0,
             name: b.name.as_ptr(),
             wgsl_type: b.wgsl_type.as_ptr(),
             glsl_name: b.glsl_name.as_ptr(),

@@ -67,10 +67,14 @@ pub enum OceanStatus {
     /// function of this library returned (zeroed or freed memory). Nothing was read through
     /// it. A destroy function given such a handle frees nothing and sets this message.
     InvalidHandle = 16,
+    /// `ocean_check_version`: the program was compiled against a header whose ABI this library
+    /// does not provide (another major version, another minor version before 1.0, or a newer
+    /// header than the library).
+    VersionMismatch = 17,
 }
 
 /// Every status, in numeric order.
-const ALL_STATUSES: [OceanStatus; 17] = [
+const ALL_STATUSES: [OceanStatus; 18] = [
     OceanStatus::Ok,
     OceanStatus::NullPointer,
     OceanStatus::MisalignedPointer,
@@ -88,6 +92,7 @@ const ALL_STATUSES: [OceanStatus; 17] = [
     OceanStatus::Cancelled,
     OceanStatus::NotEvaluated,
     OceanStatus::InvalidHandle,
+    OceanStatus::VersionMismatch,
 ];
 
 impl OceanStatus {
@@ -111,6 +116,9 @@ impl OceanStatus {
             OceanStatus::NotEvaluated => c"no evaluated frame to answer for: evaluate first",
             OceanStatus::InvalidHandle => {
                 c"not a live handle of its kind (another kind, destroyed, or never made)"
+            }
+            OceanStatus::VersionMismatch => {
+                c"the program's header and this library have incompatible versions"
             }
         }
     }

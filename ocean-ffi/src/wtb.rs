@@ -16,8 +16,8 @@ use ocean_wtb::wind::MAX_EXPLICIT_TRAINS;
 use ocean_wtb::{BoxFrame, Terrain, TrainSource, WaterGrid, Wind, WtbError};
 
 use crate::boundary::{
-    borrow, byte_len, check_disjoint, check_finite, check_ptr, check_time, destroy, write_handle,
-    write_out,
+    borrow, byte_len, check_disjoint, check_finite, check_flag, check_ptr, check_reserved,
+    check_time, destroy, write_handle, write_out,
 };
 use crate::status::{Error, OceanStatus, guard};
 use crate::waves::{OceanVec3, OceanWaveDesc, eval_error, wave_desc_in, wave_error};
@@ -118,6 +118,9 @@ pub struct OceanWindDesc {
     pub seed: u64,
     /// Number of wave trains the wind raises, 1 to 8 (ignored when explicit trains are given).
     pub trains: u32,
+    /// Must be 0: room for a later member (the `_default` functions set it), and no padding
+    /// the caller cannot see.
+    pub reserved: u32,
 }
 
 /// A wave train box: its wind and its local parameters.
@@ -132,7 +135,10 @@ pub struct OceanBoxDesc {
     pub smoothing: f64,
     /// 1: `recovery` is used; 0: the recovery distance is the default, two peak wavelengths.
     /// Other values are refused.
-    pub has_recovery: u8,
+    pub has_recovery: u32,
+    /// Must be 0: room for a later member (the `_default` functions set it), and no padding
+    /// the caller cannot see.
+    pub reserved: u32,
     /// Distance behind land over which the amplitude recovers linearly to full, metres, finite
     /// and >= 0 (0: at once). Read only when `has_recovery` is 1.
     pub recovery: f64,
@@ -159,7 +165,10 @@ pub enum OceanRefraction {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct OceanIrregular {
     /// 1: on; 0: off (the other members are then ignored). Other values are refused.
-    pub enabled: u8,
+    pub enabled: u32,
+    /// Must be 0: room for a later member (the `_default` functions set it), and no padding
+    /// the caller cannot see.
+    pub reserved: u32,
     /// Share of the amplitude, in [0, 1].
     pub scale: f64,
     /// Radians per metre across the box, finite and >= 0.
@@ -177,7 +186,10 @@ pub struct OceanIrregular {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct OceanNoise {
     /// 1: on; 0: off (the other members are then ignored). Other values are refused.
-    pub enabled: u8,
+    pub enabled: u32,
+    /// Must be 0: room for a later member (the `_default` functions set it), and no padding
+    /// the caller cannot see.
+    pub reserved: u32,
     /// Amplitude, metres, finite and >= 0.
     pub amplitude: f64,
     /// Seed of the per-point rates.
@@ -191,7 +203,10 @@ pub struct OceanNoise {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct OceanBeach {
     /// 1: on; 0: off (the other members are then ignored). Other values are refused.
-    pub enabled: u8,
+    pub enabled: u32,
+    /// Must be 0: room for a later member (the `_default` functions set it), and no padding
+    /// the caller cannot see.
+    pub reserved: u32,
     /// Largest share of the local depth the summed amplitude may take, in (0, 1].
     pub max_depth_share: f64,
     /// Extra water level at the shoreline, metres, finite and >= 0.
@@ -209,10 +224,13 @@ pub struct OceanEffects {
     pub refraction: u32,
     /// 1: shoaling on (Green's law: the amplitude grows as (D_ref/D)^(1/4) in water shallower
     /// than half a wavelength, at most 1.5 times); 0: off. Other values are refused.
-    pub shoaling: u8,
+    pub shoaling: u32,
     /// 1: round waves on (Eq. 10: fronts curve forward around the middle of each box); 0: off.
     /// Other values are refused.
-    pub round_waves: u8,
+    pub round_waves: u32,
+    /// Must be 0: room for a later member (the `_default` functions set it), and no padding
+    /// the caller cannot see.
+    pub reserved: u32,
     /// Irregular height (Eq. 8).
     pub irregular: OceanIrregular,
     /// Capillary noise (Eq. 9).
@@ -355,17 +373,6 @@ fn trains_error(e: WtbError) -> Error {
     }
 }
 
-fn flag(name: &str, v: u8) -> Result<bool, Error> {
-    match v {
-        0 => Ok(false),
-        1 => Ok(true),
-        _ => Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!("{name} must be 0 or 1, got {v}"),
-        )),
-    }
-}
-
 fn refraction_from(v: u32, name: &str) -> Result<Refraction, Error> {
     match v {
         0 => Ok(Refraction::Off),
@@ -380,9 +387,12 @@ fn refraction_from(v: u32, name: &str) -> Result<Refraction, Error> {
 
 fn effects_from(e: &OceanEffects, name: &str) -> Result<Effects, Error> {
     let refraction = refraction_from(e.refraction, &format!("{name}->refraction"))?;
-    let shoaling = flag(&format!("{name}->shoaling"), e.shoaling)?;
-    let round_waves = flag(&format!("{name}->round_waves"), e.round_waves)?;
-    let irregular = if flag(&format!("{name}->irregular.enabled"), e.irregular.enabled)? {
+    let shoaling = check_flag(&format!("{name}->shoaling"), e.shoaling)?;
+    let round_waves = check_flag(&format!("{name}->round_waves"), e.round_waves)?;
+    check_reserved(&format!("{name}->reserved"), e.reserved)?;
+    let irregular_on = check_flag(&format!("{name}->irregular.enabled"), e.irregular.enabled)?;
+    check_reserved(&format!("{name}->irregular.reserved"), e.irregular.reserved)?;
+    let irregular = if irregular_on {
         let p = &e.irregular;
         check_finite(
             &format!("{name}->irregular."),
@@ -402,7 +412,9 @@ fn effects_from(e: &OceanEffects, name: &str) -> Result<Effects, Error> {
     } else {
         None
     };
-    let noise = if flag(&format!("{name}->noise.enabled"), e.noise.enabled)? {
+    let noise_on = check_flag(&format!("{name}->noise.enabled"), e.noise.enabled)?;
+    check_reserved(&format!("{name}->noise.reserved"), e.noise.reserved)?;
+    let noise = if noise_on {
         check_finite(
             &format!("{name}->noise."),
             &[("amplitude", e.noise.amplitude)],
@@ -414,7 +426,9 @@ fn effects_from(e: &OceanEffects, name: &str) -> Result<Effects, Error> {
     } else {
         None
     };
-    let beach = if flag(&format!("{name}->beach.enabled"), e.beach.enabled)? {
+    let beach_on = check_flag(&format!("{name}->beach.enabled"), e.beach.enabled)?;
+    check_reserved(&format!("{name}->beach.reserved"), e.beach.reserved)?;
+    let beach = if beach_on {
         let b = &e.beach;
         check_finite(
             &format!("{name}->beach."),
@@ -450,12 +464,14 @@ fn effects_to(e: &Effects) -> OceanEffects {
     };
     OceanEffects {
         refraction: refraction as u32,
-        shoaling: u8::from(e.shoaling),
-        round_waves: u8::from(e.round_waves),
+        shoaling: u32::from(e.shoaling),
+        round_waves: u32::from(e.round_waves),
+        reserved: 0,
         irregular: e
             .irregular
             .map_or_else(OceanIrregular::default, |p| OceanIrregular {
                 enabled: 1,
+                reserved: 0,
                 scale: p.scale,
                 frequency: p.frequency,
                 envelope_wavenumber: p.envelope_wavenumber,
@@ -463,11 +479,13 @@ fn effects_to(e: &Effects) -> OceanEffects {
             }),
         noise: e.noise.map_or_else(OceanNoise::default, |n| OceanNoise {
             enabled: 1,
+            reserved: 0,
             amplitude: n.amplitude,
             seed: n.seed,
         }),
         beach: e.beach.map_or_else(OceanBeach::default, |b| OceanBeach {
             enabled: 1,
+            reserved: 0,
             max_depth_share: b.max_depth_share,
             run_up: b.run_up,
             run_up_depth: b.run_up_depth,
@@ -611,8 +629,11 @@ unsafe fn box_spec(
             ),
         ));
     }
+    check_reserved("desc->wind.reserved", w.reserved)?;
     check_finite("desc->", &[("smoothing", d.smoothing)])?;
-    let recovery = if flag("desc->has_recovery", d.has_recovery)? {
+    let has_recovery = check_flag("desc->has_recovery", d.has_recovery)?;
+    check_reserved("desc->reserved", d.reserved)?;
+    let recovery = if has_recovery {
         check_finite("desc->", &[("recovery", d.recovery)])?;
         Some(d.recovery)
     } else {
@@ -745,6 +766,71 @@ pub unsafe extern "C" fn ocean_wtb_effects_default(out: *mut OceanEffects) -> Oc
     guard("ocean_wtb_effects_default", || {
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out, "out", effects_to(&Effects::default())) }
+    })
+}
+
+/// The wind of `ocean_wtb_wind_desc_default`: 10 m/s (the spectrum's default wind, so H =
+/// 0.21 * 10^2 / 9.81 = 2.14 m fully developed, Eq. 1) blowing towards +x from the origin over a
+/// box 100 m wide with a fetch of 200 m; fully grown at once and never dying (start 0, no
+/// build-up, sustain `INFINITY`, no decay); seed 0 and 3 trains.
+pub(crate) const DEFAULT_WIND: OceanWindDesc = OceanWindDesc {
+    speed: 10.0,
+    direction_x: 1.0,
+    direction_z: 0.0,
+    origin_x: 0.0,
+    origin_z: 0.0,
+    width: 100.0,
+    fetch: 200.0,
+    start: 0.0,
+    build_up: 0.0,
+    sustain: f64::INFINITY,
+    decay: 0.0,
+    seed: 0,
+    trains: 3,
+    reserved: 0,
+};
+
+/// Stores a valid wind in `*out`: 10 m/s (H = 2.14 m fully developed, Eq. 1) towards +x from
+/// the origin, a box 100 m wide with a fetch of 200 m, full from time 0 and never dying
+/// (`sustain` = `INFINITY`), seed 0, 3 trains. Set at least the origin, direction and extent
+/// for your grid.
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+/// then left unchanged.
+///
+/// # Safety
+///
+/// `out` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_wtb_wind_desc_default(out: *mut OceanWindDesc) -> OceanStatus {
+    guard("ocean_wtb_wind_desc_default", || {
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out, "out", DEFAULT_WIND) }
+    })
+}
+
+/// Stores a valid box in `*out`: the wind of `ocean_wtb_wind_desc_default`, edges smoothed
+/// over 10 m (Fig. 4), and the default recovery behind land (two peak wavelengths:
+/// `has_recovery` = 0).
+///
+/// Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+/// then left unchanged.
+///
+/// # Safety
+///
+/// `out` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn ocean_wtb_box_desc_default(out: *mut OceanBoxDesc) -> OceanStatus {
+    guard("ocean_wtb_box_desc_default", || {
+        let desc = OceanBoxDesc {
+            wind: DEFAULT_WIND,
+            smoothing: 10.0,
+            has_recovery: 0,
+            reserved: 0,
+            recovery: 0.0,
+        };
+        // SAFETY: forwarded from this function's contract.
+        unsafe { write_out(out, "out", desc) }
     })
 }
 
@@ -929,7 +1015,7 @@ pub extern "C" fn ocean_wtb_scene_remove_box(scene: *mut OceanWtbScene, id: u32)
 /// `out_count` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_wtb_scene_box_count(
-    scene: *mut OceanWtbScene,
+    scene: *const OceanWtbScene,
     out_count: *mut usize,
 ) -> OceanStatus {
     guard("ocean_wtb_scene_box_count", || {
@@ -1308,6 +1394,32 @@ mod tests {
         nz: 64,
     };
 
+    /// The default box is one a scene takes, with the wind and edges its documentation states.
+    #[test]
+    fn the_default_box_is_valid_and_as_documented() {
+        let mut desc = OceanBoxDesc::default();
+        // SAFETY: valid pointer.
+        let st = unsafe { ocean_wtb_box_desc_default(&mut desc) };
+        assert_eq!(st, OceanStatus::Ok);
+        let mut wind = OceanWindDesc::default();
+        // SAFETY: valid pointer.
+        let st = unsafe { ocean_wtb_wind_desc_default(&mut wind) };
+        assert_eq!(st, OceanStatus::Ok);
+        assert_eq!(desc.wind, wind);
+        assert_eq!((wind.speed, wind.width, wind.fetch), (10.0, 100.0, 200.0));
+        assert_eq!((desc.smoothing, desc.has_recovery), (10.0, 0));
+
+        let mut s = core::ptr::null_mut();
+        // SAFETY: valid pointers, an open sea.
+        let st = unsafe { ocean_wtb_scene_create(&GRID, core::ptr::null(), 0, &mut s) };
+        assert_eq!(st, OceanStatus::Ok, "{}", last_error());
+        let mut id = 0;
+        // SAFETY: live scene, valid pointers.
+        let st = unsafe { ocean_wtb_scene_add_box(s, &desc, core::ptr::null(), 0, &mut id) };
+        assert_eq!(st, OceanStatus::Ok, "{}", last_error());
+        ocean_wtb_scene_destroy(s);
+    }
+
     /// The wind of `scenarios::steady_wind` in the C layout.
     fn wind(
         speed: f64,
@@ -1330,6 +1442,7 @@ mod tests {
             decay: 0.0,
             seed: 0,
             trains: 1,
+            reserved: 0,
         }
     }
 
@@ -1358,6 +1471,7 @@ mod tests {
                 wind: OceanWindDesc { trains, seed, ..w },
                 smoothing: 4.0,
                 has_recovery: 0,
+                reserved: 0,
                 recovery: 0.0,
             };
             let mut id = u32::MAX;
@@ -1708,7 +1822,11 @@ mod tests {
             (OceanStatus::TooSteep, true)
         );
         // Flags and enums accept exactly their documented values.
-        assert!(flag("f", 2).is_err() && flag("f", 1).unwrap() && !flag("f", 0).unwrap());
+        assert!(
+            check_flag("f", 2).is_err()
+                && check_flag("f", 1).unwrap()
+                && !check_flag("f", 0).unwrap()
+        );
         assert!(refraction_from(3, "r").is_err());
         assert!(depth_convention(3).is_err());
         // The defaults round-trip through the C layout.

@@ -151,7 +151,7 @@ unsafe fn query_points(
 /// `OceanDrawnSample`s, untouched by other threads during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_wtb_scene_heights_drawn(
-    scene: *mut OceanWtbScene,
+    scene: *const OceanWtbScene,
     xz: *const OceanDVec2,
     n: usize,
     out: *mut OceanDrawnSample,
@@ -220,7 +220,7 @@ pub unsafe extern "C" fn ocean_wtb_scene_heights_drawn(
 /// `OceanHeightSample`s, untouched by other threads during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_wtb_scene_heights_continuous(
-    scene: *mut OceanWtbScene,
+    scene: *const OceanWtbScene,
     time: f64,
     xz: *const OceanDVec2,
     n: usize,

@@ -53,7 +53,6 @@ fn header_has_the_promised_shape() {
         "#ifndef OCEAN_H",
         "#include <stdint.h>",
         "#include <stddef.h>",
-        "#include <stdbool.h>",
         "extern \"C\" {",
         "OCEAN_STATUS_OK = 0,",
         "OCEAN_STATUS_PANIC = 8,",
@@ -77,6 +76,14 @@ fn header_has_the_promised_shape() {
         "OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE = 2,",
         "size_t n,",
         "double time,",
+        // Queries take const handles, as C++ callers holding a const object expect.
+        "ocean_wtb_scene_box_count(const struct OceanWtbScene *scene",
+        "ocean_wtb_scene_heights_drawn(const struct OceanWtbScene *scene",
+        "ocean_wtb_scene_heights_continuous(const struct OceanWtbScene *scene",
+        "ocean_waves_evaluate(const struct OceanWaves *waves",
+        // One number to compare, and the run-time check of header against library.
+        "#define OCEAN_VERSION (((OCEAN_VERSION_MAJOR << 16)",
+        "OceanStatus ocean_check_version(uint32_t header_version);",
     ] {
         assert!(
             h.contains(needle),

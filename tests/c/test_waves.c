@@ -138,7 +138,7 @@ static void test_version_and_messages(void)
           "ocean_version() = %s, header macros say %s", ocean_version(), expected);
 
     /* Every code has its own non-empty text; unknown codes are safe and say so. */
-    for (s = OCEAN_STATUS_OK; s <= OCEAN_STATUS_INVALID_HANDLE; s++) {
+    for (s = OCEAN_STATUS_OK; s <= OCEAN_STATUS_VERSION_MISMATCH; s++) {
         uint32_t t;
         const char *m = ocean_status_message(s);
         CHECK(m != NULL && m[0] != '\0', "status %u has no message", (unsigned)s);
@@ -147,10 +147,10 @@ static void test_version_and_messages(void)
             CHECK(strcmp(m, ocean_status_message(t)) != 0, "statuses %u and %u share \"%s\"",
                   (unsigned)s, (unsigned)t, m);
     }
-    /* OCEAN_STATUS_INVALID_HANDLE is the last code: the next value is unknown. */
-    CHECK(strcmp(ocean_status_message(OCEAN_STATUS_INVALID_HANDLE + 1), "unknown status") == 0,
-          "status %u: %s", (unsigned)OCEAN_STATUS_INVALID_HANDLE + 1,
-          ocean_status_message(OCEAN_STATUS_INVALID_HANDLE + 1));
+    /* OCEAN_STATUS_VERSION_MISMATCH is the last code: the next value is unknown. */
+    CHECK(strcmp(ocean_status_message(OCEAN_STATUS_VERSION_MISMATCH + 1), "unknown status") == 0,
+          "status %u: %s", (unsigned)OCEAN_STATUS_VERSION_MISMATCH + 1,
+          ocean_status_message(OCEAN_STATUS_VERSION_MISMATCH + 1));
     CHECK(strcmp(ocean_status_message(UINT32_MAX), "unknown status") == 0, "status max: %s",
           ocean_status_message(UINT32_MAX));
     CHECK(OCEAN_STATUS_OK == 0, "OCEAN_STATUS_OK must be 0");

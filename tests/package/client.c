@@ -18,6 +18,10 @@ int main(void)
     OceanVec3 pos, normal;
     OceanStatus status;
 
+    if (ocean_check_version(OCEAN_VERSION) != OCEAN_STATUS_OK) {
+        fprintf(stderr, "%s\n", ocean_last_error_message());
+        return 1;
+    }
     snprintf(want, sizeof want, "%d.%d.%d", OCEAN_VERSION_MAJOR, OCEAN_VERSION_MINOR,
              OCEAN_VERSION_PATCH);
     if (strcmp(ocean_version(), want) != 0) {

@@ -21,6 +21,10 @@ int main()
     const std::string want = std::to_string(OCEAN_VERSION_MAJOR) + "." +
                              std::to_string(OCEAN_VERSION_MINOR) + "." +
                              std::to_string(OCEAN_VERSION_PATCH);
+    if (ocean_check_version(OCEAN_VERSION) != OCEAN_STATUS_OK) {
+        std::fprintf(stderr, "%s\n", ocean_last_error_message());
+        return 1;
+    }
     if (want != ocean_version()) {
         std::fprintf(stderr, "library %s, header %s\n", ocean_version(), want.c_str());
         return 1;

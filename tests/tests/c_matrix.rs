@@ -259,3 +259,44 @@ fn an_unknown_handle_kind_fails_generation() {
         .expect("generation must fail for a handle kind the harness cannot make");
     assert!(err.contains("OceanNewKind"), "{err}");
 }
+
+/// No struct of the header has padding the compiler inserts unseen: each one's size is the sum
+/// of its members' sizes, so a C or C++ caller that fills a struct member by member (or
+/// compares two with `memcmp`) never meets uninitialised bytes, and a field added later cannot
+/// land in a hole by accident. Checked by the C compiler itself (`_Static_assert` on `sizeof`),
+/// for every struct the parser finds in `include/ocean.h`, GPU ones included.
+#[test]
+fn no_struct_of_the_header_has_implicit_padding() {
+    let (header, _) = header_and_harness();
+    assert!(
+        header.structs.len() > 30,
+        "only {} structs parsed",
+        header.structs.len()
+    );
+    let mut source = String::from("#include <ocean.h>\n\n");
+    for s in &header.structs {
+        let sum = s
+            .members
+            .iter()
+            .map(|m| format!("sizeof(((struct {} *)0)->{})", s.name, m.name))
+            .collect::<Vec<_>>()
+            .join(" + ");
+        source.push_str(&format!(
+            "_Static_assert(sizeof(struct {0}) == {sum}, \"{0} has implicit padding\");\n",
+            s.name
+        ));
+    }
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("c_layout");
+    std::fs::create_dir_all(&dir).expect("create the output directory");
+    let path = dir.join("layout.c");
+    std::fs::write(&path, source).expect("write the layout check");
+    let mut cc = Command::new(c_build::compiler("CC", "cc"));
+    cc.arg("-std=c11")
+        .args(c_build::WARNINGS)
+        .arg(c_build::FULL_LIBRARY)
+        .arg("-fsyntax-only")
+        .arg("-I")
+        .arg(c_build::workspace_root().join("include"))
+        .arg(&path);
+    c_build::run(cc, "the layout check of include/ocean.h");
+}

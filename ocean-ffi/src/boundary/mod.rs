@@ -42,4 +42,4 @@ pub(crate) use pointer::{
 // The size-query convention serves the byte blocks of the GPU entry points alone.
 #[cfg(feature = "gpu")]
 pub(crate) use pointer::{check_sized, write_block, write_sized};
-pub(crate) use value::{Approx, Num, check_finite, check_time};
+pub(crate) use value::{Approx, Num, check_finite, check_flag, check_reserved, check_time};

@@ -18,6 +18,33 @@ pub(crate) fn check_time(time: f64) -> Result<(), Error> {
 
 /// `OCEAN_STATUS_NON_FINITE` naming the first of `fields` that is NaN or infinite, as
 /// `{prefix}{name}`.
+/// A flag member: every flag of the header is a `uint32_t` that must be 0 or 1 (a `uint32_t`
+/// and not C's `bool` or a byte, so structs hold no padding the caller cannot see and Rust
+/// never reads a `bool` the caller filled with another value).
+pub(crate) fn check_flag(name: &str, v: u32) -> Result<bool, Error> {
+    match v {
+        0 => Ok(false),
+        1 => Ok(true),
+        _ => Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("{name} must be 0 or 1, got {v}"),
+        )),
+    }
+}
+
+/// A `reserved` member, which must be 0: so that a later version can give it a meaning without
+/// misreading what an older caller left there.
+pub(crate) fn check_reserved(name: &str, v: u32) -> Result<(), Error> {
+    if v == 0 {
+        Ok(())
+    } else {
+        Err(Error::new(
+            OceanStatus::InvalidArgument,
+            format!("{name} must be 0, got {v}"),
+        ))
+    }
+}
+
 pub(crate) fn check_finite(prefix: &str, fields: &[(&str, f64)]) -> Result<(), Error> {
     match fields.iter().find(|(_, v)| !v.is_finite()) {
         Some((name, v)) => Err(Error::new(

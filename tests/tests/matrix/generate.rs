@@ -282,7 +282,8 @@ pub enum Class {
     Fallible(Vec<Role>),
     /// `void ocean_*_destroy(struct OceanX *)`.
     Destroy { kind: String },
-    /// Returns a `const char *` or a `size_t` and takes nothing or `uint32_t`s: never fails.
+    /// Returns a `const char *`, a `size_t` or a `uint32_t` and takes nothing or `uint32_t`s:
+    /// never fails.
     Plain(Vec<Role>),
 }
 
@@ -305,8 +306,9 @@ pub fn classify_function(h: &Header, f: &Function) -> Result<Class, String> {
     {
         return Ok(Class::Destroy { kind: kind.clone() });
     }
-    let plain_ret =
-        (named("char") && ret.konst && ret.stars == 1) || (named("size_t") && ret.stars == 0);
+    let plain_ret = (named("char") && ret.konst && ret.stars == 1)
+        || (named("size_t") && ret.stars == 0)
+        || (named("uint32_t") && ret.stars == 0);
     if plain_ret && roles.iter().all(|r| *r == Role::U32) {
         return Ok(Class::Plain(roles));
     }
