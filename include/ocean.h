@@ -371,7 +371,7 @@
 #define OCEAN_SAO_MAX_SIDE 16384
 
 /**
- * `OceanSaoCamera::depth_source`: the depth buffer holds window depth, the value a depth
+ * `ocean_sao_create`'s `depth_source`: the depth buffer holds window depth, the value a depth
  * texture stores (`glDepthRange(0, 1)`), always in [0, 1]: `(ndc + 1)/2` under
  * `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, NDC depth itself under the [0, 1] conventions.
  * This is what `glReadPixels(..., GL_DEPTH_COMPONENT, GL_FLOAT, ...)` and a sampled depth
@@ -380,9 +380,9 @@
 #define OCEAN_SAO_DEPTH_WINDOW 0
 
 /**
- * `OceanSaoCamera::depth_source`: the depth buffer holds NDC depth (clip z / clip w), in the
- * convention's range: [-1, 1] under `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, [0, 1] otherwise
- * (where it equals window depth).
+ * `ocean_sao_create`'s `depth_source`: the depth buffer holds NDC depth (clip z / clip w), in
+ * the convention's range: [-1, 1] under `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, [0, 1]
+ * otherwise (where it equals window depth).
  */
 #define OCEAN_SAO_DEPTH_NDC 1
 
@@ -570,7 +570,8 @@ typedef uint32_t OceanRefraction;
 #endif // __cplusplus
 
 /**
- * Depth convention of a view-projection matrix, for `ocean_wtb_scene_evaluate`.
+ * Depth convention of a projection matrix: the range of NDC depth (clip z / clip w) and which
+ * end is near.
  */
 enum OceanDepthConvention
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
@@ -926,64 +927,54 @@ typedef struct OceanRendererOptions {
 #endif
 
 /**
- * A camera for `ocean_pixel_footprint`: a view matrix, a projection described by its
- * parameters, and a depth convention.
+ * A camera, as every entry point that needs one takes it: the view and projection matrices a
+ * renderer draws with, and the depth convention the projection was built for.
  *
- * Perspective (`orthographic` = 0): `fov_y` in (0, pi) radians, `aspect` = width / height
- * and positive, 0 < `z_near` < `z_far`, with `z_far` = `INFINITY` for an infinite far plane;
- * the orthographic members are ignored. Orthographic (`orthographic` = 1): the view-space box
- * [left, right] x [bottom, top] x [z_near, z_far] (distances along -z; `z_near` may be <= 0),
- * all finite, left < right, bottom < top, z_near < z_far; `fov_y` and `aspect` are ignored.
+ * Matrices are column-major, 16 doubles, element [4 * column + row]: GLM's layout
+ * (`glm::value_ptr` of a `glm::dmat4`; convert a `glm::mat4` with `glm::dmat4(m)`). Column
+ * vectors: clip = projection * view * world. The view matrix maps world space (right-handed,
+ * y up) to view space, right-handed with the camera looking down its -z axis; every element
+ * finite and the matrix invertible.
+ *
+ * Accepted projections:
+ * - a symmetric perspective, bottom row (0, 0, -1, 0): `glm::perspective`,
+ *   `glm::infinitePerspective`, and their [0, 1] and reversed-Z forms. Off-centre frusta
+ *   (`projection[8]`, `[9]`, `[12]`, `[13]` non-zero, as in a TAA-jittered matrix) are refused:
+ *   pass the unjittered matrix and jitter after;
+ * - an orthographic box, bottom row (0, 0, 0, 1), centred or not (`glm::ortho`).
+ *
+ * Both need a positive x scale `projection[0]` and y scale `projection[5]` (no mirrored or
+ * y-flipped matrix) and zero skew (`projection[1]`, `[2]`, `[4]`, `[6]`). The near and far
+ * planes are read from the depth row (`projection[10]`, `[14]`) under `depth_convention`, and
+ * must come out as 0 < near < far (perspective; far may be infinite: `projection[10]` = -1, or
+ * 0 reversed) or near < far (orthographic). A matrix read under the wrong direction of depth
+ * (a forward-Z matrix declared `OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE_REVERSED`, or the reverse)
+ * fails that test and is refused.
+ *
+ * The depth row alone cannot tell `OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE` from
+ * `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE` for a forward-Z perspective: a `glm::perspective`
+ * matrix (GLM's default, [-1, 1]) read as [0, 1] gives a near plane at about twice its
+ * distance, without any error. Pass the convention the matrix was built for (GLM: [-1, 1]
+ * unless `GLM_FORCE_DEPTH_ZERO_TO_ONE`); `ocean_sao_describe` reports the planes read.
  */
-typedef struct OceanCameraDesc {
+typedef struct OceanCamera {
   /**
-   * World-to-view matrix, column-major (GLM's layout: `glm::value_ptr` of a `glm::dmat4`,
-   * element [4 * column + row]), right-handed, the camera looking down its -z axis. Every
-   * element finite, the matrix invertible.
+   * World-to-view matrix, column-major.
    */
   double view[16];
   /**
-   * 0: perspective; 1: orthographic. Other values are refused.
+   * View-to-clip (projection) matrix, column-major.
    */
-  uint32_t orthographic;
+  double projection[16];
   /**
-   * An `OceanDepthConvention` value (other values are refused). The footprint does not
-   * depend on it; it only has to describe the projection consistently.
+   * An `OceanDepthConvention` value (other values are refused).
    */
   uint32_t depth_convention;
   /**
-   * Perspective: vertical field of view, radians.
+   * Must be 0: room for a later member, and no padding the caller cannot see.
    */
-  double fov_y;
-  /**
-   * Perspective: viewport width / height.
-   */
-  double aspect;
-  /**
-   * Orthographic: view-space x of the left edge, metres.
-   */
-  double left;
-  /**
-   * Orthographic: view-space x of the right edge, metres.
-   */
-  double right;
-  /**
-   * Orthographic: view-space y of the bottom edge, metres.
-   */
-  double bottom;
-  /**
-   * Orthographic: view-space y of the top edge, metres.
-   */
-  double top;
-  /**
-   * Near-plane distance, metres.
-   */
-  double z_near;
-  /**
-   * Far-plane distance, metres (perspective: `INFINITY` for none).
-   */
-  double z_far;
-} OceanCameraDesc;
+  uint32_t reserved;
+} OceanCamera;
 
 /**
  * A 3D vector in double precision. World-space vectors are right-handed with y up; the BRDF
@@ -1706,52 +1697,6 @@ typedef struct OceanSaoParams {
 } OceanSaoParams;
 
 /**
- * The camera of an SAO set-up: the projection matrix that produced the depth buffer, its depth
- * convention, and what the depth values hold. The view matrix plays no part (SAO works in view
- * space).
- *
- * `projection` is column-major, 16 floats, element [4 * column + row]: GLM's layout
- * (`glm::value_ptr` of a `glm::mat4`). Right-handed view space, the camera looking down its -z
- * axis. Accepted:
- * - a symmetric perspective, bottom row (0, 0, -1, 0): `glm::perspective`,
- *   `glm::infinitePerspective`, and their [0, 1] and reversed-Z forms. Off-centre frusta
- *   (`projection[8]`, `[9]`, `[12]`, `[13]` non-zero, as in a TAA-jittered matrix) are refused:
- *   pass the unjittered matrix;
- * - an orthographic box, bottom row (0, 0, 0, 1), centred or not (`glm::ortho`).
- *
- * Both need a positive x scale `projection[0]` and y scale `projection[5]` (no mirrored or
- * y-flipped matrix: image rows already run top-down, see `ocean_sao_run`) and zero skew
- * (`projection[1]`, `[2]`, `[4]`, `[6]`). The near and far planes are read from the depth row
- * (`projection[10]`, `[14]`) under `depth_convention`, and must come out as
- * 0 < near < far (perspective; far may be infinite: `projection[10]` = -1, or 0 reversed) or
- * near < far (orthographic). `ocean_sao_describe` reports the planes read.
- *
- * The depth row alone cannot tell `OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE` from
- * `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`: a `glm::perspective` matrix (GLM's default, [-1, 1])
- * read as [0, 1] gives a near plane at about twice its distance and wrong obscurance, without
- * any error. Pass the convention the matrix was built for (GLM: [-1, 1] unless
- * `GLM_FORCE_DEPTH_ZERO_TO_ONE`), and check the near plane with `ocean_sao_describe`.
- *
- * The matrix describes the whole depth buffer, guard band included: its aspect P11/P00 is
- * that of the input image's pixels (it need not equal width/height: non-square pixels are
- * allowed).
- */
-typedef struct OceanSaoCamera {
-  /**
-   * The projection matrix, column-major (see above). Every element finite.
-   */
-  float projection[16];
-  /**
-   * An `OceanDepthConvention` value (other values are refused).
-   */
-  uint32_t depth_convention;
-  /**
-   * `OCEAN_SAO_DEPTH_WINDOW` or `OCEAN_SAO_DEPTH_NDC` (other values are refused).
-   */
-  uint32_t depth_source;
-} OceanSaoCamera;
-
-/**
  * What an `OceanSao` was made of, as `ocean_sao_describe` reports it: the sizes, the planes read
  * from the projection matrix, and the constants of the passes (the values a GPU shader that
  * follows ocean-sao needs).
@@ -2449,11 +2394,10 @@ OceanStatus ocean_renderer_set_lighting(struct OceanRenderer *renderer,
  * Format: `len` = width * height * 4 bytes exactly; rows from the top of the image, each
  * `width` pixels of R, G, B, A bytes from left to right, tightly packed (no row padding).
  * Colours are tone-mapped (1 - exp(-exposure * L)) and sRGB-encoded: display-ready bytes for
- * an `SRGB8_ALPHA8` texture or a plain image file. Alpha is 255. The camera is the one of
- * `ocean_pixel_footprint`: world space right-handed with y up, the sea at rest on y = 0, the
- * view matrix column-major; any depth convention (the image does not depend on it, but for
- * the depth range the renderer folds it into). `camera->aspect` should be width / height for
- * undistorted pixels.
+ * an `SRGB8_ALPHA8` texture or a plain image file. Alpha is 255. `camera` is an `OceanCamera`
+ * above the sea (world space right-handed with y up, the sea at rest on y = 0), in any depth
+ * convention (the image does not depend on it, but for the depth range the renderer folds it
+ * into); its projection's aspect P11/P00 should be width / height for undistorted pixels.
  *
  * The sky is drawn where the sea is not (`options->draw_sky`); the grid covers the viewport
  * plus the margin. Each call allocates its targets and waits for the GPU: a one-off, not a
@@ -2476,7 +2420,7 @@ OceanStatus ocean_renderer_set_lighting(struct OceanRenderer *renderer,
  */
 OceanStatus ocean_renderer_render_rgba8(const struct OceanRenderer *renderer,
                                         const struct OceanGpuContext *ctx,
-                                        const struct OceanCameraDesc *camera,
+                                        const struct OceanCamera *camera,
                                         double time,
                                         uint32_t width,
                                         uint32_t height,
@@ -3181,16 +3125,16 @@ OceanStatus ocean_spectrum_slope_variance(const struct OceanSpectrum *spectrum,
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
  * `OCEAN_STATUS_EMPTY` if `width` or `height` is 0, `OCEAN_STATUS_NON_FINITE` for a NaN or
  * infinite argument or camera member (the message names it), `OCEAN_STATUS_INVALID_ARGUMENT`
- * for a camera out of its documented ranges (see `OceanCameraDesc`), `max_distance` outside
+ * for a camera out of its documented ranges (see `OceanCamera`), `max_distance` outside
  * (0, 1e12], or a
  * pixel whose rays do not start above the sea (the camera at or below y = 0). `*out` is
  * written only on success.
  *
  * # Safety
  *
- * `camera` must point to a readable `OceanCameraDesc` and `out` be writable.
+ * `camera` must point to a readable `OceanCamera` and `out` be writable.
  */
-OceanStatus ocean_pixel_footprint(const struct OceanCameraDesc *camera,
+OceanStatus ocean_pixel_footprint(const struct OceanCamera *camera,
                                   uint32_t width,
                                   uint32_t height,
                                   double px,
@@ -3223,8 +3167,8 @@ OceanStatus ocean_surface_draw_params_default(struct OceanSurfaceDrawParams *out
  * and `n_max` (their texture: `ocean_surface_wave_texels` for the same camera and time), the
  * Sun, sky and sea of `lighting`, and, when `mesh` is not NULL, the water mesh that `mesh_vs`
  * draws (a wave train box scene's grid: pass the `OceanWaterGridDesc` it was created with).
- * The camera is the one of `ocean_pixel_footprint`, above the sea (eye y > 0); its
- * `aspect` should be width / height. Positions in the block are relative to the camera's eye
+ * `camera` is an `OceanCamera` above the sea (eye y > 0); its projection's aspect P11/P00
+ * should be width / height. Positions in the block are relative to the camera's eye
  * (subtracted here in double precision, with the waves' phases reduced per frame), so a sea
  * far from the world origin does not jitter.
  *
@@ -3279,7 +3223,7 @@ OceanStatus ocean_surface_draw_params_default(struct OceanSurfaceDrawParams *out
  * `camera`, `params` and `mesh` (unless NULL) must be readable, `out` NULL or point to `len`
  * writable bytes that no other thread touches during the call, and `needed` writable.
  */
-OceanStatus ocean_surface_uniforms(const struct OceanCameraDesc *camera,
+OceanStatus ocean_surface_uniforms(const struct OceanCamera *camera,
                                    const struct OceanSpectrum *spectrum,
                                    const struct OceanLighting *lighting,
                                    const struct OceanSurfaceDrawParams *params,
@@ -3320,7 +3264,7 @@ OceanStatus ocean_surface_uniforms(const struct OceanCameraDesc *camera,
  * `camera` must be readable, `spectrum` a live handle, and `out` point to `len` writable
  * floats that no other thread touches during the call.
  */
-OceanStatus ocean_surface_wave_texels(const struct OceanCameraDesc *camera,
+OceanStatus ocean_surface_wave_texels(const struct OceanCamera *camera,
                                       const struct OceanSpectrum *spectrum,
                                       double time,
                                       float *out,
@@ -3759,7 +3703,7 @@ OceanStatus ocean_relief_scene_default(struct OceanReliefScene *out);
  * `camera` and `scene` must be readable, `out` NULL or point to `len` writable bytes that no
  * other thread touches during the call, and `needed` writable.
  */
-OceanStatus ocean_relief_uniforms(const struct OceanCameraDesc *camera,
+OceanStatus ocean_relief_uniforms(const struct OceanCamera *camera,
                                   const struct OceanReliefScene *scene,
                                   uint32_t size,
                                   uint32_t edge,
@@ -4116,9 +4060,13 @@ OceanStatus ocean_sao_params_default(struct OceanSaoParams *out);
  * (input_width - 2 guard) x (input_height - 2 guard) pixels. Any guard band is accepted and
  * gives the interior an aligned one gives: the z MIP levels are anchored at guard modulo
  * 2^max_mip (the uniform block of `ocean_sao_uniforms` carries the anchor to the GPU passes).
- * `camera` describes the projection of the whole input, guard band included (see
- * `OceanSaoCamera`); `params` the passes (see `OceanSaoParams`). Both are copied; neither is
- * retained.
+ * `camera` is the camera that rendered the whole input, guard band included (see
+ * `OceanCamera`): SAO works in view space and reads only its projection, whose aspect
+ * P11/P00 is that of the input's pixels (it need not equal width/height: non-square pixels are
+ * allowed). Mirrored or y-flipped projections are refused: image rows already run top-down
+ * (see `ocean_sao_run`). `depth_source` says what the depth buffer holds:
+ * `OCEAN_SAO_DEPTH_WINDOW` or `OCEAN_SAO_DEPTH_NDC`. `params` are the passes (see
+ * `OceanSaoParams`). Both structs are copied; neither is retained.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
  * `OCEAN_STATUS_EMPTY` if `input_width` or `input_height` is 0, `OCEAN_STATUS_NON_FINITE` for
@@ -4136,7 +4084,8 @@ OceanStatus ocean_sao_params_default(struct OceanSaoParams *out);
 OceanStatus ocean_sao_create(uint32_t input_width,
                              uint32_t input_height,
                              uint32_t guard,
-                             const struct OceanSaoCamera *camera,
+                             const struct OceanCamera *camera,
+                             uint32_t depth_source,
                              const struct OceanSaoParams *params,
                              struct OceanSao **out);
 
@@ -4905,31 +4854,29 @@ OceanStatus ocean_wtb_scene_set_budget_explicit(struct OceanWtbScene *scene,
  * behind it), depth (shoaling, refraction), the side smoothing and the enabled effects; grid
  * points on land stay exactly at rest.
  *
- * `view_projection`: NULL for no culling, or 16 floats, column-major (GLM's
- * layout, `&m[0][0]`), the world-space projection * view matrix, with `depth_convention` an
- * `OceanDepthConvention` (ignored when NULL). A box whose bounding box (raised by the maximum
- * heights of all boxes that overlap it) lies wholly outside the frustum is skipped: its
+ * `camera`: NULL for no culling, or the camera the frame is drawn with (`OceanCamera`). A box
+ * whose bounding box (raised by the maximum heights of all boxes that overlap it) lies wholly
+ * outside its frustum is skipped: its
  * points stay at rest in this frame. Height queries never cull.
  *
  * `n` must equal nx * nz. `out_stats`, when not NULL, receives what ran.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
- * alignment for floats and OceanVec3, 8 for the scene and stats), `OCEAN_STATUS_EMPTY` if `n`
+ * alignment for OceanVec3, 8 for the camera and stats), `OCEAN_STATUS_EMPTY` if `n`
  * is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanVec3)` exceeds `PTRDIFF_MAX`,
- * `OCEAN_STATUS_INVALID_ARGUMENT` if `n` != nx * nz, the outputs overlap, `depth_convention`
- * is unknown or the matrix is not a projection, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite
- * `time` or matrix element. Nothing is written on failure.
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `n` != nx * nz, the outputs overlap, or the camera is
+ * not one `OceanCamera` accepts, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or
+ * matrix element. Nothing is written on failure.
  *
  * # Safety
  *
- * `view_projection` NULL or 16 readable floats, `out_pos` and
+ * `camera` NULL or a readable `OceanCamera`, `out_pos` and
  * `out_normal` `n` writable `OceanVec3`s each, `out_stats` NULL or writable; no other thread
  * may touch the buffers during the call.
  */
 OceanStatus ocean_wtb_scene_evaluate(struct OceanWtbScene *scene,
                                      double time,
-                                     const float *view_projection,
-                                     uint32_t depth_convention,
+                                     const struct OceanCamera *camera,
                                      struct OceanVec3 *out_pos,
                                      struct OceanVec3 *out_normal,
                                      size_t n,
@@ -4953,8 +4900,7 @@ OceanStatus ocean_wtb_scene_evaluate(struct OceanWtbScene *scene,
  */
 OceanStatus ocean_wtb_scene_evaluate_incremental(struct OceanWtbScene *scene,
                                                  double time,
-                                                 const float *view_projection,
-                                                 uint32_t depth_convention,
+                                                 const struct OceanCamera *camera,
                                                  struct OceanVec3 *out_pos,
                                                  struct OceanVec3 *out_normal,
                                                  size_t n,

@@ -3,7 +3,7 @@
 
 use std::fmt::Debug;
 
-use ocean::OceanStatus;
+use ocean::{OceanCamera, OceanStatus};
 
 use crate::check;
 use crate::finite::Finite;
@@ -49,43 +49,70 @@ pub fn tweak_u32(inp: &mut Input, v: &mut u32) {
     }
 }
 
-/// Replaces a u8 flag one time in four by any [`Input::flag`].
+/// Replaces a flag one time in four by any [`Input::flag`].
 pub fn tweak_flag(inp: &mut Input, v: &mut u32) {
     if inp.u8() % 4 == 3 {
         *v = inp.flag();
     }
 }
 
-/// A column-major 4x4 f32 matrix: a plausible perspective * view (the default camera of the
-/// tests) with some elements replaced, or 16 arbitrary floats.
-pub fn matrix_f32(inp: &mut Input) -> [f32; 16] {
-    if inp.u8() % 4 == 3 {
-        return std::array::from_fn(|_| inp.f32());
+/// A camera 10 m above the sea looking along -z: a perspective (60°, aspect 1.5, near 0.5,
+/// far 500 or infinite) or an orthographic box, in one of the three depth conventions, built
+/// as GLM builds them, then some elements, the convention and the reserved member fuzzed; or
+/// 32 arbitrary doubles.
+pub fn camera(inp: &mut Input) -> OceanCamera {
+    let mut c = OceanCamera {
+        view: [
+            1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, -10.0, 0.0, 1.0,
+        ],
+        ..OceanCamera::default()
+    };
+    if inp.u8() % 8 == 7 {
+        c.view = std::array::from_fn(|_| inp.f64());
+        c.projection = std::array::from_fn(|_| inp.f64());
+    } else {
+        let convention = inp.u32() % 3;
+        c.depth_convention = convention;
+        let (n, far) = (0.5, if inp.bool() { f64::INFINITY } else { 500.0 });
+        let p = &mut c.projection;
+        if inp.u8() % 4 == 3 {
+            // glm::ortho(-20, 20, -10, 10, n, 500): [-1, 1] or [0, 1] depth.
+            let (l, r, b, t, f) = (-20.0, 20.0, -10.0, 10.0, 500.0);
+            p[0] = 2.0 / (r - l);
+            p[5] = 2.0 / (t - b);
+            p[12] = -(r + l) / (r - l);
+            p[13] = -(t + b) / (t - b);
+            p[15] = 1.0;
+            if convention == 2 {
+                p[10] = -2.0 / (f - n);
+                p[14] = -(f + n) / (f - n);
+            } else {
+                p[10] = -1.0 / (f - n);
+                p[14] = -n / (f - n);
+            }
+        } else {
+            let t = 30f64.to_radians().tan();
+            p[0] = 1.0 / (1.5 * t);
+            p[5] = 1.0 / t;
+            p[11] = -1.0;
+            let (a, b) = match (convention, far.is_finite()) {
+                (0, true) => (far / (n - far), -(far * n) / (far - n)),
+                (0, false) => (-1.0, -n),
+                (1, true) => (n / (far - n), far * n / (far - n)),
+                (1, false) => (0.0, n),
+                (_, true) => (-(far + n) / (far - n), -2.0 * far * n / (far - n)),
+                (_, false) => (-1.0, -2.0 * n),
+            };
+            p[10] = a;
+            p[14] = b;
+        }
+        for v in c.view.iter_mut().chain(c.projection.iter_mut()) {
+            if inp.u8() % 16 == 15 {
+                tweak(inp, v);
+            }
+        }
     }
-    // A perspective projection (60°, aspect 1.5, near 0.5, far 500) of a camera 10 m up
-    // looking down -z; column-major.
-    let f = 1.0 / (30f32.to_radians()).tan();
-    let (n, fa) = (0.5f32, 500.0f32);
-    let mut m = [
-        f / 1.5,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        f,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        fa / (n - fa),
-        -1.0,
-        0.0,
-        -10.0 * f,
-        n * fa / (n - fa),
-        0.0,
-    ];
-    for v in &mut m {
-        tweak32(inp, v);
-    }
-    m
+    tweak_u32(inp, &mut c.depth_convention);
+    tweak_u32(inp, &mut c.reserved);
+    c
 }

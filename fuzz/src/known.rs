@@ -6,7 +6,7 @@ use std::any::Any;
 use std::fmt::Debug;
 
 use ocean::{
-    OceanCameraDesc, OceanDVec3, OceanGrid, OceanReliefMethod, OceanReliefRay, OceanSeaColorInput,
+    OceanCamera, OceanDVec3, OceanGrid, OceanReliefMethod, OceanReliefRay, OceanSeaColorInput,
     OceanSeaParams, OceanSkyParams, OceanVec2,
 };
 
@@ -76,7 +76,7 @@ pub const KNOWN_NON_FINITE: &[Known] = &[
     Known {
         function: "ocean_pixel_footprint",
         matches: |a| {
-            a.downcast_ref::<(OceanCameraDesc, u32, u32, f64, f64, f64)>()
+            a.downcast_ref::<(OceanCamera, u32, u32, f64, f64, f64)>()
                 .is_some_and(|&(.., max_distance)| max_distance > 1e150)
         },
         note: "max_distance above about 1e154 m: rays beyond the horizon stop that far away, and the \
@@ -89,7 +89,7 @@ pub const KNOWN_NON_FINITE: &[Known] = &[
     Known {
         function: "ocean_surface_wave_texels",
         matches: |a| {
-            a.downcast_ref::<(OceanCameraDesc, f64, usize)>()
+            a.downcast_ref::<(OceanCamera, f64, usize)>()
                 .is_some_and(|&(_, time, _)| time.abs() > 1e300)
         },
         note: "a finite `time` so large that omega * time overflows (|time| above about \

@@ -20,12 +20,12 @@ use ocean::{
     ocean_relief_shadow, ocean_relief_trace, ocean_relief_uniforms,
 };
 
+use crate::call::camera;
 use crate::call::{query, tweak, tweak_flag, tweak_u32, tweak32};
 use crate::check;
 use crate::finite::half_is_finite;
 use crate::input::Input;
 use crate::live::{Costly, Kind, Live, pick_or_null};
-use crate::ops_spectrum::camera;
 
 /// Height map side at most: cone generation is quadratic in the texel count.
 pub const MAX_SIDE: u32 = 32;

@@ -1,14 +1,14 @@
 //! Operations on the CPU scalable ambient obscurance (ocean-ffi/src/sao.rs,
-//! ocean-ffi/src/sao_camera.rs). The GPU variant (`ocean_sao_gpu_*`) is left out: no GPU.
+//! ocean-ffi/src/camera.rs). The GPU variant (`ocean_sao_gpu_*`) is left out: no GPU.
 
 use std::ptr::null_mut;
 
 use ocean::{
-    OceanSaoCamera, OceanSaoInfo, OceanSaoParams, ocean_sao_create, ocean_sao_describe,
-    ocean_sao_params_default, ocean_sao_run, ocean_sao_view_z,
+    OceanSaoInfo, OceanSaoParams, ocean_sao_create, ocean_sao_describe, ocean_sao_params_default,
+    ocean_sao_run, ocean_sao_view_z,
 };
 
-use crate::call::{query, tweak_flag, tweak_u32, tweak32};
+use crate::call::{camera, query, tweak_flag, tweak_u32, tweak32};
 use crate::check;
 use crate::input::Input;
 use crate::live::{Costly, Kind, Live, pick_or_null};
@@ -18,37 +18,11 @@ const MAX_SIDE: u32 = 16;
 /// Samples per pixel at most (more are valid but slow, not different).
 const MAX_SAMPLES: u32 = 32;
 
-/// A perspective projection (60°, square pixels, near 0.1, far 100 or infinite), column-major,
-/// some elements fuzzed, or 16 arbitrary floats.
-fn camera(inp: &mut Input) -> OceanSaoCamera {
-    let projection = if inp.u8() % 8 == 7 {
-        std::array::from_fn(|_| inp.f32())
-    } else {
-        let f = 1.0 / 30f32.to_radians().tan();
-        let (n, fa) = (0.1f32, 100.0f32);
-        let (a, b) = if inp.bool() {
-            (-1.0, -n)
-        } else {
-            (fa / (n - fa), n * fa / (n - fa))
-        };
-        let mut p = [
-            f, 0.0, 0.0, 0.0, 0.0, f, 0.0, 0.0, 0.0, 0.0, a, -1.0, 0.0, 0.0, b, 0.0,
-        ];
-        for v in &mut p {
-            if inp.u8() % 8 == 7 {
-                tweak32(inp, v);
-            }
-        }
-        p
-    };
-    let mut c = OceanSaoCamera {
-        projection,
-        depth_convention: inp.u32() % 2,
-        depth_source: inp.u32() % 2,
-    };
-    tweak_u32(inp, &mut c.depth_convention);
-    tweak_u32(inp, &mut c.depth_source);
-    c
+/// What the depth buffer holds: window or NDC depth, or any value.
+fn depth_source(inp: &mut Input) -> u32 {
+    let mut v = inp.u32() % 2;
+    tweak_u32(inp, &mut v);
+    v
 }
 
 /// The default parameters with fields fuzzed.
@@ -106,13 +80,13 @@ pub fn create(live: &mut Live, inp: &mut Input) {
     } else {
         inp.u32() % 4
     };
-    let args = (w, h, guard, camera(inp), params(inp));
+    let args = (w, h, guard, camera(inp), depth_source(inp), params(inp));
     if !live.afford(Costly::Sao) {
         return;
     }
     let mut out = null_mut();
     // SAFETY: the camera, parameters and `out` are locals.
-    let st = unsafe { ocean_sao_create(w, h, guard, &args.3, &args.4, &mut out) };
+    let st = unsafe { ocean_sao_create(w, h, guard, &args.3, args.4, &args.5, &mut out) };
     if check::status("ocean_sao_create", &args, st) {
         Live::push(&mut live.saos, &mut live.dead, Kind::Sao, out);
     }

@@ -4,9 +4,9 @@ use std::ffi::c_void;
 use std::ptr::null_mut;
 
 use ocean::{
-    OceanBoxDesc, OceanDVec2, OceanDrawnSample, OceanEffects, OceanFrameStats, OceanHeightSample,
-    OceanStatus, OceanVec3, OceanWaterGridDesc, OceanWaveDesc, OceanWindDesc, OceanWtbScene,
-    ocean_wtb_effects_default, ocean_wtb_scene_add_box, ocean_wtb_scene_box_count,
+    OceanBoxDesc, OceanCamera, OceanDVec2, OceanDrawnSample, OceanEffects, OceanFrameStats,
+    OceanHeightSample, OceanStatus, OceanVec3, OceanWaterGridDesc, OceanWaveDesc, OceanWindDesc,
+    OceanWtbScene, ocean_wtb_effects_default, ocean_wtb_scene_add_box, ocean_wtb_scene_box_count,
     ocean_wtb_scene_create, ocean_wtb_scene_evaluate, ocean_wtb_scene_heights_continuous,
     ocean_wtb_scene_heights_drawn, ocean_wtb_scene_remove_box, ocean_wtb_scene_set_budget_explicit,
     ocean_wtb_scene_set_budget_seconds, ocean_wtb_scene_set_budget_unlimited,
@@ -14,7 +14,7 @@ use ocean::{
     ocean_wtb_scene_update_box,
 };
 
-use crate::call::{matrix_f32, query, tweak, tweak_flag, tweak_u32};
+use crate::call::{camera, query, tweak, tweak_flag, tweak_u32};
 use crate::check;
 use crate::input::Input;
 use crate::live::{Costly, Live, Scene, pick};
@@ -28,8 +28,7 @@ unsafe extern "C" {
     fn ocean_wtb_scene_evaluate_incremental(
         scene: *mut c_void,
         time: f64,
-        view_projection: *const f32,
-        depth_convention: u32,
+        camera: *const OceanCamera,
         out_pos: *mut OceanVec3,
         out_normal: *mut OceanVec3,
         n: usize,
@@ -306,28 +305,19 @@ pub fn settings(live: &mut Live, inp: &mut Input) {
 }
 
 /// `ocean_wtb_scene_evaluate` (or the incremental variant into the scene's kept buffers, or a
-/// coverage reset) at a fuzzed time, with or without a culling matrix.
+/// coverage reset) at a fuzzed time, with or without a culling camera.
 pub fn evaluate(live: &mut Live, inp: &mut Input) {
     let i = scene_or_null(live, inp);
     let s = handle(live, i);
     let points = i.map_or(inp.upto(4), |i| live.scenes[i].points);
     let n = inp.len_within(points);
     let time = inp.f64_near(10.0);
-    let vp = if inp.bool() {
-        Some(matrix_f32(inp))
-    } else {
-        None
-    };
-    let convention = if inp.u8() % 8 == 7 {
-        inp.u32()
-    } else {
-        inp.u32() % 2
-    };
+    let cam = if inp.bool() { Some(camera(inp)) } else { None };
     let with_stats = inp.bool();
     let mut stats = OceanFrameStats::default();
     let stats_ptr: *mut OceanFrameStats = if with_stats { &mut stats } else { null_mut() };
-    let vp_ptr = vp.as_ref().map_or(std::ptr::null(), |m| m.as_ptr());
-    let args = (n, time, vp, convention);
+    let cam_ptr: *const OceanCamera = cam.as_ref().map_or(std::ptr::null(), |c| c);
+    let args = (n, time, cam);
     if !live.afford(Costly::SceneEvaluate) {
         return;
     }
@@ -335,13 +325,12 @@ pub fn evaluate(live: &mut Live, inp: &mut Input) {
         (3, Some(i)) => {
             let sc = &mut live.scenes[i];
             // SAFETY: the kept buffers hold `points` >= `n` elements each and do not overlap;
-            // `vp_ptr` is NULL or 16 floats; `stats_ptr` NULL or a local.
+            // `cam_ptr` is NULL or a local camera; `stats_ptr` NULL or a local.
             let st = unsafe {
                 ocean_wtb_scene_evaluate_incremental(
                     s.cast(),
                     time,
-                    vp_ptr,
-                    convention,
+                    cam_ptr,
                     sc.kept_pos.as_mut_ptr(),
                     sc.kept_normal.as_mut_ptr(),
                     n,
@@ -364,13 +353,12 @@ pub fn evaluate(live: &mut Live, inp: &mut Input) {
             let mut pos = vec![OceanVec3::default(); points];
             let mut normal = vec![OceanVec3::default(); points];
             // SAFETY: `pos` and `normal` hold `points` >= `n` elements each and do not
-            // overlap; `vp_ptr` is NULL or 16 floats; `stats_ptr` NULL or a local.
+            // overlap; `cam_ptr` is NULL or a local camera; `stats_ptr` NULL or a local.
             let st = unsafe {
                 ocean_wtb_scene_evaluate(
                     s,
                     time,
-                    vp_ptr,
-                    convention,
+                    cam_ptr,
                     pos.as_mut_ptr(),
                     normal.as_mut_ptr(),
                     n,

@@ -4,9 +4,9 @@
 use std::ptr::null_mut;
 
 use ocean::{
-    OCEAN_FRESNEL_TABLE_SIZE, OCEAN_SURFACE_UNIFORMS_SIZE, OceanCameraDesc, OceanDVec2,
-    OceanSlopeVariance, OceanSpectrumParams, OceanSurfaceDrawParams, OceanWaterGridDesc,
-    OceanWaveDesc, ocean_pixel_footprint, ocean_spectrum_clamped_count, ocean_spectrum_create,
+    OCEAN_FRESNEL_TABLE_SIZE, OCEAN_SURFACE_UNIFORMS_SIZE, OceanDVec2, OceanSlopeVariance,
+    OceanSpectrumParams, OceanSurfaceDrawParams, OceanWaterGridDesc, OceanWaveDesc,
+    ocean_pixel_footprint, ocean_spectrum_clamped_count, ocean_spectrum_create,
     ocean_spectrum_height_variance, ocean_spectrum_max_amplitude, ocean_spectrum_mean_height_shift,
     ocean_spectrum_params_default, ocean_spectrum_slope_variance, ocean_spectrum_steepness_sum,
     ocean_spectrum_total_slope_variance, ocean_spectrum_wave_count, ocean_spectrum_waves,
@@ -14,7 +14,7 @@ use ocean::{
     ocean_surface_uniforms, ocean_surface_wave_texels,
 };
 
-use crate::call::{query, tweak, tweak_flag, tweak_u32};
+use crate::call::{camera, query, tweak, tweak_flag, tweak_u32};
 use crate::check;
 use crate::input::Input;
 use crate::live::{Costly, Kind, Live, pick_or_null};
@@ -99,46 +99,6 @@ pub fn queries(live: &mut Live, inp: &mut Input) {
             |o| ocean_spectrum_slope_variance(s, n_min, n_max, footprint, o),
         );
     }
-}
-
-/// A camera 10 m above the sea looking down -z, perspective or orthographic, with fields
-/// fuzzed.
-pub fn camera(inp: &mut Input) -> OceanCameraDesc {
-    let mut c = OceanCameraDesc {
-        view: [
-            1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, -10.0, 0.0, 1.0,
-        ],
-        orthographic: u32::from(inp.u8() % 4 == 3),
-        depth_convention: 0,
-        fov_y: 1.0,
-        aspect: 1.5,
-        left: -20.0,
-        right: 20.0,
-        bottom: -10.0,
-        top: 10.0,
-        z_near: 0.5,
-        z_far: if inp.bool() { f64::INFINITY } else { 1e4 },
-    };
-    if inp.u8() % 4 == 3 {
-        for v in &mut c.view {
-            tweak(inp, v);
-        }
-    }
-    tweak_flag(inp, &mut c.orthographic);
-    tweak_u32(inp, &mut c.depth_convention);
-    for v in [
-        &mut c.fov_y,
-        &mut c.aspect,
-        &mut c.left,
-        &mut c.right,
-        &mut c.bottom,
-        &mut c.top,
-        &mut c.z_near,
-        &mut c.z_far,
-    ] {
-        tweak(inp, v);
-    }
-    c
 }
 
 /// `ocean_pixel_footprint` of a fuzzed camera, viewport and pixel.

@@ -21,7 +21,8 @@ use crate::boundary::{
 };
 use crate::lighting::{OceanLighting, brdf_error};
 
-use crate::lighting_spectrum::{OceanCameraDesc, OceanSpectrum, camera_from};
+use crate::camera::{OceanCamera, camera_from};
+use crate::lighting_spectrum::OceanSpectrum;
 use crate::status::{Error, OceanStatus, guard};
 use crate::waves_domain::Reach;
 
@@ -421,11 +422,10 @@ pub extern "C" fn ocean_renderer_set_lighting(
 /// Format: `len` = width * height * 4 bytes exactly; rows from the top of the image, each
 /// `width` pixels of R, G, B, A bytes from left to right, tightly packed (no row padding).
 /// Colours are tone-mapped (1 - exp(-exposure * L)) and sRGB-encoded: display-ready bytes for
-/// an `SRGB8_ALPHA8` texture or a plain image file. Alpha is 255. The camera is the one of
-/// `ocean_pixel_footprint`: world space right-handed with y up, the sea at rest on y = 0, the
-/// view matrix column-major; any depth convention (the image does not depend on it, but for
-/// the depth range the renderer folds it into). `camera->aspect` should be width / height for
-/// undistorted pixels.
+/// an `SRGB8_ALPHA8` texture or a plain image file. Alpha is 255. `camera` is an `OceanCamera`
+/// above the sea (world space right-handed with y up, the sea at rest on y = 0), in any depth
+/// convention (the image does not depend on it, but for the depth range the renderer folds it
+/// into); its projection's aspect P11/P00 should be width / height for undistorted pixels.
 ///
 /// The sky is drawn where the sea is not (`options->draw_sky`); the grid covers the viewport
 /// plus the margin. Each call allocates its targets and waits for the GPU: a one-off, not a
@@ -450,7 +450,7 @@ pub extern "C" fn ocean_renderer_set_lighting(
 pub unsafe extern "C" fn ocean_renderer_render_rgba8(
     renderer: *const OceanRenderer,
     ctx: *const OceanGpuContext,
-    camera: *const OceanCameraDesc,
+    camera: *const OceanCamera,
     time: f64,
     width: u32,
     height: u32,
@@ -539,7 +539,6 @@ mod tests {
         OceanSpectrumParams, ocean_spectrum_create, ocean_spectrum_destroy,
         ocean_spectrum_params_default,
     };
-    use crate::wtb::OceanDepthConvention;
 
     use crate::status::last_error;
 
@@ -653,16 +652,19 @@ mod tests {
             glam::DVec3::Y,
         )
         .unwrap();
-        let cam = OceanCameraDesc {
-            view: view.to_cols_array(),
-            orthographic: 0,
-            depth_convention: OceanDepthConvention::ZeroToOne as u32,
-            fov_y: 1.0,
-            aspect: f64::from(w) / f64::from(h),
-            z_near: 0.1,
-            z_far: 1e5,
-            ..Default::default()
-        };
+        let cam = OceanCamera::from_camera(
+            &ocean_core::Camera::new(
+                view,
+                ocean_core::Projection::Perspective {
+                    fov_y: 1.0,
+                    aspect: f64::from(w) / f64::from(h),
+                    near: 0.1,
+                    far: ocean_core::Far::Finite(1e5),
+                },
+                ocean_core::camera::DepthConvention::ZERO_TO_ONE,
+            )
+            .unwrap(),
+        );
         let mut image = vec![0u8; (w * h * 4) as usize];
         // SAFETY: live handles and valid pointers throughout.
         unsafe {

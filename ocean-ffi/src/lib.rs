@@ -28,6 +28,7 @@
 #![warn(missing_docs)]
 
 mod boundary;
+mod camera;
 #[cfg(feature = "gpu")]
 mod gpu;
 mod lighting;
@@ -44,7 +45,7 @@ mod relief_lod;
 mod relief_quad;
 mod relief_trace;
 mod sao;
-mod sao_camera;
+mod sao_depth;
 #[cfg(feature = "gpu")]
 mod sao_gpu;
 #[cfg(feature = "gpu")]
@@ -56,6 +57,7 @@ mod waves_domain;
 mod wtb;
 mod wtb_query;
 
+pub use camera::{OceanCamera, OceanDepthConvention};
 #[cfg(feature = "gpu")]
 pub use gpu::{
     OceanGpuContext, OceanRenderer, OceanRendererOptions, ocean_gpu_context_create,
@@ -80,13 +82,12 @@ pub use lighting_brdf::{
     ocean_ross_brdf, ocean_schlick, ocean_sun_radiance, ocean_tone_map,
 };
 pub use lighting_spectrum::{
-    OCEAN_FILTER_N_MAX, OCEAN_FILTER_N_MIN, OceanCameraDesc, OceanSlopeVariance, OceanSpectrum,
-    OceanSpectrumParams, ocean_pixel_footprint, ocean_spectrum_clamped_count,
-    ocean_spectrum_create, ocean_spectrum_destroy, ocean_spectrum_height_variance,
-    ocean_spectrum_max_amplitude, ocean_spectrum_mean_height_shift, ocean_spectrum_params_default,
-    ocean_spectrum_slope_variance, ocean_spectrum_steepness_sum,
-    ocean_spectrum_total_slope_variance, ocean_spectrum_wave_count, ocean_spectrum_waves,
-    ocean_spectrum_wind_direction,
+    OCEAN_FILTER_N_MAX, OCEAN_FILTER_N_MIN, OceanSlopeVariance, OceanSpectrum, OceanSpectrumParams,
+    ocean_pixel_footprint, ocean_spectrum_clamped_count, ocean_spectrum_create,
+    ocean_spectrum_destroy, ocean_spectrum_height_variance, ocean_spectrum_max_amplitude,
+    ocean_spectrum_mean_height_shift, ocean_spectrum_params_default, ocean_spectrum_slope_variance,
+    ocean_spectrum_steepness_sum, ocean_spectrum_total_slope_variance, ocean_spectrum_wave_count,
+    ocean_spectrum_waves, ocean_spectrum_wind_direction,
 };
 #[cfg(feature = "gpu")]
 pub use ocean_draw::{
@@ -139,7 +140,7 @@ pub use sao::{
     ocean_sao_describe, ocean_sao_destroy, ocean_sao_params_default, ocean_sao_run,
     ocean_sao_view_z,
 };
-pub use sao_camera::{OCEAN_SAO_DEPTH_NDC, OCEAN_SAO_DEPTH_WINDOW, OceanSaoCamera};
+pub use sao_depth::{OCEAN_SAO_DEPTH_NDC, OCEAN_SAO_DEPTH_WINDOW};
 #[cfg(feature = "gpu")]
 pub use sao_gpu::{
     OCEAN_SAO_UNIFORMS_SIZE, OceanSaoGpu, ocean_sao_gpu_create, ocean_sao_gpu_destroy,
@@ -164,15 +165,15 @@ pub use waves::{
     ocean_waves_max_amplitude, ocean_waves_steepness_sum,
 };
 pub use wtb::{
-    OceanBeach, OceanBoxDesc, OceanDVec2, OceanDVec3, OceanDepthConvention, OceanEffects,
-    OceanFrameStats, OceanIrregular, OceanNoise, OceanRefraction, OceanWaterGridDesc,
-    OceanWindDesc, OceanWtbScene, ocean_wtb_box_desc_default, ocean_wtb_effects_default,
-    ocean_wtb_scene_add_box, ocean_wtb_scene_box_count, ocean_wtb_scene_create,
-    ocean_wtb_scene_destroy, ocean_wtb_scene_evaluate, ocean_wtb_scene_evaluate_incremental,
-    ocean_wtb_scene_remove_box, ocean_wtb_scene_reset_coverage,
-    ocean_wtb_scene_set_budget_explicit, ocean_wtb_scene_set_budget_seconds,
-    ocean_wtb_scene_set_budget_unlimited, ocean_wtb_scene_set_effects, ocean_wtb_scene_set_terrain,
-    ocean_wtb_scene_update_box, ocean_wtb_wind_desc_default,
+    OceanBeach, OceanBoxDesc, OceanDVec2, OceanDVec3, OceanEffects, OceanFrameStats,
+    OceanIrregular, OceanNoise, OceanRefraction, OceanWaterGridDesc, OceanWindDesc, OceanWtbScene,
+    ocean_wtb_box_desc_default, ocean_wtb_effects_default, ocean_wtb_scene_add_box,
+    ocean_wtb_scene_box_count, ocean_wtb_scene_create, ocean_wtb_scene_destroy,
+    ocean_wtb_scene_evaluate, ocean_wtb_scene_evaluate_incremental, ocean_wtb_scene_remove_box,
+    ocean_wtb_scene_reset_coverage, ocean_wtb_scene_set_budget_explicit,
+    ocean_wtb_scene_set_budget_seconds, ocean_wtb_scene_set_budget_unlimited,
+    ocean_wtb_scene_set_effects, ocean_wtb_scene_set_terrain, ocean_wtb_scene_update_box,
+    ocean_wtb_wind_desc_default,
 };
 pub use wtb_query::{
     OceanDrawnSample, OceanHeightSample, ocean_wtb_scene_heights_continuous,

@@ -2,10 +2,9 @@
 //! spreading) sampled into trochoids, its statistics, the slope variance a pixel does not
 //! resolve (Eq. 4) and the pixel footprint it is filtered on.
 
-use glam::{DMat4, DVec2};
+use glam::DVec2;
 use ocean_brdf::surface::pixel_footprint;
 use ocean_brdf::{Filter, SlopeVariance, Spectrum, SpectrumParams};
-use ocean_core::camera::{Camera, CameraError, DepthConvention, Far, Projection};
 use ocean_core::{Depth, WaveDesc};
 
 use crate::boundary::{
@@ -13,9 +12,10 @@ use crate::boundary::{
 };
 use crate::lighting::brdf_error;
 
+use crate::camera::{OceanCamera, read_camera};
 use crate::status::{Error, OceanStatus, guard};
 use crate::waves::OceanWaveDesc;
-use crate::wtb::{OceanDVec2, OceanDepthConvention};
+use crate::wtb::OceanDVec2;
 
 /// N_min of the paper's filter (section 7.1): a wave starts to appear in the normals (or the
 /// geometry) once its wavelength spans this many pixels (or grid cells).
@@ -78,44 +78,6 @@ impl OceanSlopeVariance {
             sigma_y2: v.y,
         }
     }
-}
-
-/// A camera for `ocean_pixel_footprint`: a view matrix, a projection described by its
-/// parameters, and a depth convention.
-///
-/// Perspective (`orthographic` = 0): `fov_y` in (0, pi) radians, `aspect` = width / height
-/// and positive, 0 < `z_near` < `z_far`, with `z_far` = `INFINITY` for an infinite far plane;
-/// the orthographic members are ignored. Orthographic (`orthographic` = 1): the view-space box
-/// [left, right] x [bottom, top] x [z_near, z_far] (distances along -z; `z_near` may be <= 0),
-/// all finite, left < right, bottom < top, z_near < z_far; `fov_y` and `aspect` are ignored.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct OceanCameraDesc {
-    /// World-to-view matrix, column-major (GLM's layout: `glm::value_ptr` of a `glm::dmat4`,
-    /// element [4 * column + row]), right-handed, the camera looking down its -z axis. Every
-    /// element finite, the matrix invertible.
-    pub view: [f64; 16],
-    /// 0: perspective; 1: orthographic. Other values are refused.
-    pub orthographic: u32,
-    /// An `OceanDepthConvention` value (other values are refused). The footprint does not
-    /// depend on it; it only has to describe the projection consistently.
-    pub depth_convention: u32,
-    /// Perspective: vertical field of view, radians.
-    pub fov_y: f64,
-    /// Perspective: viewport width / height.
-    pub aspect: f64,
-    /// Orthographic: view-space x of the left edge, metres.
-    pub left: f64,
-    /// Orthographic: view-space x of the right edge, metres.
-    pub right: f64,
-    /// Orthographic: view-space y of the bottom edge, metres.
-    pub bottom: f64,
-    /// Orthographic: view-space y of the top edge, metres.
-    pub top: f64,
-    /// Near-plane distance, metres.
-    pub z_near: f64,
-    /// Far-plane distance, metres (perspective: `INFINITY` for none).
-    pub z_far: f64,
 }
 
 /// A sampled wave spectrum (opaque): its trochoids and statistics. Create with
@@ -535,91 +497,6 @@ pub unsafe extern "C" fn ocean_spectrum_slope_variance(
     })
 }
 
-fn depth_from(v: u32) -> Result<DepthConvention, Error> {
-    const Z01: u32 = OceanDepthConvention::ZeroToOne as u32;
-    const Z01R: u32 = OceanDepthConvention::ZeroToOneReversed as u32;
-    const N11: u32 = OceanDepthConvention::NegOneToOne as u32;
-    match v {
-        Z01 => Ok(DepthConvention::ZERO_TO_ONE),
-        Z01R => Ok(DepthConvention::ZERO_TO_ONE_REVERSED),
-        N11 => Ok(DepthConvention::NEG_ONE_TO_ONE),
-        _ => Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!("camera->depth_convention = {v} is not an OceanDepthConvention (0, 1 or 2)"),
-        )),
-    }
-}
-
-fn camera_error(e: CameraError) -> Error {
-    let status = match e {
-        CameraError::NotFinite { .. } => OceanStatus::NonFinite,
-        _ => OceanStatus::InvalidArgument,
-    };
-    Error::new(status, format!("camera: {e}"))
-}
-
-pub(crate) fn camera_from(c: &OceanCameraDesc) -> Result<Camera, Error> {
-    if let Some(k) = c.view.iter().position(|v| !v.is_finite()) {
-        return Err(Error::new(
-            OceanStatus::NonFinite,
-            format!("camera->view[{k}] = {} is not finite", c.view[k]),
-        ));
-    }
-    let depth = depth_from(c.depth_convention)?;
-    let projection = match c.orthographic {
-        0 => {
-            check_finite(
-                "camera->",
-                &[
-                    ("fov_y", c.fov_y),
-                    ("aspect", c.aspect),
-                    ("z_near", c.z_near),
-                ],
-            )?;
-            let far = if c.z_far == f64::INFINITY {
-                Far::Infinite
-            } else {
-                check_finite("camera->", &[("z_far (or INFINITY)", c.z_far)])?;
-                Far::Finite(c.z_far)
-            };
-            Projection::Perspective {
-                fov_y: c.fov_y,
-                aspect: c.aspect,
-                near: c.z_near,
-                far,
-            }
-        }
-        1 => {
-            check_finite(
-                "camera->",
-                &[
-                    ("left", c.left),
-                    ("right", c.right),
-                    ("bottom", c.bottom),
-                    ("top", c.top),
-                    ("z_near", c.z_near),
-                    ("z_far", c.z_far),
-                ],
-            )?;
-            Projection::Orthographic {
-                left: c.left,
-                right: c.right,
-                bottom: c.bottom,
-                top: c.top,
-                near: c.z_near,
-                far: c.z_far,
-            }
-        }
-        v => {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!("camera->orthographic must be 0 or 1, got {v}"),
-            ));
-        }
-    };
-    Camera::new(DMat4::from_cols_array(&c.view), projection, depth).map_err(camera_error)
-}
-
 /// The largest `max_distance` of `ocean_pixel_footprint`, metres: beyond the Moon's orbit,
 /// and far enough below `DBL_MAX` that the footprint (a length between two hits this far
 /// away) cannot overflow; at 1e154 m it did.
@@ -640,18 +517,18 @@ const MAX_FOOTPRINT_DISTANCE: f64 = 1e12;
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
 /// `OCEAN_STATUS_EMPTY` if `width` or `height` is 0, `OCEAN_STATUS_NON_FINITE` for a NaN or
 /// infinite argument or camera member (the message names it), `OCEAN_STATUS_INVALID_ARGUMENT`
-/// for a camera out of its documented ranges (see `OceanCameraDesc`), `max_distance` outside
+/// for a camera out of its documented ranges (see `OceanCamera`), `max_distance` outside
 /// (0, 1e12], or a
 /// pixel whose rays do not start above the sea (the camera at or below y = 0). `*out` is
 /// written only on success.
 ///
 /// # Safety
 ///
-/// `camera` must point to a readable `OceanCameraDesc` and `out` be writable.
+/// `camera` must point to a readable `OceanCamera` and `out` be writable.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn ocean_pixel_footprint(
-    camera: *const OceanCameraDesc,
+    camera: *const OceanCamera,
     width: u32,
     height: u32,
     px: f64,
@@ -660,8 +537,7 @@ pub unsafe extern "C" fn ocean_pixel_footprint(
     out: *mut f64,
 ) -> OceanStatus {
     guard("ocean_pixel_footprint", || {
-        // SAFETY: forwarded from this function's contract.
-        let c = unsafe { read_in(camera, "camera") }?;
+        check_ptr(camera, "camera")?;
         check_ptr(out.cast_const(), "out")?;
         if width == 0 || height == 0 {
             return Err(Error::new(
@@ -683,7 +559,8 @@ pub unsafe extern "C" fn ocean_pixel_footprint(
                 ),
             ));
         }
-        let cam = camera_from(&c)?;
+        // SAFETY: forwarded from this function's contract.
+        let cam = unsafe { read_camera(camera) }?;
         let l = pixel_footprint(
             &cam,
             f64::from(width),
@@ -831,16 +708,19 @@ mod tests {
             glam::DVec3::Z,
         )
         .unwrap();
-        let cam = OceanCameraDesc {
-            view: view.to_cols_array(),
-            orthographic: 0,
-            depth_convention: OceanDepthConvention::NegOneToOne as u32,
-            fov_y: 1.0,
-            aspect: 2.0,
-            z_near: 0.1,
-            z_far: f64::INFINITY,
-            ..Default::default()
-        };
+        let cam = OceanCamera::from_camera(
+            &ocean_core::Camera::new(
+                view,
+                ocean_core::Projection::Perspective {
+                    fov_y: 1.0,
+                    aspect: 2.0,
+                    near: 0.1,
+                    far: ocean_core::Far::Infinite,
+                },
+                ocean_core::camera::DepthConvention::NEG_ONE_TO_ONE,
+            )
+            .unwrap(),
+        );
         let mut l = 0.0;
         // SAFETY: valid pointers.
         let st = unsafe { ocean_pixel_footprint(&cam, 200, 100, 100.0, 50.0, 1e4, &mut l) };

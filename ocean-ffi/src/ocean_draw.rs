@@ -16,10 +16,9 @@ use crate::boundary::{
     borrow, byte_len, check_finite, check_ptr, check_sized, check_time, read_in, write_block,
     write_out,
 };
+use crate::camera::{OceanCamera, read_camera};
 use crate::lighting::{OceanLighting, brdf_error};
-use crate::lighting_spectrum::{
-    OCEAN_FILTER_N_MAX, OCEAN_FILTER_N_MIN, OceanCameraDesc, OceanSpectrum, camera_from,
-};
+use crate::lighting_spectrum::{OCEAN_FILTER_N_MAX, OCEAN_FILTER_N_MIN, OceanSpectrum};
 use crate::status::{Error, OceanStatus, guard};
 use crate::waves_domain::Reach;
 use crate::wtb::{OceanWaterGridDesc, water_grid};
@@ -142,8 +141,8 @@ fn params_from(p: &OceanSurfaceDrawParams) -> Result<(OceanOptions, Filter), Err
 /// and `n_max` (their texture: `ocean_surface_wave_texels` for the same camera and time), the
 /// Sun, sky and sea of `lighting`, and, when `mesh` is not NULL, the water mesh that `mesh_vs`
 /// draws (a wave train box scene's grid: pass the `OceanWaterGridDesc` it was created with).
-/// The camera is the one of `ocean_pixel_footprint`, above the sea (eye y > 0); its
-/// `aspect` should be width / height. Positions in the block are relative to the camera's eye
+/// `camera` is an `OceanCamera` above the sea (eye y > 0); its projection's aspect P11/P00
+/// should be width / height. Positions in the block are relative to the camera's eye
 /// (subtracted here in double precision, with the waves' phases reduced per frame), so a sea
 /// far from the world origin does not jitter.
 ///
@@ -200,7 +199,7 @@ fn params_from(p: &OceanSurfaceDrawParams) -> Result<(OceanOptions, Filter), Err
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn ocean_surface_uniforms(
-    camera: *const OceanCameraDesc,
+    camera: *const OceanCamera,
     spectrum: *const OceanSpectrum,
     lighting: *const OceanLighting,
     params: *const OceanSurfaceDrawParams,
@@ -222,7 +221,7 @@ pub unsafe extern "C" fn ocean_surface_uniforms(
         }
         check_sized(out.cast_const(), "out", len, needed.cast_const())?;
         // SAFETY: forwarded from this function's contract.
-        let camera = camera_from(&unsafe { read_in(camera, "camera") }?)?;
+        let camera = unsafe { read_camera(camera) }?;
         // SAFETY: forwarded from this function's contract.
         let (options, filter) = params_from(&unsafe { read_in(params, "params") }?)?;
         let mesh = if mesh.is_null() {
@@ -289,7 +288,7 @@ pub unsafe extern "C" fn ocean_surface_uniforms(
 /// floats that no other thread touches during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_surface_wave_texels(
-    camera: *const OceanCameraDesc,
+    camera: *const OceanCamera,
     spectrum: *const OceanSpectrum,
     time: f64,
     out: *mut f32,
@@ -301,7 +300,7 @@ pub unsafe extern "C" fn ocean_surface_wave_texels(
         check_ptr(out.cast_const(), "out")?;
         byte_len::<f32>(len, "out")?;
         // SAFETY: forwarded from this function's contract.
-        let camera = camera_from(&unsafe { read_in(camera, "camera") }?)?;
+        let camera = unsafe { read_camera(camera) }?;
         check_time(time)?;
         Reach::of_spectrum(&s.spectrum)?.check_time(time)?;
         // The filter only orders the waves (longest first), the same for every filter.
@@ -371,28 +370,34 @@ mod tests {
     use ocean_core::Camera;
 
     use super::*;
-    use crate::wtb::OceanDepthConvention;
+    use ocean_core::camera::DepthConvention;
 
     use crate::status::last_error;
 
     /// An OpenGL camera 6 m above the sea, 100 km and 40 km from the origin, looking ahead
     /// and down.
-    fn camera() -> (OceanCameraDesc, Camera) {
+    fn camera() -> (OceanCamera, Camera) {
         let eye = DVec3::new(1.0e5 + 2.0, 6.0, -4.0e4);
         let view =
             ocean_core::camera::look_at(eye, eye + DVec3::new(0.0, -1.0, -8.0), DVec3::Y).unwrap();
-        let desc = OceanCameraDesc {
-            view: view.to_cols_array(),
-            orthographic: 0,
-            depth_convention: OceanDepthConvention::NegOneToOne as u32,
+        let projection = ocean_core::Projection::Perspective {
             fov_y: 0.9,
             aspect: 1.5,
-            z_near: 0.1,
-            z_far: 2000.0,
-            ..Default::default()
+            near: 0.1,
+            far: ocean_core::Far::Finite(2000.0),
         };
-        let camera = camera_from(&desc).unwrap();
+        let made = Camera::new(view, projection, DepthConvention::NEG_ONE_TO_ONE).unwrap();
+        let desc = OceanCamera::from_camera(&made);
+        // What the library reads back from the C layout (its matrices are made from the
+        // parameters again).
+        let camera = crate::camera::camera_from(&desc).unwrap();
         (desc, camera)
+    }
+
+    /// A camera whose projection mirrors x: refused.
+    fn mirrored(mut c: OceanCamera) -> OceanCamera {
+        c.projection[0] = -c.projection[0];
+        c
     }
 
     /// A registered spectrum and lighting of the default parameters (never destroyed: the
@@ -596,7 +601,7 @@ mod tests {
         let (spectrum, lighting) = handles();
         let good = default_params();
         let m = mesh();
-        let call = |desc: &OceanCameraDesc,
+        let call = |desc: &OceanCamera,
                     p: &OceanSurfaceDrawParams,
                     m: *const OceanWaterGridDesc,
                     time: f64,
@@ -636,7 +641,7 @@ mod tests {
             let eye = DVec3::new(0.0, -1.0, 0.0);
             let view =
                 ocean_core::camera::look_at(eye, DVec3::new(0.0, -1.0, -5.0), DVec3::Y).unwrap();
-            OceanCameraDesc {
+            OceanCamera {
                 view: view.to_cols_array(),
                 ..desc
             }
@@ -665,14 +670,7 @@ mod tests {
             (
                 OceanStatus::InvalidArgument,
                 "camera",
-                call(
-                    &OceanCameraDesc { fov_y: 4.0, ..desc },
-                    &good,
-                    &m,
-                    0.0,
-                    (8, 8),
-                    352,
-                ),
+                call(&mirrored(desc), &good, &m, 0.0, (8, 8), 352),
             ),
             (
                 OceanStatus::InvalidArgument,

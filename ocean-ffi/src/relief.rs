@@ -21,7 +21,7 @@ use ocean_relief::{
 use crate::boundary::{
     borrow, check_len, check_ptr, destroy, input, read_in, write_handle, write_out, write_slice,
 };
-use crate::sao_camera::camera_status;
+use crate::camera::camera_status;
 use crate::status::{Error, OceanStatus, guard};
 
 /// `edge`: the texture tiles (sampler addressing *repeat*).

@@ -14,8 +14,8 @@ use ocean_relief::gpu_params::ReliefUniforms;
 use crate::boundary::{
     check_finite, check_flag, check_ptr, check_sized, read_in, write_block, write_out,
 };
+use crate::camera::{OceanCamera, read_camera};
 use crate::lighting::{OceanIrradiance, finite_dvec3};
-use crate::lighting_spectrum::{OceanCameraDesc, camera_from};
 use crate::relief::edge_from;
 use crate::relief_trace::{OceanReliefMethod, method_from};
 use crate::status::{Error, OceanStatus, guard};
@@ -229,7 +229,7 @@ pub unsafe extern "C" fn ocean_relief_scene_default(out: *mut OceanReliefScene) 
 /// other thread touches during the call, and `needed` writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_uniforms(
-    camera: *const OceanCameraDesc,
+    camera: *const OceanCamera,
     scene: *const OceanReliefScene,
     size: u32,
     edge: u32,
@@ -244,7 +244,7 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
         check_ptr(scene, "scene")?;
         check_sized(out.cast_const(), "out", len, needed.cast_const())?;
         // SAFETY: forwarded from this function's contract.
-        let camera = camera_from(&unsafe { read_in(camera, "camera") }?)?;
+        let camera = unsafe { read_camera(camera) }?;
         // SAFETY: forwarded from this function's contract.
         let scene = scene_from(&unsafe { read_in(scene, "scene") }?)?;
         let edge = edge_from(edge)?;
@@ -272,7 +272,7 @@ mod tests {
 
     use super::*;
     use crate::relief_trace::OCEAN_RELIEF_METHOD_LINEAR;
-    use crate::wtb::OceanDepthConvention;
+    use ocean_core::camera::DepthConvention;
 
     use crate::status::last_error;
 
@@ -293,21 +293,20 @@ mod tests {
 
     /// A camera 3 m above and 2 m beside a quad far from the origin, looking at it, in OpenGL's
     /// depth convention (the block folds it into WebGPU's).
-    fn camera() -> (OceanCameraDesc, Camera) {
+    fn camera() -> (OceanCamera, Camera) {
         let eye = DVec3::new(1.0e5 + 2.0, 3.0, -4.0e4);
         let view =
             ocean_core::camera::look_at(eye, DVec3::new(1.0e5, 0.0, -4.0e4), DVec3::Y).unwrap();
-        let desc = OceanCameraDesc {
-            view: view.to_cols_array(),
-            orthographic: 0,
-            depth_convention: OceanDepthConvention::NegOneToOne as u32,
+        let projection = ocean_core::Projection::Perspective {
             fov_y: 0.9,
             aspect: 1.5,
-            z_near: 0.05,
-            z_far: 500.0,
-            ..Default::default()
+            near: 0.05,
+            far: ocean_core::Far::Finite(500.0),
         };
-        let camera = camera_from(&desc).unwrap();
+        let made = Camera::new(view, projection, DepthConvention::NEG_ONE_TO_ONE).unwrap();
+        let desc = OceanCamera::from_camera(&made);
+        // What the library reads back from the C layout.
+        let camera = crate::camera::camera_from(&desc).unwrap();
         (desc, camera)
     }
 
@@ -423,7 +422,7 @@ mod tests {
         let (desc, _) = camera();
         let good = scene();
         let call_levels =
-            |desc: &OceanCameraDesc, s: &OceanReliefScene, size, edge, levels, srgb, len| {
+            |desc: &OceanCamera, s: &OceanReliefScene, size, edge, levels, srgb, len| {
                 let mut out = [7u8; 500];
                 // SAFETY: readable inputs, `out` holds at least `len` writable bytes.
                 let status = unsafe {
@@ -442,7 +441,7 @@ mod tests {
                 assert!(out.iter().all(|&b| b == 7), "written on failure");
                 (status, last_error())
             };
-        let call = |desc: &OceanCameraDesc, s: &OceanReliefScene, size, edge, srgb, len| {
+        let call = |desc: &OceanCamera, s: &OceanReliefScene, size, edge, srgb, len| {
             call_levels(desc, s, size, edge, 1, srgb, len)
         };
         let with = |f: &dyn Fn(&mut OceanReliefScene)| {
@@ -548,7 +547,14 @@ mod tests {
                 OceanStatus::InvalidArgument,
                 "camera",
                 call(
-                    &OceanCameraDesc { fov_y: 4.0, ..desc },
+                    &OceanCamera {
+                        projection: {
+                            let mut p = desc.projection;
+                            p[0] = -p[0];
+                            p
+                        },
+                        ..desc
+                    },
                     &good,
                     64,
                     0,

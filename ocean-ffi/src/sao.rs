@@ -1,11 +1,10 @@
 //! Scalable Ambient Obscurance (crate `ocean-sao`; McGuire, Mara & Luebke, HPG 2012), part 2 of
 //! 2: the parameters, the `OceanSao` handle and the passes on a caller's depth buffer. The
-//! camera is read from a projection matrix in `sao_camera.rs`.
+//! camera is the library's `OceanCamera` (`camera.rs`), of which SAO reads the projection; what
+//! the depth buffer holds is in `sao_depth.rs`.
 //!
 //! This is the CPU reference: every pass in the arithmetic its GPU twin follows, for tools,
 //! tests and engines that render AO offline or check their own shader against it.
-
-use core::mem::{align_of, size_of};
 
 use ocean_core::camera::{Far, Projection};
 use ocean_sao::{
@@ -17,7 +16,8 @@ use crate::boundary::{
     borrow, byte_len, check_disjoint, check_flag, check_ptr, destroy, read_in, write_handle,
     write_out,
 };
-use crate::sao_camera::{OceanSaoCamera, camera_status, sao_camera_from};
+use crate::camera::{OceanCamera, camera_status, read_camera};
+use crate::sao_depth::source_from;
 use crate::status::{Error, OceanStatus, guard};
 
 /// `OceanSaoParams::mip_filter`: rotated grid subsampling (Table 1), the paper's choice: every
@@ -440,9 +440,13 @@ pub unsafe extern "C" fn ocean_sao_params_default(out: *mut OceanSaoParams) -> O
 /// (input_width - 2 guard) x (input_height - 2 guard) pixels. Any guard band is accepted and
 /// gives the interior an aligned one gives: the z MIP levels are anchored at guard modulo
 /// 2^max_mip (the uniform block of `ocean_sao_uniforms` carries the anchor to the GPU passes).
-/// `camera` describes the projection of the whole input, guard band included (see
-/// `OceanSaoCamera`); `params` the passes (see `OceanSaoParams`). Both are copied; neither is
-/// retained.
+/// `camera` is the camera that rendered the whole input, guard band included (see
+/// `OceanCamera`): SAO works in view space and reads only its projection, whose aspect
+/// P11/P00 is that of the input's pixels (it need not equal width/height: non-square pixels are
+/// allowed). Mirrored or y-flipped projections are refused: image rows already run top-down
+/// (see `ocean_sao_run`). `depth_source` says what the depth buffer holds:
+/// `OCEAN_SAO_DEPTH_WINDOW` or `OCEAN_SAO_DEPTH_NDC`. `params` are the passes (see
+/// `OceanSaoParams`). Both structs are copied; neither is retained.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
 /// `OCEAN_STATUS_EMPTY` if `input_width` or `input_height` is 0, `OCEAN_STATUS_NON_FINITE` for
@@ -461,13 +465,13 @@ pub unsafe extern "C" fn ocean_sao_create(
     input_width: u32,
     input_height: u32,
     guard: u32,
-    camera: *const OceanSaoCamera,
+    camera: *const OceanCamera,
+    depth_source: u32,
     params: *const OceanSaoParams,
     out: *mut *mut OceanSao,
 ) -> OceanStatus {
     self::guard("ocean_sao_create", || {
-        // SAFETY: forwarded from this function's contract.
-        let camera = unsafe { read_in(camera, "camera") }?;
+        check_ptr(camera, "camera")?;
         // SAFETY: forwarded from this function's contract.
         let params = unsafe { read_in(params, "params") }?;
         check_ptr(out.cast_const(), "out")?;
@@ -477,20 +481,17 @@ pub unsafe extern "C" fn ocean_sao_create(
                 format!("the depth buffer is {input_width} x {input_height} pixels: empty"),
             ));
         }
-        let camera = sao_camera_from(&camera)?;
+        // SAFETY: forwarded from this function's contract.
+        let camera = unsafe { read_camera(camera) }?;
+        let source = source_from(depth_source)?;
         let params = params_from(&params)?;
         let viewport = Viewport::new(input_width as usize, input_height as usize, guard as usize)?;
-        let sao = Sao::new(
-            &camera.projection,
-            camera.convention,
-            camera.source,
-            viewport,
-            params,
-        )
-        .map_err(|e| sao_error("camera: ", e))?;
-        let orthographic = matches!(camera.projection, Projection::Orthographic { .. });
-        let near = camera.projection.near();
-        let far = match camera.projection.far() {
+        let projection = camera.projection();
+        let sao = Sao::new(&projection, camera.depth(), source, viewport, params)
+            .map_err(|e| sao_error("camera: ", e))?;
+        let orthographic = matches!(projection, Projection::Orthographic { .. });
+        let near = projection.near();
+        let far = match projection.far() {
             Far::Finite(f) => f,
             Far::Infinite => f64::INFINITY,
         };
@@ -726,8 +727,6 @@ pub unsafe extern "C" fn ocean_sao_view_z(
         Ok(())
     })
 }
-
-const _: () = assert!(size_of::<OceanSaoCamera>() == 72 && align_of::<OceanSaoCamera>() == 4);
 
 #[cfg(test)]
 #[path = "sao_tests.rs"]

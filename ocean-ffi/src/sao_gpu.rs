@@ -198,12 +198,13 @@ mod tests {
     use ocean_sao::scene::{AnalyticView, DepthFormat};
 
     use super::*;
+    use crate::camera::OceanCamera;
+    use crate::camera::OceanDepthConvention;
     use crate::gpu::{ocean_gpu_context_create, ocean_gpu_context_destroy};
     use crate::sao::{
         ocean_sao_create, ocean_sao_destroy, ocean_sao_params_default, ocean_sao_run,
     };
-    use crate::sao_camera::{OCEAN_SAO_DEPTH_WINDOW, OceanSaoCamera};
-    use crate::wtb::OceanDepthConvention;
+    use crate::sao_depth::OCEAN_SAO_DEPTH_WINDOW;
 
     const W: u32 = 96;
     const H: u32 = 64;
@@ -251,10 +252,15 @@ mod tests {
             )
             .unwrap()
             .depth;
-        let sao_camera = OceanSaoCamera {
-            projection: camera.projection_matrix().unwrap().to_cols_array(),
+        let sao_camera = OceanCamera {
+            view: glam::DMat4::IDENTITY.to_cols_array(),
+            projection: camera
+                .projection_matrix()
+                .unwrap()
+                .to_cols_array()
+                .map(f64::from),
             depth_convention: OceanDepthConvention::ZeroToOneReversed as u32,
-            depth_source: OCEAN_SAO_DEPTH_WINDOW,
+            reserved: 0,
         };
         let mut params = core::mem::MaybeUninit::uninit();
         // SAFETY: writable out.
@@ -264,7 +270,17 @@ mod tests {
         let params = unsafe { params.assume_init() };
         let mut sao = null_mut();
         // SAFETY: valid pointers.
-        let status = unsafe { ocean_sao_create(W, H, G, &sao_camera, &params, &mut sao) };
+        let status = unsafe {
+            ocean_sao_create(
+                W,
+                H,
+                G,
+                &sao_camera,
+                OCEAN_SAO_DEPTH_WINDOW,
+                &params,
+                &mut sao,
+            )
+        };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
         let mut gpu = null_mut();
         // SAFETY: live context, writable out.

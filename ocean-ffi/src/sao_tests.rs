@@ -9,8 +9,8 @@ use ocean_sao::scene::{AnalyticView, DepthFormat};
 use ocean_sao::{DepthSource, Estimator, MipFilter, NormalRejection, Sao, SaoError, SaoParams};
 
 use super::*;
-use crate::sao_camera::{OCEAN_SAO_DEPTH_NDC, OCEAN_SAO_DEPTH_WINDOW, projection_from_matrix};
-use crate::wtb::OceanDepthConvention;
+use crate::camera::{OceanCamera, OceanDepthConvention, projection_from_matrix};
+use crate::sao_depth::{OCEAN_SAO_DEPTH_NDC, OCEAN_SAO_DEPTH_WINDOW};
 
 /// Input 72 x 56 with an 8 px guard band: output 56 x 40.
 const W: u32 = 72;
@@ -43,10 +43,23 @@ fn source_value(s: DepthSource) -> u32 {
     }
 }
 
-fn sao_camera(p: Projection, c: DepthConvention, s: DepthSource) -> OceanSaoCamera {
-    OceanSaoCamera {
-        projection: p.matrix(c).unwrap().to_cols_array(),
-        depth_convention: convention_value(c),
+/// What `ocean_sao_create` takes of the camera, as these tests vary it: the `OceanCamera` (the
+/// identity view: SAO reads only the projection) and what the depth buffer holds.
+#[derive(Clone, Copy, Debug)]
+struct SaoCamera {
+    camera: OceanCamera,
+    depth_source: u32,
+}
+
+/// The camera of projection `p`, its matrix rounded to `f32` as a renderer's would be.
+fn sao_camera(p: Projection, c: DepthConvention, s: DepthSource) -> SaoCamera {
+    SaoCamera {
+        camera: OceanCamera {
+            view: glam::DMat4::IDENTITY.to_cols_array(),
+            projection: p.matrix(c).unwrap().to_cols_array().map(f64::from),
+            depth_convention: convention_value(c),
+            reserved: 0,
+        },
         depth_source: source_value(s),
     }
 }
@@ -109,10 +122,11 @@ fn custom() -> OceanSaoParams {
     }
 }
 
-fn create(camera: &OceanSaoCamera, params: &OceanSaoParams) -> *mut OceanSao {
+fn create(camera: &SaoCamera, params: &OceanSaoParams) -> *mut OceanSao {
     let mut s = null_mut();
     // SAFETY: valid pointers.
-    let status = unsafe { ocean_sao_create(W, H, G, camera, params, &mut s) };
+    let status =
+        unsafe { ocean_sao_create(W, H, G, &camera.camera, camera.depth_source, params, &mut s) };
     assert_eq!(status, OceanStatus::Ok, "{}", last_error());
     assert!(!s.is_null());
     s
@@ -193,7 +207,7 @@ fn run_and_view_z_match_the_crate_bit_for_bit() {
             for s in [DepthSource::Window, DepthSource::Ndc] {
                 let depth = crease_depth(p, c, s);
                 let camera = sao_camera(p, c, s);
-                let read = projection_from_matrix(&camera.projection, c).unwrap();
+                let read = projection_from_matrix(&camera.camera.projection, c).unwrap();
                 let viewport = Viewport::new(W as usize, H as usize, G as usize).unwrap();
                 for params in [defaults(), custom()] {
                     let core_params = params_from(&params).unwrap();
@@ -258,7 +272,7 @@ fn describe_reports_sizes_planes_and_constants() {
         // SAFETY: live handle, writable out.
         let status = unsafe { ocean_sao_describe(handle, &mut info) };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
-        let read = projection_from_matrix(&camera.projection, c).unwrap();
+        let read = projection_from_matrix(&camera.camera.projection, c).unwrap();
         let sao = Sao::new(
             &read,
             c,
@@ -404,10 +418,10 @@ fn create_refuses_bad_arguments_and_leaves_out_untouched() {
     );
     let params = defaults();
     let sentinel = 0x10usize as *mut OceanSao;
-    let attempt = |w: u32, h: u32, g: u32, c: &OceanSaoCamera, p: &OceanSaoParams| {
+    let attempt = |w: u32, h: u32, g: u32, c: &SaoCamera, p: &OceanSaoParams| {
         let mut out = sentinel;
         // SAFETY: valid pointers.
-        let status = unsafe { ocean_sao_create(w, h, g, c, p, &mut out) };
+        let status = unsafe { ocean_sao_create(w, h, g, &c.camera, c.depth_source, p, &mut out) };
         if status == OceanStatus::Ok {
             ocean_sao_destroy(out);
         } else {
@@ -417,22 +431,14 @@ fn create_refuses_bad_arguments_and_leaves_out_untouched() {
     };
     let with_matrix = |k: usize, v: f32| {
         let mut c = camera;
-        c.projection[k] = v;
+        c.camera.projection[k] = f64::from(v);
         c
     };
     let mut huge = camera;
     // A valid projection (fov_y = 2e-38 rad) whose Eq. 5 constant S' = h P11 / 2 overflows f32.
-    huge.projection[0] = 7.5e37;
-    huge.projection[5] = 1.0e38;
-    let cases: Vec<(
-        u32,
-        u32,
-        u32,
-        OceanSaoCamera,
-        OceanSaoParams,
-        OceanStatus,
-        &str,
-    )> = vec![
+    huge.camera.projection[0] = 7.5e37;
+    huge.camera.projection[5] = 1.0e38;
+    let cases: Vec<(u32, u32, u32, SaoCamera, OceanSaoParams, OceanStatus, &str)> = vec![
         (0, H, G, camera, params, OceanStatus::Empty, "empty"),
         (W, 0, G, camera, params, OceanStatus::Empty, "empty"),
         (
@@ -502,8 +508,11 @@ fn create_refuses_bad_arguments_and_leaves_out_untouched() {
             W,
             H,
             G,
-            OceanSaoCamera {
-                depth_convention: 7,
+            SaoCamera {
+                camera: OceanCamera {
+                    depth_convention: 7,
+                    ..camera.camera
+                },
                 ..camera
             },
             params,
@@ -653,21 +662,21 @@ fn create_refuses_bad_arguments_and_leaves_out_untouched() {
     // SAFETY: refused before any access.
     unsafe {
         assert_eq!(
-            ocean_sao_create(W, H, G, null(), &params, &mut out),
+            ocean_sao_create(W, H, G, null(), 0, &params, &mut out),
             OceanStatus::NullPointer
         );
         assert_eq!(
-            ocean_sao_create(W, H, G, &camera, null(), &mut out),
+            ocean_sao_create(W, H, G, &camera.camera, 0, null(), &mut out),
             OceanStatus::NullPointer
         );
         assert_eq!(
-            ocean_sao_create(W, H, G, &camera, &params, null_mut()),
+            ocean_sao_create(W, H, G, &camera.camera, 0, &params, null_mut()),
             OceanStatus::NullPointer
         );
         let storage = [0u64; 16];
         let bad = storage.as_ptr().cast::<u8>().wrapping_add(2);
         assert_eq!(
-            ocean_sao_create(W, H, G, bad.cast(), &params, &mut out),
+            ocean_sao_create(W, H, G, bad.cast(), 0, &params, &mut out),
             OceanStatus::MisalignedPointer
         );
         assert_eq!(

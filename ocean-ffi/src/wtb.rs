@@ -5,8 +5,7 @@
 use core::mem::size_of;
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
-use glam::{DVec2, Mat4, Vec3};
-use ocean_core::camera::DepthConvention;
+use glam::{DVec2, Vec3};
 use ocean_core::frustum::{Frustum, FrustumError};
 use ocean_core::{WaveDesc, WaveError};
 use ocean_wtb::budget::{Budget, Selection};
@@ -19,6 +18,7 @@ use crate::boundary::{
     borrow, byte_len, check_disjoint, check_finite, check_flag, check_ptr, check_reserved,
     check_time, destroy, write_handle, write_out,
 };
+use crate::camera::{OceanCamera, read_camera};
 use crate::status::{Error, OceanStatus, guard};
 use crate::waves::{OceanVec3, OceanWaveDesc, eval_error, wave_desc_in, wave_error};
 
@@ -237,19 +237,6 @@ pub struct OceanEffects {
     pub noise: OceanNoise,
     /// Beach adjustments.
     pub beach: OceanBeach,
-}
-
-/// Depth convention of a view-projection matrix, for `ocean_wtb_scene_evaluate`.
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum OceanDepthConvention {
-    /// Depth in [0, 1], near at 0: wgpu, Vulkan, D3D, Metal (GLM with
-    /// GLM_FORCE_DEPTH_ZERO_TO_ONE).
-    ZeroToOne = 0,
-    /// Depth in [0, 1], near at 1 (reversed Z).
-    ZeroToOneReversed = 1,
-    /// Depth in [-1, 1], near at -1: OpenGL and GLM's default.
-    NegOneToOne = 2,
 }
 
 /// What one evaluation ran.
@@ -1116,45 +1103,26 @@ pub unsafe extern "C" fn ocean_wtb_scene_set_budget_explicit(
     })
 }
 
-fn depth_convention(v: u32) -> Result<DepthConvention, Error> {
-    match v {
-        0 => Ok(DepthConvention::ZERO_TO_ONE),
-        1 => Ok(DepthConvention::ZERO_TO_ONE_REVERSED),
-        2 => Ok(DepthConvention::NEG_ONE_TO_ONE),
-        _ => Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!("`depth_convention` = {v} is not an OceanDepthConvention (0, 1 or 2)"),
-        )),
-    }
-}
-
-/// The frustum of the caller's matrix, read (copied) before any output is touched.
+/// The frustum of the caller's camera, read (copied) before any output is touched; none for
+/// NULL.
 ///
 /// # Safety
 ///
-/// `m` must be NULL, misaligned, or point to 16 readable floats.
-unsafe fn frustum(m: *const f32, depth: u32) -> Result<Option<Frustum>, Error> {
-    if m.is_null() {
+/// `camera` must be NULL, misaligned, or point to a readable `OceanCamera`.
+unsafe fn frustum(camera: *const OceanCamera) -> Result<Option<Frustum>, Error> {
+    if camera.is_null() {
         return Ok(None);
     }
-    check_ptr(m, "view_projection")?;
-    // SAFETY: non-NULL and 4-aligned (checked), 16 readable floats (caller's guarantee); copied.
-    let a: [f32; 16] = unsafe { m.cast::<[f32; 16]>().read() };
-    if let Some(k) = a.iter().position(|v| !v.is_finite()) {
-        return Err(Error::new(
-            OceanStatus::NonFinite,
-            format!("view_projection[{k}] = {} is not finite", a[k]),
-        ));
-    }
-    let convention = depth_convention(depth)?;
-    Frustum::from_view_projection_f32(Mat4::from_cols_array(&a), convention)
+    // SAFETY: forwarded from this function's contract.
+    let camera = unsafe { read_camera(camera) }?;
+    Frustum::from_view_projection(camera.view_projection_f64(), camera.depth())
         .map(Some)
         .map_err(|e| {
             let status = match e {
                 FrustumError::NotFinite(_) => OceanStatus::NonFinite,
                 _ => OceanStatus::InvalidArgument,
             };
-            Error::new(status, format!("view_projection is not a projection: {e}"))
+            Error::new(status, format!("camera: no frustum: {e}"))
         })
 }
 
@@ -1169,24 +1137,23 @@ unsafe fn frustum(m: *const f32, depth: u32) -> Result<Option<Frustum>, Error> {
 /// behind it), depth (shoaling, refraction), the side smoothing and the enabled effects; grid
 /// points on land stay exactly at rest.
 ///
-/// `view_projection`: NULL for no culling, or 16 floats, column-major (GLM's
-/// layout, `&m[0][0]`), the world-space projection * view matrix, with `depth_convention` an
-/// `OceanDepthConvention` (ignored when NULL). A box whose bounding box (raised by the maximum
-/// heights of all boxes that overlap it) lies wholly outside the frustum is skipped: its
+/// `camera`: NULL for no culling, or the camera the frame is drawn with (`OceanCamera`). A box
+/// whose bounding box (raised by the maximum heights of all boxes that overlap it) lies wholly
+/// outside its frustum is skipped: its
 /// points stay at rest in this frame. Height queries never cull.
 ///
 /// `n` must equal nx * nz. `out_stats`, when not NULL, receives what ran.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
-/// alignment for floats and OceanVec3, 8 for the scene and stats), `OCEAN_STATUS_EMPTY` if `n`
+/// alignment for OceanVec3, 8 for the camera and stats), `OCEAN_STATUS_EMPTY` if `n`
 /// is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanVec3)` exceeds `PTRDIFF_MAX`,
-/// `OCEAN_STATUS_INVALID_ARGUMENT` if `n` != nx * nz, the outputs overlap, `depth_convention`
-/// is unknown or the matrix is not a projection, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite
-/// `time` or matrix element. Nothing is written on failure.
+/// `OCEAN_STATUS_INVALID_ARGUMENT` if `n` != nx * nz, the outputs overlap, or the camera is
+/// not one `OceanCamera` accepts, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or
+/// matrix element. Nothing is written on failure.
 ///
 /// # Safety
 ///
-/// `view_projection` NULL or 16 readable floats, `out_pos` and
+/// `camera` NULL or a readable `OceanCamera`, `out_pos` and
 /// `out_normal` `n` writable `OceanVec3`s each, `out_stats` NULL or writable; no other thread
 /// may touch the buffers during the call.
 #[unsafe(no_mangle)]
@@ -1194,8 +1161,7 @@ unsafe fn frustum(m: *const f32, depth: u32) -> Result<Option<Frustum>, Error> {
 pub unsafe extern "C" fn ocean_wtb_scene_evaluate(
     scene: *mut OceanWtbScene,
     time: f64,
-    view_projection: *const f32,
-    depth_convention: u32,
+    camera: *const OceanCamera,
     out_pos: *mut OceanVec3,
     out_normal: *mut OceanVec3,
     n: usize,
@@ -1208,8 +1174,7 @@ pub unsafe extern "C" fn ocean_wtb_scene_evaluate(
             false,
             scene,
             time,
-            view_projection,
-            depth_convention,
+            camera,
             out_pos,
             out_normal,
             n,
@@ -1237,8 +1202,7 @@ pub unsafe extern "C" fn ocean_wtb_scene_evaluate(
 pub unsafe extern "C" fn ocean_wtb_scene_evaluate_incremental(
     scene: *mut OceanWtbScene,
     time: f64,
-    view_projection: *const f32,
-    depth_convention: u32,
+    camera: *const OceanCamera,
     out_pos: *mut OceanVec3,
     out_normal: *mut OceanVec3,
     n: usize,
@@ -1251,8 +1215,7 @@ pub unsafe extern "C" fn ocean_wtb_scene_evaluate_incremental(
             true,
             scene,
             time,
-            view_projection,
-            depth_convention,
+            camera,
             out_pos,
             out_normal,
             n,
@@ -1289,8 +1252,7 @@ unsafe fn evaluate(
     incremental: bool,
     scene: *mut OceanWtbScene,
     time: f64,
-    view_projection: *const f32,
-    depth_convention: u32,
+    camera: *const OceanCamera,
     out_pos: *mut OceanVec3,
     out_normal: *mut OceanVec3,
     n: usize,
@@ -1299,6 +1261,9 @@ unsafe fn evaluate(
     guard(name, || {
         let scene_handle = borrow(scene, "scene")?;
         let scene = &*scene_handle;
+        if !camera.is_null() {
+            check_ptr(camera, "camera")?;
+        }
         check_ptr(out_pos.cast_const(), "out_pos")?;
         check_ptr(out_normal.cast_const(), "out_normal")?;
         if !out_stats.is_null() {
@@ -1325,7 +1290,7 @@ unsafe fn evaluate(
         }
         check_time(time)?;
         // SAFETY: forwarded from this function's contract.
-        let view = unsafe { frustum(view_projection, depth_convention) }?;
+        let view = unsafe { frustum(camera) }?;
         let mut coverage = scene
             .coverage
             .lock()
@@ -1378,6 +1343,7 @@ unsafe fn evaluate(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use ocean_core::camera::DepthConvention;
     use ocean_wtb::scenarios;
 
     use crate::status::last_error;
@@ -1499,7 +1465,6 @@ mod tests {
                     s,
                     t,
                     core::ptr::null(),
-                    0,
                     pos.as_mut_ptr(),
                     nrm.as_mut_ptr(),
                     n,
@@ -1586,18 +1551,15 @@ mod tests {
             },
             DepthConvention::ZERO_TO_ONE,
         )
-        .unwrap()
-        .view_projection()
         .unwrap();
-        let mut evaluate = |view: Option<&Mat4>| {
-            let m = view.map(|m| m.to_cols_array());
-            // SAFETY: n elements in each buffer, 16 floats or NULL.
+        let away = crate::camera::OceanCamera::from_camera(&away);
+        let mut evaluate = |camera: Option<&crate::camera::OceanCamera>| {
+            // SAFETY: n elements in each buffer, a camera or NULL.
             let st = unsafe {
                 ocean_wtb_scene_evaluate(
                     s,
                     4.5,
-                    m.as_ref().map_or(core::ptr::null(), |m| m.as_ptr()),
-                    OceanDepthConvention::ZeroToOne as u32,
+                    camera.map_or(core::ptr::null(), |c| c as *const _),
                     pos.as_mut_ptr(),
                     nrm.as_mut_ptr(),
                     n,
@@ -1653,21 +1615,17 @@ mod tests {
                 aspect: 1.0,
                 near: 0.1,
                 far: ocean_core::camera::Far::Finite(500.0),
-            }
-            .matrix_f64(DepthConvention::ZERO_TO_ONE)
-            .unwrap();
-            (proj * view).as_mat4().to_cols_array()
+            };
+            OceanCamera::from_camera(
+                &ocean_core::Camera::new(view, proj, DepthConvention::ZERO_TO_ONE).unwrap(),
+            )
         };
         let mut kept = (vec![OceanVec3::default(); n], vec![OceanVec3::default(); n]);
         for (step, culled) in [false, true, true, false, true, false]
             .into_iter()
             .enumerate()
         {
-            let vp = if culled {
-                sky.as_ptr()
-            } else {
-                core::ptr::null()
-            };
+            let vp: *const OceanCamera = if culled { &sky } else { core::ptr::null() };
             let t = 1.0 + step as f64;
             let mut full = (vec![OceanVec3::default(); n], vec![OceanVec3::default(); n]);
             let mut stats = OceanFrameStats::default();
@@ -1678,7 +1636,6 @@ mod tests {
                         s,
                         t,
                         vp,
-                        0,
                         kept.0.as_mut_ptr(),
                         kept.1.as_mut_ptr(),
                         n,
@@ -1688,7 +1645,6 @@ mod tests {
                         s,
                         t,
                         vp,
-                        0,
                         full.0.as_mut_ptr(),
                         full.1.as_mut_ptr(),
                         n,
@@ -1718,8 +1674,7 @@ mod tests {
             ocean_wtb_scene_evaluate_incremental(
                 s,
                 9.0,
-                sky.as_ptr(),
-                0,
+                &sky,
                 kept.0.as_mut_ptr(),
                 kept.1.as_mut_ptr(),
                 n,
@@ -1728,8 +1683,7 @@ mod tests {
             ocean_wtb_scene_evaluate(
                 s,
                 9.0,
-                sky.as_ptr(),
-                0,
+                &sky,
                 full.0.as_mut_ptr(),
                 full.1.as_mut_ptr(),
                 n,
@@ -1755,7 +1709,6 @@ mod tests {
                 s,
                 0.0,
                 core::ptr::null(),
-                0,
                 bad_vec3,
                 good,
                 4096,
@@ -1773,7 +1726,6 @@ mod tests {
                 s,
                 0.0,
                 core::ptr::null(),
-                0,
                 pos.as_mut_ptr(),
                 nrm.as_mut_ptr(),
                 4096,
@@ -1828,7 +1780,6 @@ mod tests {
                 && !check_flag("f", 0).unwrap()
         );
         assert!(refraction_from(3, "r").is_err());
-        assert!(depth_convention(3).is_err());
         // The defaults round-trip through the C layout.
         let d = effects_to(&Effects::default());
         assert_eq!(effects_from(&d, "e").unwrap(), Effects::default());

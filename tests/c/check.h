@@ -11,6 +11,7 @@
 
 #include "ocean.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -63,6 +64,51 @@ static inline int expect_ok(OceanStatus s, const char *what)
           ocean_status_message(s), last_error());
     CHECK(last_error()[0] == '\0', "%s: success left a message: %s", what, last_error());
     return s == OCEAN_STATUS_OK;
+}
+
+/* A symmetric perspective as GLM builds it (glm/ext/matrix_clip_space.inl: perspectiveRH_NO,
+ * perspectiveRH_ZO, infinitePerspectiveRH and their reversed-Z form), column-major, for depth
+ * `convention`; `f` = INFINITY for an infinite far plane. Written here from GLM's formulas, not
+ * taken from the library, so the tests check that it reads such matrices. */
+static inline void check_perspective(double fov_y, double aspect, double n, double f,
+                                     uint32_t convention, double m[16])
+{
+    const double t = tan(fov_y / 2.0);
+    const int infinite = isinf(f);
+    memset(m, 0, 16 * sizeof m[0]);
+    m[0] = 1.0 / (aspect * t);
+    m[5] = 1.0 / t;
+    m[11] = -1.0;
+    if (convention == OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE) {
+        m[10] = infinite ? -1.0 : -(f + n) / (f - n);
+        m[14] = infinite ? -2.0 * n : -(2.0 * f * n) / (f - n);
+    } else if (convention == OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE_REVERSED) {
+        m[10] = infinite ? 0.0 : n / (f - n);
+        m[14] = infinite ? n : (f * n) / (f - n);
+    } else {
+        m[10] = infinite ? -1.0 : f / (n - f);
+        m[14] = infinite ? -n : -(f * n) / (f - n);
+    }
+}
+
+/* A camera at (x, y, z) looking along -z with y up (the view is a translation by -eye), with
+ * the perspective of check_perspective. */
+static inline OceanCamera check_camera_at(double x, double y, double z, double fov_y,
+                                          double aspect, double n, double f,
+                                          uint32_t convention)
+{
+    OceanCamera c;
+    memset(&c, 0, sizeof c);
+    c.view[0] = 1.0;
+    c.view[5] = 1.0;
+    c.view[10] = 1.0;
+    c.view[15] = 1.0;
+    c.view[12] = -x;
+    c.view[13] = -y;
+    c.view[14] = -z;
+    check_perspective(fov_y, aspect, n, f, convention, c.projection);
+    c.depth_convention = convention;
+    return c;
 }
 
 #endif

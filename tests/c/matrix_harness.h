@@ -568,38 +568,21 @@ static inline void plausible_OceanWaterGridDesc(OceanWaterGridDesc *p)
     p->nz = 16;
 }
 
-static inline void plausible_OceanCameraDesc(OceanCameraDesc *p)
+static inline void plausible_OceanCamera(OceanCamera *p)
 {
-    /* The eye 4 m above the sea looking along -z (view = a translation by (0, -4, 0)), 60
-     * degrees, aspect 4:3, near 0.1 m, far 1 km; an orthographic box for the other members. */
+    /* The eye 4 m above the sea looking along -z (view = a translation by (0, -4, 0)), a GL
+     * perspective of 90 degrees, square, near 0.1 m, far 100 m (column-major). */
     int i;
     memset(p, 0, sizeof *p);
     for (i = 0; i < 4; i++)
         p->view[5 * i] = 1.0;
     p->view[13] = -4.0;
-    p->orthographic = 0;
-    p->depth_convention = OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE;
-    p->fov_y = 1.0471975511965976;
-    p->aspect = 4.0 / 3.0;
-    p->left = -1.0;
-    p->right = 1.0;
-    p->bottom = -1.0;
-    p->top = 1.0;
-    p->z_near = 0.1;
-    p->z_far = 1000.0;
-}
-
-static inline void plausible_OceanSaoCamera(OceanSaoCamera *p)
-{
-    /* A GL perspective of 90 degrees, near 0.1, far 100 (column-major), window depth. */
-    memset(p, 0, sizeof *p);
-    p->projection[0] = 1.0f;
-    p->projection[5] = 1.0f;
-    p->projection[10] = -100.1f / 99.9f;
-    p->projection[11] = -1.0f;
-    p->projection[14] = -20.0f / 99.9f;
+    p->projection[0] = 1.0;
+    p->projection[5] = 1.0;
+    p->projection[10] = -100.1 / 99.9;
+    p->projection[11] = -1.0;
+    p->projection[14] = -20.0 / 99.9;
     p->depth_convention = OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE;
-    p->depth_source = OCEAN_SAO_DEPTH_WINDOW;
 }
 
 static inline void plausible_OceanBoxDesc(OceanBoxDesc *p)
@@ -695,25 +678,6 @@ static inline void matrix_fill_u16(unsigned char *buf, size_t n)
     }
 }
 
-/* The scene's view-projection: a GL perspective (90 degrees, square, near 0.1, far 1000) times
- * a view from 10 m up looking along -z, column-major. */
-static inline void matrix_fill_view_projection(unsigned char *buf)
-{
-    float m[16] = {0};
-    const float n = 0.1f, f = 1000.0f;
-    m[0] = 1.0f;
-    m[5] = 1.0f;
-    m[10] = -(f + n) / (f - n);
-    m[11] = -1.0f;
-    m[14] = -2.0f * f * n / (f - n);
-    /* times the translation by (-8, -10, -30): column 3 becomes P * (-8, -10, -30, 1). */
-    m[12] = -8.0f;
-    m[13] = -10.0f;
-    m[14] = m[10] * -30.0f + m[14];
-    m[15] = 30.0f;
-    memcpy(buf, m, sizeof m);
-}
-
 /* ---- progress callbacks --------------------------------------------------------------- */
 
 static int matrix_cookie;
@@ -772,7 +736,7 @@ static inline void *make_OceanWtbScene(void)
     plausible_OceanBoxDesc(&box);
     if (ocean_wtb_scene_add_box(h, &box, NULL, 0, &matrix_box_a) != OCEAN_STATUS_OK ||
         ocean_wtb_scene_add_box(h, &box, NULL, 0, &matrix_box_b) != OCEAN_STATUS_OK ||
-        ocean_wtb_scene_evaluate(h, 2.0, NULL, 0, pos, nrm, 16 * 16, NULL) != OCEAN_STATUS_OK) {
+        ocean_wtb_scene_evaluate(h, 2.0, NULL, pos, nrm, 16 * 16, NULL) != OCEAN_STATUS_OK) {
         ocean_wtb_scene_destroy(h);
         return NULL;
     }
@@ -863,13 +827,13 @@ static inline void *make_OceanReliefQuadCones(void)
 static inline void *make_OceanSao(void)
 {
     /* 32 x 32 with a guard band of 2: a 28 x 28 AO image. */
-    OceanSaoCamera cam;
+    OceanCamera cam;
     OceanSaoParams p;
     OceanSao *h = NULL;
-    plausible_OceanSaoCamera(&cam);
+    plausible_OceanCamera(&cam);
     if (ocean_sao_params_default(&p) != OCEAN_STATUS_OK)
         return NULL;
-    return ocean_sao_create(32, 32, 2, &cam, &p, &h) == OCEAN_STATUS_OK ? (void *)h : NULL;
+    return ocean_sao_create(32, 32, 2, &cam, OCEAN_SAO_DEPTH_WINDOW, &p, &h) == OCEAN_STATUS_OK ? (void *)h : NULL;
 }
 
 static inline void *make_OceanShaderExport(void)

@@ -45,25 +45,11 @@ static size_t needed_size;
 #define H 64
 #define PI 3.14159265358979323846
 
-static OceanCameraDesc camera_at(double x, double y, double z)
+/* An OpenGL camera at the eye, looking along -z with y up: 60 degrees, the viewport's aspect. */
+static OceanCamera camera_at(double x, double y, double z)
 {
-    OceanCameraDesc c;
-    memset(&c, 0, sizeof c);
-    /* view = translation by -eye: looking along -z, y up. */
-    c.view[0] = 1.0;
-    c.view[5] = 1.0;
-    c.view[10] = 1.0;
-    c.view[15] = 1.0;
-    c.view[12] = -x;
-    c.view[13] = -y;
-    c.view[14] = -z;
-    c.orthographic = 0;
-    c.depth_convention = OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE;
-    c.fov_y = 60.0 * PI / 180.0;
-    c.aspect = (double)W / (double)H;
-    c.z_near = 0.1;
-    c.z_far = 5000.0;
-    return c;
+    return check_camera_at(x, y, z, 60.0 * PI / 180.0, (double)W / (double)H, 0.1, 5000.0,
+                           OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE);
 }
 
 static float f32_at(const uint8_t *block, size_t offset)
@@ -115,7 +101,7 @@ static void test_defaults(void)
 static void test_uniforms(OceanSpectrum *spectrum, OceanLighting *lighting, size_t waves)
 {
     OceanSurfaceDrawParams p;
-    OceanCameraDesc cam = camera_at(10.0, 4.0, -20.0);
+    OceanCamera cam = camera_at(10.0, 4.0, -20.0);
     OceanWaterGridDesc mesh = mesh_desc();
     static uint8_t block[OCEAN_SURFACE_UNIFORMS_SIZE + 8], plain[OCEAN_SURFACE_UNIFORMS_SIZE],
         later[OCEAN_SURFACE_UNIFORMS_SIZE];
@@ -161,7 +147,7 @@ static void test_uniforms(OceanSpectrum *spectrum, OceanLighting *lighting, size
 
 static void test_wave_texels(OceanSpectrum *spectrum, size_t n)
 {
-    OceanCameraDesc cam = camera_at(10.0, 4.0, -20.0);
+    OceanCamera cam = camera_at(10.0, 4.0, -20.0);
     OceanSlopeVariance total;
     float *t0 = calloc(12 * n, sizeof(float));
     float *t1 = calloc(12 * n, sizeof(float));
@@ -224,7 +210,7 @@ static void test_fresnel_texels(void)
 static void test_errors(OceanSpectrum *spectrum, OceanLighting *lighting, size_t n)
 {
     OceanSurfaceDrawParams p, q;
-    OceanCameraDesc cam = camera_at(10.0, 4.0, -20.0), below = camera_at(0.0, -1.0, 0.0);
+    OceanCamera cam = camera_at(10.0, 4.0, -20.0), below = camera_at(0.0, -1.0, 0.0);
     OceanWaterGridDesc mesh = mesh_desc(), bad_mesh = mesh_desc();
     static uint8_t block[OCEAN_SURFACE_UNIFORMS_SIZE];
     static float texels[4096];

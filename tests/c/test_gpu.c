@@ -299,22 +299,10 @@ static const double PI = 3.14159265358979323846;
 /* 4 m above the sea at the origin, looking at the horizon along -z (towards the default Sun),
  * 60 degrees vertical field of view: the camera c_abi.rs renders through ocean_gpu. The view
  * matrix of that eye is a translation by (0, -4, 0), column-major. */
-static OceanCameraDesc horizon_camera(double eye_y)
+static OceanCamera horizon_camera(double eye_y)
 {
-    OceanCameraDesc c;
-    memset(&c, 0, sizeof c);
-    c.view[0] = 1.0;
-    c.view[5] = 1.0;
-    c.view[10] = 1.0;
-    c.view[15] = 1.0;
-    c.view[13] = -eye_y;
-    c.orthographic = 0;
-    c.depth_convention = OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE;
-    c.fov_y = 60.0 * PI / 180.0;
-    c.aspect = (double)W / (double)H;
-    c.z_near = 0.1;
-    c.z_far = 100000.0;
-    return c;
+    return check_camera_at(0.0, eye_y, 0.0, 60.0 * PI / 180.0, (double)W / (double)H, 0.1,
+                           100000.0, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE);
 }
 
 /* The mean of channel `ch` over rows [r0, r1). */
@@ -379,7 +367,7 @@ static int test_renderer(void)
     OceanSpectrumParams sp;
     OceanSkyParams sky;
     OceanSeaParams sea;
-    OceanCameraDesc cam = horizon_camera(4.0);
+    OceanCamera cam = horizon_camera(4.0);
     static uint8_t img[W * H * 4], img2[W * H * 4], buf[W * H * 4 + 8];
     const size_t len = sizeof img;
     OceanStatus s = ocean_gpu_context_create(&ctx);
@@ -518,7 +506,7 @@ static int test_renderer(void)
     /* Every error path: the output stays untouched. */
     memset(buf, 0xAB, sizeof buf);
     {
-        OceanCameraDesc c;
+        OceanCamera c;
         EXPECT_MSG(ocean_renderer_render_rgba8(NULL, ctx, &cam, TIME, W, H, buf, len),
                    OCEAN_STATUS_NULL_POINTER, "renderer");
         EXPECT_MSG(ocean_renderer_render_rgba8(r, NULL, &cam, TIME, W, H, buf, len),
@@ -558,13 +546,17 @@ static int test_renderer(void)
         EXPECT_MSG(ocean_renderer_render_rgba8(r, ctx, &c, TIME, W, H, buf, len),
                    OCEAN_STATUS_NON_FINITE, "view[3]");
         c = cam;
-        c.fov_y = 0.0;
+        c.projection[4] = 0.5; /* skewed */
         EXPECT_MSG(ocean_renderer_render_rgba8(r, ctx, &c, TIME, W, H, buf, len),
-                   OCEAN_STATUS_INVALID_ARGUMENT, "camera");
+                   OCEAN_STATUS_INVALID_ARGUMENT, "projection[4]");
         c = cam;
-        c.orthographic = 2;
+        c.projection[8] = 0.01; /* jittered */
         EXPECT_MSG(ocean_renderer_render_rgba8(r, ctx, &c, TIME, W, H, buf, len),
-                   OCEAN_STATUS_INVALID_ARGUMENT, "orthographic");
+                   OCEAN_STATUS_INVALID_ARGUMENT, "off-centre");
+        c = cam; /* forward-Z declared reversed: the far plane comes before the near one */
+        c.depth_convention = OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE_REVERSED;
+        EXPECT_MSG(ocean_renderer_render_rgba8(r, ctx, &c, TIME, W, H, buf, len),
+                   OCEAN_STATUS_INVALID_ARGUMENT, "far plane");
         c = cam;
         c.depth_convention = 7;
         EXPECT_MSG(ocean_renderer_render_rgba8(r, ctx, &c, TIME, W, H, buf, len),

@@ -356,22 +356,21 @@ static void look_down(double ex, double h, double ez, double view[16])
 
 static void test_pixel_footprint(void)
 {
-    OceanCameraDesc cam;
+    OceanCamera cam;
     double l = 0.0, prev = 0.0, d = SENTINEL;
     unsigned conv;
     int j;
 
-    /* Orthographic, 40 m x 20 m over 200 x 100 pixels: every pixel is 0.2 m wide. */
+    /* Orthographic, 40 m x 20 m over 200 x 100 pixels: every pixel is 0.2 m wide. The matrix
+     * is glm::orthoRH_ZO(-20, 20, -10, 10, 0.5, 100). */
     memset(&cam, 0, sizeof cam);
     look_down(5.0, 30.0, -7.0, cam.view);
-    cam.orthographic = 1;
     cam.depth_convention = OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE;
-    cam.left = -20.0;
-    cam.right = 20.0;
-    cam.bottom = -10.0;
-    cam.top = 10.0;
-    cam.z_near = 0.5;
-    cam.z_far = 100.0;
+    cam.projection[0] = 2.0 / 40.0;
+    cam.projection[5] = 2.0 / 20.0;
+    cam.projection[10] = -1.0 / (100.0 - 0.5);
+    cam.projection[14] = -0.5 / (100.0 - 0.5);
+    cam.projection[15] = 1.0;
     OK(ocean_pixel_footprint(&cam, 200, 100, 0.5, 0.5, 1e4, &l));
     NEAR(l, 0.2, 1e-9, 0.0, "orthographic footprint, corner pixel");
     OK(ocean_pixel_footprint(&cam, 200, 100, 117.5, 63.5, 1e4, &l));
@@ -379,15 +378,10 @@ static void test_pixel_footprint(void)
 
     /* Perspective from 10 m, fov_y 1 rad: at the centre a pixel spans 2 h tan(fov/2) / height
      * metres, in every depth convention. */
-    cam.orthographic = 0;
-    cam.fov_y = 1.0;
-    cam.aspect = 2.0;
-    cam.z_near = 0.1;
-    cam.z_far = INFINITY;
     look_down(0.0, 10.0, 0.0, cam.view);
     for (conv = 0; conv < 3; conv++) {
         cam.depth_convention = conv;
-        cam.z_far = conv == 1 ? INFINITY : 500.0;
+        check_perspective(1.0, 2.0, 0.1, conv == 1 ? INFINITY : 500.0, conv, cam.projection);
         OK(ocean_pixel_footprint(&cam, 200, 100, 100.0, 50.0, 1e4, &l));
         NEAR(l, 2.0 * 10.0 * tan(0.5) / 100.0, 1e-9, 0.0, "perspective footprint, convention %u",
              conv);
@@ -415,30 +409,38 @@ static void test_pixel_footprint(void)
     EXPECT_MSG(ocean_pixel_footprint(&cam, 200, 100, 1, 1, 0.0, &d),
                OCEAN_STATUS_INVALID_ARGUMENT, "max_distance");
     {
-        OceanCameraDesc bad = cam;
+        OceanCamera bad = cam;
         bad.view[13] = NAN;
         EXPECT_MSG(ocean_pixel_footprint(&bad, 200, 100, 1, 1, 1e4, &d), OCEAN_STATUS_NON_FINITE,
                    "view[13]");
         bad = cam;
-        bad.orthographic = 2;
+        bad.projection[7] = 0.5; /* neither a perspective nor an orthographic bottom row */
         EXPECT_MSG(ocean_pixel_footprint(&bad, 200, 100, 1, 1, 1e4, &d),
-                   OCEAN_STATUS_INVALID_ARGUMENT, "orthographic");
+                   OCEAN_STATUS_INVALID_ARGUMENT, "bottom row");
+        bad = cam;
+        bad.reserved = 1;
+        EXPECT_MSG(ocean_pixel_footprint(&bad, 200, 100, 1, 1, 1e4, &d),
+                   OCEAN_STATUS_INVALID_ARGUMENT, "reserved");
         bad = cam;
         bad.depth_convention = 7;
         EXPECT_MSG(ocean_pixel_footprint(&bad, 200, 100, 1, 1, 1e4, &d),
                    OCEAN_STATUS_INVALID_ARGUMENT, "depth_convention");
         bad = cam;
-        bad.fov_y = 4.0;
-        EXPECT(ocean_pixel_footprint(&bad, 200, 100, 1, 1, 1e4, &d),
-               OCEAN_STATUS_INVALID_ARGUMENT);
+        bad.projection[5] = -bad.projection[5]; /* y-flipped */
+        EXPECT_MSG(ocean_pixel_footprint(&bad, 200, 100, 1, 1, 1e4, &d),
+                   OCEAN_STATUS_INVALID_ARGUMENT, "y-flipped");
         bad = cam;
-        bad.fov_y = NAN;
+        bad.projection[5] = NAN;
         EXPECT_MSG(ocean_pixel_footprint(&bad, 200, 100, 1, 1, 1e4, &d), OCEAN_STATUS_NON_FINITE,
-                   "fov_y");
+                   "projection[5]");
+        /* A [0, 1] forward matrix declared reversed: its far plane comes before its near one. */
         bad = cam;
-        bad.z_far = 0.05; /* behind the near plane */
-        EXPECT(ocean_pixel_footprint(&bad, 200, 100, 1, 1, 1e4, &d),
-               OCEAN_STATUS_INVALID_ARGUMENT);
+        bad.depth_convention = OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE;
+        check_perspective(1.0, 2.0, 0.1, 500.0, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE, bad.projection);
+        OK(ocean_pixel_footprint(&bad, 200, 100, 1, 1, 1e4, &l));
+        bad.depth_convention = OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE_REVERSED;
+        EXPECT_MSG(ocean_pixel_footprint(&bad, 200, 100, 1, 1, 1e4, &d),
+                   OCEAN_STATUS_INVALID_ARGUMENT, "far plane");
         bad = cam;
         bad.depth_convention = OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE;
         memset(bad.view, 0, sizeof bad.view); /* singular */

@@ -87,7 +87,7 @@ static int create_all(void *h[KINDS])
     OceanSkyParams sky;
     OceanSeaParams sea;
     OceanReliefConeParams cp;
-    OceanSaoCamera cam;
+    OceanCamera cam;
     OceanSaoParams sao;
     float heights[16 * 16];
     int i;
@@ -95,13 +95,13 @@ static int create_all(void *h[KINDS])
         heights[i] = (float)((i * 7) % 16) / 15.0f;
     memset(&cam, 0, sizeof cam);
     /* A GL perspective of 90 degrees, near 0.1, far 100 (column-major). */
-    cam.projection[0] = 1.0f;
-    cam.projection[5] = 1.0f;
-    cam.projection[10] = -100.1f / 99.9f;
-    cam.projection[11] = -1.0f;
-    cam.projection[14] = -20.0f / 99.9f;
+    cam.view[0] = cam.view[5] = cam.view[10] = cam.view[15] = 1.0;
+    cam.projection[0] = 1.0;
+    cam.projection[5] = 1.0;
+    cam.projection[10] = -100.1 / 99.9;
+    cam.projection[11] = -1.0;
+    cam.projection[14] = -20.0 / 99.9;
     cam.depth_convention = OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE;
-    cam.depth_source = OCEAN_SAO_DEPTH_WINDOW;
     memset(h, 0, KINDS * sizeof h[0]);
     return OK(ocean_waves_create(&wave, 1, (OceanWaves **)&h[WAVES])) &&
            OK(ocean_wtb_scene_create(&grid, NULL, 0, (OceanWtbScene **)&h[SCENE])) &&
@@ -122,7 +122,7 @@ static int create_all(void *h[KINDS])
            OK(ocean_relief_quad_cones_create((const OceanReliefMap *)h[MAP], &cp, NULL, NULL,
                                              (OceanReliefQuadCones **)&h[QUAD])) &&
            OK(ocean_sao_params_default(&sao)) &&
-           OK(ocean_sao_create(64, 64, 8, &cam, &sao, (OceanSao **)&h[SAO])) &&
+           OK(ocean_sao_create(64, 64, 8, &cam, OCEAN_SAO_DEPTH_WINDOW, &sao, (OceanSao **)&h[SAO])) &&
            OK(ocean_shader_export("trochoid", OCEAN_SHADER_LANGUAGE_GLSL,
                                   (OceanShaderExport **)&h[EXPORT]));
 }
@@ -221,7 +221,7 @@ static void scene_calls_with_other_handles_return(void *h[KINDS])
         OceanWtbScene *wrong = (OceanWtbScene *)h[others[i]];
         expect_invalid(ocean_wtb_scene_heights_continuous(wrong, 0.0, &xz, 1, &sample),
                        "ocean_wtb_scene_heights_continuous", NAMES[others[i]], "not an OceanWtbScene");
-        expect_invalid(ocean_wtb_scene_evaluate(wrong, 0.0, NULL, 0, pos, nrm, 16 * 16, NULL),
+        expect_invalid(ocean_wtb_scene_evaluate(wrong, 0.0, NULL, pos, nrm, 16 * 16, NULL),
                        "ocean_wtb_scene_evaluate", NAMES[others[i]], "not an OceanWtbScene");
         expect_invalid(ocean_wtb_scene_add_box(wrong, &box, &train, 1, &id), "ocean_wtb_scene_add_box",
                        NAMES[others[i]], "not an OceanWtbScene");

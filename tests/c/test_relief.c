@@ -745,7 +745,7 @@ static void test_errors(void)
 static void test_uniforms(void)
 {
     OceanReliefScene scene;
-    OceanCameraDesc camera;
+    OceanCamera camera;
     unsigned char block[OCEAN_RELIEF_UNIFORMS_SIZE];
     unsigned char small[OCEAN_RELIEF_UNIFORMS_SIZE - 1];
     float origin[4];
@@ -758,17 +758,9 @@ static void test_uniforms(void)
           scene.method.binary == 6 && scene.shadows == 1 && scene.light_color[0] == 1.0f &&
               scene.light_color[1] == 1.0f && scene.light_color[2] == 1.0f,
           "default scene");
-    memset(&camera, 0, sizeof camera);
-    /* World to view: a translation by -eye, column-major (element [4 * column + row]). */
-    camera.view[0] = camera.view[5] = camera.view[10] = camera.view[15] = 1.0;
-    camera.view[12] = -0.5;
-    camera.view[13] = -2.0;
-    camera.view[14] = 0.5;
-    camera.depth_convention = 2; /* OpenGL's [-1, 1] */
-    camera.fov_y = 1.0;
-    camera.aspect = 16.0 / 9.0;
-    camera.z_near = 0.1;
-    camera.z_far = 100.0;
+    /* At (0.5, 2, -0.5) looking along -z: OpenGL's [-1, 1] depth. */
+    camera = check_camera_at(0.5, 2.0, -0.5, 1.0, 16.0 / 9.0, 0.1, 100.0,
+                             OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE);
     /* A sky: its coefficients reach the block as E / pi, a Lambertian surface's radiance. */
     scene.sky.k[2].g = 3.0;
     if (!OK(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 8, 1, block,

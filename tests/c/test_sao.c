@@ -168,24 +168,32 @@ static double crease_distance(const Hit *h)
     return h->kind == FLOOR ? h->p[2] - WALL_Z : h->p[1];
 }
 
-static OceanSaoCamera camera_gl(void)
+/* The camera of a float projection matrix (as a renderer keeps it), widened to double, with
+ * the identity view: SAO reads only the projection. */
+static OceanCamera camera_of(const float projection[16], uint32_t convention)
 {
-    OceanSaoCamera c;
+    OceanCamera c;
+    int i;
     memset(&c, 0, sizeof c);
-    perspective_gl(c.projection);
-    c.depth_convention = OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE;
-    c.depth_source = OCEAN_SAO_DEPTH_WINDOW;
+    c.view[0] = c.view[5] = c.view[10] = c.view[15] = 1.0;
+    for (i = 0; i < 16; i++)
+        c.projection[i] = projection[i];
+    c.depth_convention = convention;
     return c;
 }
 
-static OceanSaoCamera camera_rev(void)
+static OceanCamera camera_gl(void)
 {
-    OceanSaoCamera c;
-    memset(&c, 0, sizeof c);
-    perspective_reversed_infinite(c.projection);
-    c.depth_convention = OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE_REVERSED;
-    c.depth_source = OCEAN_SAO_DEPTH_WINDOW;
-    return c;
+    float m[16];
+    perspective_gl(m);
+    return camera_of(m, OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE);
+}
+
+static OceanCamera camera_rev(void)
+{
+    float m[16];
+    perspective_reversed_infinite(m);
+    return camera_of(m, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE_REVERSED);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -350,7 +358,7 @@ static int untouched(const float *v, size_t n)
 static void test_create_errors(void)
 {
     OceanSaoParams p, bad;
-    OceanSaoCamera c = camera_gl(), cb;
+    OceanCamera c = camera_gl(), cb;
     OceanSao *keep = (OceanSao *)&p; /* a sentinel: must survive every failure */
     OceanSao *out = keep;
 
@@ -366,60 +374,58 @@ static void test_create_errors(void)
               p.blur.weight == OCEAN_SAO_BLUR_WEIGHT_PLANE && p.blur.world_extent == 0.5f,
           "unexpected defaults");
 
-    EXPECT(ocean_sao_create(W, H, GUARD, NULL, &p, &out), OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_sao_create(W, H, GUARD, &c, NULL, &out), OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_sao_create(W, H, GUARD, &c, &p, NULL), OCEAN_STATUS_NULL_POINTER);
-    EXPECT_MSG(ocean_sao_create(0, H, GUARD, &c, &p, &out), OCEAN_STATUS_EMPTY, "0 x 120");
-    EXPECT_MSG(ocean_sao_create(1, H, 0, &c, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT(ocean_sao_create(W, H, GUARD, NULL, OCEAN_SAO_DEPTH_WINDOW, &p, &out), OCEAN_STATUS_NULL_POINTER);
+    EXPECT(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, NULL, &out), OCEAN_STATUS_NULL_POINTER);
+    EXPECT(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &p, NULL), OCEAN_STATUS_NULL_POINTER);
+    EXPECT_MSG(ocean_sao_create(0, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &p, &out), OCEAN_STATUS_EMPTY, "0 x 120");
+    EXPECT_MSG(ocean_sao_create(1, H, 0, &c, OCEAN_SAO_DEPTH_WINDOW, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "image size");
-    EXPECT_MSG(ocean_sao_create(OCEAN_SAO_MAX_SIDE + 1, H, GUARD, &c, &p, &out),
+    EXPECT_MSG(ocean_sao_create(OCEAN_SAO_MAX_SIDE + 1, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &p, &out),
                OCEAN_STATUS_INVALID_ARGUMENT, "image size");
     /* A guard band larger than the image: 2 * 60 is not below 120. */
-    EXPECT_MSG(ocean_sao_create(W, H, H / 2, &c, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, H / 2, &c, OCEAN_SAO_DEPTH_WINDOW, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "guard band");
 
     /* Matrices that are not projections, or not for this convention. */
     cb = c;
     memset(cb.projection, 0, sizeof cb.projection);
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, OCEAN_SAO_DEPTH_WINDOW, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "bottom row");
     cb = c;
-    cb.projection[11] = 1.0f; /* left-handed: w_clip = +z */
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    cb.projection[11] = 1.0; /* left-handed: w_clip = +z */
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, OCEAN_SAO_DEPTH_WINDOW, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "bottom row");
     cb = c;
     cb.projection[5] = NAN;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, &p, &out), OCEAN_STATUS_NON_FINITE,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, OCEAN_SAO_DEPTH_WINDOW, &p, &out), OCEAN_STATUS_NON_FINITE,
                "projection[5]");
     cb = c;
-    cb.projection[8] = 0.01f; /* a jittered frustum */
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    cb.projection[8] = 0.01; /* a jittered frustum */
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, OCEAN_SAO_DEPTH_WINDOW, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "off-centre");
     cb = c;
     cb.projection[5] = -cb.projection[5];
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, OCEAN_SAO_DEPTH_WINDOW, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "y-flipped");
     cb = c;
     cb.depth_convention = OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE_REVERSED; /* an OpenGL matrix */
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, OCEAN_SAO_DEPTH_WINDOW, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "far plane");
     cb = c;
-    cb.projection[10] = -1.0f; /* a depth row that puts the near plane at the eye */
-    cb.projection[14] = 0.0f;
-    EXPECT(ocean_sao_create(W, H, GUARD, &cb, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT);
+    cb.projection[10] = -1.0; /* a depth row that puts the near plane at the eye */
+    cb.projection[14] = 0.0;
+    EXPECT(ocean_sao_create(W, H, GUARD, &cb, OCEAN_SAO_DEPTH_WINDOW, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT);
     cb = c;
     /* Valid (fov_y = 2e-38 rad), but S' = h P11 / 2 overflows float. */
     cb.projection[0] = 7.5e37f;
     cb.projection[5] = 1.0e38f;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, OCEAN_SAO_DEPTH_WINDOW, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "degenerate");
     cb = c;
     cb.depth_convention = 3;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, OCEAN_SAO_DEPTH_WINDOW, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "depth_convention");
-    cb = c;
-    cb.depth_source = 2;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &cb, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, 2, &p, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "depth_source");
 
     /* The documented bounds, written as C float literals, are inside: 1e-4f, 1e-12f, 1e-2f and
@@ -430,18 +436,18 @@ static void test_create_errors(void)
         bad.radius = 1e-4f;
         bad.epsilon = 1e-12f;
         bad.z_min = -1e-4f;
-        if (OK(ocean_sao_create(W, H, GUARD, &c, &bad, &edge)))
+        if (OK(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &bad, &edge)))
             ocean_sao_destroy(edge);
         bad = p;
         bad.estimator = OCEAN_SAO_ESTIMATOR_ALCHEMY;
         bad.alchemy_k = 1e-2f;
         bad.radius = 1e4f;
-        if (OK(ocean_sao_create(W, H, GUARD, &c, &bad, &edge)))
+        if (OK(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &bad, &edge)))
             ocean_sao_destroy(edge);
         /* The next float beyond a bound is outside, and the message prints it briefly. */
         bad = p;
         bad.radius = nextafterf(1e-4f, 0.0f);
-        EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+        EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                    "radius");
         CHECK(strlen(last_error()) < 160, "long message: %s", last_error());
     }
@@ -449,43 +455,43 @@ static void test_create_errors(void)
     /* Parameters out of range. */
     bad = p;
     bad.samples = 0;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "samples");
     bad = p;
     bad.radius = NAN;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_NON_FINITE,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &bad, &out), OCEAN_STATUS_NON_FINITE,
                "radius");
     bad = p;
     bad.blur.taps = 8;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "odd");
     bad = p;
     bad.mip_filter = 5;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "mip_filter");
     bad = p;
     bad.estimator = 2;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "estimator");
     bad = p;
     bad.quad_filter = 2;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "quad_filter");
     bad = p;
     bad.normals = 2;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "normals");
     bad = p;
     bad.blur.weight = 2;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "blur.weight");
     bad = p;
     bad.blur.world_extent = -1.0f;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "world_extent");
     bad = p;
     bad.z_min = 10.0f;
-    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_create(W, H, GUARD, &c, OCEAN_SAO_DEPTH_WINDOW, &bad, &out), OCEAN_STATUS_INVALID_ARGUMENT,
                "z_min");
     CHECK(out == keep, "a failed create wrote *out");
 }
@@ -629,19 +635,22 @@ static void check_gpu(const OceanSao *sao, const float *depth, const float *cpu_
 int main(void)
 {
     OceanSaoParams p;
-    OceanSaoCamera gl = camera_gl(), rev = camera_rev();
+    OceanCamera gl = camera_gl(), rev = camera_rev();
     OceanSao *sao_gl = NULL, *sao_rev = NULL;
     size_t i, differ = 0, beyond = 0;
     double worst = 0.0;
+    float m_gl[16], m_rev[16];
 
-    trace(gl.projection);
-    make_depth(gl.projection, 1, depth_gl);
-    make_depth(rev.projection, 0, depth_rev);
+    perspective_gl(m_gl);
+    perspective_reversed_infinite(m_rev);
+    trace(m_gl);
+    make_depth(m_gl, 1, depth_gl);
+    make_depth(m_rev, 0, depth_rev);
 
     test_create_errors();
 
-    if (OK(ocean_sao_params_default(&p)) && OK(ocean_sao_create(W, H, GUARD, &gl, &p, &sao_gl)) &&
-        OK(ocean_sao_create(W, H, GUARD, &rev, &p, &sao_rev))) {
+    if (OK(ocean_sao_params_default(&p)) && OK(ocean_sao_create(W, H, GUARD, &gl, OCEAN_SAO_DEPTH_WINDOW, &p, &sao_gl)) &&
+        OK(ocean_sao_create(W, H, GUARD, &rev, OCEAN_SAO_DEPTH_WINDOW, &p, &sao_rev))) {
         check_describe(sao_gl, 1);
         check_describe(sao_rev, 0);
         check_view_z(sao_gl, depth_gl, "OpenGL [-1, 1]");

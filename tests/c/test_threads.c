@@ -295,19 +295,10 @@ static void sao_depth(float *d, int variant)
         }
 }
 
-static OceanSaoCamera sao_camera(void)
+static OceanCamera sao_camera(void)
 {
-    OceanSaoCamera c;
-    double t = tan(30.0 * PI / 180.0), aspect = (double)SAO_W / SAO_H, n = 0.1, f = 100.0;
-    memset(&c, 0, sizeof c);
-    c.projection[0] = (float)(1.0 / (aspect * t));
-    c.projection[5] = (float)(1.0 / t);
-    c.projection[10] = (float)(-(f + n) / (f - n));
-    c.projection[11] = -1.0f;
-    c.projection[14] = (float)(-(2.0 * f * n) / (f - n));
-    c.depth_convention = OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE;
-    c.depth_source = OCEAN_SAO_DEPTH_WINDOW;
-    return c;
+    return check_camera_at(0.0, 0.0, 0.0, 60.0 * PI / 180.0, (double)SAO_W / SAO_H, 0.1, 100.0,
+                           OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE);
 }
 
 static OceanSpectrumParams spectrum_params(int variant)
@@ -430,8 +421,7 @@ static void scene_frame(Worker *w, OceanWtbScene *s, double t)
     OceanHeightSample cont[NQUERY];
     OceanFrameStats st;
     memset(&st, 0, sizeof st);
-    if (CALL(w, ocean_wtb_scene_evaluate(s, t, NULL, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE, pos, nrm,
-                                     SCENE_PTS, &st))) {
+    if (CALL(w, ocean_wtb_scene_evaluate(s, t, NULL, pos, nrm, SCENE_PTS, &st))) {
         log_vec3s(w, pos, SCENE_PTS);
         log_vec3s(w, nrm, SCENE_PTS);
         log_stats(w, &st);
@@ -673,7 +663,7 @@ static void own_job(Worker *w, int id, int k)
     OceanReliefConeParams cp;
     OceanSao *sao = NULL;
     OceanSaoParams sao_params;
-    OceanSaoCamera camera = sao_camera();
+    OceanCamera camera = sao_camera();
     OceanWtbScene *scene = NULL;
     OceanWaveDesc *descs;
     OceanSeaLight sea[NSEA];
@@ -742,7 +732,8 @@ static void own_job(Worker *w, int id, int k)
     /* An SAO set-up. */
     sao_depth(depth, id * TIMES + k);
     ocean_sao_params_default(&sao_params);
-    if (CALL(w, ocean_sao_create(SAO_W, SAO_H, SAO_GUARD, &camera, &sao_params, &sao))) {
+    if (CALL(w, ocean_sao_create(SAO_W, SAO_H, SAO_GUARD, &camera, OCEAN_SAO_DEPTH_WINDOW,
+                                 &sao_params, &sao))) {
         if (CALL(w, ocean_sao_run(sao, depth, SAO_IN, ao, SAO_OUT)))
             log_bytes(w, ao, sizeof ao);
         ocean_sao_destroy(sao);
@@ -880,7 +871,7 @@ static void make_shared(Worker *w)
     OceanSeaParams sea;
     OceanReliefConeParams cp;
     OceanSaoParams sao_params;
-    OceanSaoCamera camera = sao_camera();
+    OceanCamera camera = sao_camera();
     float heights[RELIEF_SHARED * RELIEF_SHARED];
     OceanWaveDesc *descs;
     size_t count = 0;
@@ -904,7 +895,8 @@ static void make_shared(Worker *w)
     CALL(w, ocean_relief_cones_create(shared.relief_map, &cp, NULL, NULL, &shared.cones));
     CALL(w, ocean_relief_mips_create(shared.cones, OCEAN_RELIEF_MIP_WINDOW, &shared.mips));
     ocean_sao_params_default(&sao_params);
-    CALL(w, ocean_sao_create(SAO_W, SAO_H, SAO_GUARD, &camera, &sao_params, &shared.sao));
+    CALL(w, ocean_sao_create(SAO_W, SAO_H, SAO_GUARD, &camera, OCEAN_SAO_DEPTH_WINDOW,
+                          &sao_params, &shared.sao));
     sao_depth(shared.sao_depth, 0);
     /* The cheapest pass to translate: the one with the shortest GLSL is not known here, so
      * the first registered one. */
@@ -915,9 +907,8 @@ static void make_shared(Worker *w)
         /* Evaluated once before the threads, so the drawn-height queries have a mesh. */
         OceanVec3 *pos = xmalloc(SCENE_PTS * sizeof *pos);
         OceanVec3 *nrm = xmalloc(SCENE_PTS * sizeof *nrm);
-        CALL(w, ocean_wtb_scene_evaluate(shared.scene, SHARED_SCENE_TIME, NULL,
-                                     OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE, pos, nrm, SCENE_PTS,
-                                     NULL));
+        CALL(w, ocean_wtb_scene_evaluate(shared.scene, SHARED_SCENE_TIME, NULL, pos, nrm,
+                                         SCENE_PTS, NULL));
         free(pos);
         free(nrm);
     }

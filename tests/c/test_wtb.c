@@ -136,7 +136,7 @@ static int untouched(const OceanVec3 *v, size_t n)
 
 static int evaluate(OceanWtbScene *s, double t, OceanVec3 *p, OceanVec3 *n, OceanFrameStats *st)
 {
-    return OK(ocean_wtb_scene_evaluate(s, t, NULL, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE, p, n, NPTS,
+    return OK(ocean_wtb_scene_evaluate(s, t, NULL, p, n, NPTS,
                                    st));
 }
 
@@ -221,17 +221,6 @@ static void check_surface(const char *what, double t)
 }
 
 /* Column-major 4x4 helpers (m[col*4 + row]), GLM's conventions. */
-static void mat_mul(const double a[16], const double b[16], double out[16])
-{
-    int r, c, k;
-    for (c = 0; c < 4; c++)
-        for (r = 0; r < 4; r++) {
-            double s = 0.0;
-            for (k = 0; k < 4; k++)
-                s += a[k * 4 + r] * b[c * 4 + k];
-            out[c * 4 + r] = s;
-        }
-}
 
 /* glm::lookAtRH */
 static void look_at(const double eye[3], const double f_in[3], const double up[3], double m[16])
@@ -262,35 +251,16 @@ static void look_at(const double eye[3], const double f_in[3], const double up[3
     m[15] = 1.0;
 }
 
-/* glm::perspectiveRH_ZO (zero_to_one) or perspectiveRH_NO. */
-static void perspective(double fovy, double aspect, double n, double f, int zero_to_one,
-                        double m[16])
-{
-    double t = tan(fovy / 2.0);
-    memset(m, 0, 16 * sizeof m[0]);
-    m[0] = 1.0 / (aspect * t);
-    m[5] = 1.0 / t;
-    m[11] = -1.0;
-    if (zero_to_one) {
-        m[10] = f / (n - f);
-        m[14] = -(f * n) / (f - n);
-    } else {
-        m[10] = -(f + n) / (f - n);
-        m[14] = -(2.0 * f * n) / (f - n);
-    }
-}
-
-static void view_projection(const double eye[3], const double dir[3], int zero_to_one,
-                            float out[16])
+/* A camera at `eye` looking along `dir` (up: +z), 90 degrees, near 0.5 m, far 500 m. */
+static OceanCamera camera_looking(const double eye[3], const double dir[3], uint32_t convention)
 {
     static const double up[3] = {0.0, 0.0, 1.0};
-    double v[16], p[16], vp[16];
-    int i;
-    look_at(eye, dir, up, v);
-    perspective(PI / 2.0, 1.0, 0.5, 500.0, zero_to_one, p);
-    mat_mul(p, v, vp);
-    for (i = 0; i < 16; i++)
-        out[i] = (float)vp[i];
+    OceanCamera c;
+    memset(&c, 0, sizeof c);
+    look_at(eye, dir, up, c.view);
+    check_perspective(PI / 2.0, 1.0, 0.5, 500.0, convention, c.projection);
+    c.depth_convention = convention;
+    return c;
 }
 
 static void test_culling(OceanWtbScene *s, double t)
@@ -300,7 +270,7 @@ static void test_culling(OceanWtbScene *s, double t)
     const double up_dir[3] = {0.0, 1.0, 0.0};
     const double eye_high[3] = {OX + 32.0 * SP, 80.0, OZ + 32.0 * SP};
     const double down_dir[3] = {0.0, -1.0, 0.0};
-    float m[16];
+    OceanCamera m;
     OceanFrameStats st;
     int i, j, rest = 1;
 
@@ -308,8 +278,8 @@ static void test_culling(OceanWtbScene *s, double t)
     /* Looking at the sky: the frustum holds only y > 30.5 m (near plane 0.5 m), and every
      * box's bounding volume ends ~1.2 m above the sea: both boxes are culled, the grid is at
      * rest. */
-    view_projection(eye_up, up_dir, 1, m);
-    OK(ocean_wtb_scene_evaluate(s, t, m, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE, pos2, nrm2, NPTS, &st));
+    m = camera_looking(eye_up, up_dir, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE);
+    OK(ocean_wtb_scene_evaluate(s, t, &m, pos2, nrm2, NPTS, &st));
     CHECK(st.alive == 2 && st.culled == 2 && st.trains == 0,
           "looking away: alive %zu, culled %zu, trains %zu", st.alive, st.culled, st.trains);
     for (j = 0; j < NZ; j++)
@@ -320,9 +290,8 @@ static void test_culling(OceanWtbScene *s, double t)
     /* Looking down from 80 m with a 90 degree field of view (OpenGL depth): the frustum's
      * footprint at sea level is 160 m wide, covering the 63 m grid, so nothing is culled and the
      * result is the unculled one, bit for bit. */
-    view_projection(eye_high, down_dir, 0, m);
-    OK(ocean_wtb_scene_evaluate(s, t, m, OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE, pos2, nrm2, NPTS,
-                            &st));
+    m = camera_looking(eye_high, down_dir, OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE);
+    OK(ocean_wtb_scene_evaluate(s, t, &m, pos2, nrm2, NPTS, &st));
     CHECK(st.alive == 2 && st.culled == 0, "looking down: alive %zu, culled %zu", st.alive,
           st.culled);
     CHECK(memcmp(pos, pos2, sizeof pos) == 0 && memcmp(nrm, nrm2, sizeof nrm) == 0,
@@ -852,8 +821,7 @@ static void test_budget(OceanWtbScene *s)
 static void test_evaluate_errors(OceanWtbScene *s)
 {
     static OceanVec3 big[2 * NPTS];
-    float m[16];
-    int i;
+    OceanCamera m, cam;
     OceanFrameStats st;
     OceanDVec2 xz[4] = {{OX, OZ}, {OX + 1, OZ}, {OX + 2, OZ}, {OX + 3, OZ}};
     OceanHeightSample out[4];
@@ -867,47 +835,53 @@ static void test_evaluate_errors(OceanWtbScene *s)
         CHECK(untouched(pos, NPTS) && untouched(nrm, NPTS), "%s wrote outputs", (what));    \
     } while (0)
 
-    EVAL_FAILS(ocean_wtb_scene_evaluate(NULL, 0.0, NULL, 0, pos, nrm, NPTS, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(NULL, 0.0, NULL, pos, nrm, NPTS, NULL),
                OCEAN_STATUS_NULL_POINTER, "evaluate(scene NULL)");
-    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, NULL, nrm, NPTS, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, NULL, nrm, NPTS, NULL),
                OCEAN_STATUS_NULL_POINTER, "evaluate(out_pos NULL)");
-    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, pos, NULL, NPTS, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, pos, NULL, NPTS, NULL),
                OCEAN_STATUS_NULL_POINTER, "evaluate(out_normal NULL)");
-    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, pos, nrm, 0, NULL), OCEAN_STATUS_EMPTY,
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, pos, nrm, 0, NULL), OCEAN_STATUS_EMPTY,
                "evaluate(n 0)");
-    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, pos, nrm, NPTS - 1, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, pos, nrm, NPTS - 1, NULL),
                OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(n != nx*nz)");
-    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, pos, nrm, SIZE_MAX, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, pos, nrm, SIZE_MAX, NULL),
                OCEAN_STATUS_LENGTH_OVERFLOW, "evaluate(n SIZE_MAX)");
-    EVAL_FAILS(ocean_wtb_scene_evaluate(s, NAN, NULL, 0, pos, nrm, NPTS, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, NAN, NULL, pos, nrm, NPTS, NULL),
                OCEAN_STATUS_NON_FINITE, "evaluate(time NaN)");
-    EVAL_FAILS(ocean_wtb_scene_evaluate(s, -INFINITY, NULL, 0, pos, nrm, NPTS, NULL),
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, -INFINITY, NULL, pos, nrm, NPTS, NULL),
                OCEAN_STATUS_NON_FINITE, "evaluate(time -inf)");
     /* The stats struct inside the positions buffer (an 8-aligned address in it). */
-    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, pos, nrm, NPTS,
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, pos, nrm, NPTS,
                                     (OceanFrameStats *)(void *)((char *)pos + 24)),
                OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(stats overlaps out_pos)");
     /* Normals starting inside the positions. */
     fill(big, 2 * NPTS);
-    expect(ocean_wtb_scene_evaluate(s, 0.0, NULL, 0, big, big + NPTS - 1, NPTS, NULL),
+    expect(ocean_wtb_scene_evaluate(s, 0.0, NULL, big, big + NPTS - 1, NPTS, NULL),
            OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(overlap)");
     CHECK(untouched(big, 2 * NPTS), "overlap wrote outputs");
-    for (i = 0; i < 16; i++)
-        m[i] = 0.0f;
-    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, m, 0, pos, nrm, NPTS, NULL),
-               OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(zero matrix)");
-    m[5] = NAN;
-    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, m, 0, pos, nrm, NPTS, NULL), OCEAN_STATUS_NON_FINITE,
-               "evaluate(matrix NaN)");
     {
         const double eye[3] = {OX, 50.0, OZ}, dir[3] = {0.0, -1.0, 0.0};
-        view_projection(eye, dir, 1, m);
+        m = camera_looking(eye, dir, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE);
     }
-    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, m, 7, pos, nrm, NPTS, NULL),
+    cam = m;
+    memset(cam.projection, 0, sizeof cam.projection);
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, &cam, pos, nrm, NPTS, NULL),
+               OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(zero projection)");
+    cam.projection[5] = NAN;
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, &cam, pos, nrm, NPTS, NULL),
+               OCEAN_STATUS_NON_FINITE, "evaluate(projection NaN)");
+    cam = m;
+    cam.depth_convention = 7;
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, &cam, pos, nrm, NPTS, NULL),
                OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(depth convention 7)");
+    /* A [0, 1] matrix declared reversed puts its far plane before its near plane. */
+    cam = m;
+    cam.depth_convention = OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE_REVERSED;
+    EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, &cam, pos, nrm, NPTS, NULL),
+               OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(forward matrix declared reversed)");
     /* Adjacent, non-overlapping buffers are fine. */
-    OK(ocean_wtb_scene_evaluate(s, 0.0, m, OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE_REVERSED, big,
-                            big + NPTS, NPTS, &st));
+    OK(ocean_wtb_scene_evaluate(s, 0.0, &m, big, big + NPTS, NPTS, &st));
 #undef EVAL_FAILS
 
 #define HEIGHTS_FAILS(call, want, what)                                                      \

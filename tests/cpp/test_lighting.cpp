@@ -2,9 +2,9 @@
 //
 // Built and run by tests/tests/c_abi.rs like tests/cpp/test_waves.cpp.
 //
-// What a C++ engine does: RAII handles, GLM matrices handed over as they are (column-major
-// dmat4 into OceanCameraDesc::view), glm::dvec3 in and out, one const lighting and sky map
-// shared by several threads. Expected values come from closed forms computed here:
+// What a C++ engine does: RAII handles, GLM matrices handed over as they are (the column-major
+// dmat4s of glm::lookAt and glm::infinitePerspective into an OceanCamera), glm::dvec3 in and
+// out, one const lighting and sky map shared by several threads. Expected values come from closed forms computed here:
 // - the pixel footprint of a camera looking straight down from h: 2 h tan(fov/2) / height;
 // - a flat calm sea under a uniform sky of radiance L: sky term F(cos) L with Schlick's F
 //   (Eq. 14), refracted term L_sea (1 - F), L_sea = albedo (E_sun sin(elevation) + pi L) / pi;
@@ -80,15 +80,15 @@ void footprint_looking_down()
     // Looking straight down with -z of the world as the screen's up.
     glm::dmat4 view = glm::lookAt(glm::dvec3(3.0, h, -2.0), glm::dvec3(3.0, 0.0, -2.0),
                                   glm::dvec3(0.0, 0.0, -1.0));
-    OceanCameraDesc cam;
+    // GLM's own matrices, as an engine has them: an infinite perspective in GLM's default
+    // OpenGL depth range.
+    const glm::dmat4 projection =
+        glm::infinitePerspective(fov, double(width) / double(height), 0.1);
+    OceanCamera cam;
     std::memset(&cam, 0, sizeof cam);
     std::memcpy(cam.view, glm::value_ptr(view), sizeof cam.view);
-    cam.orthographic = 0;
-    cam.depth_convention = OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE;
-    cam.fov_y = fov;
-    cam.aspect = double(width) / double(height);
-    cam.z_near = 0.1;
-    cam.z_far = INFINITY;
+    std::memcpy(cam.projection, glm::value_ptr(projection), sizeof cam.projection);
+    cam.depth_convention = OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE;
     double l = -1.0;
     if (ok(ocean_pixel_footprint(&cam, width, height, width / 2.0, height / 2.0, 1e5, &l),
            "ocean_pixel_footprint")) {

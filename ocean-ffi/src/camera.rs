@@ -1,11 +1,11 @@
-//! Scalable Ambient Obscurance (crate `ocean-sao`), part 1 of 2: the camera, read from the
-//! caller's projection matrix.
+//! The one camera of the C ABI, `OceanCamera`: a view matrix, a projection matrix and the depth
+//! convention the projection was built for. Every entry point that needs a camera takes it.
 //!
-//! `ocean-sao` takes a projection by its parameters (a symmetric perspective frustum with a
-//! finite or infinite far plane, or an orthographic box) and derives every constant of its
+//! The math crates take a projection by its parameters (a symmetric perspective frustum with a
+//! finite or infinite far plane, or an orthographic box) and derive every constant of their
 //! passes from them in `f64`. A C caller has a matrix (`glm::perspective`, `glm::ortho`,
 //! `glm::infinitePerspective`, a reversed-Z matrix of its own), so this module recovers the
-//! parameters from the matrix, exactly in `f64` from its `f32` elements:
+//! parameters from the matrix, in `f64`:
 //!
 //! ```text
 //! perspective:  fov_y = 2·atan2(1, P11),  aspect = P11/P00,
@@ -20,70 +20,95 @@
 //! `far_ndc`). These invert `Projection::matrix_f64` (whose depth row is `−α`, `β` with
 //! NDC = α + β/distance): `ζ = −P22 + P23/d` at distance `d` for a perspective, `ζ = P23 − P22·d`
 //! for an orthographic box.
+//!
+//! The matrix checks the declared convention where it can: read under the wrong direction of
+//! depth (forward against reversed), a perspective puts its far plane before its near plane
+//! and is refused. It cannot tell [0, 1] from [-1, 1] for a forward-Z perspective: both
+//! readings give a valid frustum, the [0, 1] reading of a [-1, 1] matrix with its near plane at
+//! 2nf/(n + f), about twice as far (a test shows it), so the convention must be stated.
 
+use glam::DMat4;
+use ocean_core::Camera;
 use ocean_core::camera::{CameraError, DepthConvention, Far, Projection};
-use ocean_sao::DepthSource;
 
+use crate::boundary::{check_reserved, read_in};
 use crate::status::{Error, OceanStatus};
-use crate::wtb::OceanDepthConvention;
 
-/// `OceanSaoCamera::depth_source`: the depth buffer holds window depth, the value a depth
-/// texture stores (`glDepthRange(0, 1)`), always in [0, 1]: `(ndc + 1)/2` under
-/// `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, NDC depth itself under the [0, 1] conventions.
-/// This is what `glReadPixels(..., GL_DEPTH_COMPONENT, GL_FLOAT, ...)` and a sampled depth
-/// texture give.
-pub const OCEAN_SAO_DEPTH_WINDOW: u32 = 0;
-/// `OceanSaoCamera::depth_source`: the depth buffer holds NDC depth (clip z / clip w), in the
-/// convention's range: [-1, 1] under `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, [0, 1] otherwise
-/// (where it equals window depth).
-pub const OCEAN_SAO_DEPTH_NDC: u32 = 1;
+/// Depth convention of a projection matrix: the range of NDC depth (clip z / clip w) and which
+/// end is near.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OceanDepthConvention {
+    /// Depth in [0, 1], near at 0: wgpu, Vulkan, D3D, Metal (GLM with
+    /// GLM_FORCE_DEPTH_ZERO_TO_ONE).
+    ZeroToOne = 0,
+    /// Depth in [0, 1], near at 1 (reversed Z).
+    ZeroToOneReversed = 1,
+    /// Depth in [-1, 1], near at -1: OpenGL and GLM's default.
+    NegOneToOne = 2,
+}
 
-/// The camera of an SAO set-up: the projection matrix that produced the depth buffer, its depth
-/// convention, and what the depth values hold. The view matrix plays no part (SAO works in view
-/// space).
+/// A camera, as every entry point that needs one takes it: the view and projection matrices a
+/// renderer draws with, and the depth convention the projection was built for.
 ///
-/// `projection` is column-major, 16 floats, element [4 * column + row]: GLM's layout
-/// (`glm::value_ptr` of a `glm::mat4`). Right-handed view space, the camera looking down its -z
-/// axis. Accepted:
+/// Matrices are column-major, 16 doubles, element [4 * column + row]: GLM's layout
+/// (`glm::value_ptr` of a `glm::dmat4`; convert a `glm::mat4` with `glm::dmat4(m)`). Column
+/// vectors: clip = projection * view * world. The view matrix maps world space (right-handed,
+/// y up) to view space, right-handed with the camera looking down its -z axis; every element
+/// finite and the matrix invertible.
+///
+/// Accepted projections:
 /// - a symmetric perspective, bottom row (0, 0, -1, 0): `glm::perspective`,
 ///   `glm::infinitePerspective`, and their [0, 1] and reversed-Z forms. Off-centre frusta
 ///   (`projection[8]`, `[9]`, `[12]`, `[13]` non-zero, as in a TAA-jittered matrix) are refused:
-///   pass the unjittered matrix;
+///   pass the unjittered matrix and jitter after;
 /// - an orthographic box, bottom row (0, 0, 0, 1), centred or not (`glm::ortho`).
 ///
 /// Both need a positive x scale `projection[0]` and y scale `projection[5]` (no mirrored or
-/// y-flipped matrix: image rows already run top-down, see `ocean_sao_run`) and zero skew
-/// (`projection[1]`, `[2]`, `[4]`, `[6]`). The near and far planes are read from the depth row
-/// (`projection[10]`, `[14]`) under `depth_convention`, and must come out as
-/// 0 < near < far (perspective; far may be infinite: `projection[10]` = -1, or 0 reversed) or
-/// near < far (orthographic). `ocean_sao_describe` reports the planes read.
+/// y-flipped matrix) and zero skew (`projection[1]`, `[2]`, `[4]`, `[6]`). The near and far
+/// planes are read from the depth row (`projection[10]`, `[14]`) under `depth_convention`, and
+/// must come out as 0 < near < far (perspective; far may be infinite: `projection[10]` = -1, or
+/// 0 reversed) or near < far (orthographic). A matrix read under the wrong direction of depth
+/// (a forward-Z matrix declared `OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE_REVERSED`, or the reverse)
+/// fails that test and is refused.
 ///
 /// The depth row alone cannot tell `OCEAN_DEPTH_CONVENTION_ZERO_TO_ONE` from
-/// `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`: a `glm::perspective` matrix (GLM's default, [-1, 1])
-/// read as [0, 1] gives a near plane at about twice its distance and wrong obscurance, without
-/// any error. Pass the convention the matrix was built for (GLM: [-1, 1] unless
-/// `GLM_FORCE_DEPTH_ZERO_TO_ONE`), and check the near plane with `ocean_sao_describe`.
-///
-/// The matrix describes the whole depth buffer, guard band included: its aspect P11/P00 is
-/// that of the input image's pixels (it need not equal width/height: non-square pixels are
-/// allowed).
+/// `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE` for a forward-Z perspective: a `glm::perspective`
+/// matrix (GLM's default, [-1, 1]) read as [0, 1] gives a near plane at about twice its
+/// distance, without any error. Pass the convention the matrix was built for (GLM: [-1, 1]
+/// unless `GLM_FORCE_DEPTH_ZERO_TO_ONE`); `ocean_sao_describe` reports the planes read.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct OceanSaoCamera {
-    /// The projection matrix, column-major (see above). Every element finite.
-    pub projection: [f32; 16],
+pub struct OceanCamera {
+    /// World-to-view matrix, column-major.
+    pub view: [f64; 16],
+    /// View-to-clip (projection) matrix, column-major.
+    pub projection: [f64; 16],
     /// An `OceanDepthConvention` value (other values are refused).
     pub depth_convention: u32,
-    /// `OCEAN_SAO_DEPTH_WINDOW` or `OCEAN_SAO_DEPTH_NDC` (other values are refused).
-    pub depth_source: u32,
+    /// Must be 0: room for a later member, and no padding the caller cannot see.
+    pub reserved: u32,
 }
 
-/// A camera read from an `OceanSaoCamera`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct SaoCamera {
-    pub(crate) projection: Projection,
-    pub(crate) convention: DepthConvention,
-    pub(crate) source: DepthSource,
+impl OceanCamera {
+    /// The C layout of a camera: its view and projection matrices (built from its parameters)
+    /// and its depth convention.
+    pub fn from_camera(c: &Camera) -> Self {
+        let depth = c.depth();
+        let depth_convention = if depth == DepthConvention::ZERO_TO_ONE_REVERSED {
+            OceanDepthConvention::ZeroToOneReversed
+        } else if depth == DepthConvention::NEG_ONE_TO_ONE {
+            OceanDepthConvention::NegOneToOne
+        } else {
+            OceanDepthConvention::ZeroToOne
+        };
+        Self {
+            view: c.view_f64().to_cols_array(),
+            projection: c.projection_f64().to_cols_array(),
+            depth_convention: depth_convention as u32,
+            reserved: 0,
+        }
+    }
 }
 
 fn convention_from(v: u32) -> Result<DepthConvention, Error> {
@@ -111,40 +136,46 @@ fn convention_name(c: DepthConvention) -> &'static str {
     }
 }
 
-fn source_from(v: u32) -> Result<DepthSource, Error> {
-    match v {
-        OCEAN_SAO_DEPTH_WINDOW => Ok(DepthSource::Window),
-        OCEAN_SAO_DEPTH_NDC => Ok(DepthSource::Ndc),
-        _ => Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!(
-                "camera->depth_source = {v} is neither OCEAN_SAO_DEPTH_WINDOW (0) nor \
-                 OCEAN_SAO_DEPTH_NDC (1)"
-            ),
-        )),
-    }
-}
-
 fn invalid(message: String) -> Error {
     Error::new(OceanStatus::InvalidArgument, message)
 }
 
-/// Reads the camera, validating every member; the projection's parameters are checked by
-/// `Projection::validate` too (SAO's own checks, in `f32`, come with `Sao::new`).
-pub(crate) fn sao_camera_from(c: &OceanSaoCamera) -> Result<SaoCamera, Error> {
+/// Reads and validates the parameter `camera`: the view matrix, the projection recovered from
+/// its matrix (see the module documentation), the convention.
+///
+/// # Safety
+///
+/// `c` must be NULL, misaligned or point to a readable `OceanCamera`.
+pub(crate) unsafe fn read_camera(c: *const OceanCamera) -> Result<Camera, Error> {
+    // SAFETY: forwarded from this function's contract.
+    let c = unsafe { read_in(c, "camera") }?;
+    camera_from(&c)
+}
+
+/// Validates a camera (the parameter `camera`, as messages name it).
+pub(crate) fn camera_from(c: &OceanCamera) -> Result<Camera, Error> {
+    for (matrix, m) in [("view", &c.view), ("projection", &c.projection)] {
+        if let Some(k) = m.iter().position(|v| !v.is_finite()) {
+            return Err(Error::new(
+                OceanStatus::NonFinite,
+                format!("camera->{matrix}[{k}] = {} is not finite", m[k]),
+            ));
+        }
+    }
     let convention = convention_from(c.depth_convention)?;
-    let source = source_from(c.depth_source)?;
+    check_reserved("camera->reserved", c.reserved)?;
     let projection = projection_from_matrix(&c.projection, convention)?;
-    Ok(SaoCamera {
-        projection,
-        convention,
-        source,
+    Camera::new(DMat4::from_cols_array(&c.view), projection, convention).map_err(|e| {
+        Error::new(
+            camera_status(&e),
+            format!("camera: the view matrix with this projection: {e}"),
+        )
     })
 }
 
 /// The projection parameters of a matrix (see the module documentation).
 pub(crate) fn projection_from_matrix(
-    m: &[f32; 16],
+    m: &[f64; 16],
     convention: DepthConvention,
 ) -> Result<Projection, Error> {
     if let Some(k) = m.iter().position(|v| !v.is_finite()) {
@@ -153,7 +184,7 @@ pub(crate) fn projection_from_matrix(
             format!("camera->projection[{k}] = {} is not finite", m[k]),
         ));
     }
-    let e = |k: usize| f64::from(m[k]);
+    let e = |k: usize| m[k];
     let bottom = [m[3], m[7], m[11], m[15]];
     let perspective = if bottom == [0.0, 0.0, -1.0, 0.0] {
         true
@@ -361,7 +392,7 @@ mod tests {
         for p in projections() {
             for convention in DepthConvention::ALL {
                 let m = p.matrix(convention).unwrap().to_cols_array();
-                let q = projection_from_matrix(&m, convention)
+                let q = projection_from_matrix(&m.map(f64::from), convention)
                     .unwrap_or_else(|e| panic!("{p:?} {convention:?}: {}", e.message));
                 // f32 elements carry a relative error of 2^-24 each; the near and far planes
                 // of a perspective come from differences like 1 + P22 (far = 1e5 m: 1e-6 of
@@ -469,7 +500,7 @@ mod tests {
                 aspect: a,
                 near,
                 far: far_read,
-            } = projection_from_matrix(&m, convention).unwrap()
+            } = projection_from_matrix(&m.map(f64::from), convention).unwrap()
             else {
                 panic!("not a perspective");
             };
@@ -485,14 +516,15 @@ mod tests {
         // The ambiguity the documentation warns about: GLM's [-1, 1] matrix read as [0, 1]
         // is accepted, with the near plane at 2nf/(n + f).
         let Projection::Perspective { near, .. } =
-            projection_from_matrix(&gl, DepthConvention::ZERO_TO_ONE).unwrap()
+            projection_from_matrix(&gl.map(f64::from), DepthConvention::ZERO_TO_ONE).unwrap()
         else {
             panic!("not a perspective");
         };
         let expected = 2.0 * f64::from(n) * f64::from(f) / f64::from(n + f);
         assert!(close(near, expected, 1.0e-5), "{near}");
         // Read as reversed Z, the same matrix puts the far plane before the near plane.
-        let e = projection_from_matrix(&gl, DepthConvention::ZERO_TO_ONE_REVERSED).unwrap_err();
+        let e = projection_from_matrix(&gl.map(f64::from), DepthConvention::ZERO_TO_ONE_REVERSED)
+            .unwrap_err();
         assert_eq!(e.status, OceanStatus::InvalidArgument);
         assert!(e.message.contains("far plane"), "{}", e.message);
     }
@@ -575,7 +607,8 @@ mod tests {
             ),
         ];
         for (m, status, needle) in cases {
-            let e = projection_from_matrix(&m, DepthConvention::ZERO_TO_ONE).unwrap_err();
+            let e = projection_from_matrix(&m.map(f64::from), DepthConvention::ZERO_TO_ONE)
+                .unwrap_err();
             assert_eq!(e.status, status, "{m:?}: {}", e.message);
             assert!(
                 e.message.contains(needle),
@@ -585,33 +618,61 @@ mod tests {
         }
     }
 
+    /// The C camera reads back as the camera it was made from, and its enumeration, reserved
+    /// member and view matrix are checked in the header's order.
     #[test]
-    fn enumerations_are_checked() {
-        let m = perspective(Far::Infinite)
-            .matrix(DepthConvention::ZERO_TO_ONE_REVERSED)
-            .unwrap()
-            .to_cols_array();
-        let c = OceanSaoCamera {
-            projection: m,
-            depth_convention: OceanDepthConvention::ZeroToOneReversed as u32,
-            depth_source: OCEAN_SAO_DEPTH_NDC,
+    fn cameras_are_read_and_checked() {
+        let view = ocean_core::camera::look_at(
+            glam::DVec3::new(3.0, 2.0, 5.0),
+            glam::DVec3::ZERO,
+            glam::DVec3::Y,
+        )
+        .unwrap();
+        let camera = Camera::new(
+            view,
+            perspective(Far::Infinite),
+            DepthConvention::ZERO_TO_ONE_REVERSED,
+        )
+        .unwrap();
+        let c = OceanCamera::from_camera(&camera);
+        assert_eq!(
+            c.depth_convention,
+            OceanDepthConvention::ZeroToOneReversed as u32
+        );
+        let read = camera_from(&c).unwrap();
+        assert_eq!(read.depth(), DepthConvention::ZERO_TO_ONE_REVERSED);
+        assert_eq!(read.view_f64(), view);
+        let Projection::Perspective { near, far, .. } = read.projection() else {
+            panic!("not a perspective");
         };
-        let read = sao_camera_from(&c).unwrap();
-        assert_eq!(read.convention, DepthConvention::ZERO_TO_ONE_REVERSED);
-        assert_eq!(read.source, DepthSource::Ndc);
-        let e = sao_camera_from(&OceanSaoCamera {
-            depth_convention: 3,
-            ..c
-        })
-        .unwrap_err();
-        assert_eq!(e.status, OceanStatus::InvalidArgument);
-        assert!(e.message.contains("depth_convention = 3"), "{}", e.message);
-        let e = sao_camera_from(&OceanSaoCamera {
-            depth_source: 2,
-            ..c
-        })
-        .unwrap_err();
-        assert_eq!(e.status, OceanStatus::InvalidArgument);
-        assert!(e.message.contains("depth_source = 2"), "{}", e.message);
+        assert!(
+            close(near, 0.1, 1e-12) && far == Far::Infinite,
+            "{near} {far:?}"
+        );
+        let refused = |c: OceanCamera, status: OceanStatus, needle: &str| {
+            let e = camera_from(&c).unwrap_err();
+            assert_eq!(e.status, status, "{}", e.message);
+            assert!(
+                e.message.contains(needle),
+                "{needle:?} not in {}",
+                e.message
+            );
+        };
+        let mut bad = c;
+        bad.depth_convention = 3;
+        refused(bad, OceanStatus::InvalidArgument, "depth_convention = 3");
+        // A NaN is reported before the enumeration (NON_FINITE, then ranges).
+        bad.projection[0] = f64::NAN;
+        refused(bad, OceanStatus::NonFinite, "camera->projection[0]");
+        let mut bad = c;
+        bad.reserved = 1;
+        refused(bad, OceanStatus::InvalidArgument, "camera->reserved");
+        let mut bad = c;
+        bad.view = [0.0; 16];
+        refused(bad, OceanStatus::InvalidArgument, "view matrix");
+        // A reversed-Z matrix declared forward puts its far plane before its near plane.
+        let mut bad = c;
+        bad.depth_convention = OceanDepthConvention::ZeroToOne as u32;
+        refused(bad, OceanStatus::InvalidArgument, "plane");
     }
 }
