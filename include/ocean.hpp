@@ -22,6 +22,10 @@
 ///
 /// The GPU part (OCEAN_GPU defined: the full library `libocean`, not `libocean-cpu`) is
 /// declared exactly where ocean.h declares its GPU entry points.
+///
+/// Layout: this file holds the common part (errors, version, span, the handle owner, defaults);
+/// the wrappers are in include/ocean/*.hpp by module (waves, lighting, relief, sao, gpu),
+/// included at its end. Include ocean.hpp only.
 #ifndef OCEAN_HPP
 #define OCEAN_HPP
 

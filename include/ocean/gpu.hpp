@@ -16,6 +16,7 @@ namespace ocean {
 /// A headless GPU device and queue (`OceanGpuContext`); shareable between threads.
 class gpu_context : public detail::handle<OceanGpuContext, ocean_gpu_context_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanGpuContext, ocean_gpu_context_destroy>;
     using base::base;
 
@@ -41,6 +42,7 @@ public:
 /// The GPU ocean renderer (`OceanRenderer`); works only with the context it was made on.
 class renderer : public detail::handle<OceanRenderer, ocean_renderer_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanRenderer, ocean_renderer_destroy>;
     using base::base;
 
@@ -78,6 +80,7 @@ public:
 /// The GPU ambient obscurance passes (`OceanSaoGpu`); works only with its context.
 class sao_gpu : public detail::handle<OceanSaoGpu, ocean_sao_gpu_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanSaoGpu, ocean_sao_gpu_destroy>;
     using base::base;
 
@@ -121,6 +124,7 @@ inline const char *shader_name(std::size_t index)
 /// A shader translated to one language (`OceanShaderExport`), immutable and shareable.
 class shader_export : public detail::handle<OceanShaderExport, ocean_shader_export_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanShaderExport, ocean_shader_export_destroy>;
     using base::base;
 

@@ -16,6 +16,7 @@ namespace ocean {
 /// A sampled wave spectrum (`OceanSpectrum`), immutable and shareable.
 class spectrum : public detail::handle<OceanSpectrum, ocean_spectrum_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanSpectrum, ocean_spectrum_destroy>;
     using base::base;
 
@@ -91,6 +92,7 @@ public:
 /// A mip-mapped sky map of one lighting (`OceanSkyMap`), immutable and shareable.
 class sky_map : public detail::handle<OceanSkyMap, ocean_sky_map_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanSkyMap, ocean_sky_map_destroy>;
     using base::base;
 
@@ -127,6 +129,7 @@ public:
 /// The Sun, the sky and the sea (`OceanLighting`), immutable and shareable.
 class lighting : public detail::handle<OceanLighting, ocean_lighting_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanLighting, ocean_lighting_destroy>;
     using base::base;
 

@@ -35,6 +35,7 @@ void check_encoding(const char *what, std::uint32_t encoding)
 /// A square height map with its edge mode (`OceanReliefMap`), immutable and shareable.
 class relief_map : public detail::handle<OceanReliefMap, ocean_relief_map_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanReliefMap, ocean_relief_map_destroy>;
     using base::base;
 
@@ -96,6 +97,7 @@ public:
 /// A cone map with its height map (`OceanReliefCones`), immutable and shareable.
 class relief_cones : public detail::handle<OceanReliefCones, ocean_relief_cones_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanReliefCones, ocean_relief_cones_destroy>;
     using base::base;
 
@@ -179,6 +181,7 @@ public:
 /// The mip chain of a cone map (`OceanReliefMips`), immutable and shareable.
 class relief_mips : public detail::handle<OceanReliefMips, ocean_relief_mips_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanReliefMips, ocean_relief_mips_destroy>;
     using base::base;
 
@@ -217,6 +220,7 @@ public:
 class relief_quad_cones
     : public detail::handle<OceanReliefQuadCones, ocean_relief_quad_cones_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanReliefQuadCones, ocean_relief_quad_cones_destroy>;
     using base::base;
 

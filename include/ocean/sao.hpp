@@ -24,6 +24,7 @@ struct sao_uniforms_block {
 /// A validated SAO set-up (`OceanSao`), immutable and shareable.
 class sao : public detail::handle<OceanSao, ocean_sao_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanSao, ocean_sao_destroy>;
     using base::base;
 

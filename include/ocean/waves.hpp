@@ -24,6 +24,7 @@ struct surface_points {
 /// An immutable set of trochoid (Gerstner) waves (`OceanWaves`); shareable between threads.
 class waves : public detail::handle<OceanWaves, ocean_waves_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanWaves, ocean_waves_destroy>;
     using base::base;
 
@@ -94,6 +95,7 @@ public:
 /// The C functions take a non-const scene even to query it, and so do these methods.
 class wtb_scene : public detail::handle<OceanWtbScene, ocean_wtb_scene_destroy> {
 public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
     using base = detail::handle<OceanWtbScene, ocean_wtb_scene_destroy>;
     using base::base;
 
