@@ -1,58 +1,40 @@
 // A C++17 client of an installed ocean library (tests/package/CMakeLists.txt, .ci/package):
-// the same checks as client.c, through the C header from C++ with an owning handle.
-#include <ocean.h>
+// the checks of client.c through the installed C++ wrapper, ocean.hpp (owning handles,
+// exceptions, spans).
+#include <ocean.hpp>
 
 #include <cmath>
 #include <cstdio>
-#include <memory>
-#include <string>
-
-namespace {
-
-struct WavesDeleter {
-    void operator()(OceanWaves* waves) const { ocean_waves_destroy(waves); }
-};
-using Waves = std::unique_ptr<OceanWaves, WavesDeleter>;
-
-}  // namespace
+#include <exception>
+#include <vector>
 
 int main()
 {
-    const std::string want = std::to_string(OCEAN_VERSION_MAJOR) + "." +
-                             std::to_string(OCEAN_VERSION_MINOR) + "." +
-                             std::to_string(OCEAN_VERSION_PATCH);
-    if (ocean_check_version(OCEAN_VERSION) != OCEAN_STATUS_OK) {
-        std::fprintf(stderr, "%s\n", ocean_last_error_message());
-        return 1;
-    }
-    if (want != ocean_version()) {
-        std::fprintf(stderr, "library %s, header %s\n", ocean_version(), want.c_str());
-        return 1;
-    }
-    OceanWaveDesc desc{};
-    desc.amplitude = 1.0;
-    desc.wavelength = 100.0;
-    desc.direction_x = 1.0;
-    desc.depth = INFINITY;
-    OceanWaves* raw = nullptr;
-    if (ocean_waves_create(&desc, 1, &raw) != OCEAN_STATUS_OK) {
-        std::fprintf(stderr, "ocean_waves_create: %s\n", ocean_last_error_message());
-        return 1;
-    }
-    const Waves waves(raw);
-    const OceanVec2 xz{0.0f, 0.0f};
-    OceanVec3 pos{}, normal{};
-    if (ocean_waves_evaluate(waves.get(), &xz, 1, 0.0, &pos, &normal) != OCEAN_STATUS_OK ||
-        std::fabs(pos.y - 1.0) > 1e-6) {
-        std::fprintf(stderr, "ocean_waves_evaluate: y = %g (want 1): %s\n", double(pos.y),
-                     ocean_last_error_message());
-        return 1;
-    }
+    try {
+        ocean::check_version();
+        OceanWaveDesc desc{};
+        desc.amplitude = 1.0;
+        desc.wavelength = 100.0;
+        desc.direction_x = 1.0;
+        desc.depth = INFINITY;
+        const ocean::waves waves = ocean::waves::create(std::vector<OceanWaveDesc>{desc});
+        const std::vector<OceanVec2> xz{{0.0f, 0.0f}};
+        std::vector<OceanVec3> pos(1), normal(1);
+        waves.evaluate(xz, 0.0, pos, normal);
+        if (std::fabs(pos[0].y - 1.0) > 1e-6) {
+            std::fprintf(stderr, "crest at y = %g (want 1)\n", double(pos[0].y));
+            return 1;
+        }
 #if defined(OCEAN_GPU)
-    std::printf("ocean %s (full, C++): crest at %g m, %zu shaders\n", ocean_version(),
-                double(pos.y), ocean_shader_count());
+        std::printf("ocean %s (full, C++): crest at %g m, %zu shaders\n", ocean::version().c_str(),
+                    double(pos[0].y), ocean_shader_count());
 #else
-    std::printf("ocean %s (CPU-only, C++): crest at %g m\n", ocean_version(), double(pos.y));
+        std::printf("ocean %s (CPU-only, C++): crest at %g m\n", ocean::version().c_str(),
+                    double(pos[0].y));
 #endif
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 1;
+    }
     return 0;
 }

@@ -1,8 +1,8 @@
 //! The C ABI driven from C11 and C++17: compiles `tests/c/test_waves.c`, `tests/c/test_wtb.c`,
 //! `tests/c/test_lighting.c`, `tests/c/test_sao.c`, `tests/c/test_relief.c`, `tests/c/test_draw.c`,
 //! `tests/c/test_gpu.c`, `tests/c/test_misuse.c`, `tests/c/test_threads.c` (with `-pthread`),
-//! `tests/cpp/test_waves.cpp` and `tests/cpp/test_lighting.cpp` against `include/ocean.h` and the
-//! static library `libocean.a` with the system compilers and `-Wall -Wextra -Werror -pedantic`,
+//! `tests/cpp/test_waves.cpp`, `tests/cpp/test_lighting.cpp` and `tests/cpp/test_hpp.cpp` (the C++
+//! wrapper `include/ocean.hpp`) against `include/ocean.h` and the static library `libocean.a` with the system compilers and `-Wall -Wextra -Werror -pedantic`,
 //! runs them, and fails unless each reports `0 failures` after a positive number of checks and
 //! exits 0.
 //!
@@ -516,6 +516,25 @@ fn cpp17_glm_program_against_the_static_library() {
     );
 }
 
+/// The C++17 wrapper `include/ocean.hpp` (`tests/cpp/test_hpp.cpp`): every CPU handle kind
+/// through its move-only owner, errors as `ocean::error` with the C status and message, the span
+/// and vector overloads bit for bit equal to the C calls, the defaults, the version check, and
+/// the GPU part (the shader export and draw data; the context, renderer and GPU SAO where an
+/// adapter exists).
+#[test]
+fn cpp17_ocean_hpp_against_the_static_library() {
+    build_and_run_with(
+        compiler("CXX", "c++"),
+        "-std=c++17",
+        "tests/cpp/test_hpp.cpp",
+        "test_hpp_cpp",
+        &Extras {
+            gpu: true,
+            ..Extras::default()
+        },
+    );
+}
+
 #[test]
 fn cpp17_glm_lighting_against_the_static_library() {
     let cxx = compiler("CXX", "c++");
@@ -555,6 +574,27 @@ fn header_compiles_as_c99_and_cpp11() {
             .arg(&include)
             .arg(include.join("ocean.h"));
         run(cmd, &format!("{lang} {std_flag} syntax check of ocean.h"));
+    }
+}
+
+/// The C++ wrapper `include/ocean.hpp` alone compiles as C++17 without warnings, for the
+/// CPU-only library and for the full one (`OCEAN_GPU`).
+#[test]
+fn cpp_header_compiles_as_cpp17() {
+    let include = workspace_root().join("include");
+    for variant in [None, Some(FULL_LIBRARY)] {
+        let mut cmd = Command::new(compiler("CXX", "c++"));
+        cmd.args(["-x", "c++", "-std=c++17"])
+            .args(WARNINGS)
+            .args(variant)
+            .arg("-fsyntax-only")
+            .arg("-I")
+            .arg(&include)
+            .arg(include.join("ocean.hpp"));
+        run(
+            cmd,
+            &format!("c++ -std=c++17 syntax check of ocean.hpp ({variant:?})"),
+        );
     }
 }
 

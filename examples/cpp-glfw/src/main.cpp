@@ -1,7 +1,7 @@
 // ocean_glfw: the ocean library in a C++ OpenGL 4.3 engine of its own.
 //
 // Every frame:
-// 1. Wave Train Boxes on the CPU (C ABI ocean_wtb_scene_*): a water grid over a sea floor that rises
+// 1. Wave Train Boxes on the CPU (ocean::wtb_scene, ocean_wtb_scene_* in the C ABI): a water grid over a sea floor that rises
 //    towards a shallow bank, one wind-driven box of wave trains, evaluated into the vertex
 //    buffers (positions relative to the grid origin, unit normals): a steep cross sea shoaling
 //    and refracting over the floor.
@@ -21,6 +21,9 @@
 // library's CPU reference, ocean_sao_run, within 2/255 on 99.9 % of the pixels), --size WxH
 // (render size, default 1280x720). Exit status 0 on success, 1 on an error, 3 when a check of
 // the screenshot fails.
+//
+// The library is used through its C++ wrapper, ocean.hpp: owning handles, ocean::error
+// exceptions (caught in main), std::vector in and out.
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -28,11 +31,12 @@
 #include "gl.hpp"
 #include "png.hpp"
 
-#include "ocean.h"
-
+// GLM before ocean.hpp, which then offers ocean::make_camera for GLM matrices.
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+
+#include "ocean.hpp"
 
 #include <algorithm>
 #include <array>
@@ -61,12 +65,6 @@ namespace {
     std::exit(1);
 }
 
-// Every library call returns a status; on failure the thread's last-error message says why.
-void check(OceanStatus status, const char *what)
-{
-    if (status != OCEAN_STATUS_OK)
-        die("%s: %s (%s)", what, ocean_status_message(status), ocean_last_error_message());
-}
 
 void check_gl(const char *where)
 {
@@ -121,31 +119,19 @@ Options parse(int argc, char **argv)
 struct Exported {
     std::map<std::string, std::string> sources; // by entry point
     std::vector<OceanShaderBinding> bindings;
-    OceanShaderExport *handle = nullptr; // owns the strings of `bindings`
+    ocean::shader_export handle; // owns the strings of `bindings`
 };
 
 Exported export_glsl(const char *name)
 {
     Exported e;
-    check(ocean_shader_export(name, OCEAN_SHADER_LANGUAGE_GLSL, &e.handle), name);
-    size_t files = 0, nb = 0;
-    check(ocean_shader_export_file_count(e.handle, &files), "ocean_shader_export_file_count");
-    for (size_t i = 0; i < files; i++) {
-        const char *file_name = nullptr, *entry = nullptr;
-        const uint8_t *data = nullptr;
-        size_t len = 0;
-        uint32_t stage = 0;
-        check(ocean_shader_export_file(e.handle, i, &file_name, &data, &len),
-              "ocean_shader_export_file");
-        check(ocean_shader_export_file_stage(e.handle, i, &stage, &entry),
-              "ocean_shader_export_file_stage");
-        e.sources[entry] = std::string(reinterpret_cast<const char *>(data), len);
+    e.handle = ocean::shader_export::create(name, OCEAN_SHADER_LANGUAGE_GLSL);
+    for (size_t i = 0; i < e.handle.file_count(); i++) {
+        const ocean::shader_file f = e.handle.file(i);
+        e.sources[f.entry_point] =
+            std::string(reinterpret_cast<const char *>(f.data.data()), f.data.size());
     }
-    check(ocean_shader_export_binding_count(e.handle, &nb), "ocean_shader_export_binding_count");
-    e.bindings.resize(nb);
-    for (size_t i = 0; i < nb; i++)
-        check(ocean_shader_export_binding(e.handle, i, &e.bindings[i]),
-              "ocean_shader_export_binding");
+    e.bindings = e.handle.bindings();
     return e;
 }
 
@@ -304,7 +290,7 @@ float floor_height(double x, double z)
     return float(-20.0 + 18.5 * t + shoal);
 }
 
-OceanWtbScene *make_scene()
+ocean::wtb_scene make_scene()
 {
     OceanWaterGridDesc grid{};
     grid.origin_x = kOriginX;
@@ -312,16 +298,14 @@ OceanWtbScene *make_scene()
     grid.spacing = kSpacing;
     grid.nx = kNx;
     grid.nz = kNz;
-    OceanWtbScene *scene = nullptr;
-    check(ocean_wtb_scene_create(&grid, nullptr, 0, &scene), "ocean_wtb_scene_create");
+    ocean::wtb_scene scene = ocean::wtb_scene::create(grid);
 
     std::vector<float> terrain(kNx * kNz);
     for (size_t j = 0; j < kNz; j++)
         for (size_t i = 0; i < kNx; i++)
             terrain[j * kNx + i] = floor_height(kOriginX + double(i) * kSpacing,
                                                 kOriginZ + double(j) * kSpacing);
-    check(ocean_wtb_scene_set_terrain(scene, terrain.data(), terrain.size()),
-          "ocean_wtb_scene_set_terrain");
+    scene.set_terrain(terrain);
 
     // A box over the whole grid, its wind blowing away from the camera and a little to the
     // right, fully developed since long before t = 0. Its trains are given explicitly: a
@@ -360,8 +344,7 @@ OceanWtbScene *make_scene()
         trains[k].phase = 1.3 * k;
         trains[k].depth = INFINITY;
     }
-    uint32_t id = 0;
-    check(ocean_wtb_scene_add_box(scene, &box, trains, 5, &id), "ocean_wtb_scene_add_box");
+    scene.add_box(box, trains);
     return scene;
 }
 
@@ -374,20 +357,6 @@ struct View {
     double fov_y = 45.0 * kPi / 180.0;
     double z_near = 0.5, z_far = 2000.0;
 };
-
-OceanCameraDesc camera_desc(const View &v, double aspect)
-{
-    OceanCameraDesc c{};
-    glm::dmat4 view = glm::lookAt(v.eye, v.target, glm::dvec3(0.0, 1.0, 0.0));
-    std::memcpy(c.view, glm::value_ptr(view), sizeof c.view);
-    c.orthographic = 0;
-    c.depth_convention = OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE; // GLM's default
-    c.fov_y = v.fov_y;
-    c.aspect = aspect;
-    c.z_near = v.z_near;
-    c.z_far = v.z_far;
-    return c;
-}
 
 // ---------------------------------------------------------------------------------------------
 // The screenshot and its check.
@@ -418,9 +387,7 @@ ImageStats stats(const std::vector<uint8_t> &rgb)
     return s;
 }
 
-} // namespace
-
-int main(int argc, char **argv)
+int run(int argc, char **argv)
 {
     const Options opt = parse(argc, argv);
     const int W = opt.width, H = opt.height;
@@ -452,9 +419,9 @@ int main(int argc, char **argv)
                 reinterpret_cast<const char *>(gl::GetString(GL_RENDERER)), W, H);
 
     // --- The library's objects. --------------------------------------------------------------
-    OceanWtbScene *scene = make_scene();
-    OceanSpectrumParams sp{};
-    check(ocean_spectrum_params_default(&sp), "ocean_spectrum_params_default");
+    ocean::check_version();
+    ocean::wtb_scene scene = make_scene();
+    OceanSpectrumParams sp = ocean::defaults<OceanSpectrumParams>();
     // The open sea's spectrum adds what the 1 m mesh cannot carry: waves from 2 cm to 4 m under
     // the same wind, in the normals and the BRDF only.
     sp.wind_speed = 9.0;
@@ -463,45 +430,30 @@ int main(int argc, char **argv)
     sp.wave_count = 40;
     sp.min_wavelength = 0.02;
     sp.max_wavelength = 4.0;
-    OceanSpectrum *spectrum = nullptr;
-    check(ocean_spectrum_create(&sp, &spectrum), "ocean_spectrum_create");
-    size_t waves = 0;
-    check(ocean_spectrum_wave_count(spectrum, &waves), "ocean_spectrum_wave_count");
-    OceanSkyParams sky{};
-    OceanSeaParams sea{};
-    check(ocean_sky_params_default(&sky), "ocean_sky_params_default");
-    check(ocean_sea_params_default(&sea), "ocean_sea_params_default");
-    OceanLighting *lighting = nullptr;
-    check(ocean_lighting_create(&sky, &sea, &lighting), "ocean_lighting_create");
-    OceanSurfaceDrawParams draw{};
-    check(ocean_surface_draw_params_default(&draw), "ocean_surface_draw_params_default");
+    const ocean::spectrum spectrum = ocean::spectrum::create(sp);
+    const size_t waves = spectrum.wave_count();
+    const ocean::lighting lighting = ocean::lighting::create(
+        ocean::defaults<OceanSkyParams>(), ocean::defaults<OceanSeaParams>());
+    const OceanSurfaceDrawParams draw = ocean::defaults<OceanSurfaceDrawParams>();
 
     const View view;
     const double aspect = double(W) / double(H);
-    const glm::mat4 proj = glm::perspective(float(view.fov_y), float(aspect), float(view.z_near),
-                                            float(view.z_far));
-    const glm::mat4 view_matrix =
-        glm::lookAt(glm::vec3(view.eye), glm::vec3(view.target), glm::vec3(0.0f, 1.0f, 0.0f));
-    const glm::mat4 view_proj = proj * view_matrix;
-    const OceanCameraDesc camera = camera_desc(view, aspect);
+    // The engine's matrices (GLM, double precision) and the
+    // library's one camera made of them: GLM's default [-1, 1] depth.
+    const glm::dmat4 dproj = glm::perspective(view.fov_y, aspect, view.z_near, view.z_far);
+    const glm::dmat4 dview = glm::lookAt(view.eye, view.target, glm::dvec3(0.0, 1.0, 0.0));
+    const OceanCamera camera =
+        ocean::make_camera(dview, dproj, OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE);
 
-    // SAO over the frame's depth: the projection that made it ([-1, 1], window depth in the
-    // texture), no guard band, so the obscurance covers the viewport pixel for pixel.
-    OceanSaoCamera sao_camera{};
-    std::memcpy(sao_camera.projection, glm::value_ptr(proj), sizeof sao_camera.projection);
-    sao_camera.depth_convention = OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE;
-    sao_camera.depth_source = OCEAN_SAO_DEPTH_WINDOW;
-    OceanSaoParams sao_params{};
-    check(ocean_sao_params_default(&sao_params), "ocean_sao_params_default");
+    // SAO over the frame's depth: the camera that made it (window depth in the texture), no
+    // guard band, so the obscurance covers the viewport pixel for pixel.
+    OceanSaoParams sao_params = ocean::defaults<OceanSaoParams>();
     sao_params.radius = 2.0f;
-    OceanSao *sao = nullptr;
-    check(ocean_sao_create(uint32_t(W), uint32_t(H), 0, &sao_camera, &sao_params, &sao),
-          "ocean_sao_create");
-    std::vector<uint8_t> sao_block(OCEAN_SAO_UNIFORMS_SIZE);
-    uint32_t z_levels = 0;
-    size_t block_size = 0;  // the size written, OCEAN_SAO_UNIFORMS_SIZE
-    check(ocean_sao_uniforms(sao, sao_block.data(), sao_block.size(), &block_size, &z_levels),
-          "ocean_sao_uniforms");
+    const ocean::sao sao = ocean::sao::create(uint32_t(W), uint32_t(H), 0, camera,
+                                              OCEAN_SAO_DEPTH_WINDOW, sao_params);
+    const ocean::sao_uniforms_block sao_uniforms = sao.uniforms();
+    const std::vector<uint8_t> &sao_block = sao_uniforms.bytes;
+    const uint32_t z_levels = sao_uniforms.levels;
 
     // --- Shaders. ----------------------------------------------------------------------------
     Exported ocean_export = export_glsl("ocean");
@@ -530,25 +482,18 @@ int main(int argc, char **argv)
     std::vector<float> wave_texels(4 * OCEAN_WAVE_TEXTURE_ROWS * waves);
     GLuint wave_tex = texture2d(GL_RGBA32F, int(waves), OCEAN_WAVE_TEXTURE_ROWS, GL_RGBA,
                                 GL_FLOAT, nullptr);
-    std::vector<float> fresnel(OCEAN_FRESNEL_TABLE_SIZE * OCEAN_FRESNEL_TABLE_SIZE);
-    check(ocean_surface_fresnel_texels(fresnel.data(), fresnel.size()), "ocean_surface_fresnel_texels");
+    const std::vector<float> fresnel = ocean::surface_fresnel_texels();
     GLuint fresnel_tex = texture2d(GL_R32F, OCEAN_FRESNEL_TABLE_SIZE, OCEAN_FRESNEL_TABLE_SIZE,
                                    GL_RED, GL_FLOAT, fresnel.data());
     GLuint sky_tex = 0;
     {
-        OceanSkyMap *map = nullptr;
-        check(ocean_lighting_sky_map_create(lighting, draw.sky_map_size, &map),
-              "ocean_lighting_sky_map_create");
-        uint32_t levels = 0;
-        check(ocean_sky_map_level_count(map, &levels), "ocean_sky_map_level_count");
+        const ocean::sky_map map = lighting.sky_map(draw.sky_map_size);
+        const uint32_t levels = map.level_count();
         gl::GenTextures(1, &sky_tex);
         gl::BindTexture(GL_TEXTURE_2D, sky_tex);
         for (uint32_t l = 0; l < levels; l++) {
-            uint32_t side = 0;
-            check(ocean_sky_map_level_info(map, l, &side), "ocean_sky_map_level_info");
-            std::vector<float> texels(size_t(side) * side * 4);
-            check(ocean_sky_map_copy_level(map, l, texels.data(), texels.size()),
-                  "ocean_sky_map_copy_level");
+            const uint32_t side = map.level_size(l);
+            const std::vector<float> texels = map.level(l);
             gl::TexImage2D(GL_TEXTURE_2D, GLint(l), GL_RGBA16F, GLsizei(side), GLsizei(side), 0,
                            GL_RGBA, GL_FLOAT, texels.data());
         }
@@ -557,7 +502,6 @@ int main(int argc, char **argv)
         gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(levels - 1));
         gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        ocean_sky_map_destroy(map);
     }
     // No local waves: bindings 7 and 8 are never read, but a sampler must name a complete
     // texture of its type.
@@ -645,11 +589,8 @@ int main(int argc, char **argv)
 
         // 1. The waves on the CPU, culled by the view.
         const auto t0 = std::chrono::steady_clock::now();
-        OceanFrameStats fs{};
-        check(ocean_wtb_scene_evaluate(scene, time, glm::value_ptr(view_proj),
-                                   OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE, positions.data(),
-                                   normals.data(), points, &fs),
-              "ocean_wtb_scene_evaluate");
+        const OceanFrameStats fs =
+            scene.evaluate(time, &camera, positions, normals);
         evaluate_ms +=
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count();
@@ -667,15 +608,11 @@ int main(int argc, char **argv)
         mesh.spacing = kSpacing;
         mesh.nx = kNx;
         mesh.nz = kNz;
-        size_t written = 0;
-        check(ocean_surface_uniforms(&camera, spectrum, lighting, &draw, &mesh, time, uint32_t(W),
-                                   uint32_t(H), block.data(), block.size(), &written),
-              "ocean_surface_uniforms");
+        ocean::surface_uniforms(camera, spectrum, lighting, draw, &mesh, time, uint32_t(W),
+                                uint32_t(H), block);
         gl::BindBuffer(GL_UNIFORM_BUFFER, frame_ubo);
         gl::BufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(block.size()), block.data());
-        check(ocean_surface_wave_texels(&camera, spectrum, time, wave_texels.data(),
-                                      wave_texels.size()),
-              "ocean_surface_wave_texels");
+        ocean::surface_wave_texels(camera, spectrum, time, wave_texels);
         gl::BindTexture(GL_TEXTURE_2D, wave_tex);
         gl::TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, GLsizei(waves), OCEAN_WAVE_TEXTURE_ROWS,
                           GL_RGBA, GL_FLOAT, wave_texels.data());
@@ -783,14 +720,13 @@ int main(int argc, char **argv)
         // The obscurance of the last frame, and the same passes on the CPU (ocean_sao_run) over
         // the same depth buffer: the exported shaders in this pipeline must agree with the
         // library's reference within 2/255 on at least 99.9 % of the pixels (its parity bound).
-        std::vector<float> ao(size_t(W) * size_t(H)), cpu(ao.size()), depth(ao.size());
+        std::vector<float> ao(size_t(W) * size_t(H)), depth(ao.size());
         gl::BindTexture(GL_TEXTURE_2D, ao_tex);
         gl::GetTexImage(GL_TEXTURE_2D, 0, GL_RED, GL_FLOAT, ao.data());
         gl::BindTexture(GL_TEXTURE_2D, depth_tex);
         gl::GetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
         check_gl("reading the obscurance and the depth back");
-        check(ocean_sao_run(sao, depth.data(), depth.size(), cpu.data(), cpu.size()),
-              "ocean_sao_run");
+        const std::vector<float> cpu = sao.run(depth);
         double ao_sum = 0.0;
         float ao_min = 1.0f;
         size_t agree = 0;
@@ -821,13 +757,22 @@ int main(int argc, char **argv)
 
     gl::DeleteFramebuffers(1, &mesh_fbo);
     gl::DeleteFramebuffers(1, &color_fbo);
-    ocean_sao_destroy(sao);
-    ocean_lighting_destroy(lighting);
-    ocean_spectrum_destroy(spectrum);
-    ocean_wtb_scene_destroy(scene);
-    for (Exported *e : {&ocean_export, &z_export, &mip_export, &ao_export, &blur_export})
-        ocean_shader_export_destroy(e->handle);
     glfwDestroyWindow(window);
     glfwTerminate();
     return status;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    // A failing library call throws ocean::error: its status, and the library's message naming
+    // the function and the argument.
+    try {
+        return run(argc, argv);
+    } catch (const ocean::error &e) {
+        die("%s (%s)", e.what(), ocean_status_message(e.status()));
+    } catch (const std::exception &e) {
+        die("%s", e.what());
+    }
 }
