@@ -1109,7 +1109,8 @@ typedef struct OceanIrradiance {
 } OceanIrradiance;
 
 /**
- * A point on the sea plane in double precision: world x and z in metres.
+ * A point on the sea plane y = 0 in double precision: world x and z in metres. World positions
+ * cross the C ABI in double precision (a float resolves only 7.8 mm at 100 km).
  */
 typedef struct OceanDVec2 {
   /**
@@ -1808,23 +1809,6 @@ typedef struct OceanShaderBinding {
   const char *glsl_name;
 } OceanShaderBinding;
 #endif
-
-/**
- * A point on the sea plane y = 0: world x and z in metres (single precision).
- *
- * The layout (two packed floats, 8 bytes) is that of GLM's `glm::vec2` and `float[2]`; the
- * second member holds z, not y.
- */
-typedef struct OceanVec2 {
-  /**
-   * x, metres.
-   */
-  float x;
-  /**
-   * z, metres.
-   */
-  float z;
-} OceanVec2;
 
 /**
  * A 3D vector (metres for positions; unit length for normals), right-handed, y up.
@@ -4534,16 +4518,18 @@ void ocean_waves_destroy(struct OceanWaves *waves);
  * ```
  *
  * with k_w = (2*pi/wavelength) * khat_w, khat_w the normalised direction and omega_w from the
- * dispersion relation (see `OceanWaveDesc`). Positions are world coordinates, so their float
- * resolution degrades far from the origin (about 4 mm at 100 km); use
- * `ocean_waves_evaluate_grid`, which writes positions relative to a double-precision origin,
- * for geometry far from the origin. Phases are formed and reduced in double precision, so large
- * `time` values (10^6 s) do not jitter. The arithmetic is bit-identical on every platform and
- * thread count; large batches are split over a global worker pool.
+ * dispersion relation (see `OceanWaveDesc`). Rest positions and outputs are world coordinates
+ * in double precision: each point is evaluated relative to the corner of its 64 m lattice cell
+ * (a float offset below 64 m, resolved to 4 µm) with the phases formed in double precision,
+ * so the answer is as precise 100 km from the origin as at it, and a point gives the same bits
+ * in any batch. Large `time` values (10^6 s) do not jitter either. The arithmetic is
+ * bit-identical on every platform and thread count; large batches are split over a global
+ * worker pool.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` if any pointer is NULL, `OCEAN_STATUS_MISALIGNED_POINTER`
- * if one is not aligned to 4 bytes (8 for `waves`), `OCEAN_STATUS_EMPTY` if `n` is 0,
- * `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanVec3)` exceeds `PTRDIFF_MAX`,
+ * if one is not aligned to its type (8 bytes for `xz` and `out_pos`, 4 for `out_normal`),
+ * `OCEAN_STATUS_EMPTY` if `n` is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if
+ * `n * sizeof(OceanDVec3)` exceeds `PTRDIFF_MAX`,
  * `OCEAN_STATUS_INVALID_ARGUMENT` if any two of the three arrays overlap,
  * `OCEAN_STATUS_NON_FINITE` if `time` or a coordinate of `xz` is NaN or infinite (the message
  * gives the first bad index), `OCEAN_STATUS_INVALID_ARGUMENT` if a phase leaves the domain
@@ -4553,15 +4539,15 @@ void ocean_waves_destroy(struct OceanWaves *waves);
  *
  * # Safety
  *
- * `xz` must point to `n` readable `OceanVec2`s, and `out_pos`
- * and `out_normal` to `n` writable `OceanVec3`s each, none of them modified by another thread
- * during the call.
+ * `xz` must point to `n` readable `OceanDVec2`s, `out_pos` to `n` writable `OceanDVec3`s and
+ * `out_normal` to `n` writable `OceanVec3`s, none of them modified by another thread during
+ * the call.
  */
 OceanStatus ocean_waves_evaluate(const struct OceanWaves *waves,
-                                 const struct OceanVec2 *xz,
+                                 const struct OceanDVec2 *xz,
                                  size_t n,
                                  double time,
-                                 struct OceanVec3 *out_pos,
+                                 struct OceanDVec3 *out_pos,
                                  struct OceanVec3 *out_normal);
 
 /**

@@ -3,7 +3,7 @@
 use ocean::{
     OceanDVec2, OceanDVec3, OceanDrawnSample, OceanFrameStats, OceanHeightSample, OceanIrradiance,
     OceanReliefHit, OceanReliefPoint, OceanReliefRay, OceanRgb, OceanSaoInfo, OceanSeaLight,
-    OceanSlopeVariance, OceanVec2, OceanVec3, OceanWaveDesc,
+    OceanSlopeVariance, OceanVec3, OceanWaveDesc,
 };
 
 /// Every float in it is finite.
@@ -77,7 +77,6 @@ macro_rules! finite_fields {
 }
 
 finite_fields! {
-    OceanVec2 { x, z }
     OceanVec3 { x, y, z }
     OceanDVec2 { x, z }
     OceanDVec3 { x, y, z }

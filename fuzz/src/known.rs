@@ -6,8 +6,8 @@ use std::any::Any;
 use std::fmt::Debug;
 
 use ocean::{
-    OceanCamera, OceanDVec3, OceanGrid, OceanReliefMethod, OceanReliefRay, OceanSeaColorInput,
-    OceanSeaParams, OceanSkyParams, OceanVec2,
+    OceanCamera, OceanDVec2, OceanDVec3, OceanGrid, OceanReliefMethod, OceanReliefRay,
+    OceanSeaColorInput, OceanSeaParams, OceanSkyParams,
 };
 
 /// The sky of a lighting query's inputs, as the harness reports them (`ops_lighting.rs`).
@@ -103,7 +103,7 @@ pub const KNOWN_NON_FINITE: &[Known] = &[
     Known {
         function: "ocean_waves_evaluate",
         matches: |a| {
-            a.downcast_ref::<(Vec<OceanVec2>, usize, f64)>()
+            a.downcast_ref::<(Vec<OceanDVec2>, usize, f64)>()
                 .is_some_and(|&(_, _, time)| time.abs() > 1e300)
         },
         note: "the same overflow of omega * time (ocean-core's Wave::phase_at) in the CPU \

@@ -3,8 +3,8 @@
 use std::ptr::null_mut;
 
 use ocean::{
-    OceanGrid, OceanVec2, OceanVec3, OceanWaveDesc, ocean_waves_count, ocean_waves_create,
-    ocean_waves_evaluate, ocean_waves_evaluate_grid, ocean_waves_max_amplitude,
+    OceanDVec2, OceanDVec3, OceanGrid, OceanVec3, OceanWaveDesc, ocean_waves_count,
+    ocean_waves_create, ocean_waves_evaluate, ocean_waves_evaluate_grid, ocean_waves_max_amplitude,
     ocean_waves_steepness_sum,
 };
 
@@ -69,16 +69,16 @@ pub fn create(live: &mut Live, inp: &mut Input) {
 pub fn evaluate(live: &mut Live, inp: &mut Input) {
     let waves = pick_or_null(inp, &live.waves);
     let m = (1 + inp.upto(MAX_POINTS)) % (MAX_POINTS + 1);
-    let xz: Vec<OceanVec2> = (0..m)
-        .map(|_| OceanVec2 {
-            x: inp.f32_near(50.0) - 50.0,
-            z: inp.f32_near(50.0) - 50.0,
+    let xz: Vec<OceanDVec2> = (0..m)
+        .map(|_| OceanDVec2 {
+            x: f64::from(inp.f32_near(50.0)) - 50.0,
+            z: f64::from(inp.f32_near(50.0)) - 50.0,
         })
         .collect();
     let n = inp.len_within(m);
     let time = inp.f64_near(10.0);
     let args = (xz, n, time);
-    let mut pos = vec![OceanVec3::default(); m];
+    let mut pos = vec![OceanDVec3::default(); m];
     let mut normal = vec![OceanVec3::default(); m];
     // SAFETY: `waves` is live or NULL; `xz`, `pos` and `normal` hold `m` >= `n` elements each
     // and do not overlap.

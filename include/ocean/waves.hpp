@@ -15,8 +15,16 @@ namespace ocean {
 
 /// Displaced positions and unit normals of a batch of surface points, in the order of the input.
 struct surface_points {
-    /// Positions, metres (world space, or relative to a grid's origin: see the call).
+    /// Positions, metres, relative to the grid's origin.
     std::vector<OceanVec3> positions;
+    /// Unit normals, y up.
+    std::vector<OceanVec3> normals;
+};
+
+/// Displaced world positions (double precision) and unit normals of `waves::evaluate`.
+struct world_points {
+    /// World positions, metres.
+    std::vector<OceanDVec3> positions;
     /// Unit normals, y up.
     std::vector<OceanVec3> normals;
 };
@@ -50,9 +58,10 @@ public:
     {
         return detail::out<double>([&](double *o) { return ocean_waves_max_amplitude(get(), o); });
     }
-    /// `ocean_waves_evaluate` of the rest points `xz` (world x, z) at `time` seconds into
-    /// `positions` and `normals`, each of `xz.size()` elements (else std::invalid_argument).
-    void evaluate(span<const OceanVec2> xz, double time, span<OceanVec3> positions,
+    /// `ocean_waves_evaluate` of the world rest points `xz` (x, z in double precision) at
+    /// `time` seconds into world `positions` and `normals`, each of `xz.size()` elements (else
+    /// std::invalid_argument).
+    void evaluate(span<const OceanDVec2> xz, double time, span<OceanDVec3> positions,
                   span<OceanVec3> normals) const
     {
         detail::check_size("ocean::waves::evaluate: positions", positions.size(), xz.size());
@@ -61,9 +70,9 @@ public:
                                    detail::ptr(positions), detail::ptr(normals)));
     }
     /// `ocean_waves_evaluate` into new vectors.
-    surface_points evaluate(span<const OceanVec2> xz, double time) const
+    world_points evaluate(span<const OceanDVec2> xz, double time) const
     {
-        surface_points s{std::vector<OceanVec3>(xz.size()), std::vector<OceanVec3>(xz.size())};
+        world_points s{std::vector<OceanDVec3>(xz.size()), std::vector<OceanVec3>(xz.size())};
         evaluate(xz, time, s.positions, s.normals);
         return s;
     }

@@ -160,16 +160,16 @@ pub use version::{
     ocean_check_version, ocean_version, ocean_version_number,
 };
 pub use waves::{
-    OceanGrid, OceanVec2, OceanVec3, OceanWaveDesc, OceanWaves, ocean_waves_count,
+    OceanDVec2, OceanDVec3, OceanGrid, OceanVec3, OceanWaveDesc, OceanWaves, ocean_waves_count,
     ocean_waves_create, ocean_waves_destroy, ocean_waves_evaluate, ocean_waves_evaluate_grid,
     ocean_waves_max_amplitude, ocean_waves_steepness_sum,
 };
 pub use wtb::{
-    OceanBeach, OceanBoxDesc, OceanDVec2, OceanDVec3, OceanEffects, OceanFrameStats,
-    OceanIrregular, OceanNoise, OceanRefraction, OceanWaterGridDesc, OceanWindDesc, OceanWtbScene,
-    ocean_wtb_box_desc_default, ocean_wtb_effects_default, ocean_wtb_scene_add_box,
-    ocean_wtb_scene_box_count, ocean_wtb_scene_create, ocean_wtb_scene_destroy,
-    ocean_wtb_scene_evaluate, ocean_wtb_scene_evaluate_incremental, ocean_wtb_scene_remove_box,
+    OceanBeach, OceanBoxDesc, OceanEffects, OceanFrameStats, OceanIrregular, OceanNoise,
+    OceanRefraction, OceanWaterGridDesc, OceanWindDesc, OceanWtbScene, ocean_wtb_box_desc_default,
+    ocean_wtb_effects_default, ocean_wtb_scene_add_box, ocean_wtb_scene_box_count,
+    ocean_wtb_scene_create, ocean_wtb_scene_destroy, ocean_wtb_scene_evaluate,
+    ocean_wtb_scene_evaluate_incremental, ocean_wtb_scene_remove_box,
     ocean_wtb_scene_reset_coverage, ocean_wtb_scene_set_budget_explicit,
     ocean_wtb_scene_set_budget_seconds, ocean_wtb_scene_set_budget_unlimited,
     ocean_wtb_scene_set_effects, ocean_wtb_scene_set_terrain, ocean_wtb_scene_update_box,

@@ -22,7 +22,7 @@ use crate::boundary::{
     write_out,
 };
 use crate::status::{Error, OceanStatus, guard};
-use crate::wtb::{OceanDVec2, OceanDVec3};
+use crate::waves::{OceanDVec2, OceanDVec3};
 
 /// Half-width E of the square of the stereographic plane a sky map covers: texel (i, j) of a
 /// level of size S shows u = (2 t - 1) E, t = ((i + 0.5)/S, (j + 0.5)/S). Equal to

@@ -15,7 +15,7 @@ use ocean_brdf::tonemap::{DEFAULT_EXPOSURE, linear_to_srgb, tone_map};
 use crate::boundary::{Num, check_finite, check_ptr, write_out};
 use crate::lighting::{OceanRgb, finite_dvec3};
 use crate::status::{Error, OceanStatus, guard};
-use crate::wtb::OceanDVec3;
+use crate::waves::OceanDVec3;
 
 /// Reflectance of water at normal incidence, R of Eq. 14 (a refractive index of 1.33).
 pub const OCEAN_WATER_R: f64 = 0.02;

@@ -14,8 +14,8 @@ use crate::lighting::brdf_error;
 
 use crate::camera::{OceanCamera, read_camera};
 use crate::status::{Error, OceanStatus, guard};
+use crate::waves::OceanDVec2;
 use crate::waves::OceanWaveDesc;
-use crate::wtb::OceanDVec2;
 
 /// N_min of the paper's filter (section 7.1): a wave starts to appear in the normals (or the
 /// geometry) once its wavelength spans this many pixels (or grid cells).

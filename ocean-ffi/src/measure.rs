@@ -6,8 +6,8 @@ use core::ffi::CStr;
 
 use crate::lighting::{OceanLighting, OceanSeaColorInput, OceanSeaLight, OceanSkyMap};
 use crate::status::{OceanStatus, ocean_last_error_message};
-use crate::waves::{OceanVec2, OceanVec3, OceanWaveDesc, OceanWaves};
-use crate::wtb::{OceanBoxDesc, OceanDVec2, OceanEffects, OceanWaterGridDesc, OceanWtbScene};
+use crate::waves::{OceanDVec2, OceanDVec3, OceanVec3, OceanWaveDesc, OceanWaves};
+use crate::wtb::{OceanBoxDesc, OceanEffects, OceanWaterGridDesc, OceanWtbScene};
 use crate::wtb_query::OceanHeightSample;
 
 /// `Ok` for `OCEAN_STATUS_OK`, else the status and the thread's last-error message.
@@ -36,9 +36,9 @@ impl Waves {
     /// `ocean_waves_evaluate` (the three slices must have one length).
     pub fn evaluate(
         &self,
-        xz: &[OceanVec2],
+        xz: &[OceanDVec2],
         time: f64,
-        pos: &mut [OceanVec3],
+        pos: &mut [OceanDVec3],
         nrm: &mut [OceanVec3],
     ) -> OceanStatus {
         assert!(pos.len() == xz.len() && nrm.len() == xz.len());

@@ -19,7 +19,7 @@ use crate::lighting::{OceanIrradiance, finite_dvec3};
 use crate::relief::edge_from;
 use crate::relief_trace::{OceanReliefMethod, method_from};
 use crate::status::{Error, OceanStatus, guard};
-use crate::wtb::OceanDVec3;
+use crate::waves::OceanDVec3;
 
 /// Size in bytes of the exported `relief` shader's uniform block `Relief` (binding 0, std140);
 /// `ocean_relief_uniforms` writes it.

@@ -7,24 +7,11 @@ use glam::{DVec2, Vec2, Vec3};
 use ocean_core::{Depth, EvalError, Grid, WaveDesc, WaveError, WaveSet};
 
 use crate::boundary::{
-    borrow, byte_len, check_disjoint, check_finite, check_ptr, check_time, destroy, write_handle,
-    write_out,
+    Num, borrow, byte_len, check_disjoint, check_finite, check_ptr, check_time, destroy,
+    write_handle, write_out,
 };
 use crate::status::{Error, OceanStatus, guard};
 use crate::waves_domain::Reach;
-
-/// A point on the sea plane y = 0: world x and z in metres (single precision).
-///
-/// The layout (two packed floats, 8 bytes) is that of GLM's `glm::vec2` and `float[2]`; the
-/// second member holds z, not y.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-pub struct OceanVec2 {
-    /// x, metres.
-    pub x: f32,
-    /// z, metres.
-    pub z: f32,
-}
 
 /// A 3D vector (metres for positions; unit length for normals), right-handed, y up.
 ///
@@ -40,8 +27,43 @@ pub struct OceanVec3 {
     pub z: f32,
 }
 
-const _: () = assert!(size_of::<OceanVec2>() == size_of::<Vec2>());
-const _: () = assert!(align_of::<OceanVec2>() == align_of::<Vec2>());
+/// A point on the sea plane y = 0 in double precision: world x and z in metres. World positions
+/// cross the C ABI in double precision (a float resolves only 7.8 mm at 100 km).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct OceanDVec2 {
+    /// x, metres.
+    pub x: f64,
+    /// z, metres.
+    pub z: f64,
+}
+
+/// A 3D vector in double precision. World-space vectors are right-handed with y up; the BRDF
+/// functions take tangent-frame vectors (x along the wind, y across it, z along the normal), as
+/// each function says.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OceanDVec3 {
+    /// x.
+    pub x: f64,
+    /// y (up).
+    pub y: f64,
+    /// z.
+    pub z: f64,
+}
+
+impl OceanDVec3 {
+    pub(crate) fn from_dvec3(v: glam::DVec3) -> Self {
+        Self {
+            x: v.x,
+            y: v.y,
+            z: v.z,
+        }
+    }
+}
+
+const _: () = assert!(size_of::<OceanDVec2>() == size_of::<DVec2>());
+const _: () = assert!(align_of::<OceanDVec2>() == align_of::<DVec2>());
 const _: () = assert!(size_of::<OceanVec3>() == size_of::<Vec3>());
 const _: () = assert!(align_of::<OceanVec3>() == align_of::<Vec3>());
 
@@ -231,16 +253,18 @@ pub extern "C" fn ocean_waves_destroy(waves: *mut OceanWaves) {
 /// ```
 ///
 /// with k_w = (2*pi/wavelength) * khat_w, khat_w the normalised direction and omega_w from the
-/// dispersion relation (see `OceanWaveDesc`). Positions are world coordinates, so their float
-/// resolution degrades far from the origin (about 4 mm at 100 km); use
-/// `ocean_waves_evaluate_grid`, which writes positions relative to a double-precision origin,
-/// for geometry far from the origin. Phases are formed and reduced in double precision, so large
-/// `time` values (10^6 s) do not jitter. The arithmetic is bit-identical on every platform and
-/// thread count; large batches are split over a global worker pool.
+/// dispersion relation (see `OceanWaveDesc`). Rest positions and outputs are world coordinates
+/// in double precision: each point is evaluated relative to the corner of its 64 m lattice cell
+/// (a float offset below 64 m, resolved to 4 µm) with the phases formed in double precision,
+/// so the answer is as precise 100 km from the origin as at it, and a point gives the same bits
+/// in any batch. Large `time` values (10^6 s) do not jitter either. The arithmetic is
+/// bit-identical on every platform and thread count; large batches are split over a global
+/// worker pool.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` if any pointer is NULL, `OCEAN_STATUS_MISALIGNED_POINTER`
-/// if one is not aligned to 4 bytes (8 for `waves`), `OCEAN_STATUS_EMPTY` if `n` is 0,
-/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanVec3)` exceeds `PTRDIFF_MAX`,
+/// if one is not aligned to its type (8 bytes for `xz` and `out_pos`, 4 for `out_normal`),
+/// `OCEAN_STATUS_EMPTY` if `n` is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if
+/// `n * sizeof(OceanDVec3)` exceeds `PTRDIFF_MAX`,
 /// `OCEAN_STATUS_INVALID_ARGUMENT` if any two of the three arrays overlap,
 /// `OCEAN_STATUS_NON_FINITE` if `time` or a coordinate of `xz` is NaN or infinite (the message
 /// gives the first bad index), `OCEAN_STATUS_INVALID_ARGUMENT` if a phase leaves the domain
@@ -250,16 +274,16 @@ pub extern "C" fn ocean_waves_destroy(waves: *mut OceanWaves) {
 ///
 /// # Safety
 ///
-/// `xz` must point to `n` readable `OceanVec2`s, and `out_pos`
-/// and `out_normal` to `n` writable `OceanVec3`s each, none of them modified by another thread
-/// during the call.
+/// `xz` must point to `n` readable `OceanDVec2`s, `out_pos` to `n` writable `OceanDVec3`s and
+/// `out_normal` to `n` writable `OceanVec3`s, none of them modified by another thread during
+/// the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_waves_evaluate(
     waves: *const OceanWaves,
-    xz: *const OceanVec2,
+    xz: *const OceanDVec2,
     n: usize,
     time: f64,
-    out_pos: *mut OceanVec3,
+    out_pos: *mut OceanDVec3,
     out_normal: *mut OceanVec3,
 ) -> OceanStatus {
     guard("ocean_waves_evaluate", || {
@@ -273,14 +297,15 @@ pub unsafe extern "C" fn ocean_waves_evaluate(
                 "`n` is 0: no points to evaluate",
             ));
         }
-        let in_bytes = byte_len::<OceanVec2>(n, "xz")?;
-        let out_bytes = byte_len::<OceanVec3>(n, "out_pos")?;
+        let in_bytes = byte_len::<OceanDVec2>(n, "xz")?;
+        let pos_bytes = byte_len::<OceanDVec3>(n, "out_pos")?;
+        let nrm_bytes = byte_len::<OceanVec3>(n, "out_normal")?;
         let ranges = [
             (xz.cast::<u8>(), in_bytes, "xz"),
-            (out_pos.cast_const().cast::<u8>(), out_bytes, "out_pos"),
+            (out_pos.cast_const().cast::<u8>(), pos_bytes, "out_pos"),
             (
                 out_normal.cast_const().cast::<u8>(),
-                out_bytes,
+                nrm_bytes,
                 "out_normal",
             ),
         ];
@@ -298,24 +323,82 @@ pub unsafe extern "C" fn ocean_waves_evaluate(
                 core::slice::from_raw_parts_mut(out_normal, n),
             )
         };
-        let local: &[Vec2] = bytemuck::cast_slice(xz);
+        let world: &[DVec2] = bytemuck::cast_slice(xz);
+        if let Some(i) = world.iter().position(|p| !p.is_finite()) {
+            return Err(Error::new(
+                OceanStatus::NonFinite,
+                format!(
+                    "xz[{i}] = ({}, {}) is not finite",
+                    Num(world[i].x),
+                    Num(world[i].y)
+                ),
+            ));
+        }
         waves.reach.check_time(time)?;
-        waves.reach.check_points("xz", local)?;
-        let pos: &mut [Vec3] = bytemuck::cast_slice_mut(pos);
-        let nrm: &mut [Vec3] = bytemuck::cast_slice_mut(nrm);
-        // Origin (0, 0): `xz` are world positions and so are the outputs. The core validates
-        // every position before it writes anything.
-        let result = if n >= PARALLEL_POINTS {
-            waves
-                .set
-                .evaluate_points_par(DVec2::ZERO, local, time, pos, nrm)
-        } else {
-            waves
-                .set
-                .evaluate_points(DVec2::ZERO, local, time, pos, nrm)
-        };
-        result.map_err(|e| eval_error(e, "xz"))
+        waves.reach.check_points("xz", world)?;
+        let (local, rel) = evaluate_in_cells(&waves.set, world, time, nrm)?;
+        for ((out, p), (o, _)) in pos.iter_mut().zip(&rel).zip(&local) {
+            *out = OceanDVec3 {
+                x: o.x + f64::from(p.x),
+                y: f64::from(p.y),
+                z: o.y + f64::from(p.z),
+            };
+        }
+        Ok(())
     })
+}
+
+/// Side of the lattice cells of `ocean_waves_evaluate`, metres: a power of two, so that cell
+/// corners are exact doubles and a point's offset from its corner (below 64 m) is a float
+/// resolved to 2^-18 m (4 µm).
+const CELL: f64 = 64.0;
+
+/// Evaluates world rest points in runs of points that share a lattice cell, each relative to
+/// its cell's corner through the float kernel: the result of a point depends on the point
+/// alone, never on the batch around it. Returns each point's cell corner and offset, and the
+/// positions relative to the corner; writes the normals. Nothing is written on an error.
+#[allow(clippy::type_complexity)]
+fn evaluate_in_cells(
+    set: &WaveSet,
+    world: &[DVec2],
+    time: f64,
+    nrm: &mut [OceanVec3],
+) -> Result<(Vec<(DVec2, Vec2)>, Vec<Vec3>), Error> {
+    let corner = |p: DVec2| (p / CELL).floor() * CELL;
+    let local: Vec<(DVec2, Vec2)> = world
+        .iter()
+        .map(|&p| {
+            let o = corner(p);
+            (o, (p - o).as_vec2())
+        })
+        .collect();
+    let offsets: Vec<Vec2> = local.iter().map(|&(_, l)| l).collect();
+    let mut rel = vec![Vec3::ZERO; world.len()];
+    let mut normals = vec![Vec3::ZERO; world.len()];
+    let mut start = 0;
+    while start < world.len() {
+        let o = local[start].0;
+        let end = start
+            + local[start..]
+                .iter()
+                .position(|&(c, _)| c != o)
+                .unwrap_or(world.len() - start);
+        let (pts, pos, nrm) = (
+            &offsets[start..end],
+            &mut rel[start..end],
+            &mut normals[start..end],
+        );
+        if end - start >= PARALLEL_POINTS {
+            set.evaluate_points_par(o, pts, time, pos, nrm)
+        } else {
+            set.evaluate_points(o, pts, time, pos, nrm)
+        }
+        .map_err(|e| eval_error(e, "xz"))?;
+        start = end;
+    }
+    let out: &mut [Vec3] = bytemuck::cast_slice_mut(nrm);
+    out.copy_from_slice(&normals);
+    Ok((local, rel))
 }
 
 /// Evaluates the wave set on every point of `grid` at `time` seconds, on a global worker pool.
@@ -541,41 +624,58 @@ mod tests {
     }
 
     /// The wrapper adds nothing to the arithmetic: its outputs are the core's, bit for bit, for
-    /// points (origin 0, world coordinates) and grids (origin-relative), on both sides of the
-    /// parallel threshold.
+    /// points (each relative to the corner of its 64 m cell, in double precision) and grids
+    /// (origin-relative), on both sides of the parallel threshold; and a point gives the same
+    /// bits alone as in a batch.
     #[test]
     fn matches_the_core_bit_for_bit() {
         let w = create();
         let set = core_set();
         for n in [5, PARALLEL_POINTS + 3] {
-            let xz: Vec<OceanVec2> = (0..n)
-                .map(|i| OceanVec2 {
-                    x: (i % 97) as f32 * 1.5 - 60.0,
-                    z: (i / 97) as f32 * 0.75 - 20.0,
+            let xz: Vec<OceanDVec2> = (0..n)
+                .map(|i| OceanDVec2 {
+                    x: (i % 97) as f64 * 1.5 - 60.0,
+                    z: (i / 97) as f64 * 0.75 - 20.0,
                 })
                 .collect();
-            let mut pos = vec![OceanVec3::default(); n];
+            let mut pos = vec![OceanDVec3::default(); n];
             let mut nrm = vec![OceanVec3::default(); n];
             // SAFETY: n elements in each buffer.
             let s = unsafe {
                 ocean_waves_evaluate(w, xz.as_ptr(), n, 42.5, pos.as_mut_ptr(), nrm.as_mut_ptr())
             };
             assert_eq!(s, OceanStatus::Ok, "{}", last_error());
-            let local: Vec<Vec2> = xz.iter().map(|p| Vec2::new(p.x, p.z)).collect();
-            let mut cp = vec![Vec3::ZERO; n];
-            let mut cn = vec![Vec3::ZERO; n];
-            set.evaluate_points(DVec2::ZERO, &local, 42.5, &mut cp, &mut cn)
+            for (i, p) in xz.iter().enumerate().step_by(if n > 100 { 257 } else { 1 }) {
+                let world = DVec2::new(p.x, p.z);
+                let corner = (world / 64.0).floor() * 64.0;
+                let (mut cp, mut cn) = ([Vec3::ZERO], [Vec3::ZERO]);
+                set.evaluate_points(
+                    corner,
+                    &[(world - corner).as_vec2()],
+                    42.5,
+                    &mut cp,
+                    &mut cn,
+                )
                 .unwrap();
-            assert!(
-                pos.iter()
-                    .zip(&cp)
-                    .all(|(a, b)| [a.x, a.y, a.z] == b.to_array())
-            );
-            assert!(
-                nrm.iter()
-                    .zip(&cn)
-                    .all(|(a, b)| [a.x, a.y, a.z] == b.to_array())
-            );
+                let want = [
+                    corner.x + f64::from(cp[0].x),
+                    f64::from(cp[0].y),
+                    corner.y + f64::from(cp[0].z),
+                ];
+                assert_eq!([pos[i].x, pos[i].y, pos[i].z], want, "point {i}");
+                assert_eq!(
+                    [nrm[i].x, nrm[i].y, nrm[i].z],
+                    cn[0].to_array(),
+                    "point {i}"
+                );
+                let (mut one, mut one_n) = ([OceanDVec3::default()], [OceanVec3::default()]);
+                // SAFETY: one element in each buffer.
+                let s = unsafe {
+                    ocean_waves_evaluate(w, p, 1, 42.5, one.as_mut_ptr(), one_n.as_mut_ptr())
+                };
+                assert_eq!(s, OceanStatus::Ok);
+                assert_eq!((one[0], one_n[0]), (pos[i], nrm[i]), "point {i} alone");
+            }
         }
 
         let g = OceanGrid {
@@ -613,24 +713,67 @@ mod tests {
         ocean_waves_destroy(w);
     }
 
+    /// 100 km from the origin a point is as precise as at it: within 0.1 mm of the f64
+    /// reference (`WaveSet::sample_f64`, rest position plus displacement) at (10, 20) and at
+    /// (1e5 + 10, -4e4 + 20). Rest positions rounded to floats there (a float resolves 7.8 mm
+    /// at 1e5 m) were off by up to 3.9 mm.
+    #[test]
+    fn far_from_the_origin_a_point_is_as_precise_as_near_it() {
+        let w = create();
+        let set = core_set();
+        for base in [DVec2::ZERO, DVec2::new(1.0e5, -4.0e4)] {
+            let rest: Vec<DVec2> = (0..200)
+                .map(|i| base + DVec2::new(10.0 + 0.37 * i as f64, 20.0 - 0.2311 * i as f64))
+                .collect();
+            let xz: Vec<OceanDVec2> = rest.iter().map(|p| OceanDVec2 { x: p.x, z: p.y }).collect();
+            let mut pos = vec![OceanDVec3::default(); xz.len()];
+            let mut nrm = vec![OceanVec3::default(); xz.len()];
+            // SAFETY: as many elements in each buffer as points.
+            let s = unsafe {
+                ocean_waves_evaluate(
+                    w,
+                    xz.as_ptr(),
+                    xz.len(),
+                    42.5,
+                    pos.as_mut_ptr(),
+                    nrm.as_mut_ptr(),
+                )
+            };
+            assert_eq!(s, OceanStatus::Ok, "{}", last_error());
+            let worst = rest
+                .iter()
+                .zip(&pos)
+                .map(|(r, p)| {
+                    let d = set.sample_f64(*r, 42.5).unwrap().displacement;
+                    let want = glam::DVec3::new(r.x + d.x, d.y, r.y + d.z);
+                    (glam::DVec3::new(p.x, p.y, p.z) - want).abs().max_element()
+                })
+                .fold(0.0, f64::max);
+            assert!(worst < 1e-4, "{base}: worst error {worst} m");
+        }
+        ocean_waves_destroy(w);
+    }
+
     /// Misaligned pointers (which C code cannot even form without undefined behaviour, but
     /// other languages' FFIs can pass) are refused before any access.
     #[test]
     fn misaligned_pointers_are_refused() {
         let w = create();
         let mut storage = [0u64; 32]; // 8-aligned, so base + 4 is not
-        let xz = [OceanVec2::default(); 4];
+        let xz = [OceanDVec2::default(); 4];
         let base = storage.as_mut_ptr().cast::<u8>();
-        // One byte past a 4-aligned address: misaligned for f32 structs. Never dereferenced.
-        let bad_out = base.wrapping_add(1).cast::<OceanVec3>();
-        let good_out = base.wrapping_add(128).cast::<OceanVec3>();
+        // Four bytes past an 8-aligned address: misaligned for double structs. Never
+        // dereferenced.
+        let bad_out = base.wrapping_add(4).cast::<OceanDVec3>();
+        let good_pos = base.wrapping_add(128).cast::<OceanDVec3>();
+        let good_nrm = base.wrapping_add(200).cast::<OceanVec3>();
         // SAFETY: the library refuses the misaligned pointer before touching any buffer.
-        let s = unsafe { ocean_waves_evaluate(w, xz.as_ptr(), 4, 0.0, bad_out, good_out) };
+        let s = unsafe { ocean_waves_evaluate(w, xz.as_ptr(), 4, 0.0, bad_out, good_nrm) };
         assert_eq!(s, OceanStatus::MisalignedPointer);
         assert!(last_error().contains("out_pos"), "{}", last_error());
-        let bad_in = base.wrapping_add(2).cast::<OceanVec2>().cast_const();
+        let bad_in = base.wrapping_add(4).cast::<OceanDVec2>().cast_const();
         // SAFETY: as above.
-        let s = unsafe { ocean_waves_evaluate(w, bad_in, 4, 0.0, good_out, good_out) };
+        let s = unsafe { ocean_waves_evaluate(w, bad_in, 4, 0.0, good_pos, good_nrm) };
         assert_eq!(s, OceanStatus::MisalignedPointer);
         let mut count = 0usize;
         let bad_handle = base.wrapping_add(4).cast::<OceanWaves>().cast_const();
@@ -651,21 +794,24 @@ mod tests {
     #[test]
     fn overlapping_buffers_are_refused() {
         let w = create();
-        let mut buf = vec![OceanVec3::default(); 10];
-        let xz = [OceanVec2::default(); 4];
+        // 10 double positions (240 bytes): room for 4 positions and 8 normals after them.
+        let mut buf = vec![OceanDVec3::default(); 10];
+        let xz = [OceanDVec2::default(); 4];
         let p = buf.as_mut_ptr();
-        // out_normal starts inside out_pos's 4 elements.
-        // SAFETY: refused before any access; the buffer holds 10 elements anyway.
-        let s = unsafe { ocean_waves_evaluate(w, xz.as_ptr(), 4, 0.0, p, p.wrapping_add(3)) };
+        let normals_at = |bytes: usize| p.cast::<u8>().wrapping_add(bytes).cast::<OceanVec3>();
+        // out_normal starts inside out_pos's 4 elements (96 bytes).
+        // SAFETY: refused before any access; the buffer holds 240 bytes anyway.
+        let s = unsafe { ocean_waves_evaluate(w, xz.as_ptr(), 4, 0.0, p, normals_at(84)) };
         assert_eq!(s, OceanStatus::InvalidArgument);
         // Adjacent, non-overlapping ranges are fine.
-        // SAFETY: elements 0..4 and 4..8 of a 10-element buffer.
-        let s = unsafe { ocean_waves_evaluate(w, xz.as_ptr(), 4, 0.0, p, p.wrapping_add(4)) };
+        // SAFETY: bytes 0..96 and 96..144 of a 240-byte buffer.
+        let s = unsafe { ocean_waves_evaluate(w, xz.as_ptr(), 4, 0.0, p, normals_at(96)) };
         assert_eq!(s, OceanStatus::Ok, "{}", last_error());
         // Input overlapping an output.
-        let xz_alias = p.wrapping_add(8).cast::<OceanVec2>().cast_const();
-        // SAFETY: refused before any access (1 point = 8 bytes inside element 8).
-        let s = unsafe { ocean_waves_evaluate(w, xz_alias, 1, 0.0, p.wrapping_add(8), p) };
+        let xz_alias = p.wrapping_add(8).cast::<OceanDVec2>().cast_const();
+        // SAFETY: refused before any access (1 point = 16 bytes inside element 8).
+        let s =
+            unsafe { ocean_waves_evaluate(w, xz_alias, 1, 0.0, p.wrapping_add(8), normals_at(0)) };
         assert_eq!(s, OceanStatus::InvalidArgument);
         ocean_waves_destroy(w);
     }

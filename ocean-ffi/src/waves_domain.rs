@@ -8,7 +8,7 @@
 //! `OCEAN_STATUS_INVALID_ARGUMENT`, naming the input and the bound it breaks, instead of
 //! returning non-finite results behind `OCEAN_STATUS_OK`.
 
-use glam::{DVec2, Vec2};
+use glam::DVec2;
 use ocean_core::{Grid, Wave, WaveSet};
 
 use crate::boundary::{Approx, Num};
@@ -85,13 +85,12 @@ impl Reach {
         PHASE_LIMIT / self.k_max
     }
 
-    /// Refuses the first rest position `name[i]` (relative to `origin`) whose phase leaves the
-    /// limit. NaN and infinite coordinates pass: the evaluation refuses them with
-    /// `OCEAN_STATUS_NON_FINITE`.
-    pub(crate) fn check_points(&self, name: &str, points: &[Vec2]) -> Result<(), Error> {
+    /// Refuses the first world rest position `name[i]` whose phase leaves the limit. NaN and
+    /// infinite coordinates pass: the evaluation refuses them with `OCEAN_STATUS_NON_FINITE`.
+    pub(crate) fn check_points(&self, name: &str, points: &[DVec2]) -> Result<(), Error> {
         let most = self.max_coordinate();
         // Infinities are left to the evaluation too, which reports them as non-finite.
-        let beyond = |c: f32| c.is_finite() && f64::from(c.abs()) > most;
+        let beyond = |c: f64| c.is_finite() && c.abs() > most;
         let far = points.iter().position(|p| beyond(p.x) || beyond(p.y));
         match far {
             None => Ok(()),
@@ -141,8 +140,8 @@ mod tests {
     use super::*;
     use crate::status::last_error;
     use crate::waves::{
-        OceanGrid, OceanVec2, OceanVec3, OceanWaveDesc, OceanWaves, ocean_waves_create,
-        ocean_waves_destroy, ocean_waves_evaluate, ocean_waves_evaluate_grid,
+        OceanDVec2, OceanDVec3, OceanGrid, OceanVec3, OceanWaveDesc, OceanWaves,
+        ocean_waves_create, ocean_waves_destroy, ocean_waves_evaluate, ocean_waves_evaluate_grid,
     };
 
     fn desc(amplitude: f64, wavelength: f64) -> OceanWaveDesc {
@@ -166,19 +165,30 @@ mod tests {
     }
 
     /// Evaluates one point; the outputs start as a sentinel and are returned with the status.
-    fn evaluate(w: *const OceanWaves, x: f32, time: f64) -> (OceanStatus, OceanVec3, OceanVec3) {
-        let xz = [OceanVec2 { x, z: 0.5 }];
+    fn evaluate(w: *const OceanWaves, x: f64, time: f64) -> (OceanStatus, OceanVec3, OceanVec3) {
+        let xz = [OceanDVec2 { x, z: 0.5 }];
         let sentinel = OceanVec3 {
             x: 7.0,
             y: 7.0,
             z: 7.0,
         };
-        let (mut p, mut n) = ([sentinel], [sentinel]);
+        let mut p = [OceanDVec3 {
+            x: 7.0,
+            y: 7.0,
+            z: 7.0,
+        }];
+        let mut n = [sentinel];
         // SAFETY: one readable point, one writable position and normal.
         let s = unsafe {
             ocean_waves_evaluate(w, xz.as_ptr(), 1, time, p.as_mut_ptr(), n.as_mut_ptr())
         };
-        (s, p[0], n[0])
+        // The position in float: every test here asks only whether it is finite.
+        let p = OceanVec3 {
+            x: p[0].x as f32,
+            y: p[0].y as f32,
+            z: p[0].z as f32,
+        };
+        (s, p, n[0])
     }
 
     fn finite(v: OceanVec3) -> bool {
@@ -209,11 +219,11 @@ mod tests {
     fn a_position_past_the_phase_limit_is_refused() {
         let w = create(&[desc(1.0, 20.0)]).unwrap();
         let k = core::f64::consts::TAU / 20.0;
-        let (s, p, _) = evaluate(w, f32::MAX, 0.0);
+        let (s, p, _) = evaluate(w, f64::from(f32::MAX), 0.0);
         assert_eq!(s, OceanStatus::InvalidArgument);
         assert!(last_error().contains("xz[0]"), "{}", last_error());
         assert_eq!(p.x, 7.0);
-        let inside = (PHASE_LIMIT / k * 0.999) as f32;
+        let inside = PHASE_LIMIT / k * 0.999;
         let (s, p, n) = evaluate(w, inside, 0.0);
         assert_eq!(s, OceanStatus::Ok, "{}", last_error());
         assert!(finite(p) && finite(n));

@@ -22,40 +22,6 @@ use crate::camera::{OceanCamera, read_camera};
 use crate::status::{Error, OceanStatus, guard};
 use crate::waves::{OceanVec3, OceanWaveDesc, eval_error, wave_desc_in, wave_error};
 
-/// A point on the sea plane in double precision: world x and z in metres.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct OceanDVec2 {
-    /// x, metres.
-    pub x: f64,
-    /// z, metres.
-    pub z: f64,
-}
-
-/// A 3D vector in double precision. World-space vectors are right-handed with y up; the BRDF
-/// functions take tangent-frame vectors (x along the wind, y across it, z along the normal), as
-/// each function says.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct OceanDVec3 {
-    /// x.
-    pub x: f64,
-    /// y (up).
-    pub y: f64,
-    /// z.
-    pub z: f64,
-}
-
-impl OceanDVec3 {
-    pub(crate) fn from_dvec3(v: glam::DVec3) -> Self {
-        Self {
-            x: v.x,
-            y: v.y,
-            z: v.z,
-        }
-    }
-}
-
 /// The water grid of a scene: `nx * nz` points, point (i, j) resting at world
 /// (origin_x + i*spacing, 0, origin_z + j*spacing), stored row-major at j*nx + i. The spacing is
 /// the same along x and z (a box's internal frame steps by it along both of its axes).
@@ -1343,6 +1309,7 @@ unsafe fn evaluate(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::waves::OceanDVec2;
     use ocean_core::camera::DepthConvention;
     use ocean_wtb::scenarios;
 

@@ -7,7 +7,8 @@ use ocean_wtb::scene::{DrawnSample, HeightSample};
 
 use crate::boundary::{borrow, byte_len, check_disjoint, check_ptr, check_time};
 use crate::status::{Error, OceanStatus, guard};
-use crate::wtb::{OceanDVec2, OceanDVec3, OceanWtbScene};
+use crate::waves::{OceanDVec2, OceanDVec3};
+use crate::wtb::OceanWtbScene;
 
 /// The answer of a drawn height query at world (x, z): the triangle of the evaluated grid's
 /// mesh that lies over it.

@@ -525,12 +525,6 @@ static inline void plausible_OceanDVec2(OceanDVec2 *p)
     p->z = 5.0;
 }
 
-static inline void plausible_OceanVec2(OceanVec2 *p)
-{
-    p->x = 3.0f;
-    p->z = 5.0f;
-}
-
 static inline void plausible_OceanRgb(OceanRgb *p)
 {
     p->r = 0.5;

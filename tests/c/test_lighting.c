@@ -226,8 +226,9 @@ static void test_spectrum(void)
 
     /* The waves feed ocean_waves_create as they are. */
     if (OK(ocean_waves_create(waves, 40, &ow))) {
-        OceanVec2 x0 = {0.0f, 0.0f};
-        OceanVec3 pos, nrm;
+        OceanDVec2 x0 = {0.0, 0.0};
+        OceanDVec3 pos;
+        OceanVec3 nrm;
         double h = 0.0;
         OK(ocean_waves_max_amplitude(ow, &got));
         NEAR(got, sum_a, 1e-13, 0.0, "wave set's max amplitude");

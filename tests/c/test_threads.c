@@ -102,6 +102,10 @@ static void log_str(Worker *w, const char *s)
 /* Floats and doubles are logged by their bits: -0.0 and NaN payloads count. Structs are logged
  * member by member where they have padding (whose bytes are unspecified). */
 static void log_vec3s(Worker *w, const OceanVec3 *v, size_t n) { log_bytes(w, v, n * sizeof *v); }
+static void log_dvec3s(Worker *w, const OceanDVec3 *v, size_t n)
+{
+    log_bytes(w, v, n * sizeof *v);
+}
 static void log_rgb(Worker *w, OceanRgb c)
 {
     log_f64(w, c.r);
@@ -209,7 +213,7 @@ static void *xmalloc(size_t n)
 
 static const double TIME[TIMES] = {0.25, 7.5, 1234.5};
 
-static OceanVec2 points[NPOINTS];
+static OceanDVec2 points[NPOINTS];
 static OceanDVec3 dirs[NDIRS];
 static OceanSeaColorInput sea_inputs[NSEA];
 static OceanReliefRay rays[NRAYS];
@@ -237,8 +241,8 @@ static void make_inputs(void)
 {
     int i;
     for (i = 0; i < NPOINTS; i++) {
-        points[i].x = (float)(37.0 * sin(0.37 * i) + 0.11 * i);
-        points[i].z = (float)(-21.0 * cos(0.23 * i) + 0.07 * i);
+        points[i].x = 37.0 * sin(0.37 * i) + 0.11 * i;
+        points[i].z = -21.0 * cos(0.23 * i) + 0.07 * i;
     }
     for (i = 0; i < NDIRS; i++) {
         double el = -0.3 + 1.8 * i / NDIRS, az = 2.0 * PI * i / NDIRS;
@@ -505,7 +509,8 @@ static const double SHARED_SCENE_TIME = 4.0;
 static void shared_job(Worker *w, const Shared *sh, int k)
 {
     double t = TIME[k];
-    OceanVec3 *pos = xmalloc(NPOINTS * sizeof *pos), *nrm = xmalloc(NPOINTS * sizeof *nrm);
+    OceanDVec3 *pos = xmalloc(NPOINTS * sizeof *pos);
+    OceanVec3 *nrm = xmalloc(NPOINTS * sizeof *nrm);
     OceanVec3 *gpos = xmalloc(GRID_NX * GRID_NZ * sizeof *gpos);
     OceanVec3 *gnrm = xmalloc(GRID_NX * GRID_NZ * sizeof *gnrm);
     OceanGrid grid = {1e5, -2e4 + k, 0.75, 0.5, GRID_NX, GRID_NZ};
@@ -524,7 +529,7 @@ static void shared_job(Worker *w, const Shared *sh, int k)
 
     /* Waves. */
     if (CALL(w, ocean_waves_evaluate(sh->waves, points, NPOINTS, t, pos, nrm))) {
-        log_vec3s(w, pos, NPOINTS);
+        log_dvec3s(w, pos, NPOINTS);
         log_vec3s(w, nrm, NPOINTS);
     }
     if (CALL(w, ocean_waves_evaluate_grid(sh->waves, &grid, t, gpos, gnrm))) {
@@ -633,12 +638,13 @@ static void shared_job(Worker *w, const Shared *sh, int k)
  * back on this thread, unchanged by the other threads' failures and successes. */
 static void own_failure(Worker *w, OceanWaves *waves, int id, int k)
 {
-    OceanVec2 xz[THREADS + TIMES];
-    OceanVec3 pos[THREADS + TIMES], nrm[THREADS + TIMES];
+    OceanDVec2 xz[THREADS + TIMES];
+    OceanDVec3 pos[THREADS + TIMES];
+    OceanVec3 nrm[THREADS + TIMES];
     int i, bad = id + k;
     for (i = 0; i < THREADS + TIMES; i++) {
-        xz[i].x = (float)i;
-        xz[i].z = 0.0f;
+        xz[i].x = (double)i;
+        xz[i].z = 0.0;
     }
     xz[bad].z = NAN;
     CALL_FAILS(w, ocean_waves_evaluate(waves, xz, THREADS + TIMES, 1.0, pos, nrm),
@@ -668,7 +674,8 @@ static void own_job(Worker *w, int id, int k)
     OceanWaveDesc *descs;
     OceanSeaLight sea[NSEA];
     OceanReliefHit hits[NRAYS];
-    OceanVec3 *pos = xmalloc(NPOINTS * sizeof *pos), *nrm = xmalloc(NPOINTS * sizeof *nrm);
+    OceanDVec3 *pos = xmalloc(NPOINTS * sizeof *pos);
+    OceanVec3 *nrm = xmalloc(NPOINTS * sizeof *nrm);
     float heights[RELIEF_OWN * RELIEF_OWN], texels[3 * 8 * 8];
     float *depth = xmalloc(SAO_IN * sizeof *depth), ao[SAO_OUT];
     size_t count = 0;
@@ -682,7 +689,7 @@ static void own_job(Worker *w, int id, int k)
             if (CALL(w, ocean_spectrum_waves(spectrum, descs, count)) &&
                 CALL(w, ocean_waves_create(descs, count, &waves))) {
                 if (CALL(w, ocean_waves_evaluate(waves, points, NPOINTS, t, pos, nrm))) {
-                    log_vec3s(w, pos, NPOINTS);
+                    log_dvec3s(w, pos, NPOINTS);
                     log_vec3s(w, nrm, NPOINTS);
                 }
                 own_failure(w, waves, id, k);

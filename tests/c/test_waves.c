@@ -110,17 +110,17 @@ static const OceanWaveDesc WAVES[4] = {
 
 static double max_pos_err = 0.0, max_nrm_err = 0.0;
 
-static void compare(const OceanVec3 *p, const OceanVec3 *nrm, const double ep[3],
+static void compare(const double p[3], const OceanVec3 *nrm, const double ep[3],
                     const double en[3], const char *what, size_t index)
 {
-    double dp = fmax(fabs(p->x - ep[0]), fmax(fabs(p->y - ep[1]), fabs(p->z - ep[2])));
+    double dp = fmax(fabs(p[0] - ep[0]), fmax(fabs(p[1] - ep[1]), fabs(p[2] - ep[2])));
     double dn = fmax(fabs(nrm->x - en[0]), fmax(fabs(nrm->y - en[1]), fabs(nrm->z - en[2])));
     double len = sqrt((double)nrm->x * nrm->x + (double)nrm->y * nrm->y +
                       (double)nrm->z * nrm->z);
     max_pos_err = fmax(max_pos_err, dp);
     max_nrm_err = fmax(max_nrm_err, dn);
     CHECK(dp <= POS_TOL, "%s[%zu]: position (%.7f, %.7f, %.7f), expected (%.7f, %.7f, %.7f)",
-          what, index, p->x, p->y, p->z, ep[0], ep[1], ep[2]);
+          what, index, p[0], p[1], p[2], ep[0], ep[1], ep[2]);
     CHECK(dn <= NRM_TOL, "%s[%zu]: normal (%.7f, %.7f, %.7f), expected (%.7f, %.7f, %.7f)", what,
           index, nrm->x, nrm->y, nrm->z, en[0], en[1], en[2]);
     /* A float unit vector normalised in float is within a few ulps of length 1. */
@@ -178,14 +178,13 @@ static void test_queries(const OceanWaves *w)
     CHECK(fabs(want_amp - 1.32) <= 1e-12, "reference amplitude sum %.15f", want_amp);
 }
 
-/* Rest points: exactly representable in float, so the library sees the same rest positions as
- * the double reference. Up to 250 m from the origin. */
-static const OceanVec2 POINTS[] = {
-    {0.0f, 0.0f},      {3.25f, -17.5f},   {123.375f, 45.125f}, {-250.5f, 77.75f},
-    {0.5f, 200.25f},   {-9.0f, -9.0f},    {17.125f, 0.0625f},  {64.0f, -128.0f},
-    {-3.75f, 5.5f},    {11.0f, 13.0f},    {-100.0f, -100.0f},  {1.0f, 2.0f},
-    {42.5f, -0.25f},   {-0.125f, 33.0f},  {7.75f, 7.75f},      {250.0f, 250.0f},
-    {-60.25f, 180.5f},
+/* Rest points, world x and z in double precision, up to 250 m from the origin; test_points
+ * also moves them 100 km away. */
+static const OceanDVec2 POINTS[] = {
+    {0.0, 0.0},      {3.25, -17.5},   {123.375, 45.125}, {-250.5, 77.75},  {0.5, 200.25},
+    {-9.0, -9.0},    {17.125, 0.0625}, {64.0, -128.0},   {-3.75, 5.5},     {11.0, 13.0},
+    {-100.0, -100.0}, {1.0, 2.0},     {42.5, -0.25},     {-0.125, 33.0},   {7.75, 7.75},
+    {250.0, 250.0},  {-60.1, 180.53},
 };
 #define NPOINTS (sizeof POINTS / sizeof POINTS[0])
 
@@ -193,22 +192,34 @@ static void test_points(const OceanWaves *w)
 {
     /* t = 1e6 s: phases of ~2.5e6 rad, which lose whole radians if not reduced in double. */
     const double times[] = {0.0, 1.75, -3.5, 1.0e6 + 0.25};
-    OceanVec3 pos[NPOINTS], nrm[NPOINTS];
-    size_t ti, i;
-    for (ti = 0; ti < sizeof times / sizeof times[0]; ti++) {
-        double t = times[ti];
-        OceanStatus s = ocean_waves_evaluate(w, POINTS, NPOINTS, t, pos, nrm);
-        CHECK(s == OCEAN_STATUS_OK, "evaluate at t = %g: status %u: %s", t, (unsigned)s,
-              last_error());
-        if (s != OCEAN_STATUS_OK)
-            continue;
+    /* Positions cross the ABI in double precision: 100 km from the origin (where a float
+     * resolves only 7.8 mm) the same 1e-4 m tolerance holds. */
+    const double offsets[][2] = {{0.0, 0.0}, {100000.0, -50000.0}};
+    OceanDVec2 xz[NPOINTS];
+    OceanDVec3 pos[NPOINTS];
+    OceanVec3 nrm[NPOINTS];
+    size_t ti, i, oi;
+    for (oi = 0; oi < 2; oi++) {
         for (i = 0; i < NPOINTS; i++) {
-            double ep[3], en[3];
-            surface(WAVES, NWAVES, POINTS[i].x, POINTS[i].z, t, ep);
-            normal(WAVES, NWAVES, POINTS[i].x, POINTS[i].z, t, en);
-            compare(&pos[i], &nrm[i], ep, en, "points", i);
-            /* The steepness sum is < 1, so the surface never folds: normals point up. */
-            CHECK(nrm[i].y > 0.0f, "normal %zu points down", i);
+            xz[i].x = POINTS[i].x + offsets[oi][0];
+            xz[i].z = POINTS[i].z + offsets[oi][1];
+        }
+        for (ti = 0; ti < sizeof times / sizeof times[0]; ti++) {
+            double t = times[ti];
+            OceanStatus s = ocean_waves_evaluate(w, xz, NPOINTS, t, pos, nrm);
+            CHECK(s == OCEAN_STATUS_OK, "evaluate at t = %g: status %u: %s", t, (unsigned)s,
+                  last_error());
+            if (s != OCEAN_STATUS_OK)
+                continue;
+            for (i = 0; i < NPOINTS; i++) {
+                double ep[3], en[3];
+                const double got[3] = {pos[i].x, pos[i].y, pos[i].z};
+                surface(WAVES, NWAVES, xz[i].x, xz[i].z, t, ep);
+                normal(WAVES, NWAVES, xz[i].x, xz[i].z, t, en);
+                compare(got, &nrm[i], ep, en, "points", i);
+                /* The steepness sum is < 1, so the surface never folds: normals point up. */
+                CHECK(nrm[i].y > 0.0f, "normal %zu points down", i);
+            }
         }
     }
 }
@@ -221,8 +232,9 @@ static void test_single_wave_closed_form(void)
      * theta = -pi/2 (t = pi/2 / omega) p = (0 + 1, 0, 0): moved 1 m forward, at rest height. */
     OceanWaveDesc d = {1.0, 2.0 * PI * 4.0, 2.0, 0.0, 0.0, INFINITY};
     OceanWaves *w = NULL;
-    OceanVec2 x0 = {0.0f, 0.0f};
-    OceanVec3 p, n;
+    OceanDVec2 x0 = {0.0, 0.0};
+    OceanDVec3 p;
+    OceanVec3 n;
     double omega = sqrt(9.81 * 0.25);
     CHECK(ocean_waves_create(&d, 1, &w) == OCEAN_STATUS_OK && w != NULL, "create: %s",
           last_error());
@@ -266,7 +278,8 @@ static void test_grid(const OceanWaves *w)
             normal(WAVES, NWAVES, x0, z0, t, en);
             ep[0] -= g.origin_x; /* relative to the grid origin */
             ep[2] -= g.origin_z;
-            compare(&pos[idx], &nrm[idx], ep, en, "grid", idx);
+            const double got[3] = {pos[idx].x, pos[idx].y, pos[idx].z};
+            compare(got, &nrm[idx], ep, en, "grid", idx);
         }
     }
 }
@@ -285,6 +298,22 @@ static void fill(OceanVec3 *v, size_t n)
 }
 
 static int untouched(const OceanVec3 *v, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++)
+        if (v[i].x != SENTINEL || v[i].y != SENTINEL || v[i].z != SENTINEL)
+            return 0;
+    return 1;
+}
+
+static void fill_d(OceanDVec3 *v, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++)
+        v[i].x = v[i].y = v[i].z = SENTINEL;
+}
+
+static int untouched_d(const OceanDVec3 *v, size_t n)
 {
     size_t i;
     for (i = 0; i < n; i++)
@@ -360,15 +389,16 @@ static void test_create_errors(OceanWaves *valid)
 
 static void test_evaluate_errors(const OceanWaves *w)
 {
-    OceanVec3 pos[NPOINTS], nrm[NPOINTS];
-    OceanVec2 bad[NPOINTS];
+    OceanDVec3 pos[NPOINTS];
+    OceanVec3 nrm[NPOINTS];
+    OceanDVec2 bad[NPOINTS];
     const double bad_times[] = {NAN, INFINITY, -INFINITY};
     size_t i;
-    fill(pos, NPOINTS);
+    fill_d(pos, NPOINTS);
     fill(nrm, NPOINTS);
 
 #define EXPECT_UNTOUCHED(what)                                                              \
-    CHECK(untouched(pos, NPOINTS) && untouched(nrm, NPOINTS), "%s wrote the outputs", what)
+    CHECK(untouched_d(pos, NPOINTS) && untouched(nrm, NPOINTS), "%s wrote the outputs", what)
 
     expect(ocean_waves_evaluate(NULL, POINTS, NPOINTS, 1.0, pos, nrm), OCEAN_STATUS_NULL_POINTER,
            "evaluate(waves NULL)");
@@ -390,17 +420,17 @@ static void test_evaluate_errors(const OceanWaves *w)
                OCEAN_STATUS_NON_FINITE, "evaluate(non-finite time)");
         EXPECT_UNTOUCHED("evaluate(non-finite time)");
     }
-    /* SIZE_MAX/4 * 12 bytes overflows size_t; PTRDIFF_MAX/8 points need 8 * (PTRDIFF_MAX/8)
-     * <= PTRDIFF_MAX bytes of input but 12/8 of that for outputs: both must be refused before
-     * any memory is touched. */
+    /* SIZE_MAX/4 points of 16 bytes overflow size_t; PTRDIFF_MAX/16 points fit the input
+     * (16 bytes each) but not their positions (24 bytes each): both must be refused before any
+     * memory is touched. */
     expect(ocean_waves_evaluate(w, POINTS, SIZE_MAX / 4, 1.0, pos, nrm),
            OCEAN_STATUS_LENGTH_OVERFLOW, "evaluate(n = SIZE_MAX/4)");
     EXPECT_UNTOUCHED("evaluate(n = SIZE_MAX/4)");
-    expect(ocean_waves_evaluate(w, POINTS, (size_t)PTRDIFF_MAX / 8, 1.0, pos, nrm),
-           OCEAN_STATUS_LENGTH_OVERFLOW, "evaluate(n = PTRDIFF_MAX/8)");
-    EXPECT_UNTOUCHED("evaluate(n = PTRDIFF_MAX/8)");
-    /* The same array for positions and normals. */
-    expect(ocean_waves_evaluate(w, POINTS, NPOINTS, 1.0, pos, pos),
+    expect(ocean_waves_evaluate(w, POINTS, (size_t)PTRDIFF_MAX / 16, 1.0, pos, nrm),
+           OCEAN_STATUS_LENGTH_OVERFLOW, "evaluate(n = PTRDIFF_MAX/16)");
+    EXPECT_UNTOUCHED("evaluate(n = PTRDIFF_MAX/16)");
+    /* Positions and normals in one array. */
+    expect(ocean_waves_evaluate(w, POINTS, NPOINTS, 1.0, pos, (OceanVec3 *)(void *)pos),
            OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(out_pos == out_normal)");
     EXPECT_UNTOUCHED("evaluate(out_pos == out_normal)");
     /* A NaN and an infinite rest coordinate, late in the array: nothing may be written even for
@@ -412,7 +442,7 @@ static void test_evaluate_errors(const OceanWaves *w)
     CHECK(strstr(last_error(), "xz[13]") != NULL, "message does not name xz[13]: %s",
           last_error());
     EXPECT_UNTOUCHED("evaluate(xz[13] NaN)");
-    bad[13].z = 0.0f;
+    bad[13].z = 0.0;
     bad[16].x = -INFINITY;
     expect(ocean_waves_evaluate(w, bad, NPOINTS, 1.0, pos, nrm), OCEAN_STATUS_NON_FINITE,
            "evaluate(xz[16] -inf)");

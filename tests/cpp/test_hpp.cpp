@@ -268,14 +268,16 @@ void test_waves()
               w.max_amplitude() == amp,
           "waves queries");
 
-    std::vector<OceanVec2> xz;
+    std::vector<OceanDVec2> xz;
     for (int i = 0; i < 37; i++)
-        xz.push_back(OceanVec2{float(i) * 1.25f - 20.0f, float(i % 7) * 3.5f});
-    std::vector<OceanVec3> pos(xz.size()), nrm(xz.size());
+        xz.push_back(OceanDVec2{double(i) * 1.25 - 20.0, double(i % 7) * 3.5});
+    std::vector<OceanDVec3> pos(xz.size());
+    std::vector<OceanVec3> nrm(xz.size());
     OK(ocean_waves_evaluate(w.get(), xz.data(), xz.size(), 12.5, pos.data(), nrm.data()));
-    const ocean::surface_points s = w.evaluate(xz, 12.5);
+    const ocean::world_points s = w.evaluate(xz, 12.5);
     CHECK(same(s.positions, pos) && same(s.normals, nrm), "evaluate (vectors) = C");
-    std::array<OceanVec3, 37> p2{}, n2{};
+    std::array<OceanDVec3, 37> p2{};
+    std::array<OceanVec3, 37> n2{};
     w.evaluate(xz, 12.5, p2, n2);
     CHECK(std::memcmp(p2.data(), pos.data(), sizeof p2) == 0 &&
               std::memcmp(n2.data(), nrm.data(), sizeof n2) == 0,
@@ -292,13 +294,14 @@ void test_waves()
 
     // Sizes: the wrapper refuses before the library is called.
     std::vector<OceanVec3> short_out(36);
-    expect_invalid([&] { w.evaluate(xz, 0.0, short_out, nrm); }, "evaluate: short positions");
+    std::vector<OceanDVec3> short_pos(36);
+    expect_invalid([&] { w.evaluate(xz, 0.0, short_pos, nrm); }, "evaluate: short positions");
     expect_invalid([&] { w.evaluate(xz, 0.0, pos, short_out); }, "evaluate: short normals");
     expect_invalid([&] { w.evaluate_grid(g, 0.0, short_out, gn); }, "evaluate_grid: short");
     // Errors from the library.
     expect_error([&] { w.evaluate(xz, std::nan(""), pos, nrm); }, OCEAN_STATUS_NON_FINITE,
                  "ocean_waves_evaluate", "evaluate: NaN time");
-    expect_error([&] { w.evaluate(std::vector<OceanVec2>{}, 0.0); }, OCEAN_STATUS_EMPTY,
+    expect_error([&] { w.evaluate(std::vector<OceanDVec2>{}, 0.0); }, OCEAN_STATUS_EMPTY,
                  "ocean_waves_evaluate", "evaluate: no points");
     const OceanGrid bad{0.0, 0.0, -1.0, 1.0, 2, 2};
     expect_error([&] { w.evaluate_grid(bad, 0.0); }, OCEAN_STATUS_INVALID_ARGUMENT,

@@ -54,16 +54,19 @@ void check(bool ok, const char *fmt, Args... args)
 
 std::string last_error() { return ocean_last_error_message(); }
 
-// Layout: OceanVec2/OceanVec3 are packed floats, like glm::vec2/vec3 (GLM's default, unaligned
+// Layout: OceanVec3 is packed floats, like glm::vec3 (GLM's default, unaligned
 // configuration). Checked here so the conversions below are only a convenience, not a claim.
 static_assert(std::is_standard_layout<OceanVec3>::value, "OceanVec3 is a C struct");
 static_assert(sizeof(OceanVec3) == sizeof(glm::vec3), "OceanVec3 matches glm::vec3");
-static_assert(sizeof(OceanVec2) == sizeof(glm::vec2), "OceanVec2 matches glm::vec2");
 static_assert(alignof(OceanVec3) == alignof(glm::vec3), "OceanVec3 alignment matches glm");
+// World positions cross in double precision: OceanDVec2/OceanDVec3 are glm::dvec2/dvec3.
+static_assert(sizeof(OceanDVec2) == sizeof(glm::dvec2), "OceanDVec2 matches glm::dvec2");
+static_assert(sizeof(OceanDVec3) == sizeof(glm::dvec3), "OceanDVec3 matches glm::dvec3");
 static_assert(std::is_same<std::underlying_type<OceanStatus>::type, uint32_t>::value,
               "OceanStatus is a uint32_t enum in C++");
 
 glm::dvec3 to_glm(const OceanVec3 &v) { return glm::dvec3(v.x, v.y, v.z); }
+glm::dvec3 to_glm(const OceanDVec3 &v) { return glm::dvec3(v.x, v.y, v.z); }
 
 struct WavesDeleter {
     void operator()(OceanWaves *w) const { ocean_waves_destroy(w); }
@@ -114,26 +117,27 @@ const std::vector<OceanWaveDesc> kWaves = {
     {0.4, 55.0, -0.3, 0.8, 0.0, 4.0},  // shallow: k*D = 0.46
 };
 
-std::vector<OceanVec2> make_points(std::size_t n, float extent)
+std::vector<OceanDVec2> make_points(std::size_t n, double extent, glm::dvec2 centre = {})
 {
-    // Deterministic points on a float-exact lattice (multiples of 1/64 m) up to +-extent.
-    std::vector<OceanVec2> pts(n);
+    // Deterministic points on a lattice of 1/64 m up to +-extent around `centre`.
+    std::vector<OceanDVec2> pts(n);
     std::uint32_t state = 12345u;
-    for (OceanVec2 &p : pts) {
+    const int span = int(extent * 128.0), half = int(extent * 64.0);
+    for (OceanDVec2 &p : pts) {
         state = state * 1664525u + 1013904223u;
-        p.x = float(int(state >> 8) % int(extent * 128.0f) - int(extent * 64.0f)) / 64.0f;
+        p.x = centre.x + double(int(state >> 8) % span - half) / 64.0;
         state = state * 1664525u + 1013904223u;
-        p.z = float(int(state >> 8) % int(extent * 128.0f) - int(extent * 64.0f)) / 64.0f;
+        p.z = centre.y + double(int(state >> 8) % span - half) / 64.0;
     }
     return pts;
 }
 
 double max_pos_err = 0.0, max_nrm_err = 0.0;
 
-void compare(const OceanVec3 &p, const OceanVec3 &n, const Expected &e, const char *what,
+void compare(const glm::dvec3 &p, const OceanVec3 &n, const Expected &e, const char *what,
              std::size_t i)
 {
-    const glm::dvec3 dp = glm::abs(to_glm(p) - e.pos);
+    const glm::dvec3 dp = glm::abs(p - e.pos);
     const glm::dvec3 dn = glm::abs(to_glm(n) - e.normal);
     const double ep = glm::max(dp.x, glm::max(dp.y, dp.z));
     const double en = glm::max(dn.x, glm::max(dn.y, dn.z));
@@ -157,14 +161,19 @@ void test_version()
 
 void test_points_against_reference(const OceanWaves *w)
 {
-    const std::vector<OceanVec2> pts = make_points(300, 300.0f);
-    std::vector<OceanVec3> pos(pts.size()), nrm(pts.size());
-    for (double t : {0.0, 12.345, 86400.0 * 30.0}) {  // 30 days: phases ~ 1e6..1e7 rad
-        OceanStatus s = ocean_waves_evaluate(w, pts.data(), pts.size(), t, pos.data(), nrm.data());
-        check(s == OCEAN_STATUS_OK, "evaluate t=%g: %s", t, last_error().c_str());
-        for (std::size_t i = 0; i < pts.size(); ++i) {
-            compare(pos[i], nrm[i], reference(kWaves, glm::dvec2(pts[i].x, pts[i].z), t), "points",
-                    i);
+    // Near the origin and 100 km from it: double positions keep the same tolerance there.
+    for (const glm::dvec2 centre : {glm::dvec2(0.0), glm::dvec2(1.0e5, -7.3e4)}) {
+        const std::vector<OceanDVec2> pts = make_points(300, 300.0, centre);
+        std::vector<OceanDVec3> pos(pts.size());
+        std::vector<OceanVec3> nrm(pts.size());
+        for (double t : {0.0, 12.345, 86400.0 * 30.0}) {  // 30 days: phases ~ 1e6..1e7 rad
+            OceanStatus s =
+                ocean_waves_evaluate(w, pts.data(), pts.size(), t, pos.data(), nrm.data());
+            check(s == OCEAN_STATUS_OK, "evaluate t=%g: %s", t, last_error().c_str());
+            for (std::size_t i = 0; i < pts.size(); ++i) {
+                compare(to_glm(pos[i]), nrm[i],
+                        reference(kWaves, glm::dvec2(pts[i].x, pts[i].z), t), "points", i);
+            }
         }
     }
 }
@@ -183,14 +192,15 @@ void test_grid_against_reference(const OceanWaves *w)
             const glm::dvec2 p0 = origin + glm::dvec2(double(i) * g.spacing_x, double(j) * g.spacing_z);
             Expected e = reference(kWaves, p0, t);
             e.pos -= glm::dvec3(origin.x, 0.0, origin.y);  // grid output is origin-relative
-            compare(pos[j * g.nx + i], nrm[j * g.nx + i], e, "grid", j * g.nx + i);
+            compare(to_glm(pos[j * g.nx + i]), nrm[j * g.nx + i], e, "grid", j * g.nx + i);
         }
     }
 }
 
-bool bit_equal(const std::vector<OceanVec3> &a, const std::vector<OceanVec3> &b)
+template <typename V>
+bool bit_equal(const std::vector<V> &a, const std::vector<V> &b)
 {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(OceanVec3)) == 0;
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(V)) == 0;
 }
 
 // One const handle evaluated from 8 threads at once gives bit-identical results to a single
@@ -198,14 +208,16 @@ bool bit_equal(const std::vector<OceanVec3> &a, const std::vector<OceanVec3> &b)
 // multi-threaded path, which must equal evaluating the same points 1000 at a time (serial path).
 void test_threads(const OceanWaves *w)
 {
-    const std::vector<OceanVec2> pts = make_points(40000, 500.0f);
+    const std::vector<OceanDVec2> pts = make_points(40000, 500.0);
     const double t = 3.0;
-    std::vector<OceanVec3> pos(pts.size()), nrm(pts.size());
+    std::vector<OceanDVec3> pos(pts.size());
+    std::vector<OceanVec3> nrm(pts.size());
     check(ocean_waves_evaluate(w, pts.data(), pts.size(), t, pos.data(), nrm.data()) ==
               OCEAN_STATUS_OK,
           "evaluate 40000: %s", last_error().c_str());
 
-    std::vector<OceanVec3> cpos(pts.size()), cnrm(pts.size());
+    std::vector<OceanDVec3> cpos(pts.size());
+    std::vector<OceanVec3> cnrm(pts.size());
     for (std::size_t i = 0; i < pts.size(); i += 1000) {
         check(ocean_waves_evaluate(w, &pts[i], 1000, t, &cpos[i], &cnrm[i]) == OCEAN_STATUS_OK,
               "evaluate chunk: %s", last_error().c_str());
@@ -223,7 +235,8 @@ void test_threads(const OceanWaves *w)
     for (int k = 0; k < 8; ++k) {
         threads.emplace_back([&, k] {
             for (int rep = 0; rep < 3; ++rep) {
-                std::vector<OceanVec3> p(pts.size()), n(pts.size());
+                std::vector<OceanDVec3> p(pts.size());
+                std::vector<OceanVec3> n(pts.size());
                 if (ocean_waves_evaluate(w, pts.data(), pts.size(), t, p.data(), n.data()) !=
                         OCEAN_STATUS_OK ||
                     !bit_equal(p, pos) || !bit_equal(n, nrm))
@@ -253,9 +266,11 @@ void test_threads(const OceanWaves *w)
 void test_errors(const OceanWaves *w)
 {
     // A sample of the error paths from C++ (the C test drives all of them).
-    std::vector<OceanVec3> pos(4, OceanVec3{1.0f, 2.0f, 3.0f}), nrm = pos;
-    const std::vector<OceanVec3> before = pos;
-    const OceanVec2 xz[4] = {{0, 0}, {1, 1}, {2, 2}, {3, 3}};
+    std::vector<OceanDVec3> pos(4, OceanDVec3{1.0, 2.0, 3.0});
+    std::vector<OceanVec3> nrm(4, OceanVec3{1.0f, 2.0f, 3.0f});
+    const std::vector<OceanDVec3> before = pos;
+    const std::vector<OceanVec3> nrm_before = nrm;
+    const OceanDVec2 xz[4] = {{0, 0}, {1, 1}, {2, 2}, {3, 3}};
 
     OceanStatus s = ocean_waves_evaluate(w, xz, 4, std::nan(""), pos.data(), nrm.data());
     check(s == OCEAN_STATUS_NON_FINITE && !last_error().empty(), "NaN time: %u", unsigned(s));
@@ -264,10 +279,12 @@ void test_errors(const OceanWaves *w)
     s = ocean_waves_evaluate(nullptr, xz, 4, 0.0, pos.data(), nrm.data());
     check(s == OCEAN_STATUS_NULL_POINTER && !last_error().empty(), "null: %u", unsigned(s));
     const OceanGrid bad{0.0, 0.0, -1.0, 1.0, 2, 2};
-    s = ocean_waves_evaluate_grid(w, &bad, 0.0, pos.data(), nrm.data());
+    std::vector<OceanVec3> gpos = nrm_before;
+    s = ocean_waves_evaluate_grid(w, &bad, 0.0, gpos.data(), nrm.data());
     check(s == OCEAN_STATUS_INVALID_ARGUMENT && !last_error().empty(), "bad grid: %u",
           unsigned(s));
-    check(bit_equal(pos, before) && bit_equal(nrm, before), "failed calls wrote outputs");
+    check(bit_equal(pos, before) && bit_equal(nrm, nrm_before) && bit_equal(gpos, nrm_before),
+          "failed calls wrote outputs");
 
     // Too steep: k*A = 2*pi/5 * 0.9 = 1.13.
     OceanWaves *out = nullptr;

@@ -14,8 +14,9 @@ int main(void)
     char want[32];
     OceanWaveDesc desc;
     OceanWaves *waves = NULL;
-    OceanVec2 xz = {0.0f, 0.0f};
-    OceanVec3 pos, normal;
+    OceanDVec2 xz = {0.0, 0.0};
+    OceanDVec3 pos;
+    OceanVec3 normal;
     OceanStatus status;
 
     if (ocean_check_version(OCEAN_VERSION) != OCEAN_STATUS_OK) {
@@ -42,7 +43,7 @@ int main(void)
     ocean_waves_destroy(waves);
     if (status != OCEAN_STATUS_OK || fabs(pos.y - 1.0) > 1e-6) {
         fprintf(stderr, "ocean_waves_evaluate: status %d, y = %g (want 1)\n", (int)status,
-                (double)pos.y);
+                pos.y);
         return 1;
     }
 #if defined(OCEAN_GPU)
@@ -50,10 +51,10 @@ int main(void)
         fprintf(stderr, "the full library registers no shader\n");
         return 1;
     }
-    printf("ocean %s (full): crest at %g m, %u shaders\n", ocean_version(), (double)pos.y,
+    printf("ocean %s (full): crest at %g m, %u shaders\n", ocean_version(), pos.y,
            (unsigned)ocean_shader_count());
 #else
-    printf("ocean %s (CPU-only): crest at %g m\n", ocean_version(), (double)pos.y);
+    printf("ocean %s (CPU-only): crest at %g m\n", ocean_version(), pos.y);
 #endif
     return 0;
 }

@@ -18,19 +18,20 @@ int main()
         desc.direction_x = 1.0;
         desc.depth = INFINITY;
         const ocean::waves waves = ocean::waves::create(std::vector<OceanWaveDesc>{desc});
-        const std::vector<OceanVec2> xz{{0.0f, 0.0f}};
-        std::vector<OceanVec3> pos(1), normal(1);
+        const std::vector<OceanDVec2> xz{{0.0, 0.0}};
+        std::vector<OceanDVec3> pos(1);
+        std::vector<OceanVec3> normal(1);
         waves.evaluate(xz, 0.0, pos, normal);
         if (std::fabs(pos[0].y - 1.0) > 1e-6) {
-            std::fprintf(stderr, "crest at y = %g (want 1)\n", double(pos[0].y));
+            std::fprintf(stderr, "crest at y = %g (want 1)\n", pos[0].y);
             return 1;
         }
 #if defined(OCEAN_GPU)
         std::printf("ocean %s (full, C++): crest at %g m, %zu shaders\n", ocean::version().c_str(),
-                    double(pos[0].y), ocean_shader_count());
+                    pos[0].y, ocean_shader_count());
 #else
         std::printf("ocean %s (CPU-only, C++): crest at %g m\n", ocean::version().c_str(),
-                    double(pos[0].y));
+                    pos[0].y);
 #endif
     } catch (const std::exception &e) {
         std::fprintf(stderr, "%s\n", e.what());
