@@ -177,10 +177,14 @@ fn build_and_run_with(
         // The program records the cdylib's SONAME (ocean-ffi/build.rs) and finds it at run
         // time through a link of that name beside it; the library brings its own system
         // libraries, but the programs' <math.h> needs libm.
+        // The tests run in parallel and share the directory: make the link under a name of
+        // this program's own, then rename it over the shared name (atomic).
         let shared = libocean(true);
         let link = out_dir.join(soname());
-        let _ = std::fs::remove_file(&link);
-        std::os::unix::fs::symlink(&shared, &link).expect("link the SONAME to the cdylib");
+        let own = out_dir.join(format!(".{}.{exe_name}", soname()));
+        let _ = std::fs::remove_file(&own);
+        std::os::unix::fs::symlink(&shared, &own).expect("link the SONAME to the cdylib");
+        std::fs::rename(&own, &link).expect("move the SONAME link into place");
         cc.arg(shared)
             .arg(format!("-Wl,-rpath,{}", out_dir.display()))
             .arg("-lm");
