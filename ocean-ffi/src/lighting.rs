@@ -40,7 +40,7 @@ const _: () = assert!(OCEAN_SKY_MAP_MAX_SIZE == SKY_MAP_MAX_SIZE);
 /// A linear RGB triple in double precision (radiance, irradiance or reflectance, as documented
 /// where it is used).
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanRgb {
     /// Red.
     pub r: f64,
@@ -397,7 +397,7 @@ pub unsafe extern "C" fn ocean_lighting_sky_irradiance(
 /// 1; x, y, z; xy, yz, 3y^2 - 1, xz, x^2 - z^2 with their orthonormal normalisations; linear
 /// RGB per coefficient. All zero: no environment light.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanIrradiance {
     /// `k[i] = A_l L_i`: the environment's projection on `Y_i` times the clamped cosine's
     /// factor (pi, 2 pi / 3, pi / 4 for orders 0, 1, 2).
