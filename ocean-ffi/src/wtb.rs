@@ -26,7 +26,7 @@ use crate::waves::{OceanVec3, OceanWaveDesc, eval_error, wave_desc_in, wave_erro
 /// (origin_x + i*spacing, 0, origin_z + j*spacing), stored row-major at j*nx + i. The spacing is
 /// the same along x and z (a box's internal frame steps by it along both of its axes).
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanWaterGridDesc {
     /// World x of point (0, 0), metres, finite, |origin_x| <= 1e9.
     pub origin_x: f64,

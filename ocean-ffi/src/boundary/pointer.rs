@@ -56,12 +56,17 @@ pub(crate) fn check_disjoint(
     Ok(())
 }
 
-/// Reads a caller's input struct after checking the pointer.
+/// Reads a caller's input struct after checking the pointer. Only for structs that every bit
+/// pattern is valid for (`AnyBitPattern`): one holding an enumeration is read by
+/// [`read_checked`].
 ///
 /// # Safety
 ///
 /// `p` must be NULL, misaligned, or point to a readable `T`.
-pub(crate) unsafe fn read_in<T: Copy>(p: *const T, name: &str) -> Result<T, Error> {
+pub(crate) unsafe fn read_in<T: bytemuck::AnyBitPattern>(
+    p: *const T,
+    name: &str,
+) -> Result<T, Error> {
     check_ptr(p, name)?;
     // SAFETY: non-NULL and aligned (checked); readable (caller's guarantee); copied out.
     Ok(unsafe { p.read() })
