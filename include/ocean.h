@@ -33,6 +33,13 @@
  *   padding the compiler inserts unseen: where alignment would leave a hole, a `reserved`
  *   member fills it, which callers must set to 0 (the _default functions do) and which the
  *   library writes as 0.
+ * - Enumerations are enums with underlying type uint32_t (in C before C23, typedefs of
+ *   uint32_t), and struct members that hold one have its type, so a C++ compiler refuses a
+ *   plain integer there; the library checks every value it reads (others are refused with
+ *   OCEAN_STATUS_INVALID_ARGUMENT). Function parameters that take one (edge, range, encoding,
+ *   rule, depth_source, language, ocean_status_message's status) are plain uint32_t, because the
+ *   library (in Rust) would have undefined behaviour receiving an enum type that holds none of
+ *   its enumerators: it takes the integer and checks it instead.
  * - Units: metres, seconds, radians. Time is a double, in seconds, everywhere.
  * - Axes: right-handed, y up; the sea at rest is the plane y = 0, so rest positions and wave
  *   directions are (x, z) pairs on it.
@@ -141,75 +148,6 @@
 #endif
 
 /**
- * `edge`: the texture tiles (sampler addressing *repeat*).
- */
-#define OCEAN_RELIEF_EDGE_WRAP 0
-
-/**
- * `edge`: texel indices clamp to the border (sampler addressing *clamp-to-edge*).
- */
-#define OCEAN_RELIEF_EDGE_CLAMP 1
-
-/**
- * `range` of `ocean_relief_map_create_f32`: a height outside [0, 1] is refused
- * (`OCEAN_STATUS_INVALID_ARGUMENT`, the message names the first such texel).
- */
-#define OCEAN_RELIEF_RANGE_REFUSE 0
-
-/**
- * `range` of `ocean_relief_map_create_f32`: the smallest height becomes 0 and the largest 1
- * (affinely; a constant map becomes a flat map at height 1, the polygon surface).
- */
-#define OCEAN_RELIEF_RANGE_NORMALIZE 1
-
-/**
- * `OceanReliefConeParams::kind`: relaxed cones (section 18.4): a ray may enter the relief
- * inside a cone but never leave it. For `OCEAN_RELIEF_METHOD_RELAXED`.
- */
-#define OCEAN_RELIEF_CONES_RELAXED 0
-
-/**
- * `OceanReliefConeParams::kind`: conservative cones (Dummer 2006): the cone holds no solid.
- * For `OCEAN_RELIEF_METHOD_CONE_STEP`.
- */
-#define OCEAN_RELIEF_CONES_CONSERVATIVE 1
-
-/**
- * `encoding`: 8-bit unorm (`uint8_t`), clamped to 1.0: code k = floor(255 min(r, 1)), read
- * back as k / 255 (a GPU's `R8Unorm` conversion).
- */
-#define OCEAN_RELIEF_ENCODING_UNORM8 0
-
-/**
- * `encoding`: 8-bit unorm of the square root (`uint8_t`), clamped to 1.0: read back as
- * (k / 255)^2.
- */
-#define OCEAN_RELIEF_ENCODING_UNORM8_SQRT 1
-
-/**
- * `encoding`: IEEE binary16 bit patterns (`uint16_t`), unclamped (up to 65504), rounded
- * toward zero.
- */
-#define OCEAN_RELIEF_ENCODING_F16 2
-
-/**
- * `encoding`: `float`, the generator's values as they are.
- */
-#define OCEAN_RELIEF_ENCODING_F32 3
-
-/**
- * `rule` of `ocean_relief_mips_create`: a coarse texel is the minimum of a 4x4 window of the
- * finer level (its 2x2 group and a one-texel ring): valid under bilinear sampling.
- */
-#define OCEAN_RELIEF_MIP_WINDOW 0
-
-/**
- * `rule` of `ocean_relief_mips_create`: the book's 2x2 group minimum, valid under nearest
- * sampling only.
- */
-#define OCEAN_RELIEF_MIP_GROUP 1
-
-/**
  * The smallest side of a height map, texels (a bilinear cell needs two texel centres).
  */
 #define OCEAN_RELIEF_MIN_SIDE 2
@@ -256,108 +194,9 @@
 #define OCEAN_RELIEF_QUAD_Y_NEG 2
 
 /**
- * `OceanReliefMethod::method`: linear search (Policarpo et al. 2005): `steps` equal depth
- * steps, then `binary` bisections of the step that first went inside. Reads only the depth.
- */
-#define OCEAN_RELIEF_METHOD_LINEAR 0
-
-/**
- * `OceanReliefMethod::method`: cone step mapping (Dummer 2006): `steps` conservative cone
- * steps, no refinement (`binary` is not read). Needs conservative cones.
- */
-#define OCEAN_RELIEF_METHOD_CONE_STEP 1
-
-/**
- * `OceanReliefMethod::method`: relaxed cone stepping (Listing 18-3): `steps` relaxed cone
- * steps, then `binary` bisections as `search` says. Needs relaxed cones.
- */
-#define OCEAN_RELIEF_METHOD_RELAXED 2
-
-/**
- * `OceanReliefMethod::search`: bisect the last cone step (from the last point above the surface
- * to the stop point) `binary` times (default).
- */
-#define OCEAN_RELIEF_SEARCH_LAST_STEP 0
-
-/**
- * `OceanReliefMethod::search`: Listing 18-3's search, `binary` probes starting halfway from the
- * entry point to the stop point (kept for comparison: less accurate).
- */
-#define OCEAN_RELIEF_SEARCH_BOOK 1
-
-/**
- * `OceanReliefMethod::search`: one budget of `steps + binary` fetches: cone steps while the ray
- * is above the surface, then bisections of the last step with every fetch left.
- */
-#define OCEAN_RELIEF_SEARCH_SHARED 2
-
-/**
  * The largest step count of each phase (`steps`, `binary`).
  */
 #define OCEAN_RELIEF_MAX_STEPS 4096
-
-/**
- * `OceanSaoParams::mip_filter`: rotated grid subsampling (Table 1), the paper's choice: every
- * MIP texel is one of its children, a true scene value.
- */
-#define OCEAN_SAO_MIP_FILTER_ROTATED_GRID 0
-
-/**
- * `OceanSaoParams::mip_filter`: the arithmetic mean of the 2x2 children.
- */
-#define OCEAN_SAO_MIP_FILTER_ARITHMETIC_MEAN 1
-
-/**
- * `OceanSaoParams::mip_filter`: the harmonic mean of the 2x2 children (Table 1 misprints it
- * as a sixteenth of that; ocean-sao implements the mean).
- */
-#define OCEAN_SAO_MIP_FILTER_HARMONIC_MEAN 2
-
-/**
- * `OceanSaoParams::mip_filter`: the minimum z of the children (the farthest).
- */
-#define OCEAN_SAO_MIP_FILTER_MIN 3
-
-/**
- * `OceanSaoParams::mip_filter`: the maximum z of the children (the nearest).
- */
-#define OCEAN_SAO_MIP_FILTER_MAX 4
-
-/**
- * `OceanSaoParams::estimator`: the updated falloff of the paper's appendix,
- * A = max(0, 1 - (5 intensity / (r^6 n)) sum max(r^2 - v.v, 0)^3 max((v.n - beta)/(v.v + eps), 0)).
- */
-#define OCEAN_SAO_ESTIMATOR_FALLOFF 0
-
-/**
- * `OceanSaoParams::estimator`: AlchemyAO's estimator, the paper's Eq. 1,
- * A = max(0, 1 - (2 sigma / n) sum max(0, v.n + z_C beta)/(v.v + eps))^k.
- */
-#define OCEAN_SAO_ESTIMATOR_ALCHEMY 1
-
-/**
- * `OceanSaoParams::normals`: the paper's Eq. 4, differences within each pixel's 2x2 quad (a
- * silhouette pixel whose quad partner is on the background gets a normal across the edge).
- */
-#define OCEAN_SAO_NORMALS_QUAD 0
-
-/**
- * `OceanSaoParams::normals` (default): along each axis, the difference to whichever adjacent
- * pixel is nearer in depth, so silhouette pixels keep their own surface's normal.
- */
-#define OCEAN_SAO_NORMALS_NEAREST 1
-
-/**
- * `OceanSaoBlurParams::weight`: the paper's, a tap's key against the centre's key (taps on
- * surfaces sloped to the view are rejected and the sampling pattern stays visible there).
- */
-#define OCEAN_SAO_BLUR_WEIGHT_DEPTH 0
-
-/**
- * `OceanSaoBlurParams::weight` (default): a tap's key against the key the plane through the
- * centre pixel predicts there, its slope from the adjacent pixel nearer in depth.
- */
-#define OCEAN_SAO_BLUR_WEIGHT_PLANE 1
 
 /**
  * The camera-space z that `ocean_sao_view_z` stores for background pixels (depth at the far
@@ -369,22 +208,6 @@
  * The largest input width or height accepted, in pixels.
  */
 #define OCEAN_SAO_MAX_SIDE 16384
-
-/**
- * `ocean_sao_create`'s `depth_source`: the depth buffer holds window depth, the value a depth
- * texture stores (`glDepthRange(0, 1)`), always in [0, 1]: `(ndc + 1)/2` under
- * `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, NDC depth itself under the [0, 1] conventions.
- * This is what `glReadPixels(..., GL_DEPTH_COMPONENT, GL_FLOAT, ...)` and a sampled depth
- * texture give.
- */
-#define OCEAN_SAO_DEPTH_WINDOW 0
-
-/**
- * `ocean_sao_create`'s `depth_source`: the depth buffer holds NDC depth (clip z / clip w), in
- * the convention's range: [-1, 1] under `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, [0, 1]
- * otherwise (where it equals window depth).
- */
-#define OCEAN_SAO_DEPTH_NDC 1
 
 #if defined(OCEAN_GPU)
 /**
@@ -539,37 +362,6 @@ typedef uint32_t OceanStatus;
 #endif // __cplusplus
 
 /**
- * Depth refraction (paper section 2.1), for `OceanEffects::refraction`.
- */
-enum OceanRefraction
-#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
-  : uint32_t
-#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
- {
-  /**
-   * No depth-dependent phase.
-   */
-  OCEAN_REFRACTION_OFF = 0,
-  /**
-   * The paper's default: a depth-dependent phase lag accumulated along each wave ray, so
-   * fronts bend towards shallow water while the frequency never changes (Fig. 6).
-   */
-  OCEAN_REFRACTION_PHASE_SHIFT = 1,
-  /**
-   * Each point runs at its depth's frequency from the dispersion relation (Eq. 4): waves
-   * slow down and queue up towards land as time passes (Fig. 7). Offered for comparison.
-   */
-  OCEAN_REFRACTION_DISPERSION = 2,
-};
-#ifndef __cplusplus
-#if __STDC_VERSION__ >= 202311L
-typedef enum OceanRefraction OceanRefraction;
-#else
-typedef uint32_t OceanRefraction;
-#endif // __STDC_VERSION__ >= 202311L
-#endif // __cplusplus
-
-/**
  * Depth convention of a projection matrix: the range of NDC depth (clip z / clip w) and which
  * end is near.
  */
@@ -600,56 +392,216 @@ typedef uint32_t OceanDepthConvention;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
-#if defined(OCEAN_GPU)
 /**
- * Target language of `ocean_shader_export`.
+ * `OceanReliefConeParams::kind`: which cones are made.
  */
-enum OceanShaderLanguage
+enum OceanReliefConeKind
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
 #endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
  {
-#if defined(OCEAN_GPU)
   /**
-   * Desktop GLSL, one file per entry point: `#version 330 core` for draw passes (vertex and
-   * fragment), `#version 430 core` for compute passes. Clip space is OpenGL's (y flipped and
-   * depth remapped to [-1, 1] in the vertex stage, as wgpu's GL backend does).
+   * Relaxed cones (section 18.4): a ray may enter the relief inside a cone but never leave
+   * it. For `OCEAN_RELIEF_TRACER_RELAXED`.
    */
-  OCEAN_SHADER_LANGUAGE_GLSL = 0,
-#endif
-#if defined(OCEAN_GPU)
+  OCEAN_RELIEF_CONE_KIND_RELAXED = 0,
   /**
-   * GLSL ES 3.10 (`#version 310 es`), one file per entry point.
+   * Conservative cones (Dummer 2006): the cone holds no solid. For
+   * `OCEAN_RELIEF_TRACER_CONE_STEP`.
    */
-  OCEAN_SHADER_LANGUAGE_GLSL_ES = 1,
-#endif
-#if defined(OCEAN_GPU)
-  /**
-   * HLSL, Shader Model 5.1, one file with every entry point.
-   */
-  OCEAN_SHADER_LANGUAGE_HLSL = 2,
-#endif
-#if defined(OCEAN_GPU)
-  /**
-   * Metal Shading Language 2.0, one file with every entry point.
-   */
-  OCEAN_SHADER_LANGUAGE_MSL = 3,
-#endif
-#if defined(OCEAN_GPU)
-  /**
-   * SPIR-V 1.0, one binary module with every entry point (little-endian 32-bit words).
-   */
-  OCEAN_SHADER_LANGUAGE_SPIRV = 4,
-#endif
+  OCEAN_RELIEF_CONE_KIND_CONSERVATIVE = 1,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
-typedef enum OceanShaderLanguage OceanShaderLanguage;
+typedef enum OceanReliefConeKind OceanReliefConeKind;
 #else
-typedef uint32_t OceanShaderLanguage;
+typedef uint32_t OceanReliefConeKind;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
-#endif
+
+/**
+ * `OceanReliefMethod::method`: the tracer.
+ */
+enum OceanReliefTracer
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Linear search (Policarpo et al. 2005): `steps` equal depth steps, then `binary`
+   * bisections of the step that first went inside. Reads only the depth.
+   */
+  OCEAN_RELIEF_TRACER_LINEAR = 0,
+  /**
+   * Cone step mapping (Dummer 2006): `steps` conservative cone steps, no refinement
+   * (`binary` is not read). Needs conservative cones.
+   */
+  OCEAN_RELIEF_TRACER_CONE_STEP = 1,
+  /**
+   * Relaxed cone stepping (Listing 18-3): `steps` relaxed cone steps, then `binary`
+   * bisections as `search` says. Needs relaxed cones.
+   */
+  OCEAN_RELIEF_TRACER_RELAXED = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanReliefTracer OceanReliefTracer;
+#else
+typedef uint32_t OceanReliefTracer;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * `OceanReliefMethod::search`: how relaxed cone stepping refines its hit.
+ */
+enum OceanReliefSearch
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Bisect the last cone step (from the last point above the surface to the stop point)
+   * `binary` times (default).
+   */
+  OCEAN_RELIEF_SEARCH_LAST_STEP = 0,
+  /**
+   * Listing 18-3's search, `binary` probes starting halfway from the entry point to the stop
+   * point (kept for comparison: less accurate).
+   */
+  OCEAN_RELIEF_SEARCH_BOOK = 1,
+  /**
+   * One budget of `steps + binary` fetches: cone steps while the ray is above the surface,
+   * then bisections of the last step with every fetch left.
+   */
+  OCEAN_RELIEF_SEARCH_SHARED = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanReliefSearch OceanReliefSearch;
+#else
+typedef uint32_t OceanReliefSearch;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * `OceanSaoParams::mip_filter`: how a MIP level of z is made from the one below.
+ */
+enum OceanSaoMipFilter
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Rotated grid subsampling (Table 1), the paper's choice: every MIP texel is one of its
+   * children, a true scene value.
+   */
+  OCEAN_SAO_MIP_FILTER_ROTATED_GRID = 0,
+  /**
+   * The arithmetic mean of the 2x2 children.
+   */
+  OCEAN_SAO_MIP_FILTER_ARITHMETIC_MEAN = 1,
+  /**
+   * The harmonic mean of the 2x2 children (Table 1 misprints it as a sixteenth of that;
+   * ocean-sao implements the mean).
+   */
+  OCEAN_SAO_MIP_FILTER_HARMONIC_MEAN = 2,
+  /**
+   * The minimum z of the children (the farthest).
+   */
+  OCEAN_SAO_MIP_FILTER_MIN = 3,
+  /**
+   * The maximum z of the children (the nearest).
+   */
+  OCEAN_SAO_MIP_FILTER_MAX = 4,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanSaoMipFilter OceanSaoMipFilter;
+#else
+typedef uint32_t OceanSaoMipFilter;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * `OceanSaoParams::estimator`: the obscurance estimator.
+ */
+enum OceanSaoEstimator
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The updated falloff of the paper's appendix,
+   * A = max(0, 1 - (5 intensity / (r^6 n)) sum max(r^2 - v.v, 0)^3 max((v.n - beta)/(v.v + eps), 0)).
+   */
+  OCEAN_SAO_ESTIMATOR_FALLOFF = 0,
+  /**
+   * AlchemyAO's estimator, the paper's Eq. 1,
+   * A = max(0, 1 - (2 sigma / n) sum max(0, v.n + z_C beta)/(v.v + eps))^k.
+   */
+  OCEAN_SAO_ESTIMATOR_ALCHEMY = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanSaoEstimator OceanSaoEstimator;
+#else
+typedef uint32_t OceanSaoEstimator;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * `OceanSaoParams::normals`: how each pixel's normal is reconstructed from depth.
+ */
+enum OceanSaoNormals
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The paper's Eq. 4, differences within each pixel's 2x2 quad (a silhouette pixel whose
+   * quad partner is on the background gets a normal across the edge).
+   */
+  OCEAN_SAO_NORMALS_QUAD = 0,
+  /**
+   * The default: along each axis, the difference to whichever adjacent pixel is nearer in
+   * depth, so silhouette pixels keep their own surface's normal.
+   */
+  OCEAN_SAO_NORMALS_NEAREST = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanSaoNormals OceanSaoNormals;
+#else
+typedef uint32_t OceanSaoNormals;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * `OceanSaoBlurParams::weight`: what a blur tap's depth key is compared with.
+ */
+enum OceanSaoBlurWeight
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The paper's: the centre's key (taps on surfaces sloped to the view are rejected and the
+   * sampling pattern stays visible there).
+   */
+  OCEAN_SAO_BLUR_WEIGHT_DEPTH = 0,
+  /**
+   * The default: the key the plane through the centre pixel predicts there, its slope from
+   * the adjacent pixel nearer in depth.
+   */
+  OCEAN_SAO_BLUR_WEIGHT_PLANE = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanSaoBlurWeight OceanSaoBlurWeight;
+#else
+typedef uint32_t OceanSaoBlurWeight;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
 
 #if defined(OCEAN_GPU)
 /**
@@ -766,6 +718,230 @@ typedef uint32_t OceanBindingKind;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 #endif
+
+/**
+ * Depth refraction (paper section 2.1), for `OceanEffects::refraction`.
+ */
+enum OceanRefraction
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * No depth-dependent phase.
+   */
+  OCEAN_REFRACTION_OFF = 0,
+  /**
+   * The paper's default: a depth-dependent phase lag accumulated along each wave ray, so
+   * fronts bend towards shallow water while the frequency never changes (Fig. 6).
+   */
+  OCEAN_REFRACTION_PHASE_SHIFT = 1,
+  /**
+   * Each point runs at its depth's frequency from the dispersion relation (Eq. 4): waves
+   * slow down and queue up towards land as time passes (Fig. 7). Offered for comparison.
+   */
+  OCEAN_REFRACTION_DISPERSION = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanRefraction OceanRefraction;
+#else
+typedef uint32_t OceanRefraction;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+#if defined(OCEAN_GPU)
+/**
+ * Target language of `ocean_shader_export`.
+ */
+enum OceanShaderLanguage
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+#if defined(OCEAN_GPU)
+  /**
+   * Desktop GLSL, one file per entry point: `#version 330 core` for draw passes (vertex and
+   * fragment), `#version 430 core` for compute passes. Clip space is OpenGL's (y flipped and
+   * depth remapped to [-1, 1] in the vertex stage, as wgpu's GL backend does).
+   */
+  OCEAN_SHADER_LANGUAGE_GLSL = 0,
+#endif
+#if defined(OCEAN_GPU)
+  /**
+   * GLSL ES 3.10 (`#version 310 es`), one file per entry point.
+   */
+  OCEAN_SHADER_LANGUAGE_GLSL_ES = 1,
+#endif
+#if defined(OCEAN_GPU)
+  /**
+   * HLSL, Shader Model 5.1, one file with every entry point.
+   */
+  OCEAN_SHADER_LANGUAGE_HLSL = 2,
+#endif
+#if defined(OCEAN_GPU)
+  /**
+   * Metal Shading Language 2.0, one file with every entry point.
+   */
+  OCEAN_SHADER_LANGUAGE_MSL = 3,
+#endif
+#if defined(OCEAN_GPU)
+  /**
+   * SPIR-V 1.0, one binary module with every entry point (little-endian 32-bit words).
+   */
+  OCEAN_SHADER_LANGUAGE_SPIRV = 4,
+#endif
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanShaderLanguage OceanShaderLanguage;
+#else
+typedef uint32_t OceanShaderLanguage;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+#endif
+
+/**
+ * What a depth buffer holds (`ocean_sao_create`'s `depth_source`, a `uint32_t` parameter).
+ */
+enum OceanSaoDepth
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Window depth, the value a depth texture stores (`glDepthRange(0, 1)`), always in
+   * [0, 1]: `(ndc + 1)/2` under `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, NDC depth itself
+   * under the [0, 1] conventions. This is what `glReadPixels(..., GL_DEPTH_COMPONENT,
+   * GL_FLOAT, ...)` and a sampled depth texture give.
+   */
+  OCEAN_SAO_DEPTH_WINDOW = 0,
+  /**
+   * NDC depth (clip z / clip w), in the convention's range: [-1, 1] under
+   * `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, [0, 1] otherwise (where it equals window depth).
+   */
+  OCEAN_SAO_DEPTH_NDC = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanSaoDepth OceanSaoDepth;
+#else
+typedef uint32_t OceanSaoDepth;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * How texel indices outside the map are read (the `edge` parameter, a `uint32_t`).
+ */
+enum OceanReliefEdge
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The texture tiles (sampler addressing *repeat*).
+   */
+  OCEAN_RELIEF_EDGE_WRAP = 0,
+  /**
+   * Texel indices clamp to the border (sampler addressing *clamp-to-edge*).
+   */
+  OCEAN_RELIEF_EDGE_CLAMP = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanReliefEdge OceanReliefEdge;
+#else
+typedef uint32_t OceanReliefEdge;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * What `ocean_relief_map_create_f32` does with heights outside [0, 1] (its `range` parameter,
+ * a `uint32_t`).
+ */
+enum OceanReliefRange
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * A height outside [0, 1] is refused (`OCEAN_STATUS_INVALID_ARGUMENT`, the message names
+   * the first such texel).
+   */
+  OCEAN_RELIEF_RANGE_REFUSE = 0,
+  /**
+   * The smallest height becomes 0 and the largest 1 (affinely; a constant map becomes a flat
+   * map at height 1, the polygon surface).
+   */
+  OCEAN_RELIEF_RANGE_NORMALIZE = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanReliefRange OceanReliefRange;
+#else
+typedef uint32_t OceanReliefRange;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * How cone values are stored (the `encoding` parameter, a `uint32_t`).
+ */
+enum OceanReliefEncoding
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * 8-bit unorm (`uint8_t`), clamped to 1.0: code k = floor(255 min(r, 1)), read back as
+   * k / 255 (a GPU's `R8Unorm` conversion).
+   */
+  OCEAN_RELIEF_ENCODING_UNORM8 = 0,
+  /**
+   * 8-bit unorm of the square root (`uint8_t`), clamped to 1.0: read back as (k / 255)^2.
+   */
+  OCEAN_RELIEF_ENCODING_UNORM8_SQRT = 1,
+  /**
+   * IEEE binary16 bit patterns (`uint16_t`), unclamped (up to 65504), rounded toward zero.
+   */
+  OCEAN_RELIEF_ENCODING_F16 = 2,
+  /**
+   * `float`, the generator's values as they are.
+   */
+  OCEAN_RELIEF_ENCODING_F32 = 3,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanReliefEncoding OceanReliefEncoding;
+#else
+typedef uint32_t OceanReliefEncoding;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * How `ocean_relief_mips_create` makes a coarse texel (its `rule` parameter, a `uint32_t`).
+ */
+enum OceanReliefMip
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The minimum of a 4x4 window of the finer level (its 2x2 group and a one-texel ring):
+   * valid under bilinear sampling.
+   */
+  OCEAN_RELIEF_MIP_WINDOW = 0,
+  /**
+   * The book's 2x2 group minimum, valid under nearest sampling only.
+   */
+  OCEAN_RELIEF_MIP_GROUP = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanReliefMip OceanReliefMip;
+#else
+typedef uint32_t OceanReliefMip;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
 
 #if defined(OCEAN_GPU)
 /**
@@ -967,9 +1143,9 @@ typedef struct OceanCamera {
    */
   double projection[16];
   /**
-   * An `OceanDepthConvention` value (other values are refused).
+   * The convention of `projection` (other values are refused).
    */
-  uint32_t depth_convention;
+  OceanDepthConvention depth_convention;
   /**
    * Must be 0: room for a later member, and no padding the caller cannot see.
    */
@@ -1357,10 +1533,10 @@ typedef struct OceanWaterGridDesc {
  */
 typedef struct OceanReliefConeParams {
   /**
-   * `OCEAN_RELIEF_CONES_RELAXED` (default) or `OCEAN_RELIEF_CONES_CONSERVATIVE`; other values
-   * are refused.
+   * `OCEAN_RELIEF_CONE_KIND_RELAXED` (default) or `OCEAN_RELIEF_CONE_KIND_CONSERVATIVE`;
+   * other values are refused.
    */
-  uint32_t kind;
+  OceanReliefConeKind kind;
   /**
    * Cap on the cone ratios (texture widths per unit depth) and the clearances (texture
    * widths), in (0, `OCEAN_RELIEF_MAX_RATIO_LIMIT`]. Default 1.0, the book's, for 8-bit
@@ -1386,9 +1562,9 @@ typedef int (*OceanReliefProgress)(void *user, size_t done, size_t total);
  */
 typedef struct OceanReliefMethod {
   /**
-   * `OCEAN_RELIEF_METHOD_LINEAR`, `_CONE_STEP` or `_RELAXED`; other values are refused.
+   * `OCEAN_RELIEF_TRACER_LINEAR`, `_CONE_STEP` or `_RELAXED`; other values are refused.
    */
-  uint32_t method;
+  OceanReliefTracer method;
   /**
    * Linear steps, cone steps, or relaxed cone steps: 1 to `OCEAN_RELIEF_MAX_STEPS` (the
    * book: 15 relaxed steps).
@@ -1399,9 +1575,10 @@ typedef struct OceanReliefMethod {
    */
   uint32_t binary;
   /**
-   * `OCEAN_RELIEF_SEARCH_*`. Read (and checked) only by relaxed cone stepping.
+   * `OCEAN_RELIEF_SEARCH_*`: read only by relaxed cone stepping, but checked whatever the
+   * tracer (other values are refused).
    */
-  uint32_t search;
+  OceanReliefSearch search;
 } OceanReliefMethod;
 
 #if defined(OCEAN_GPU)
@@ -1591,7 +1768,7 @@ typedef struct OceanSaoBlurParams {
    * `OCEAN_SAO_BLUR_WEIGHT_PLANE` (default) or `OCEAN_SAO_BLUR_WEIGHT_DEPTH` (the paper's);
    * other values are refused.
    */
-  uint32_t weight;
+  OceanSaoBlurWeight weight;
   /**
    * With the plane weight: the distance from the centre pixel, as a fraction of `radius`,
    * at which a tap's weight fades to 0, in [0, 1e3] (default 0.5; 0: no fade).
@@ -1632,12 +1809,12 @@ typedef struct OceanSaoParams {
    * How a MIP level is made from the one below: an `OCEAN_SAO_MIP_FILTER_*` value (default
    * `OCEAN_SAO_MIP_FILTER_ROTATED_GRID`); other values are refused.
    */
-  uint32_t mip_filter;
+  OceanSaoMipFilter mip_filter;
   /**
    * `OCEAN_SAO_ESTIMATOR_FALLOFF` (default) or `OCEAN_SAO_ESTIMATOR_ALCHEMY`; other values
    * are refused. Only the chosen estimator's constants below are read and checked.
    */
-  uint32_t estimator;
+  OceanSaoEstimator estimator;
   /**
    * Falloff: bias beta, metres, in [0, 1e3] (default 0.01: 1 cm).
    */
@@ -1675,7 +1852,7 @@ typedef struct OceanSaoParams {
    * `OCEAN_SAO_NORMALS_NEAREST` (default) or `OCEAN_SAO_NORMALS_QUAD` (the paper's Eq. 4);
    * other values are refused.
    */
-  uint32_t normals;
+  OceanSaoNormals normals;
   /**
    * 1: treat pixels whose reconstructed normal is unreliable (a depth edge inside their 2x2
    * quad) as unoccluded; 0: the paper's behaviour (default). Other values are refused.
@@ -1776,9 +1953,9 @@ typedef struct OceanShaderBinding {
    */
   uint32_t binding;
   /**
-   * An `OceanBindingKind` value.
+   * What kind of resource it is.
    */
-  uint32_t kind;
+  OceanBindingKind kind;
   /**
    * Byte size of the bound type, or of one element of a runtime-sized array; 0 for textures
    * and samplers.
@@ -1955,9 +2132,9 @@ typedef struct OceanBeach {
  */
 typedef struct OceanEffects {
   /**
-   * Depth refraction: an `OceanRefraction` value (other values are refused).
+   * Depth refraction (other values are refused).
    */
-  uint32_t refraction;
+  OceanRefraction refraction;
   /**
    * 1: shoaling on (Green's law: the amplitude grows as (D_ref/D)^(1/4) in water shallower
    * than half a wavelength, at most 1.5 times); 0: off. Other values are refused.
@@ -4366,7 +4543,7 @@ OceanStatus ocean_shader_export_file(const struct OceanShaderExport *shader_expo
  */
 OceanStatus ocean_shader_export_file_stage(const struct OceanShaderExport *shader_export,
                                            size_t index,
-                                           uint32_t *stage,
+                                           OceanShaderStage *stage,
                                            const char **entry_point);
 #endif
 

@@ -276,7 +276,7 @@ OceanCamera make_camera(const T *view, const T *projection, OceanDepthConvention
         c.view[i] = double(view[i]);
         c.projection[i] = double(projection[i]);
     }
-    c.depth_convention = std::uint32_t(depth);
+    c.depth_convention = depth;
     return c;
 }
 

@@ -3,9 +3,10 @@
 
 use std::fmt::Debug;
 
-use ocean::{OceanCamera, OceanStatus};
+use ocean::{OceanCamera, OceanDepthConvention, OceanStatus};
 
 use crate::check;
+use crate::cmem::{CMem, enum_below};
 use crate::finite::Finite;
 use crate::input::Input;
 use crate::known::Args;
@@ -60,7 +61,7 @@ pub fn tweak_flag(inp: &mut Input, v: &mut u32) {
 /// far 500 or infinite) or an orthographic box, in one of the three depth conventions, built
 /// as GLM builds them, then some elements, the convention and the reserved member fuzzed; or
 /// 32 arbitrary doubles.
-pub fn camera(inp: &mut Input) -> OceanCamera {
+pub fn camera(inp: &mut Input) -> CMem<OceanCamera> {
     let mut c = OceanCamera {
         view: [
             1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, -10.0, 0.0, 1.0,
@@ -71,8 +72,8 @@ pub fn camera(inp: &mut Input) -> OceanCamera {
         c.view = std::array::from_fn(|_| inp.f64());
         c.projection = std::array::from_fn(|_| inp.f64());
     } else {
-        let convention = inp.u32() % 3;
-        c.depth_convention = convention;
+        c.depth_convention = enum_below::<OceanDepthConvention>(inp, 3);
+        let convention = c.depth_convention as u32;
         let (n, far) = (0.5, if inp.bool() { f64::INFINITY } else { 500.0 });
         let p = &mut c.projection;
         if inp.u8() % 4 == 3 {
@@ -112,7 +113,8 @@ pub fn camera(inp: &mut Input) -> OceanCamera {
             }
         }
     }
-    tweak_u32(inp, &mut c.depth_convention);
     tweak_u32(inp, &mut c.reserved);
+    let mut c = CMem::new(c);
+    c.tweak_u32(inp, std::mem::offset_of!(OceanCamera, depth_convention));
     c
 }

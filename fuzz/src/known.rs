@@ -5,6 +5,8 @@
 use std::any::Any;
 use std::fmt::Debug;
 
+use crate::cmem::CMem;
+
 use ocean::{
     OceanCamera, OceanDVec2, OceanDVec3, OceanGrid, OceanReliefMethod, OceanReliefRay,
     OceanSeaColorInput, OceanSeaParams, OceanSkyParams,
@@ -57,7 +59,7 @@ const UNBOUNDED_SKY: &str = "a CIE sky whose gradation 1 + a exp(b / cos theta) 
 
 /// A traced ray starting beyond 1e30 texture widths.
 fn far_ray_start(a: &dyn Any) -> bool {
-    a.downcast_ref::<(OceanReliefMethod, Vec<OceanReliefRay>, usize)>()
+    a.downcast_ref::<(CMem<OceanReliefMethod>, Vec<OceanReliefRay>, usize)>()
         .is_some_and(|(_, rays, n)| {
             rays[..*n]
                 .iter()
@@ -76,7 +78,7 @@ pub const KNOWN_NON_FINITE: &[Known] = &[
     Known {
         function: "ocean_pixel_footprint",
         matches: |a| {
-            a.downcast_ref::<(OceanCamera, u32, u32, f64, f64, f64)>()
+            a.downcast_ref::<(CMem<OceanCamera>, u32, u32, f64, f64, f64)>()
                 .is_some_and(|&(.., max_distance)| max_distance > 1e150)
         },
         note: "max_distance above about 1e154 m: rays beyond the horizon stop that far away, and the \
@@ -89,7 +91,7 @@ pub const KNOWN_NON_FINITE: &[Known] = &[
     Known {
         function: "ocean_surface_wave_texels",
         matches: |a| {
-            a.downcast_ref::<(OceanCamera, f64, usize)>()
+            a.downcast_ref::<(CMem<OceanCamera>, f64, usize)>()
                 .is_some_and(|&(_, time, _)| time.abs() > 1e300)
         },
         note: "a finite `time` so large that omega * time overflows (|time| above about \

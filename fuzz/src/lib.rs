@@ -3,6 +3,7 @@
 
 pub mod call;
 pub mod check;
+pub mod cmem;
 pub mod finite;
 pub mod input;
 pub mod known;

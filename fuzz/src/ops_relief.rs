@@ -2,6 +2,7 @@
 //! Shared by `c_abi_sequence` and `cone_params`, which runs these alone.
 
 use std::ffi::{c_int, c_void};
+use std::mem::offset_of;
 use std::ptr::null_mut;
 
 use ocean::{
@@ -21,8 +22,9 @@ use ocean::{
 };
 
 use crate::call::camera;
-use crate::call::{query, tweak, tweak_flag, tweak_u32, tweak32};
+use crate::call::{query, tweak, tweak_flag, tweak32};
 use crate::check;
+use crate::cmem::{CMem, enum_below};
 use crate::finite::half_is_finite;
 use crate::input::Input;
 use crate::live::{Costly, Kind, Live, pick_or_null};
@@ -180,16 +182,17 @@ fn with_progress<R>(inp: &mut Input, f: impl FnOnce(OceanReliefProgress, *mut c_
 }
 
 /// The default cone parameters, fuzzed.
-pub fn cone_params(inp: &mut Input) -> OceanReliefConeParams {
+pub fn cone_params(inp: &mut Input) -> CMem<OceanReliefConeParams> {
     let mut p = OceanReliefConeParams::default();
     // SAFETY: `p` is a local.
     let st = unsafe { ocean_relief_cone_params_default(&mut p) };
     check::status("ocean_relief_cone_params_default", &(), st);
     if inp.bool() {
-        p.kind = inp.u32() % 2;
+        p.kind = enum_below(inp, 2);
     }
-    tweak_u32(inp, &mut p.kind);
     tweak32(inp, &mut p.max_ratio);
+    let mut p = CMem::new(p);
+    p.tweak_u32(inp, offset_of!(OceanReliefConeParams, kind));
     p
 }
 
@@ -251,7 +254,7 @@ pub fn cones_create(live: &mut Live, inp: &mut Input) {
             0 | 1 => {
                 let mut out = null_mut();
                 let st = with_progress(inp, |cb, user| {
-                    ocean_relief_cones_create(m, &params, cb, user, &mut out)
+                    ocean_relief_cones_create(m, params.as_ptr(), cb, user, &mut out)
                 });
                 if check::status("ocean_relief_cones_create", &params, st) {
                     Live::push(&mut live.cones, &mut live.dead, Kind::Cones, out);
@@ -260,7 +263,7 @@ pub fn cones_create(live: &mut Live, inp: &mut Input) {
             2 => {
                 let mut out = null_mut();
                 let st = with_progress(inp, |cb, user| {
-                    ocean_relief_quad_cones_create(m, &params, cb, user, &mut out)
+                    ocean_relief_quad_cones_create(m, params.as_ptr(), cb, user, &mut out)
                 });
                 if check::status("ocean_relief_quad_cones_create", &params, st) {
                     Live::push(&mut live.quads, &mut live.dead, Kind::QuadCones, out);
@@ -275,14 +278,21 @@ pub fn cones_create(live: &mut Live, inp: &mut Input) {
                     if quad {
                         ocean_relief_quad_generate_texels(
                             m,
-                            &params,
+                            params.as_ptr(),
                             cb,
                             user,
                             rgba.as_mut_ptr(),
                             len,
                         )
                     } else {
-                        ocean_relief_generate_texels(m, &params, cb, user, rgba.as_mut_ptr(), len)
+                        ocean_relief_generate_texels(
+                            m,
+                            params.as_ptr(),
+                            cb,
+                            user,
+                            rgba.as_mut_ptr(),
+                            len,
+                        )
                     }
                 });
                 let name = if quad {
@@ -300,7 +310,7 @@ pub fn cones_create(live: &mut Live, inp: &mut Input) {
                 let st = with_progress(inp, |cb, user| {
                     ocean_relief_generate_encoded(
                         m,
-                        &params,
+                        params.as_ptr(),
                         cb,
                         user,
                         enc,
@@ -397,16 +407,25 @@ pub fn cones_queries(live: &mut Live, inp: &mut Input) {
 }
 
 /// A tracer: one of the three methods and searches mostly, fuzzed step counts.
-fn method(inp: &mut Input) -> OceanReliefMethod {
+fn method(inp: &mut Input) -> CMem<OceanReliefMethod> {
     let mut m = OceanReliefMethod {
-        method: inp.u32() % 3,
+        method: enum_below(inp, 3),
         steps: 1 + inp.u32() % 64,
         binary: inp.u32() % 16,
-        search: inp.u32() % 3,
+        search: enum_below(inp, 3),
     };
-    for v in [&mut m.method, &mut m.steps, &mut m.binary, &mut m.search] {
+    for v in [&mut m.steps, &mut m.binary] {
         if inp.u8() % 16 == 15 {
             *v = inp.u32();
+        }
+    }
+    let mut m = CMem::new(m);
+    for at in [
+        offset_of!(OceanReliefMethod, method),
+        offset_of!(OceanReliefMethod, search),
+    ] {
+        if inp.u8() % 16 == 15 {
+            m.poke_bytes(at, &inp.u32().to_ne_bytes());
         }
     }
     m
@@ -456,10 +475,17 @@ pub fn trace(live: &mut Live, inp: &mut Input) {
             let rays: Vec<OceanReliefRay> = (0..k).map(|_| ray(inp)).collect();
             let mut hits = vec![OceanReliefHit::default(); k];
             let (name, st) = if quad {
-                let st = ocean_relief_quad_trace(four, &m, rays.as_ptr(), count, hits.as_mut_ptr());
+                let st = ocean_relief_quad_trace(
+                    four,
+                    m.as_ptr(),
+                    rays.as_ptr(),
+                    count,
+                    hits.as_mut_ptr(),
+                );
                 ("ocean_relief_quad_trace", st)
             } else {
-                let st = ocean_relief_trace(plain, &m, rays.as_ptr(), count, hits.as_mut_ptr());
+                let st =
+                    ocean_relief_trace(plain, m.as_ptr(), rays.as_ptr(), count, hits.as_mut_ptr());
                 ("ocean_relief_trace", st)
             };
             check::outputs(name, &(m, rays, count), st, &hits);
@@ -471,7 +497,7 @@ pub fn trace(live: &mut Live, inp: &mut Input) {
             let (name, st) = if quad {
                 let st = ocean_relief_quad_shadow(
                     four,
-                    &m,
+                    m.as_ptr(),
                     points.as_ptr(),
                     count,
                     light[0],
@@ -485,7 +511,7 @@ pub fn trace(live: &mut Live, inp: &mut Input) {
             } else {
                 let st = ocean_relief_shadow(
                     plain,
-                    &m,
+                    m.as_ptr(),
                     points.as_ptr(),
                     count,
                     light[0],
@@ -548,6 +574,7 @@ pub fn helpers(inp: &mut Input) {
         });
     }
     let cam = camera(inp);
+    let mut method_mem = None;
     let mut scene = OceanReliefScene::default();
     // SAFETY: `scene` is a local.
     let st = unsafe { ocean_relief_scene_default(&mut scene) };
@@ -567,20 +594,24 @@ pub fn helpers(inp: &mut Input) {
     tweak32(inp, &mut scene.ambient);
     tweak_flag(inp, &mut scene.shadows);
     if inp.u8() % 4 == 3 {
-        scene.method = method(inp);
+        method_mem = Some(method(inp));
     }
     let edge = inp.u32() % 3;
     let srgb = inp.flag();
     let cap = OCEAN_RELIEF_UNIFORMS_SIZE;
     let len = inp.len_within(cap);
     let mut bytes = vec![0u8; cap];
+    let mut scene = CMem::new(scene);
+    if let Some(m) = method_mem {
+        scene.poke_bytes(offset_of!(OceanReliefScene, method), m.bytes());
+    }
     let args = (cam, scene, size, edge, levels, srgb, len);
     // SAFETY: the camera and scene are locals; `bytes` holds `cap` >= `len` bytes; `needed` is a
     // temporary.
     let st = unsafe {
         ocean_relief_uniforms(
-            &args.0,
-            &args.1,
+            args.0.as_ptr(),
+            args.1.as_ptr(),
             size,
             edge,
             levels,

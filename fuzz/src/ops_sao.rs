@@ -3,13 +3,16 @@
 
 use std::ptr::null_mut;
 
+use std::mem::offset_of;
+
 use ocean::{
-    OceanSaoInfo, OceanSaoParams, ocean_sao_create, ocean_sao_describe, ocean_sao_params_default,
-    ocean_sao_run, ocean_sao_view_z,
+    OceanSaoBlurParams, OceanSaoInfo, OceanSaoParams, ocean_sao_create, ocean_sao_describe,
+    ocean_sao_params_default, ocean_sao_run, ocean_sao_view_z,
 };
 
 use crate::call::{camera, query, tweak_flag, tweak_u32, tweak32};
 use crate::check;
+use crate::cmem::CMem;
 use crate::input::Input;
 use crate::live::{Costly, Kind, Live, pick_or_null};
 
@@ -26,7 +29,7 @@ fn depth_source(inp: &mut Input) -> u32 {
 }
 
 /// The default parameters with fields fuzzed.
-fn params(inp: &mut Input) -> OceanSaoParams {
+fn params(inp: &mut Input) -> CMem<OceanSaoParams> {
     let mut p = OceanSaoParams::default();
     // SAFETY: `p` is a local.
     let st = unsafe { ocean_sao_params_default(&mut p) };
@@ -53,12 +56,8 @@ fn params(inp: &mut Input) -> OceanSaoParams {
         &mut p.samples,
         &mut p.mip_switch_log2,
         &mut p.max_mip,
-        &mut p.mip_filter,
-        &mut p.estimator,
-        &mut p.normals,
         &mut p.blur.taps,
         &mut p.blur.stride,
-        &mut p.blur.weight,
     ] {
         tweak_u32(inp, v);
     }
@@ -66,6 +65,15 @@ fn params(inp: &mut Input) -> OceanSaoParams {
     p.blur.taps = p.blur.taps.min(2 * MAX_SIDE + 1);
     tweak_flag(inp, &mut p.quad_filter);
     tweak_flag(inp, &mut p.normal_rejection);
+    let mut p = CMem::new(p);
+    for at in [
+        offset_of!(OceanSaoParams, mip_filter),
+        offset_of!(OceanSaoParams, estimator),
+        offset_of!(OceanSaoParams, normals),
+        offset_of!(OceanSaoParams, blur) + offset_of!(OceanSaoBlurParams, weight),
+    ] {
+        p.tweak_u32(inp, at);
+    }
     p
 }
 
@@ -86,7 +94,17 @@ pub fn create(live: &mut Live, inp: &mut Input) {
     }
     let mut out = null_mut();
     // SAFETY: the camera, parameters and `out` are locals.
-    let st = unsafe { ocean_sao_create(w, h, guard, &args.3, args.4, &args.5, &mut out) };
+    let st = unsafe {
+        ocean_sao_create(
+            w,
+            h,
+            guard,
+            args.3.as_ptr(),
+            args.4,
+            args.5.as_ptr(),
+            &mut out,
+        )
+    };
     if check::status("ocean_sao_create", &args, st) {
         Live::push(&mut live.saos, &mut live.dead, Kind::Sao, out);
     }

@@ -14,8 +14,9 @@ use ocean::{
     ocean_wtb_scene_update_box,
 };
 
-use crate::call::{camera, query, tweak, tweak_flag, tweak_u32};
+use crate::call::{camera, query, tweak, tweak_flag};
 use crate::check;
+use crate::cmem::CMem;
 use crate::input::Input;
 use crate::live::{Costly, Live, Scene, pick};
 use crate::ops_waves::wave_desc;
@@ -237,12 +238,11 @@ pub fn boxes(live: &mut Live, inp: &mut Input) {
 }
 
 /// The default effects with fields fuzzed.
-fn effects(inp: &mut Input) -> OceanEffects {
+fn effects(inp: &mut Input) -> CMem<OceanEffects> {
     let mut e = OceanEffects::default();
     // SAFETY: `e` is a local.
     let st = unsafe { ocean_wtb_effects_default(&mut e) };
     check::status("ocean_wtb_effects_default", &(), st);
-    tweak_u32(inp, &mut e.refraction);
     for f in [
         &mut e.shoaling,
         &mut e.round_waves,
@@ -265,6 +265,8 @@ fn effects(inp: &mut Input) -> OceanEffects {
         tweak(inp, v);
     }
     e.noise.seed = u64::from(inp.u8());
+    let mut e = CMem::new(e);
+    e.tweak_u32(inp, std::mem::offset_of!(OceanEffects, refraction));
     e
 }
 
@@ -277,7 +279,7 @@ pub fn settings(live: &mut Live, inp: &mut Input) {
         match inp.u8() % 5 {
             0 => {
                 let e = effects(inp);
-                let st = ocean_wtb_scene_set_effects(s, &e);
+                let st = ocean_wtb_scene_set_effects(s, e.as_ptr());
                 check::status("ocean_wtb_scene_set_effects", &e, st);
             }
             1 => {
@@ -292,7 +294,7 @@ pub fn settings(live: &mut Live, inp: &mut Input) {
             3 => {
                 let max = if inp.bool() { usize::MAX } else { inp.upto(8) };
                 let e = effects(inp);
-                let st = ocean_wtb_scene_set_budget_explicit(s, max, &e);
+                let st = ocean_wtb_scene_set_budget_explicit(s, max, e.as_ptr());
                 check::status("ocean_wtb_scene_set_budget_explicit", &(max, e), st);
             }
             _ => {
@@ -316,7 +318,7 @@ pub fn evaluate(live: &mut Live, inp: &mut Input) {
     let with_stats = inp.bool();
     let mut stats = OceanFrameStats::default();
     let stats_ptr: *mut OceanFrameStats = if with_stats { &mut stats } else { null_mut() };
-    let cam_ptr: *const OceanCamera = cam.as_ref().map_or(std::ptr::null(), |c| c);
+    let cam_ptr: *const OceanCamera = cam.as_ref().map_or(std::ptr::null(), CMem::as_ptr);
     let args = (n, time, cam);
     if !live.afford(Costly::SceneEvaluate) {
         return;

@@ -110,7 +110,7 @@ pub fn pixel_footprint(inp: &mut Input) {
     // SAFETY: the camera and the output are locals.
     unsafe {
         query::<f64>("ocean_pixel_footprint", &args, |o| {
-            ocean_pixel_footprint(&args.0, w, h, px, py, max, o)
+            ocean_pixel_footprint(args.0.as_ptr(), w, h, px, py, max, o)
         });
     }
 }
@@ -166,7 +166,7 @@ pub fn draw_data(live: &mut Live, inp: &mut Input) {
     // `bytes` holds `len` bytes at least.
     let st = unsafe {
         ocean_surface_uniforms(
-            &args.0,
+            args.0.as_ptr(),
             s,
             l,
             &args.1,
@@ -191,7 +191,7 @@ pub fn draw_data(live: &mut Live, inp: &mut Input) {
     let n = inp.len_within(cap);
     let mut texels = vec![0f32; cap];
     // SAFETY: `texels` holds `cap` >= `n` floats.
-    let st = unsafe { ocean_surface_wave_texels(&args.0, s, time, texels.as_mut_ptr(), n) };
+    let st = unsafe { ocean_surface_wave_texels(args.0.as_ptr(), s, time, texels.as_mut_ptr(), n) };
     check::outputs("ocean_surface_wave_texels", &(args.0, time, n), st, &texels);
 
     let table = OCEAN_FRESNEL_TABLE_SIZE.pow(2);

@@ -109,7 +109,7 @@ public:
 struct shader_file {
     const char *name;              ///< Suggested file name, e.g. "ocean.ocean_vs.vert.glsl".
     span<const std::uint8_t> data; ///< Text (UTF-8, NUL follows) or SPIR-V words.
-    std::uint32_t stage;           ///< An OceanShaderStage value.
+    OceanShaderStage stage;        ///< What the file holds.
     const char *entry_point;       ///< The entry point ("" for a module).
 };
 

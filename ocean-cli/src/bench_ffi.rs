@@ -171,7 +171,7 @@ fn c_scenario_1(n: usize) -> Result<measure::Scene, String> {
         nz: grid.nz(),
     };
     let effects = OceanEffects {
-        refraction: OceanRefraction::PhaseShift as u32,
+        refraction: OceanRefraction::PhaseShift,
         shoaling: 0,
         ..measure::effects_default()?
     };

@@ -31,21 +31,28 @@ use glam::DMat4;
 use ocean_core::Camera;
 use ocean_core::camera::{CameraError, DepthConvention, Far, Projection};
 
-use crate::boundary::{check_reserved, read_in};
+use crate::boundary::{CEnum, CheckedStruct, EnumField, check_reserved, read_checked};
 use crate::status::{Error, OceanStatus};
 
 /// Depth convention of a projection matrix: the range of NDC depth (clip z / clip w) and which
 /// end is near.
 #[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
 pub enum OceanDepthConvention {
     /// Depth in [0, 1], near at 0: wgpu, Vulkan, D3D, Metal (GLM with
     /// GLM_FORCE_DEPTH_ZERO_TO_ONE).
+    #[default]
     ZeroToOne = 0,
     /// Depth in [0, 1], near at 1 (reversed Z).
     ZeroToOneReversed = 1,
     /// Depth in [-1, 1], near at -1: OpenGL and GLM's default.
     NegOneToOne = 2,
+}
+
+impl CEnum for OceanDepthConvention {
+    const REFUSAL: &'static str = "is not an OceanDepthConvention (0, 1 or 2)";
 }
 
 /// A camera, as every entry point that needs one takes it: the view and projection matrices a
@@ -78,14 +85,16 @@ pub enum OceanDepthConvention {
 /// distance, without any error. Pass the convention the matrix was built for (GLM: [-1, 1]
 /// unless `GLM_FORCE_DEPTH_ZERO_TO_ONE`); `ocean_sao_describe` reports the planes read.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
 pub struct OceanCamera {
     /// World-to-view matrix, column-major.
     pub view: [f64; 16],
     /// View-to-clip (projection) matrix, column-major.
     pub projection: [f64; 16],
-    /// An `OceanDepthConvention` value (other values are refused).
-    pub depth_convention: u32,
+    /// The convention of `projection` (other values are refused).
+    pub depth_convention: OceanDepthConvention,
     /// Must be 0: room for a later member, and no padding the caller cannot see.
     pub reserved: u32,
 }
@@ -105,24 +114,46 @@ impl OceanCamera {
         Self {
             view: c.view_f64().to_cols_array(),
             projection: c.projection_f64().to_cols_array(),
-            depth_convention: depth_convention as u32,
+            depth_convention,
             reserved: 0,
         }
     }
 }
 
-fn convention_from(v: u32) -> Result<DepthConvention, Error> {
-    const Z01: u32 = OceanDepthConvention::ZeroToOne as u32;
-    const Z01R: u32 = OceanDepthConvention::ZeroToOneReversed as u32;
-    const N11: u32 = OceanDepthConvention::NegOneToOne as u32;
+impl CheckedStruct for OceanCamera {
+    const ENUM_FIELDS: &'static [EnumField] = &[EnumField::of::<OceanDepthConvention>(
+        "depth_convention",
+        core::mem::offset_of!(OceanCamera, depth_convention),
+    )];
+
+    /// The matrices' finiteness, which the header's order reports before the convention.
+    fn check_first(bits: &Self::Bits, name: &str) -> Result<(), Error> {
+        check_matrices_finite(name, &bits.view, &bits.projection)
+    }
+}
+
+/// `OCEAN_STATUS_NON_FINITE` naming the first NaN or infinite element, view then projection.
+fn check_matrices_finite(
+    name: &str,
+    view: &[f64; 16],
+    projection: &[f64; 16],
+) -> Result<(), Error> {
+    for (matrix, m) in [("view", view), ("projection", projection)] {
+        if let Some(k) = m.iter().position(|v| !v.is_finite()) {
+            return Err(Error::new(
+                OceanStatus::NonFinite,
+                format!("{name}->{matrix}[{k}] = {} is not finite", m[k]),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn convention_from(v: OceanDepthConvention) -> DepthConvention {
     match v {
-        Z01 => Ok(DepthConvention::ZERO_TO_ONE),
-        Z01R => Ok(DepthConvention::ZERO_TO_ONE_REVERSED),
-        N11 => Ok(DepthConvention::NEG_ONE_TO_ONE),
-        _ => Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!("camera->depth_convention = {v} is not an OceanDepthConvention (0, 1 or 2)"),
-        )),
+        OceanDepthConvention::ZeroToOne => DepthConvention::ZERO_TO_ONE,
+        OceanDepthConvention::ZeroToOneReversed => DepthConvention::ZERO_TO_ONE_REVERSED,
+        OceanDepthConvention::NegOneToOne => DepthConvention::NEG_ONE_TO_ONE,
     }
 }
 
@@ -148,21 +179,14 @@ fn invalid(message: String) -> Error {
 /// `c` must be NULL, misaligned or point to a readable `OceanCamera`.
 pub(crate) unsafe fn read_camera(c: *const OceanCamera) -> Result<Camera, Error> {
     // SAFETY: forwarded from this function's contract.
-    let c = unsafe { read_in(c, "camera") }?;
+    let c = unsafe { read_checked(c, "camera") }?;
     camera_from(&c)
 }
 
 /// Validates a camera (the parameter `camera`, as messages name it).
 pub(crate) fn camera_from(c: &OceanCamera) -> Result<Camera, Error> {
-    for (matrix, m) in [("view", &c.view), ("projection", &c.projection)] {
-        if let Some(k) = m.iter().position(|v| !v.is_finite()) {
-            return Err(Error::new(
-                OceanStatus::NonFinite,
-                format!("camera->{matrix}[{k}] = {} is not finite", m[k]),
-            ));
-        }
-    }
-    let convention = convention_from(c.depth_convention)?;
+    check_matrices_finite("camera", &c.view, &c.projection)?;
+    let convention = convention_from(c.depth_convention);
     check_reserved("camera->reserved", c.reserved)?;
     let projection = projection_from_matrix(&c.projection, convention)?;
     Camera::new(DMat4::from_cols_array(&c.view), projection, convention).map_err(|e| {
@@ -339,6 +363,7 @@ pub(crate) fn camera_status(e: &CameraError) -> OceanStatus {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::boundary::enums::read_poked;
 
     fn perspective(far: Far) -> Projection {
         Projection::Perspective {
@@ -635,10 +660,7 @@ mod tests {
         )
         .unwrap();
         let c = OceanCamera::from_camera(&camera);
-        assert_eq!(
-            c.depth_convention,
-            OceanDepthConvention::ZeroToOneReversed as u32
-        );
+        assert_eq!(c.depth_convention, OceanDepthConvention::ZeroToOneReversed);
         let read = camera_from(&c).unwrap();
         assert_eq!(read.depth(), DepthConvention::ZERO_TO_ONE_REVERSED);
         assert_eq!(read.view_f64(), view);
@@ -658,12 +680,20 @@ mod tests {
                 e.message
             );
         };
-        let mut bad = c;
-        bad.depth_convention = 3;
-        refused(bad, OceanStatus::InvalidArgument, "depth_convention = 3");
+        let at = core::mem::offset_of!(OceanCamera, depth_convention);
+        let e = read_poked(&c, "camera", at, 3).unwrap_err();
+        assert_eq!(e.status, OceanStatus::InvalidArgument, "{}", e.message);
+        assert_eq!(
+            e.message,
+            "camera->depth_convention = 3 is not an OceanDepthConvention (0, 1 or 2)"
+        );
         // A NaN is reported before the enumeration (NON_FINITE, then ranges).
-        bad.projection[0] = f64::NAN;
-        refused(bad, OceanStatus::NonFinite, "camera->projection[0]");
+        let mut nan = c;
+        nan.projection[0] = f64::NAN;
+        let e = read_poked(&nan, "camera", at, 3).unwrap_err();
+        assert_eq!(e.status, OceanStatus::NonFinite, "{}", e.message);
+        assert!(e.message.contains("camera->projection[0]"), "{}", e.message);
+        refused(nan, OceanStatus::NonFinite, "camera->projection[0]");
         let mut bad = c;
         bad.reserved = 1;
         refused(bad, OceanStatus::InvalidArgument, "camera->reserved");
@@ -672,7 +702,7 @@ mod tests {
         refused(bad, OceanStatus::InvalidArgument, "view matrix");
         // A reversed-Z matrix declared forward puts its far plane before its near plane.
         let mut bad = c;
-        bad.depth_convention = OceanDepthConvention::ZeroToOne as u32;
+        bad.depth_convention = OceanDepthConvention::ZeroToOne;
         refused(bad, OceanStatus::InvalidArgument, "plane");
     }
 }

@@ -21,7 +21,7 @@ use crate::boundary::{
 };
 use crate::lighting::{OceanLighting, brdf_error};
 
-use crate::camera::{OceanCamera, camera_from};
+use crate::camera::{OceanCamera, read_camera};
 use crate::lighting_spectrum::OceanSpectrum;
 use crate::status::{Error, OceanStatus, guard};
 use crate::waves_domain::Reach;
@@ -41,7 +41,7 @@ pub struct OceanGpuContext {
 /// defaults. Colour is fixed to 8-bit RGBA (sRGB-encoded, tone-mapped) and the renderer draws
 /// with a 32-bit float depth buffer of its own.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanRendererOptions {
     /// Screen-space size of a projected-grid cell, pixels, in [1, 256] (the paper: 8). Smaller
     /// cells resolve shorter waves in the geometry and cost more vertices.
@@ -459,8 +459,7 @@ pub unsafe extern "C" fn ocean_renderer_render_rgba8(
 ) -> OceanStatus {
     guard("ocean_renderer_render_rgba8", || {
         let (r, c) = renderer_and_context(renderer, ctx)?;
-        // SAFETY: forwarded from this function's contract.
-        let cam = unsafe { read_in(camera, "camera") }?;
+        check_ptr(camera, "camera")?;
         check_ptr(out.cast_const(), "out")?;
         if width == 0 || height == 0 {
             return Err(Error::new(
@@ -485,7 +484,8 @@ pub unsafe extern "C" fn ocean_renderer_render_rgba8(
             ));
         }
         check_time(time)?;
-        let camera = camera_from(&cam)?;
+        // SAFETY: forwarded from this function's contract (the pointer checked above).
+        let camera = unsafe { read_camera(camera) }?;
         let eye = camera.eye();
         if eye.y <= 0.0 {
             return Err(Error::new(
@@ -744,7 +744,7 @@ mod tests {
         .unwrap();
         gpu.set_lighting(&c, &lighting_core).unwrap();
         let want = gpu
-            .render_image(&c, &camera_from(&cam).unwrap(), 1.5, w, h)
+            .render_image(&c, &crate::camera::camera_from(&cam).unwrap(), 1.5, w, h)
             .unwrap();
         assert!(image == want, "the C ABI's image differs from ocean_gpu's");
         assert!(image.chunks_exact(4).all(|p| p[3] == 255));

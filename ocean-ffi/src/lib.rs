@@ -96,19 +96,17 @@ pub use ocean_draw::{
     ocean_surface_uniforms, ocean_surface_wave_texels,
 };
 pub use relief::{
-    OCEAN_RELIEF_CONES_CONSERVATIVE, OCEAN_RELIEF_CONES_RELAXED, OCEAN_RELIEF_EDGE_CLAMP,
-    OCEAN_RELIEF_EDGE_WRAP, OCEAN_RELIEF_ENCODING_F16, OCEAN_RELIEF_ENCODING_F32,
-    OCEAN_RELIEF_ENCODING_UNORM8, OCEAN_RELIEF_ENCODING_UNORM8_SQRT, OCEAN_RELIEF_MAX_RATIO_LIMIT,
-    OCEAN_RELIEF_MAX_SIDE, OCEAN_RELIEF_MIN_SIDE, OCEAN_RELIEF_MIP_GROUP, OCEAN_RELIEF_MIP_WINDOW,
-    OCEAN_RELIEF_PROGRESS_BANDS, OCEAN_RELIEF_RANGE_NORMALIZE, OCEAN_RELIEF_RANGE_REFUSE,
-    OceanReliefConeParams, OceanReliefCones, OceanReliefMap, OceanReliefMips, OceanReliefProgress,
-    ocean_relief_cone_params_default, ocean_relief_cones_create, ocean_relief_cones_destroy,
-    ocean_relief_cones_encode, ocean_relief_cones_quantize, ocean_relief_cones_size,
-    ocean_relief_cones_texels, ocean_relief_generate_encoded, ocean_relief_generate_texels,
-    ocean_relief_map_create_f32, ocean_relief_map_create_u8, ocean_relief_map_create_u16,
-    ocean_relief_map_depths, ocean_relief_map_destroy, ocean_relief_map_size,
-    ocean_relief_mips_copy_level, ocean_relief_mips_create, ocean_relief_mips_destroy,
-    ocean_relief_mips_level_count, ocean_relief_mips_level_size, ocean_relief_normals,
+    OCEAN_RELIEF_MAX_RATIO_LIMIT, OCEAN_RELIEF_MAX_SIDE, OCEAN_RELIEF_MIN_SIDE,
+    OCEAN_RELIEF_PROGRESS_BANDS, OceanReliefConeKind, OceanReliefConeParams, OceanReliefCones,
+    OceanReliefEdge, OceanReliefEncoding, OceanReliefMap, OceanReliefMip, OceanReliefMips,
+    OceanReliefProgress, OceanReliefRange, ocean_relief_cone_params_default,
+    ocean_relief_cones_create, ocean_relief_cones_destroy, ocean_relief_cones_encode,
+    ocean_relief_cones_quantize, ocean_relief_cones_size, ocean_relief_cones_texels,
+    ocean_relief_generate_encoded, ocean_relief_generate_texels, ocean_relief_map_create_f32,
+    ocean_relief_map_create_u8, ocean_relief_map_create_u16, ocean_relief_map_depths,
+    ocean_relief_map_destroy, ocean_relief_map_size, ocean_relief_mips_copy_level,
+    ocean_relief_mips_create, ocean_relief_mips_destroy, ocean_relief_mips_level_count,
+    ocean_relief_mips_level_size, ocean_relief_normals,
 };
 #[cfg(feature = "gpu")]
 pub use relief_draw::{
@@ -125,22 +123,17 @@ pub use relief_quad::{
     ocean_relief_quad_generate_texels, ocean_relief_quad_shadow, ocean_relief_quad_trace,
 };
 pub use relief_trace::{
-    OCEAN_RELIEF_MAX_STEPS, OCEAN_RELIEF_METHOD_CONE_STEP, OCEAN_RELIEF_METHOD_LINEAR,
-    OCEAN_RELIEF_METHOD_RELAXED, OCEAN_RELIEF_SEARCH_BOOK, OCEAN_RELIEF_SEARCH_LAST_STEP,
-    OCEAN_RELIEF_SEARCH_SHARED, OceanReliefHit, OceanReliefMethod, OceanReliefPoint,
-    OceanReliefRay, ocean_relief_method_default, ocean_relief_ray_from_view, ocean_relief_shadow,
-    ocean_relief_trace,
+    OCEAN_RELIEF_MAX_STEPS, OceanReliefHit, OceanReliefMethod, OceanReliefPoint, OceanReliefRay,
+    OceanReliefSearch, OceanReliefTracer, ocean_relief_method_default, ocean_relief_ray_from_view,
+    ocean_relief_shadow, ocean_relief_trace,
 };
 pub use sao::{
-    OCEAN_SAO_BLUR_WEIGHT_DEPTH, OCEAN_SAO_BLUR_WEIGHT_PLANE, OCEAN_SAO_ESTIMATOR_ALCHEMY,
-    OCEAN_SAO_ESTIMATOR_FALLOFF, OCEAN_SAO_MAX_SIDE, OCEAN_SAO_MIP_FILTER_ARITHMETIC_MEAN,
-    OCEAN_SAO_MIP_FILTER_HARMONIC_MEAN, OCEAN_SAO_MIP_FILTER_MAX, OCEAN_SAO_MIP_FILTER_MIN,
-    OCEAN_SAO_MIP_FILTER_ROTATED_GRID, OCEAN_SAO_NORMALS_NEAREST, OCEAN_SAO_NORMALS_QUAD,
-    OCEAN_SAO_SKY_Z, OceanSao, OceanSaoBlurParams, OceanSaoInfo, OceanSaoParams, ocean_sao_create,
-    ocean_sao_describe, ocean_sao_destroy, ocean_sao_params_default, ocean_sao_run,
-    ocean_sao_view_z,
+    OCEAN_SAO_MAX_SIDE, OCEAN_SAO_SKY_Z, OceanSao, OceanSaoBlurParams, OceanSaoBlurWeight,
+    OceanSaoEstimator, OceanSaoInfo, OceanSaoMipFilter, OceanSaoNormals, OceanSaoParams,
+    ocean_sao_create, ocean_sao_describe, ocean_sao_destroy, ocean_sao_params_default,
+    ocean_sao_run, ocean_sao_view_z,
 };
-pub use sao_depth::{OCEAN_SAO_DEPTH_NDC, OCEAN_SAO_DEPTH_WINDOW};
+pub use sao_depth::OceanSaoDepth;
 #[cfg(feature = "gpu")]
 pub use sao_gpu::{
     OCEAN_SAO_UNIFORMS_SIZE, OceanSaoGpu, ocean_sao_gpu_create, ocean_sao_gpu_destroy,

@@ -40,7 +40,7 @@ const _: () = assert!(OCEAN_SKY_MAP_MAX_SIZE == SKY_MAP_MAX_SIZE);
 /// A linear RGB triple in double precision (radiance, irradiance or reflectance, as documented
 /// where it is used).
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanRgb {
     /// Red.
     pub r: f64,
@@ -72,7 +72,7 @@ impl OceanRgb {
 /// radiance must stay positive at the zenith and non-negative elsewhere. The default (`ocean_sky_params_default`) is type 12,
 /// "standard clear sky, low turbidity": a = -1, b = -0.32, c = 10, d = -3, e = 0.45.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanCieSky {
     /// Gradation a.
     pub a: f64,
@@ -89,7 +89,7 @@ pub struct OceanCieSky {
 /// The Sun and the sky (paper section 5.1, 5.2). `ocean_sky_params_default` fills in a clear
 /// afternoon.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanSkyParams {
     /// Unit vector towards the Sun, world space (y up); its length must be within 1e-6 of 1
     /// and its elevation in [0, 90] degrees (y >= 0): the model has no twilight.
@@ -109,7 +109,7 @@ pub struct OceanSkyParams {
 /// The water body under the surface (paper section 5.3). `ocean_sea_params_default` fills in a
 /// deep blue open ocean.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanSeaParams {
     /// Diffuse reflectance of the water body, linear RGB, each channel in [0, 1]: the light
     /// scattered back up is L_sea = albedo (E_sun sin(elevation) + E_sky) / pi.
@@ -397,7 +397,7 @@ pub unsafe extern "C" fn ocean_lighting_sky_irradiance(
 /// 1; x, y, z; xy, yz, 3y^2 - 1, xz, x^2 - z^2 with their orthonormal normalisations; linear
 /// RGB per coefficient. All zero: no environment light.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanIrradiance {
     /// `k[i] = A_l L_i`: the environment's projection on `Y_i` times the clamped cosine's
     /// factor (pi, 2 pi / 3, pi / 4 for orders 0, 1, 2).

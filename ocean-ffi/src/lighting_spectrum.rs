@@ -37,7 +37,7 @@ pub const OCEAN_FILTER_N_MAX: f64 = 2.5;
 /// spreading around the wind (s >= 2), phases uniformly, from a PCG32 stream seeded by `seed`:
 /// the same parameters give the same waves on every platform.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanSpectrumParams {
     /// Wind speed 20 m above the sea, m/s (V_20 of Eq. 1), in [1e-3, 200].
     pub wind_speed: f64,

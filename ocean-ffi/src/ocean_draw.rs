@@ -41,7 +41,7 @@ const _: () = assert!(ocean_brdf::fresnel_table::FRESNEL_TABLE_SIZE == OCEAN_FRE
 /// the camera, the spectrum or the lighting. `ocean_surface_draw_params_default` fills in the
 /// library's defaults (those of `ocean_renderer_options_default`, the paper's filter).
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanSurfaceDrawParams {
     /// N_min of the filter (paper section 7.1): a wave enters a pixel's normal once its
     /// wavelength spans this many pixels (a grid vertex's position: grid cells). > 0.

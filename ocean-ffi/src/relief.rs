@@ -19,48 +19,99 @@ use ocean_relief::{
 };
 
 use crate::boundary::{
-    borrow, check_len, check_ptr, destroy, input, read_in, write_handle, write_out, write_slice,
+    CEnum, CheckedStruct, EnumField, borrow, check_enum, check_len, check_ptr, destroy, input,
+    read_checked, write_handle, write_out, write_slice,
 };
 use crate::camera::camera_status;
 use crate::status::{Error, OceanStatus, guard};
 
-/// `edge`: the texture tiles (sampler addressing *repeat*).
-pub const OCEAN_RELIEF_EDGE_WRAP: u32 = 0;
-/// `edge`: texel indices clamp to the border (sampler addressing *clamp-to-edge*).
-pub const OCEAN_RELIEF_EDGE_CLAMP: u32 = 1;
+/// How texel indices outside the map are read (the `edge` parameter, a `uint32_t`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern)]
+pub enum OceanReliefEdge {
+    /// The texture tiles (sampler addressing *repeat*).
+    Wrap = 0,
+    /// Texel indices clamp to the border (sampler addressing *clamp-to-edge*).
+    Clamp = 1,
+}
 
-/// `range` of `ocean_relief_map_create_f32`: a height outside [0, 1] is refused
-/// (`OCEAN_STATUS_INVALID_ARGUMENT`, the message names the first such texel).
-pub const OCEAN_RELIEF_RANGE_REFUSE: u32 = 0;
-/// `range` of `ocean_relief_map_create_f32`: the smallest height becomes 0 and the largest 1
-/// (affinely; a constant map becomes a flat map at height 1, the polygon surface).
-pub const OCEAN_RELIEF_RANGE_NORMALIZE: u32 = 1;
+impl CEnum for OceanReliefEdge {
+    const REFUSAL: &'static str =
+        "is neither OCEAN_RELIEF_EDGE_WRAP (0) nor OCEAN_RELIEF_EDGE_CLAMP (1)";
+}
 
-/// `OceanReliefConeParams::kind`: relaxed cones (section 18.4): a ray may enter the relief
-/// inside a cone but never leave it. For `OCEAN_RELIEF_METHOD_RELAXED`.
-pub const OCEAN_RELIEF_CONES_RELAXED: u32 = 0;
-/// `OceanReliefConeParams::kind`: conservative cones (Dummer 2006): the cone holds no solid.
-/// For `OCEAN_RELIEF_METHOD_CONE_STEP`.
-pub const OCEAN_RELIEF_CONES_CONSERVATIVE: u32 = 1;
+/// What `ocean_relief_map_create_f32` does with heights outside [0, 1] (its `range` parameter,
+/// a `uint32_t`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern)]
+pub enum OceanReliefRange {
+    /// A height outside [0, 1] is refused (`OCEAN_STATUS_INVALID_ARGUMENT`, the message names
+    /// the first such texel).
+    Refuse = 0,
+    /// The smallest height becomes 0 and the largest 1 (affinely; a constant map becomes a flat
+    /// map at height 1, the polygon surface).
+    Normalize = 1,
+}
 
-/// `encoding`: 8-bit unorm (`uint8_t`), clamped to 1.0: code k = floor(255 min(r, 1)), read
-/// back as k / 255 (a GPU's `R8Unorm` conversion).
-pub const OCEAN_RELIEF_ENCODING_UNORM8: u32 = 0;
-/// `encoding`: 8-bit unorm of the square root (`uint8_t`), clamped to 1.0: read back as
-/// (k / 255)^2.
-pub const OCEAN_RELIEF_ENCODING_UNORM8_SQRT: u32 = 1;
-/// `encoding`: IEEE binary16 bit patterns (`uint16_t`), unclamped (up to 65504), rounded
-/// toward zero.
-pub const OCEAN_RELIEF_ENCODING_F16: u32 = 2;
-/// `encoding`: `float`, the generator's values as they are.
-pub const OCEAN_RELIEF_ENCODING_F32: u32 = 3;
+impl CEnum for OceanReliefRange {
+    const REFUSAL: &'static str =
+        "is neither OCEAN_RELIEF_RANGE_REFUSE (0) nor OCEAN_RELIEF_RANGE_NORMALIZE (1)";
+}
 
-/// `rule` of `ocean_relief_mips_create`: a coarse texel is the minimum of a 4x4 window of the
-/// finer level (its 2x2 group and a one-texel ring): valid under bilinear sampling.
-pub const OCEAN_RELIEF_MIP_WINDOW: u32 = 0;
-/// `rule` of `ocean_relief_mips_create`: the book's 2x2 group minimum, valid under nearest
-/// sampling only.
-pub const OCEAN_RELIEF_MIP_GROUP: u32 = 1;
+/// `OceanReliefConeParams::kind`: which cones are made.
+#[repr(u32)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
+pub enum OceanReliefConeKind {
+    /// Relaxed cones (section 18.4): a ray may enter the relief inside a cone but never leave
+    /// it. For `OCEAN_RELIEF_TRACER_RELAXED`.
+    #[default]
+    Relaxed = 0,
+    /// Conservative cones (Dummer 2006): the cone holds no solid. For
+    /// `OCEAN_RELIEF_TRACER_CONE_STEP`.
+    Conservative = 1,
+}
+
+impl CEnum for OceanReliefConeKind {
+    const REFUSAL: &'static str =
+        "is neither OCEAN_RELIEF_CONE_KIND_RELAXED (0) nor OCEAN_RELIEF_CONE_KIND_CONSERVATIVE (1)";
+}
+
+/// How cone values are stored (the `encoding` parameter, a `uint32_t`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern)]
+pub enum OceanReliefEncoding {
+    /// 8-bit unorm (`uint8_t`), clamped to 1.0: code k = floor(255 min(r, 1)), read back as
+    /// k / 255 (a GPU's `R8Unorm` conversion).
+    Unorm8 = 0,
+    /// 8-bit unorm of the square root (`uint8_t`), clamped to 1.0: read back as (k / 255)^2.
+    Unorm8Sqrt = 1,
+    /// IEEE binary16 bit patterns (`uint16_t`), unclamped (up to 65504), rounded toward zero.
+    F16 = 2,
+    /// `float`, the generator's values as they are.
+    F32 = 3,
+}
+
+impl CEnum for OceanReliefEncoding {
+    const REFUSAL: &'static str = "is not an OCEAN_RELIEF_ENCODING_* value (0 to 3)";
+}
+
+/// How `ocean_relief_mips_create` makes a coarse texel (its `rule` parameter, a `uint32_t`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern)]
+pub enum OceanReliefMip {
+    /// The minimum of a 4x4 window of the finer level (its 2x2 group and a one-texel ring):
+    /// valid under bilinear sampling.
+    Window = 0,
+    /// The book's 2x2 group minimum, valid under nearest sampling only.
+    Group = 1,
+}
+
+impl CEnum for OceanReliefMip {
+    const REFUSAL: &'static str =
+        "is neither OCEAN_RELIEF_MIP_WINDOW (0) nor OCEAN_RELIEF_MIP_GROUP (1)";
+}
 
 /// The smallest side of a height map, texels (a bilinear cell needs two texel centres).
 pub const OCEAN_RELIEF_MIN_SIDE: u32 = 2;
@@ -91,15 +142,24 @@ pub type OceanReliefProgress =
 
 /// How the cones are made. Start from `ocean_relief_cone_params_default`.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
 pub struct OceanReliefConeParams {
-    /// `OCEAN_RELIEF_CONES_RELAXED` (default) or `OCEAN_RELIEF_CONES_CONSERVATIVE`; other values
-    /// are refused.
-    pub kind: u32,
+    /// `OCEAN_RELIEF_CONE_KIND_RELAXED` (default) or `OCEAN_RELIEF_CONE_KIND_CONSERVATIVE`;
+    /// other values are refused.
+    pub kind: OceanReliefConeKind,
     /// Cap on the cone ratios (texture widths per unit depth) and the clearances (texture
     /// widths), in (0, `OCEAN_RELIEF_MAX_RATIO_LIMIT`]. Default 1.0, the book's, for 8-bit
     /// storage (which clamps at 1.0 anyway); a larger cap keeps wider cones for f16 / f32.
     pub max_ratio: f32,
+}
+
+impl CheckedStruct for OceanReliefConeParams {
+    const ENUM_FIELDS: &'static [EnumField] = &[EnumField::of::<OceanReliefConeKind>(
+        "kind",
+        core::mem::offset_of!(OceanReliefConeParams, kind),
+    )];
 }
 
 /// A square height map with its edge mode (opaque). Create with one of
@@ -180,44 +240,27 @@ pub(crate) fn relief_error(context: &str, e: ReliefError) -> Error {
 }
 
 pub(crate) fn edge_from(edge: u32) -> Result<Edge, Error> {
-    match edge {
-        OCEAN_RELIEF_EDGE_WRAP => Ok(Edge::Wrap),
-        OCEAN_RELIEF_EDGE_CLAMP => Ok(Edge::Clamp),
-        v => Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!(
-                "`edge` = {v} is neither OCEAN_RELIEF_EDGE_WRAP (0) nor OCEAN_RELIEF_EDGE_CLAMP (1)"
-            ),
-        )),
-    }
+    Ok(match check_enum::<OceanReliefEdge>("`edge`", edge)? {
+        OceanReliefEdge::Wrap => Edge::Wrap,
+        OceanReliefEdge::Clamp => Edge::Clamp,
+    })
 }
 
 pub(crate) fn encoding_from(encoding: u32) -> Result<Encoding, Error> {
-    match encoding {
-        OCEAN_RELIEF_ENCODING_UNORM8 => Ok(Encoding::Unorm8),
-        OCEAN_RELIEF_ENCODING_UNORM8_SQRT => Ok(Encoding::Unorm8Sqrt),
-        OCEAN_RELIEF_ENCODING_F16 => Ok(Encoding::F16),
-        OCEAN_RELIEF_ENCODING_F32 => Ok(Encoding::F32),
-        v => Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!("`encoding` = {v} is not an OCEAN_RELIEF_ENCODING_* value (0 to 3)"),
-        )),
-    }
+    Ok(
+        match check_enum::<OceanReliefEncoding>("`encoding`", encoding)? {
+            OceanReliefEncoding::Unorm8 => Encoding::Unorm8,
+            OceanReliefEncoding::Unorm8Sqrt => Encoding::Unorm8Sqrt,
+            OceanReliefEncoding::F16 => Encoding::F16,
+            OceanReliefEncoding::F32 => Encoding::F32,
+        },
+    )
 }
 
 pub(crate) fn params_from(p: &OceanReliefConeParams) -> Result<ConeParams, Error> {
     let kind = match p.kind {
-        OCEAN_RELIEF_CONES_RELAXED => ConeKind::Relaxed,
-        OCEAN_RELIEF_CONES_CONSERVATIVE => ConeKind::Conservative,
-        v => {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!(
-                    "params->kind = {v} is neither OCEAN_RELIEF_CONES_RELAXED (0) nor \
-                     OCEAN_RELIEF_CONES_CONSERVATIVE (1)"
-                ),
-            ));
-        }
+        OceanReliefConeKind::Relaxed => ConeKind::Relaxed,
+        OceanReliefConeKind::Conservative => ConeKind::Conservative,
     };
     if !p.max_ratio.is_finite() {
         return Err(Error::new(
@@ -307,18 +350,9 @@ pub unsafe extern "C" fn ocean_relief_map_create_f32(
         // SAFETY: forwarded from this function's contract.
         let heights = unsafe { input(heights, len, "heights") }?;
         let edge = edge_from(edge)?;
-        let range = match range {
-            OCEAN_RELIEF_RANGE_REFUSE => HeightRange::Refuse,
-            OCEAN_RELIEF_RANGE_NORMALIZE => HeightRange::Normalize,
-            v => {
-                return Err(Error::new(
-                    OceanStatus::InvalidArgument,
-                    format!(
-                        "`range` = {v} is neither OCEAN_RELIEF_RANGE_REFUSE (0) nor \
-                         OCEAN_RELIEF_RANGE_NORMALIZE (1)"
-                    ),
-                ));
-            }
+        let range = match check_enum::<OceanReliefRange>("`range`", range)? {
+            OceanReliefRange::Refuse => HeightRange::Refuse,
+            OceanReliefRange::Normalize => HeightRange::Normalize,
         };
         map_dims(width, height, len)?;
         let map = HeightMap::from_heights(width as usize, height as usize, heights, edge, range)?;
@@ -516,8 +550,8 @@ pub unsafe extern "C" fn ocean_relief_cone_params_default(
         let d = ConeParams::default();
         let p = OceanReliefConeParams {
             kind: match d.kind {
-                ConeKind::Relaxed => OCEAN_RELIEF_CONES_RELAXED,
-                ConeKind::Conservative => OCEAN_RELIEF_CONES_CONSERVATIVE,
+                ConeKind::Relaxed => OceanReliefConeKind::Relaxed,
+                ConeKind::Conservative => OceanReliefConeKind::Conservative,
             },
             max_ratio: d.max_ratio,
         };
@@ -592,10 +626,10 @@ pub unsafe extern "C" fn ocean_relief_cones_create(
 ) -> OceanStatus {
     guard("ocean_relief_cones_create", || {
         let m = borrow(map, "map")?;
-        // SAFETY: forwarded from this function's contract.
-        let params = unsafe { read_in(params, "params") }?;
+        check_ptr(params, "params")?;
         check_ptr(out.cast_const(), "out")?;
-        let params = params_from(&params)?;
+        // SAFETY: forwarded from this function's contract (the pointer checked above).
+        let params = params_from(&unsafe { read_checked(params, "params") }?)?;
         let cones = generate(&m.map, params, progress, user)?;
         let handle = OceanReliefCones::new(m.map.clone(), cones)?;
         // SAFETY: forwarded from this function's contract.
@@ -823,10 +857,10 @@ pub unsafe extern "C" fn ocean_relief_generate_texels(
 ) -> OceanStatus {
     guard("ocean_relief_generate_texels", || {
         let m = borrow(map, "map")?;
-        // SAFETY: forwarded from this function's contract.
-        let params = unsafe { read_in(params, "params") }?;
+        check_ptr(params, "params")?;
         check_ptr(rgba.cast_const(), "rgba")?;
-        let params = params_from(&params)?;
+        // SAFETY: forwarded from this function's contract (the pointer checked above).
+        let params = params_from(&unsafe { read_checked(params, "params") }?)?;
         let n = m.map.size();
         check_len("len", len, 4 * n * n, "the texture (4 floats a texel)")?;
         let cones = generate(&m.map, params, progress, user)?;
@@ -859,12 +893,12 @@ pub unsafe extern "C" fn ocean_relief_generate_encoded(
 ) -> OceanStatus {
     guard("ocean_relief_generate_encoded", || {
         let m = borrow(map, "map")?;
-        // SAFETY: forwarded from this function's contract.
-        let params = unsafe { read_in(params, "params") }?;
+        check_ptr(params, "params")?;
         check_ptr(out.cast_const().cast::<u8>(), "out")?;
         let encoding = encoding_from(encoding)?;
         check_encoded_out(out, encoding)?;
-        let params = params_from(&params)?;
+        // SAFETY: forwarded from this function's contract (the pointer checked above).
+        let params = params_from(&unsafe { read_checked(params, "params") }?)?;
         let n = m.map.size();
         check_len("len", len, 3 * n * n, "the cone map (3 values a texel)")?;
         let cones = generate(&m.map, params, progress, user)?;
@@ -895,18 +929,9 @@ pub unsafe extern "C" fn ocean_relief_mips_create(
     guard("ocean_relief_mips_create", || {
         let c = borrow(cones, "cones")?;
         check_ptr(out.cast_const(), "out")?;
-        let rule = match rule {
-            OCEAN_RELIEF_MIP_WINDOW => MipRule::Window,
-            OCEAN_RELIEF_MIP_GROUP => MipRule::Group,
-            v => {
-                return Err(Error::new(
-                    OceanStatus::InvalidArgument,
-                    format!(
-                        "`rule` = {v} is neither OCEAN_RELIEF_MIP_WINDOW (0) nor \
-                         OCEAN_RELIEF_MIP_GROUP (1)"
-                    ),
-                ));
-            }
+        let rule = match check_enum::<OceanReliefMip>("`rule`", rule)? {
+            OceanReliefMip::Window => MipRule::Window,
+            OceanReliefMip::Group => MipRule::Group,
         };
         let levels = chain(&c.cones, rule)?;
         // SAFETY: forwarded from this function's contract.

@@ -11,13 +11,16 @@ use ocean_gpu::ReliefScene;
 use ocean_relief::Method;
 use ocean_relief::gpu_params::ReliefUniforms;
 
+use core::mem::offset_of;
+
 use crate::boundary::{
-    check_finite, check_flag, check_ptr, check_sized, read_in, write_block, write_out,
+    CheckedStruct, EnumField, check_finite, check_flag, check_ptr, check_sized, read_checked,
+    write_block, write_out,
 };
 use crate::camera::{OceanCamera, read_camera};
 use crate::lighting::{OceanIrradiance, finite_dvec3};
 use crate::relief::edge_from;
-use crate::relief_trace::{OceanReliefMethod, method_from};
+use crate::relief_trace::{OceanReliefMethod, OceanReliefSearch, OceanReliefTracer, method_from};
 use crate::status::{Error, OceanStatus, guard};
 use crate::waves::OceanDVec3;
 
@@ -39,7 +42,9 @@ const _: () = assert!(size_of::<ReliefUniforms>() == OCEAN_RELIEF_UNIFORMS_SIZE)
 /// What is drawn is the convex polygon `corners` in the quad's plane: the whole quad, or a
 /// triangle or quadrilateral of a mesh (its texture then continues beyond the quad's edges).
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
 pub struct OceanReliefScene {
     /// World position of the corner at texture coordinates (0, 0), metres.
     pub origin: OceanDVec3,
@@ -84,12 +89,26 @@ pub struct OceanReliefScene {
 
 fn method_to(m: &Method) -> OceanReliefMethod {
     let [method, search, steps, binary] = ocean_relief::gpu_params::method_codes(m);
+    // ocean-relief's codes are the header's enumerators (a mismatch panics, inside the guard).
     OceanReliefMethod {
-        method,
+        method: bytemuck::checked::cast(method),
         steps,
         binary,
-        search,
+        search: bytemuck::checked::cast(search),
     }
+}
+
+impl CheckedStruct for OceanReliefScene {
+    const ENUM_FIELDS: &'static [EnumField] = &[
+        EnumField::of::<OceanReliefTracer>(
+            "method.method",
+            offset_of!(OceanReliefScene, method) + offset_of!(OceanReliefMethod, method),
+        ),
+        EnumField::of::<OceanReliefSearch>(
+            "method.search",
+            offset_of!(OceanReliefScene, method) + offset_of!(OceanReliefMethod, search),
+        ),
+    ];
 }
 
 fn scene_from(s: &OceanReliefScene) -> Result<ReliefScene, Error> {
@@ -246,7 +265,7 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
         // SAFETY: forwarded from this function's contract.
         let camera = unsafe { read_camera(camera) }?;
         // SAFETY: forwarded from this function's contract.
-        let scene = scene_from(&unsafe { read_in(scene, "scene") }?)?;
+        let scene = scene_from(&unsafe { read_checked(scene, "scene") }?)?;
         let edge = edge_from(edge)?;
         let srgb_encode = check_flag("srgb_encode", srgb_encode)?;
         let u = ocean_gpu::scene_uniforms(
@@ -271,7 +290,6 @@ mod tests {
     use ocean_core::Camera;
 
     use super::*;
-    use crate::relief_trace::OCEAN_RELIEF_METHOD_LINEAR;
     use ocean_core::camera::DepthConvention;
 
     use crate::status::last_error;
@@ -326,10 +344,10 @@ mod tests {
             z: -4.0e4 + 0.5,
         };
         s.method = OceanReliefMethod {
-            method: OCEAN_RELIEF_METHOD_LINEAR,
+            method: OceanReliefTracer::Linear,
             steps: 20,
             binary: 5,
-            search: 0,
+            search: OceanReliefSearch::LastStep,
         };
         s.tiles_u = 2.0;
         s.tiles_v = 2.0;
@@ -365,7 +383,7 @@ mod tests {
                 &desc,
                 &s,
                 128,
-                crate::relief::OCEAN_RELIEF_EDGE_CLAMP,
+                crate::relief::OceanReliefEdge::Clamp as u32,
                 7,
                 1,
                 out.as_mut_ptr(),
@@ -567,16 +585,31 @@ mod tests {
             assert_eq!(got, status, "{text}: {message}");
             assert!(message.contains(text), "{text}: {message}");
         }
-        let mut method = good;
-        method.method = OceanReliefMethod {
-            method: crate::relief_trace::OCEAN_RELIEF_METHOD_RELAXED,
-            steps: 15,
-            binary: 6,
-            search: 7,
+        // An unknown search, from C memory.
+        let at = offset_of!(OceanReliefScene, method) + offset_of!(OceanReliefMethod, search);
+        let bad = crate::boundary::enums::Poked::new(&good, at, 7);
+        let mut out = [7u8; 448];
+        // SAFETY: readable inputs, `out` holds 448 writable bytes.
+        let got = unsafe {
+            ocean_relief_uniforms(
+                &desc,
+                bad.as_ptr(),
+                64,
+                0,
+                1,
+                0,
+                out.as_mut_ptr(),
+                448,
+                &mut 0usize,
+            )
         };
-        let (got, message) = call(&desc, &method, 64, 0, 0, 448);
+        let message = last_error();
+        assert!(out.iter().all(|&b| b == 7), "written on failure");
         assert_eq!(got, OceanStatus::InvalidArgument, "{message}");
-        assert!(message.contains("method->search"), "{message}");
+        assert!(
+            message.contains("scene->method.search = 7 is not an OCEAN_RELIEF_SEARCH_* value"),
+            "{message}"
+        );
         let mut out = [0u8; 448];
         // SAFETY: NULL pointers are refused before anything is read or written.
         unsafe {

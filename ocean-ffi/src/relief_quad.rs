@@ -14,7 +14,7 @@ use core::ffi::c_void;
 use ocean_relief::{HeightMap, QuadConeMap, QuadReliefTexture};
 
 use crate::boundary::{
-    borrow, check_len, check_ptr, destroy, read_in, write_handle, write_out, write_slice,
+    borrow, check_len, check_ptr, destroy, read_checked, write_handle, write_out, write_slice,
 };
 use crate::relief::{
     OceanReliefConeParams, OceanReliefMap, OceanReliefProgress, params_from, texels, with_progress,
@@ -117,9 +117,10 @@ pub unsafe extern "C" fn ocean_relief_quad_cones_create(
 ) -> OceanStatus {
     guard("ocean_relief_quad_cones_create", || {
         let m = borrow(map, "map")?;
-        // SAFETY: forwarded from this function's contract.
-        let params = unsafe { read_in(params, "params") }?;
+        check_ptr(params, "params")?;
         check_ptr(out.cast_const(), "out")?;
+        // SAFETY: forwarded from this function's contract (the pointer checked above).
+        let params = unsafe { read_checked(params, "params") }?;
         let cones = generate_quad(&m.map, &params, progress, user)?;
         let texture = QuadReliefTexture::new(&m.map, &cones)?;
         let handle = OceanReliefQuadCones {
@@ -219,10 +220,11 @@ pub unsafe extern "C" fn ocean_relief_quad_generate_texels(
 ) -> OceanStatus {
     guard("ocean_relief_quad_generate_texels", || {
         let m = borrow(map, "map")?;
-        // SAFETY: forwarded from this function's contract.
-        let params = unsafe { read_in(params, "params") }?;
+        check_ptr(params, "params")?;
         check_ptr(rgba.cast_const(), "rgba")?;
         // The parameters before the length, as ocean_relief_generate_texels checks them.
+        // SAFETY: forwarded from this function's contract (the pointer checked above).
+        let params = unsafe { read_checked(params, "params") }?;
         params_from(&params)?;
         let n = m.map.size();
         check_len(
@@ -321,8 +323,8 @@ mod tests {
     use ocean_relief::{ConeParams, Edge, Method, Ray};
 
     use super::*;
-    use crate::relief::{OCEAN_RELIEF_CONES_RELAXED, ocean_relief_map_create_f32};
-    use crate::relief_trace::{OCEAN_RELIEF_METHOD_RELAXED, OCEAN_RELIEF_SEARCH_SHARED};
+    use crate::relief::{OceanReliefConeKind, ocean_relief_map_create_f32};
+    use crate::relief_trace::{OceanReliefSearch, OceanReliefTracer};
     use crate::status::last_error;
 
     const N: u32 = 32;
@@ -339,7 +341,7 @@ mod tests {
         let s = unsafe { ocean_relief_map_create_f32(h.as_ptr(), h.len(), N, N, 0, 0, &mut map) };
         assert_eq!(s, OceanStatus::Ok, "{}", last_error());
         let p = OceanReliefConeParams {
-            kind: OCEAN_RELIEF_CONES_RELAXED,
+            kind: OceanReliefConeKind::Relaxed,
             max_ratio: 2.0,
         };
         let mut cones = null_mut();
@@ -376,10 +378,10 @@ mod tests {
         assert_eq!(direct, texels);
 
         let m = OceanReliefMethod {
-            method: OCEAN_RELIEF_METHOD_RELAXED,
+            method: OceanReliefTracer::Relaxed,
             steps: 20,
             binary: 6,
-            search: OCEAN_RELIEF_SEARCH_SHARED,
+            search: OceanReliefSearch::Shared,
         };
         let method = Method::Relaxed {
             cone: 20,

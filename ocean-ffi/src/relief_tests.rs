@@ -12,12 +12,25 @@ use ocean_relief::trace::{BinarySearch, Method, Ray};
 use ocean_relief::{ConeMap, ConeParams, Edge, HeightMap, HeightRange, ReliefTexture};
 
 use super::*;
+use crate::boundary::enums::Poked;
 use crate::relief_trace::*;
 
 const N: u32 = 32;
 const TEXELS: usize = (N * N) as usize;
 
 use crate::status::last_error;
+
+// The parameter values as a C caller passes them (`uint32_t`).
+const OCEAN_RELIEF_EDGE_WRAP: u32 = OceanReliefEdge::Wrap as u32;
+const OCEAN_RELIEF_EDGE_CLAMP: u32 = OceanReliefEdge::Clamp as u32;
+const OCEAN_RELIEF_RANGE_REFUSE: u32 = OceanReliefRange::Refuse as u32;
+const OCEAN_RELIEF_RANGE_NORMALIZE: u32 = OceanReliefRange::Normalize as u32;
+const OCEAN_RELIEF_ENCODING_UNORM8: u32 = OceanReliefEncoding::Unorm8 as u32;
+const OCEAN_RELIEF_ENCODING_UNORM8_SQRT: u32 = OceanReliefEncoding::Unorm8Sqrt as u32;
+const OCEAN_RELIEF_ENCODING_F16: u32 = OceanReliefEncoding::F16 as u32;
+const OCEAN_RELIEF_ENCODING_F32: u32 = OceanReliefEncoding::F32 as u32;
+const OCEAN_RELIEF_MIP_WINDOW: u32 = OceanReliefMip::Window as u32;
+const OCEAN_RELIEF_MIP_GROUP: u32 = OceanReliefMip::Group as u32;
 
 /// Value-noise heights in [0, 1] (the crate's `to_map` input).
 fn heights() -> Vec<f32> {
@@ -32,7 +45,7 @@ fn map_f32(h: &[f32], edge: u32, range: u32) -> *mut OceanReliefMap {
     m
 }
 
-fn params(kind: u32, max_ratio: f32) -> OceanReliefConeParams {
+fn params(kind: OceanReliefConeKind, max_ratio: f32) -> OceanReliefConeParams {
     OceanReliefConeParams { kind, max_ratio }
 }
 
@@ -174,9 +187,9 @@ fn cones_are_the_crates_in_every_encoding() {
         let m = map_f32(&h, edge, OCEAN_RELIEF_RANGE_REFUSE);
         let hm = HeightMap::from_heights(32, 32, &h, e, HeightRange::Refuse).unwrap();
         for (kind, p) in [
-            (OCEAN_RELIEF_CONES_RELAXED, ConeParams::relaxed(2.5)),
+            (OceanReliefConeKind::Relaxed, ConeParams::relaxed(2.5)),
             (
-                OCEAN_RELIEF_CONES_CONSERVATIVE,
+                OceanReliefConeKind::Conservative,
                 ConeParams::conservative(1.0),
             ),
         ] {
@@ -261,7 +274,7 @@ fn progress_reaches_total_and_output_is_unchanged() {
     let h = heights();
     for (edge, total) in [(OCEAN_RELIEF_EDGE_WRAP, 32), (OCEAN_RELIEF_EDGE_CLAMP, 33)] {
         let m = map_f32(&h, edge, OCEAN_RELIEF_RANGE_REFUSE);
-        let p = params(OCEAN_RELIEF_CONES_RELAXED, 1.0);
+        let p = params(OceanReliefConeKind::Relaxed, 1.0);
         let plain = cones(m, &p);
         let mut rec = Recorder {
             calls: Vec::new(),
@@ -295,7 +308,7 @@ fn progress_reaches_total_and_output_is_unchanged() {
 fn cancellation_writes_nothing() {
     let h = heights();
     let m = map_f32(&h, OCEAN_RELIEF_EDGE_WRAP, OCEAN_RELIEF_RANGE_REFUSE);
-    let p = params(OCEAN_RELIEF_CONES_RELAXED, 1.0);
+    let p = params(OceanReliefConeKind::Relaxed, 1.0);
     for k in [1usize, 3, 33] {
         let mut rec = Recorder {
             calls: Vec::new(),
@@ -469,24 +482,35 @@ fn cone_errors_are_mapped_and_write_nothing() {
     let h = heights();
     let m = map_f32(&h, OCEAN_RELIEF_EDGE_WRAP, OCEAN_RELIEF_RANGE_REFUSE);
     let sentinel = 0x10 as *mut OceanReliefCones;
+    // An unknown kind, from C memory.
+    let kind_2 = Poked::new(
+        &params(OceanReliefConeKind::Relaxed, 1.0),
+        core::mem::offset_of!(OceanReliefConeParams, kind),
+        2,
+    );
+    let mut out = sentinel;
+    // SAFETY: live handle, a readable struct, a writable pointer; no callback.
+    let s = unsafe { ocean_relief_cones_create(m, kind_2.as_ptr(), None, null_mut(), &mut out) };
+    assert_eq!(s, OceanStatus::InvalidArgument);
+    assert_eq!(
+        last_error(),
+        "ocean_relief_cones_create: params->kind = 2 is neither OCEAN_RELIEF_CONE_KIND_RELAXED (0) \
+         nor OCEAN_RELIEF_CONE_KIND_CONSERVATIVE (1)"
+    );
+    assert_eq!(out, sentinel, "written on failure");
     for (p, status, needle) in [
         (
-            params(2, 1.0),
-            OceanStatus::InvalidArgument,
-            "params->kind = 2",
-        ),
-        (
-            params(OCEAN_RELIEF_CONES_RELAXED, f32::NAN),
+            params(OceanReliefConeKind::Relaxed, f32::NAN),
             OceanStatus::NonFinite,
             "max_ratio",
         ),
         (
-            params(OCEAN_RELIEF_CONES_RELAXED, 0.0),
+            params(OceanReliefConeKind::Relaxed, 0.0),
             OceanStatus::InvalidArgument,
             "max_ratio = 0",
         ),
         (
-            params(OCEAN_RELIEF_CONES_RELAXED, 65.0),
+            params(OceanReliefConeKind::Relaxed, 65.0),
             OceanStatus::InvalidArgument,
             "max_ratio = 65",
         ),
@@ -502,7 +526,7 @@ fn cone_errors_are_mapped_and_write_nothing() {
     // SAFETY: writable out.
     let st = unsafe { ocean_relief_cone_params_default(&mut d) };
     assert_eq!(st, OceanStatus::Ok);
-    assert_eq!(d, params(OCEAN_RELIEF_CONES_RELAXED, 1.0));
+    assert_eq!(d, params(OceanReliefConeKind::Relaxed, 1.0));
     let c = cones(m, &d);
     // Wrong lengths, unknown encoding, misaligned output: untouched buffers.
     let mut t = vec![-7.0f32; 4 * TEXELS + 1];
@@ -542,7 +566,7 @@ fn mips_are_the_crates() {
     let hm = HeightMap::from_heights(32, 32, &h, Edge::Wrap, HeightRange::Refuse).unwrap();
     let want_cones = ConeMap::generate(&hm, ConeParams::relaxed(1.0)).unwrap();
     let m = map_f32(&h, OCEAN_RELIEF_EDGE_WRAP, OCEAN_RELIEF_RANGE_REFUSE);
-    let c = cones(m, &params(OCEAN_RELIEF_CONES_RELAXED, 1.0));
+    let c = cones(m, &params(OceanReliefConeKind::Relaxed, 1.0));
     for (code, rule) in [
         (OCEAN_RELIEF_MIP_WINDOW, MipRule::Window),
         (OCEAN_RELIEF_MIP_GROUP, MipRule::Group),
@@ -587,7 +611,7 @@ fn mips_are_the_crates() {
     // SAFETY: valid pointers.
     let s = unsafe { ocean_relief_map_create_f32(h24.as_ptr(), h24.len(), 24, 24, 0, 0, &mut m24) };
     assert_eq!(s, OceanStatus::Ok);
-    let c24 = cones(m24, &params(OCEAN_RELIEF_CONES_RELAXED, 1.0));
+    let c24 = cones(m24, &params(OceanReliefConeKind::Relaxed, 1.0));
     let sentinel = 0x10 as *mut OceanReliefMips;
     let mut mips = sentinel;
     // SAFETY: live handle, writable out.
@@ -671,16 +695,16 @@ fn trace_and_shadow_are_the_crates() {
     let relaxed = ConeMap::generate(&hm, ConeParams::relaxed(4.0)).unwrap();
     let conservative = ConeMap::generate(&hm, ConeParams::conservative(4.0)).unwrap();
     let m = map_f32(&hb, OCEAN_RELIEF_EDGE_WRAP, OCEAN_RELIEF_RANGE_REFUSE);
-    let c_rel = cones(m, &params(OCEAN_RELIEF_CONES_RELAXED, 4.0));
-    let c_con = cones(m, &params(OCEAN_RELIEF_CONES_CONSERVATIVE, 4.0));
+    let c_rel = cones(m, &params(OceanReliefConeKind::Relaxed, 4.0));
+    let c_con = cones(m, &params(OceanReliefConeKind::Conservative, 4.0));
     let rays = test_rays(1000, 0.15);
     let methods = [
         (
             OceanReliefMethod {
-                method: OCEAN_RELIEF_METHOD_LINEAR,
+                method: OceanReliefTracer::Linear,
                 steps: 15,
                 binary: 6,
-                search: 0,
+                search: OceanReliefSearch::LastStep,
             },
             Method::Linear {
                 linear: 15,
@@ -690,20 +714,20 @@ fn trace_and_shadow_are_the_crates() {
         ),
         (
             OceanReliefMethod {
-                method: OCEAN_RELIEF_METHOD_CONE_STEP,
+                method: OceanReliefTracer::ConeStep,
                 steps: 21,
                 binary: 0,
-                search: 0,
+                search: OceanReliefSearch::LastStep,
             },
             Method::ConeStep { steps: 21 },
             true,
         ),
         (
             OceanReliefMethod {
-                method: OCEAN_RELIEF_METHOD_RELAXED,
+                method: OceanReliefTracer::Relaxed,
                 steps: 15,
                 binary: 6,
-                search: OCEAN_RELIEF_SEARCH_LAST_STEP,
+                search: OceanReliefSearch::LastStep,
             },
             Method::Relaxed {
                 cone: 15,
@@ -714,10 +738,10 @@ fn trace_and_shadow_are_the_crates() {
         ),
         (
             OceanReliefMethod {
-                method: OCEAN_RELIEF_METHOD_RELAXED,
+                method: OceanReliefTracer::Relaxed,
                 steps: 15,
                 binary: 6,
-                search: OCEAN_RELIEF_SEARCH_BOOK,
+                search: OceanReliefSearch::Book,
             },
             Method::Relaxed {
                 cone: 15,
@@ -728,10 +752,10 @@ fn trace_and_shadow_are_the_crates() {
         ),
         (
             OceanReliefMethod {
-                method: OCEAN_RELIEF_METHOD_RELAXED,
+                method: OceanReliefTracer::Relaxed,
                 steps: 15,
                 binary: 6,
-                search: OCEAN_RELIEF_SEARCH_SHARED,
+                search: OceanReliefSearch::Shared,
             },
             Method::Relaxed {
                 cone: 15,
@@ -821,12 +845,12 @@ fn trace_and_shadow_are_the_crates() {
 fn trace_errors_are_mapped_and_write_nothing() {
     let h = heights();
     let m = map_f32(&h, OCEAN_RELIEF_EDGE_WRAP, OCEAN_RELIEF_RANGE_REFUSE);
-    let c = cones(m, &params(OCEAN_RELIEF_CONES_RELAXED, 1.0));
+    let c = cones(m, &params(OceanReliefConeKind::Relaxed, 1.0));
     let good = OceanReliefMethod {
-        method: OCEAN_RELIEF_METHOD_RELAXED,
+        method: OceanReliefTracer::Relaxed,
         steps: 15,
         binary: 6,
-        search: OCEAN_RELIEF_SEARCH_LAST_STEP,
+        search: OceanReliefSearch::LastStep,
     };
     let rays = test_rays(4, 0.1);
     let untouched = OceanReliefHit {
@@ -837,7 +861,7 @@ fn trace_errors_are_mapped_and_write_nothing() {
         },
         fetches: 99,
     };
-    let trace = |method: &OceanReliefMethod, rays: &[OceanReliefRay]| {
+    let trace = |method: *const OceanReliefMethod, rays: &[OceanReliefRay]| {
         let mut hits = vec![untouched; rays.len().max(1)];
         // SAFETY: live handle, arrays of `rays.len()` elements.
         let s =
@@ -845,11 +869,37 @@ fn trace_errors_are_mapped_and_write_nothing() {
         assert!(hits.iter().all(|h| *h == untouched), "written on failure");
         (s, last_error())
     };
-    for (method, needle) in [
+    // Unknown enumerators, from C memory, whatever the other members.
+    for (offset, raw, base, needle) in [
         (
-            OceanReliefMethod { method: 3, ..good },
-            "method->method = 3",
+            core::mem::offset_of!(OceanReliefMethod, method),
+            3,
+            good,
+            "method->method = 3 is not an OCEAN_RELIEF_TRACER_* value (0 to 2)",
         ),
+        (
+            core::mem::offset_of!(OceanReliefMethod, search),
+            3,
+            good,
+            "method->search = 3 is not an OCEAN_RELIEF_SEARCH_* value (0 to 2)",
+        ),
+        // Checked even where the tracer does not read it (cone step mapping).
+        (
+            core::mem::offset_of!(OceanReliefMethod, search),
+            77,
+            OceanReliefMethod {
+                method: OceanReliefTracer::ConeStep,
+                ..good
+            },
+            "method->search = 77 is not",
+        ),
+    ] {
+        let bad = Poked::new(&base, offset, raw);
+        let (s, msg) = trace(bad.as_ptr(), &rays);
+        assert_eq!(s, OceanStatus::InvalidArgument, "{needle}");
+        assert!(msg.contains(needle), "{msg}");
+    }
+    for (method, needle) in [
         (OceanReliefMethod { steps: 0, ..good }, "method->steps = 0"),
         (
             OceanReliefMethod {
@@ -865,21 +915,17 @@ fn trace_errors_are_mapped_and_write_nothing() {
             },
             "method->binary = 5000",
         ),
-        (
-            OceanReliefMethod { search: 3, ..good },
-            "method->search = 3",
-        ),
     ] {
         let (s, msg) = trace(&method, &rays);
         assert_eq!(s, OceanStatus::InvalidArgument, "{method:?}");
         assert!(msg.contains(needle), "{msg}");
     }
-    // Cone step mapping reads neither `binary` nor `search`.
+    // Cone step mapping reads neither `binary` nor `search` (any enumerator).
     let csm = OceanReliefMethod {
-        method: OCEAN_RELIEF_METHOD_CONE_STEP,
+        method: OceanReliefTracer::ConeStep,
         steps: 8,
         binary: 9999,
-        search: 77,
+        search: OceanReliefSearch::Shared,
     };
     let mut hits = vec![untouched; rays.len()];
     // SAFETY: arrays of `rays.len()` elements.

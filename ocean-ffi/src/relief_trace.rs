@@ -10,32 +10,58 @@ use ocean_core::rows::for_rows;
 use ocean_relief::trace::{BinarySearch, MAX_STEPS, Method, Ray};
 use ocean_relief::{Hit, ReliefError};
 
+use core::mem::offset_of;
+
 use crate::boundary::{
-    Num, borrow, byte_len, check_disjoint, check_finite, check_ptr, input, read_in, write_out,
-    write_slice,
+    CEnum, CheckedStruct, EnumField, Num, borrow, byte_len, check_disjoint, check_finite,
+    check_ptr, input, read_checked, write_out, write_slice,
 };
 use crate::relief::{OceanReliefCones, relief_error};
 use crate::status::{Error, OceanStatus, guard};
 
-/// `OceanReliefMethod::method`: linear search (Policarpo et al. 2005): `steps` equal depth
-/// steps, then `binary` bisections of the step that first went inside. Reads only the depth.
-pub const OCEAN_RELIEF_METHOD_LINEAR: u32 = 0;
-/// `OceanReliefMethod::method`: cone step mapping (Dummer 2006): `steps` conservative cone
-/// steps, no refinement (`binary` is not read). Needs conservative cones.
-pub const OCEAN_RELIEF_METHOD_CONE_STEP: u32 = 1;
-/// `OceanReliefMethod::method`: relaxed cone stepping (Listing 18-3): `steps` relaxed cone
-/// steps, then `binary` bisections as `search` says. Needs relaxed cones.
-pub const OCEAN_RELIEF_METHOD_RELAXED: u32 = 2;
+/// `OceanReliefMethod::method`: the tracer.
+#[repr(u32)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
+pub enum OceanReliefTracer {
+    /// Linear search (Policarpo et al. 2005): `steps` equal depth steps, then `binary`
+    /// bisections of the step that first went inside. Reads only the depth.
+    #[default]
+    Linear = 0,
+    /// Cone step mapping (Dummer 2006): `steps` conservative cone steps, no refinement
+    /// (`binary` is not read). Needs conservative cones.
+    ConeStep = 1,
+    /// Relaxed cone stepping (Listing 18-3): `steps` relaxed cone steps, then `binary`
+    /// bisections as `search` says. Needs relaxed cones.
+    Relaxed = 2,
+}
 
-/// `OceanReliefMethod::search`: bisect the last cone step (from the last point above the surface
-/// to the stop point) `binary` times (default).
-pub const OCEAN_RELIEF_SEARCH_LAST_STEP: u32 = 0;
-/// `OceanReliefMethod::search`: Listing 18-3's search, `binary` probes starting halfway from the
-/// entry point to the stop point (kept for comparison: less accurate).
-pub const OCEAN_RELIEF_SEARCH_BOOK: u32 = 1;
-/// `OceanReliefMethod::search`: one budget of `steps + binary` fetches: cone steps while the ray
-/// is above the surface, then bisections of the last step with every fetch left.
-pub const OCEAN_RELIEF_SEARCH_SHARED: u32 = 2;
+impl CEnum for OceanReliefTracer {
+    const REFUSAL: &'static str = "is not an OCEAN_RELIEF_TRACER_* value (0 to 2)";
+}
+
+/// `OceanReliefMethod::search`: how relaxed cone stepping refines its hit.
+#[repr(u32)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
+pub enum OceanReliefSearch {
+    /// Bisect the last cone step (from the last point above the surface to the stop point)
+    /// `binary` times (default).
+    #[default]
+    LastStep = 0,
+    /// Listing 18-3's search, `binary` probes starting halfway from the entry point to the stop
+    /// point (kept for comparison: less accurate).
+    Book = 1,
+    /// One budget of `steps + binary` fetches: cone steps while the ray is above the surface,
+    /// then bisections of the last step with every fetch left.
+    Shared = 2,
+}
+
+impl CEnum for OceanReliefSearch {
+    const REFUSAL: &'static str = "is not an OCEAN_RELIEF_SEARCH_* value (0 to 2)";
+}
 
 /// The largest step count of each phase (`steps`, `binary`).
 pub const OCEAN_RELIEF_MAX_STEPS: u32 = 4096;
@@ -47,17 +73,27 @@ const CHUNK: usize = 256;
 
 /// A tracer and its step counts.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
 pub struct OceanReliefMethod {
-    /// `OCEAN_RELIEF_METHOD_LINEAR`, `_CONE_STEP` or `_RELAXED`; other values are refused.
-    pub method: u32,
+    /// `OCEAN_RELIEF_TRACER_LINEAR`, `_CONE_STEP` or `_RELAXED`; other values are refused.
+    pub method: OceanReliefTracer,
     /// Linear steps, cone steps, or relaxed cone steps: 1 to `OCEAN_RELIEF_MAX_STEPS` (the
     /// book: 15 relaxed steps).
     pub steps: u32,
     /// Bisections, 0 to `OCEAN_RELIEF_MAX_STEPS` (the book: 6). Not read by cone step mapping.
     pub binary: u32,
-    /// `OCEAN_RELIEF_SEARCH_*`. Read (and checked) only by relaxed cone stepping.
-    pub search: u32,
+    /// `OCEAN_RELIEF_SEARCH_*`: read only by relaxed cone stepping, but checked whatever the
+    /// tracer (other values are refused).
+    pub search: OceanReliefSearch,
+}
+
+impl CheckedStruct for OceanReliefMethod {
+    const ENUM_FIELDS: &'static [EnumField] = &[
+        EnumField::of::<OceanReliefTracer>("method", offset_of!(OceanReliefMethod, method)),
+        EnumField::of::<OceanReliefSearch>("search", offset_of!(OceanReliefMethod, search)),
+    ];
 }
 
 /// Stores the tracer that `ocean_relief_scene_default` draws with in `*out`: relaxed cone
@@ -74,10 +110,10 @@ pub struct OceanReliefMethod {
 pub unsafe extern "C" fn ocean_relief_method_default(out: *mut OceanReliefMethod) -> OceanStatus {
     guard("ocean_relief_method_default", || {
         let method = OceanReliefMethod {
-            method: OCEAN_RELIEF_METHOD_RELAXED,
+            method: OceanReliefTracer::Relaxed,
             steps: 15,
             binary: 6,
-            search: OCEAN_RELIEF_SEARCH_LAST_STEP,
+            search: OceanReliefSearch::LastStep,
         };
         // SAFETY: forwarded from this function's contract.
         unsafe { write_out(out, "out", method) }
@@ -141,41 +177,28 @@ pub(crate) fn method_from(m: &OceanReliefMethod) -> Result<Method, Error> {
         Ok(())
     };
     range("steps", m.steps, 1)?;
-    match m.method {
-        OCEAN_RELIEF_METHOD_LINEAR => {
+    Ok(match m.method {
+        OceanReliefTracer::Linear => {
             range("binary", m.binary, 0)?;
-            Ok(Method::Linear {
+            Method::Linear {
                 linear: m.steps,
                 binary: m.binary,
-            })
+            }
         }
-        OCEAN_RELIEF_METHOD_CONE_STEP => Ok(Method::ConeStep { steps: m.steps }),
-        OCEAN_RELIEF_METHOD_RELAXED => {
+        OceanReliefTracer::ConeStep => Method::ConeStep { steps: m.steps },
+        OceanReliefTracer::Relaxed => {
             range("binary", m.binary, 0)?;
-            let search = match m.search {
-                OCEAN_RELIEF_SEARCH_LAST_STEP => BinarySearch::LastStep,
-                OCEAN_RELIEF_SEARCH_BOOK => BinarySearch::Book,
-                OCEAN_RELIEF_SEARCH_SHARED => BinarySearch::Shared,
-                v => {
-                    return Err(Error::new(
-                        OceanStatus::InvalidArgument,
-                        format!(
-                            "method->search = {v} is not an OCEAN_RELIEF_SEARCH_* value (0 to 2)"
-                        ),
-                    ));
-                }
-            };
-            Ok(Method::Relaxed {
+            Method::Relaxed {
                 cone: m.steps,
                 binary: m.binary,
-                search,
-            })
+                search: match m.search {
+                    OceanReliefSearch::LastStep => BinarySearch::LastStep,
+                    OceanReliefSearch::Book => BinarySearch::Book,
+                    OceanReliefSearch::Shared => BinarySearch::Shared,
+                },
+            }
         }
-        v => Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!("method->method = {v} is not an OCEAN_RELIEF_METHOD_* value (0 to 2)"),
-        )),
-    }
+    })
 }
 
 /// The crate's ray for `rays[i]`, refusing non-finite members (`OCEAN_STATUS_NON_FINITE`) and a
@@ -328,8 +351,7 @@ pub(crate) unsafe fn trace_batch(
     hits: *mut OceanReliefHit,
     trace: impl Fn(&Method, &Ray) -> Result<Hit, ReliefError> + Sync,
 ) -> Result<(), Error> {
-    // SAFETY: forwarded from this function's contract.
-    let method = unsafe { read_in(method, "method") }?;
+    check_ptr(method, "method")?;
     check_ptr(rays, "rays")?;
     check_ptr(hits.cast_const(), "hits")?;
     if count == 0 {
@@ -341,7 +363,8 @@ pub(crate) unsafe fn trace_batch(
         (rays.cast::<u8>(), in_bytes, "rays"),
         (hits.cast_const().cast::<u8>(), out_bytes, "hits"),
     )?;
-    let method = method_from(&method)?;
+    // SAFETY: forwarded from this function's contract (the pointer checked above).
+    let method = method_from(&unsafe { read_checked(method, "method") }?)?;
     // SAFETY: forwarded from this function's contract (pointer, size and overlap checked).
     let rays = unsafe { input(rays, count, "rays") }?;
     let rays = rays
@@ -439,8 +462,7 @@ pub(crate) unsafe fn shadow_batch(
     in_shadow: *mut u8,
     shadow: impl Fn(&Method, Vec3, Vec3) -> Result<bool, ReliefError> + Sync,
 ) -> Result<(), Error> {
-    // SAFETY: forwarded from this function's contract.
-    let method = unsafe { read_in(method, "method") }?;
+    check_ptr(method, "method")?;
     check_ptr(points, "points")?;
     check_ptr(in_shadow.cast_const(), "in_shadow")?;
     if count == 0 {
@@ -452,7 +474,8 @@ pub(crate) unsafe fn shadow_batch(
         (points.cast::<u8>(), in_bytes, "points"),
         (in_shadow.cast_const(), out_bytes, "in_shadow"),
     )?;
-    let method = method_from(&method)?;
+    // SAFETY: forwarded from this function's contract (the pointer checked above).
+    let method = method_from(&unsafe { read_checked(method, "method") }?)?;
     check_finite(
         "",
         &[

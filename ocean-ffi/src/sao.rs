@@ -12,47 +12,100 @@ use ocean_sao::{
     SaoParams, Viewport,
 };
 
+use core::mem::offset_of;
+
 use crate::boundary::{
-    borrow, byte_len, check_disjoint, check_flag, check_ptr, destroy, read_in, write_handle,
-    write_out,
+    CEnum, CheckedStruct, EnumField, borrow, byte_len, check_disjoint, check_flag, check_ptr,
+    destroy, read_checked, write_handle, write_out,
 };
 use crate::camera::{OceanCamera, camera_status, read_camera};
 use crate::sao_depth::source_from;
 use crate::status::{Error, OceanStatus, guard};
 
-/// `OceanSaoParams::mip_filter`: rotated grid subsampling (Table 1), the paper's choice: every
-/// MIP texel is one of its children, a true scene value.
-pub const OCEAN_SAO_MIP_FILTER_ROTATED_GRID: u32 = 0;
-/// `OceanSaoParams::mip_filter`: the arithmetic mean of the 2x2 children.
-pub const OCEAN_SAO_MIP_FILTER_ARITHMETIC_MEAN: u32 = 1;
-/// `OceanSaoParams::mip_filter`: the harmonic mean of the 2x2 children (Table 1 misprints it
-/// as a sixteenth of that; ocean-sao implements the mean).
-pub const OCEAN_SAO_MIP_FILTER_HARMONIC_MEAN: u32 = 2;
-/// `OceanSaoParams::mip_filter`: the minimum z of the children (the farthest).
-pub const OCEAN_SAO_MIP_FILTER_MIN: u32 = 3;
-/// `OceanSaoParams::mip_filter`: the maximum z of the children (the nearest).
-pub const OCEAN_SAO_MIP_FILTER_MAX: u32 = 4;
+/// `OceanSaoParams::mip_filter`: how a MIP level of z is made from the one below.
+#[repr(u32)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
+pub enum OceanSaoMipFilter {
+    /// Rotated grid subsampling (Table 1), the paper's choice: every MIP texel is one of its
+    /// children, a true scene value.
+    #[default]
+    RotatedGrid = 0,
+    /// The arithmetic mean of the 2x2 children.
+    ArithmeticMean = 1,
+    /// The harmonic mean of the 2x2 children (Table 1 misprints it as a sixteenth of that;
+    /// ocean-sao implements the mean).
+    HarmonicMean = 2,
+    /// The minimum z of the children (the farthest).
+    Min = 3,
+    /// The maximum z of the children (the nearest).
+    Max = 4,
+}
 
-/// `OceanSaoParams::estimator`: the updated falloff of the paper's appendix,
-/// A = max(0, 1 - (5 intensity / (r^6 n)) sum max(r^2 - v.v, 0)^3 max((v.n - beta)/(v.v + eps), 0)).
-pub const OCEAN_SAO_ESTIMATOR_FALLOFF: u32 = 0;
-/// `OceanSaoParams::estimator`: AlchemyAO's estimator, the paper's Eq. 1,
-/// A = max(0, 1 - (2 sigma / n) sum max(0, v.n + z_C beta)/(v.v + eps))^k.
-pub const OCEAN_SAO_ESTIMATOR_ALCHEMY: u32 = 1;
+impl CEnum for OceanSaoMipFilter {
+    const REFUSAL: &'static str = "is not an OCEAN_SAO_MIP_FILTER_* value (0 to 4)";
+}
 
-/// `OceanSaoParams::normals`: the paper's Eq. 4, differences within each pixel's 2x2 quad (a
-/// silhouette pixel whose quad partner is on the background gets a normal across the edge).
-pub const OCEAN_SAO_NORMALS_QUAD: u32 = 0;
-/// `OceanSaoParams::normals` (default): along each axis, the difference to whichever adjacent
-/// pixel is nearer in depth, so silhouette pixels keep their own surface's normal.
-pub const OCEAN_SAO_NORMALS_NEAREST: u32 = 1;
+/// `OceanSaoParams::estimator`: the obscurance estimator.
+#[repr(u32)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
+pub enum OceanSaoEstimator {
+    /// The updated falloff of the paper's appendix,
+    /// A = max(0, 1 - (5 intensity / (r^6 n)) sum max(r^2 - v.v, 0)^3 max((v.n - beta)/(v.v + eps), 0)).
+    #[default]
+    Falloff = 0,
+    /// AlchemyAO's estimator, the paper's Eq. 1,
+    /// A = max(0, 1 - (2 sigma / n) sum max(0, v.n + z_C beta)/(v.v + eps))^k.
+    Alchemy = 1,
+}
 
-/// `OceanSaoBlurParams::weight`: the paper's, a tap's key against the centre's key (taps on
-/// surfaces sloped to the view are rejected and the sampling pattern stays visible there).
-pub const OCEAN_SAO_BLUR_WEIGHT_DEPTH: u32 = 0;
-/// `OceanSaoBlurParams::weight` (default): a tap's key against the key the plane through the
-/// centre pixel predicts there, its slope from the adjacent pixel nearer in depth.
-pub const OCEAN_SAO_BLUR_WEIGHT_PLANE: u32 = 1;
+impl CEnum for OceanSaoEstimator {
+    const REFUSAL: &'static str =
+        "is neither OCEAN_SAO_ESTIMATOR_FALLOFF (0) nor OCEAN_SAO_ESTIMATOR_ALCHEMY (1)";
+}
+
+/// `OceanSaoParams::normals`: how each pixel's normal is reconstructed from depth.
+#[repr(u32)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
+pub enum OceanSaoNormals {
+    /// The paper's Eq. 4, differences within each pixel's 2x2 quad (a silhouette pixel whose
+    /// quad partner is on the background gets a normal across the edge).
+    #[default]
+    Quad = 0,
+    /// The default: along each axis, the difference to whichever adjacent pixel is nearer in
+    /// depth, so silhouette pixels keep their own surface's normal.
+    Nearest = 1,
+}
+
+impl CEnum for OceanSaoNormals {
+    const REFUSAL: &'static str =
+        "is neither OCEAN_SAO_NORMALS_QUAD (0) nor OCEAN_SAO_NORMALS_NEAREST (1)";
+}
+
+/// `OceanSaoBlurParams::weight`: what a blur tap's depth key is compared with.
+#[repr(u32)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
+pub enum OceanSaoBlurWeight {
+    /// The paper's: the centre's key (taps on surfaces sloped to the view are rejected and the
+    /// sampling pattern stays visible there).
+    #[default]
+    Depth = 0,
+    /// The default: the key the plane through the centre pixel predicts there, its slope from
+    /// the adjacent pixel nearer in depth.
+    Plane = 1,
+}
+
+impl CEnum for OceanSaoBlurWeight {
+    const REFUSAL: &'static str =
+        "is neither OCEAN_SAO_BLUR_WEIGHT_DEPTH (0) nor OCEAN_SAO_BLUR_WEIGHT_PLANE (1)";
+}
 
 /// The camera-space z that `ocean_sao_view_z` stores for background pixels (depth at the far
 /// end of the range): -1e9 m, a finite stand-in for infinity.
@@ -70,7 +123,9 @@ const _: () = assert!(OCEAN_SAO_MAX_SIDE as usize == ocean_sao::MAX_SIDE);
 /// (`OCEAN_SAO_BLUR_WEIGHT_PLANE`, which also fades taps with their distance in metres).
 /// Background pixels neither change nor contribute.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
 pub struct OceanSaoBlurParams {
     /// Tap count, odd, 1 to 63 (default 13; the paper: 7; its released shader: 9). 1 disables
     /// the blur.
@@ -85,7 +140,7 @@ pub struct OceanSaoBlurParams {
     pub sigma: f32,
     /// `OCEAN_SAO_BLUR_WEIGHT_PLANE` (default) or `OCEAN_SAO_BLUR_WEIGHT_DEPTH` (the paper's);
     /// other values are refused.
-    pub weight: u32,
+    pub weight: OceanSaoBlurWeight,
     /// With the plane weight: the distance from the centre pixel, as a fraction of `radius`,
     /// at which a tap's weight fades to 0, in [0, 1e3] (default 0.5; 0: no fade).
     pub world_extent: f32,
@@ -94,7 +149,9 @@ pub struct OceanSaoBlurParams {
 /// Every parameter of the passes. Start from `ocean_sao_params_default` and change what you
 /// need. Lengths are metres; the default is the paper's set-up for human-scale scenes.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
 pub struct OceanSaoParams {
     /// World-space radius r of the obscurance ball, metres, in [1e-4, 1e4] (default 1).
     pub radius: f32,
@@ -112,10 +169,10 @@ pub struct OceanSaoParams {
     pub max_mip: u32,
     /// How a MIP level is made from the one below: an `OCEAN_SAO_MIP_FILTER_*` value (default
     /// `OCEAN_SAO_MIP_FILTER_ROTATED_GRID`); other values are refused.
-    pub mip_filter: u32,
+    pub mip_filter: OceanSaoMipFilter,
     /// `OCEAN_SAO_ESTIMATOR_FALLOFF` (default) or `OCEAN_SAO_ESTIMATOR_ALCHEMY`; other values
     /// are refused. Only the chosen estimator's constants below are read and checked.
-    pub estimator: u32,
+    pub estimator: OceanSaoEstimator,
     /// Falloff: bias beta, metres, in [0, 1e3] (default 0.01: 1 cm).
     pub falloff_beta: f32,
     /// Falloff: intensity multiplier, in [0, 1e3] (default 1, the appendix's formula).
@@ -135,7 +192,7 @@ pub struct OceanSaoParams {
     pub quad_depth_threshold: f32,
     /// `OCEAN_SAO_NORMALS_NEAREST` (default) or `OCEAN_SAO_NORMALS_QUAD` (the paper's Eq. 4);
     /// other values are refused.
-    pub normals: u32,
+    pub normals: OceanSaoNormals,
     /// 1: treat pixels whose reconstructed normal is unreliable (a depth edge inside their 2x2
     /// quad) as unoccluded; 0: the paper's behaviour (default). Other values are refused.
     pub normal_rejection: u32,
@@ -147,6 +204,18 @@ pub struct OceanSaoParams {
     pub z_min: f32,
     /// The blur passes.
     pub blur: OceanSaoBlurParams,
+}
+
+impl CheckedStruct for OceanSaoParams {
+    const ENUM_FIELDS: &'static [EnumField] = &[
+        EnumField::of::<OceanSaoMipFilter>("mip_filter", offset_of!(OceanSaoParams, mip_filter)),
+        EnumField::of::<OceanSaoEstimator>("estimator", offset_of!(OceanSaoParams, estimator)),
+        EnumField::of::<OceanSaoNormals>("normals", offset_of!(OceanSaoParams, normals)),
+        EnumField::of::<OceanSaoBlurWeight>(
+            "blur.weight",
+            offset_of!(OceanSaoParams, blur) + offset_of!(OceanSaoBlurParams, weight),
+        ),
+    ];
 }
 
 /// Default incidence limit of the normal rejection: 85 degrees.
@@ -186,15 +255,15 @@ impl OceanSaoParams {
             mip_switch_log2: d.mip_switch_log2,
             max_mip: d.max_mip,
             mip_filter: match d.mip_filter {
-                MipFilter::RotatedGrid => OCEAN_SAO_MIP_FILTER_ROTATED_GRID,
-                MipFilter::ArithmeticMean => OCEAN_SAO_MIP_FILTER_ARITHMETIC_MEAN,
-                MipFilter::HarmonicMean => OCEAN_SAO_MIP_FILTER_HARMONIC_MEAN,
-                MipFilter::Min => OCEAN_SAO_MIP_FILTER_MIN,
-                MipFilter::Max => OCEAN_SAO_MIP_FILTER_MAX,
+                MipFilter::RotatedGrid => OceanSaoMipFilter::RotatedGrid,
+                MipFilter::ArithmeticMean => OceanSaoMipFilter::ArithmeticMean,
+                MipFilter::HarmonicMean => OceanSaoMipFilter::HarmonicMean,
+                MipFilter::Min => OceanSaoMipFilter::Min,
+                MipFilter::Max => OceanSaoMipFilter::Max,
             },
             estimator: match d.estimator {
-                Estimator::Falloff { .. } => OCEAN_SAO_ESTIMATOR_FALLOFF,
-                Estimator::Alchemy { .. } => OCEAN_SAO_ESTIMATOR_ALCHEMY,
+                Estimator::Falloff { .. } => OceanSaoEstimator::Falloff,
+                Estimator::Alchemy { .. } => OceanSaoEstimator::Alchemy,
             },
             falloff_beta,
             falloff_intensity,
@@ -205,8 +274,8 @@ impl OceanSaoParams {
             quad_filter,
             quad_depth_threshold,
             normals: match d.normals {
-                NormalEstimate::Quad => OCEAN_SAO_NORMALS_QUAD,
-                NormalEstimate::Nearest => OCEAN_SAO_NORMALS_NEAREST,
+                NormalEstimate::Quad => OceanSaoNormals::Quad,
+                NormalEstimate::Nearest => OceanSaoNormals::Nearest,
             },
             normal_rejection,
             normal_max_incidence,
@@ -217,8 +286,8 @@ impl OceanSaoParams {
                 depth_scale: d.blur.depth_scale,
                 sigma: d.blur.sigma,
                 weight: match d.blur.weight {
-                    BlurWeight::Depth => OCEAN_SAO_BLUR_WEIGHT_DEPTH,
-                    BlurWeight::Plane => OCEAN_SAO_BLUR_WEIGHT_PLANE,
+                    BlurWeight::Depth => OceanSaoBlurWeight::Depth,
+                    BlurWeight::Plane => OceanSaoBlurWeight::Plane,
                 },
                 world_extent: d.blur.world_extent,
             },
@@ -229,63 +298,30 @@ impl OceanSaoParams {
 /// Converts and validates the caller's parameters (ocean-sao's ranges).
 fn params_from(p: &OceanSaoParams) -> Result<SaoParams, Error> {
     let mip_filter = match p.mip_filter {
-        OCEAN_SAO_MIP_FILTER_ROTATED_GRID => MipFilter::RotatedGrid,
-        OCEAN_SAO_MIP_FILTER_ARITHMETIC_MEAN => MipFilter::ArithmeticMean,
-        OCEAN_SAO_MIP_FILTER_HARMONIC_MEAN => MipFilter::HarmonicMean,
-        OCEAN_SAO_MIP_FILTER_MIN => MipFilter::Min,
-        OCEAN_SAO_MIP_FILTER_MAX => MipFilter::Max,
-        v => {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!("params->mip_filter = {v} is not an OCEAN_SAO_MIP_FILTER_* value (0 to 4)"),
-            ));
-        }
+        OceanSaoMipFilter::RotatedGrid => MipFilter::RotatedGrid,
+        OceanSaoMipFilter::ArithmeticMean => MipFilter::ArithmeticMean,
+        OceanSaoMipFilter::HarmonicMean => MipFilter::HarmonicMean,
+        OceanSaoMipFilter::Min => MipFilter::Min,
+        OceanSaoMipFilter::Max => MipFilter::Max,
     };
     let estimator = match p.estimator {
-        OCEAN_SAO_ESTIMATOR_FALLOFF => Estimator::Falloff {
+        OceanSaoEstimator::Falloff => Estimator::Falloff {
             beta: p.falloff_beta,
             intensity: p.falloff_intensity,
         },
-        OCEAN_SAO_ESTIMATOR_ALCHEMY => Estimator::Alchemy {
+        OceanSaoEstimator::Alchemy => Estimator::Alchemy {
             sigma: p.alchemy_sigma,
             beta: p.alchemy_beta,
             k: p.alchemy_k,
         },
-        v => {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!(
-                    "params->estimator = {v} is neither OCEAN_SAO_ESTIMATOR_FALLOFF (0) nor \
-                     OCEAN_SAO_ESTIMATOR_ALCHEMY (1)"
-                ),
-            ));
-        }
     };
     let normals = match p.normals {
-        OCEAN_SAO_NORMALS_QUAD => NormalEstimate::Quad,
-        OCEAN_SAO_NORMALS_NEAREST => NormalEstimate::Nearest,
-        v => {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!(
-                    "params->normals = {v} is neither OCEAN_SAO_NORMALS_QUAD (0) nor \
-                     OCEAN_SAO_NORMALS_NEAREST (1)"
-                ),
-            ));
-        }
+        OceanSaoNormals::Quad => NormalEstimate::Quad,
+        OceanSaoNormals::Nearest => NormalEstimate::Nearest,
     };
     let weight = match p.blur.weight {
-        OCEAN_SAO_BLUR_WEIGHT_DEPTH => BlurWeight::Depth,
-        OCEAN_SAO_BLUR_WEIGHT_PLANE => BlurWeight::Plane,
-        v => {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!(
-                    "params->blur.weight = {v} is neither OCEAN_SAO_BLUR_WEIGHT_DEPTH (0) nor \
-                     OCEAN_SAO_BLUR_WEIGHT_PLANE (1)"
-                ),
-            ));
-        }
+        OceanSaoBlurWeight::Depth => BlurWeight::Depth,
+        OceanSaoBlurWeight::Plane => BlurWeight::Plane,
     };
     let quad_depth_threshold =
         check_flag("params->quad_filter", p.quad_filter)?.then_some(p.quad_depth_threshold);
@@ -472,8 +508,7 @@ pub unsafe extern "C" fn ocean_sao_create(
 ) -> OceanStatus {
     self::guard("ocean_sao_create", || {
         check_ptr(camera, "camera")?;
-        // SAFETY: forwarded from this function's contract.
-        let params = unsafe { read_in(params, "params") }?;
+        check_ptr(params, "params")?;
         check_ptr(out.cast_const(), "out")?;
         if input_width == 0 || input_height == 0 {
             return Err(Error::new(
@@ -484,7 +519,8 @@ pub unsafe extern "C" fn ocean_sao_create(
         // SAFETY: forwarded from this function's contract.
         let camera = unsafe { read_camera(camera) }?;
         let source = source_from(depth_source)?;
-        let params = params_from(&params)?;
+        // SAFETY: forwarded from this function's contract (the pointer checked above).
+        let params = params_from(&unsafe { read_checked(params, "params") }?)?;
         let viewport = Viewport::new(input_width as usize, input_height as usize, guard as usize)?;
         let projection = camera.projection();
         let sao = Sao::new(&projection, camera.depth(), source, viewport, params)

@@ -4,37 +4,40 @@
 
 use ocean_sao::DepthSource;
 
-use crate::status::{Error, OceanStatus};
+use crate::boundary::{CEnum, check_enum};
+use crate::status::Error;
 
-/// `ocean_sao_create`'s `depth_source`: the depth buffer holds window depth, the value a depth
-/// texture stores (`glDepthRange(0, 1)`), always in [0, 1]: `(ndc + 1)/2` under
-/// `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, NDC depth itself under the [0, 1] conventions.
-/// This is what `glReadPixels(..., GL_DEPTH_COMPONENT, GL_FLOAT, ...)` and a sampled depth
-/// texture give.
-pub const OCEAN_SAO_DEPTH_WINDOW: u32 = 0;
-/// `ocean_sao_create`'s `depth_source`: the depth buffer holds NDC depth (clip z / clip w), in
-/// the convention's range: [-1, 1] under `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, [0, 1]
-/// otherwise (where it equals window depth).
-pub const OCEAN_SAO_DEPTH_NDC: u32 = 1;
+/// What a depth buffer holds (`ocean_sao_create`'s `depth_source`, a `uint32_t` parameter).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern)]
+pub enum OceanSaoDepth {
+    /// Window depth, the value a depth texture stores (`glDepthRange(0, 1)`), always in
+    /// [0, 1]: `(ndc + 1)/2` under `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, NDC depth itself
+    /// under the [0, 1] conventions. This is what `glReadPixels(..., GL_DEPTH_COMPONENT,
+    /// GL_FLOAT, ...)` and a sampled depth texture give.
+    Window = 0,
+    /// NDC depth (clip z / clip w), in the convention's range: [-1, 1] under
+    /// `OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE`, [0, 1] otherwise (where it equals window depth).
+    Ndc = 1,
+}
+
+impl CEnum for OceanSaoDepth {
+    const REFUSAL: &'static str =
+        "is neither OCEAN_SAO_DEPTH_WINDOW (0) nor OCEAN_SAO_DEPTH_NDC (1)";
+}
 
 /// Reads `depth_source`.
 pub(crate) fn source_from(v: u32) -> Result<DepthSource, Error> {
-    match v {
-        OCEAN_SAO_DEPTH_WINDOW => Ok(DepthSource::Window),
-        OCEAN_SAO_DEPTH_NDC => Ok(DepthSource::Ndc),
-        _ => Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!(
-                "depth_source = {v} is neither OCEAN_SAO_DEPTH_WINDOW (0) nor \
-                 OCEAN_SAO_DEPTH_NDC (1)"
-            ),
-        )),
-    }
+    Ok(match check_enum::<OceanSaoDepth>("depth_source", v)? {
+        OceanSaoDepth::Window => DepthSource::Window,
+        OceanSaoDepth::Ndc => DepthSource::Ndc,
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::status::OceanStatus;
 
     #[test]
     fn depth_sources_are_checked() {
@@ -42,6 +45,9 @@ mod tests {
         assert_eq!(source_from(1).unwrap(), DepthSource::Ndc);
         let e = source_from(2).unwrap_err();
         assert_eq!(e.status, OceanStatus::InvalidArgument);
-        assert!(e.message.contains("depth_source = 2"), "{}", e.message);
+        assert_eq!(
+            e.message,
+            "depth_source = 2 is neither OCEAN_SAO_DEPTH_WINDOW (0) nor OCEAN_SAO_DEPTH_NDC (1)"
+        );
     }
 }

@@ -204,7 +204,7 @@ mod tests {
     use crate::sao::{
         ocean_sao_create, ocean_sao_destroy, ocean_sao_params_default, ocean_sao_run,
     };
-    use crate::sao_depth::OCEAN_SAO_DEPTH_WINDOW;
+    use crate::sao_depth::OceanSaoDepth;
 
     const W: u32 = 96;
     const H: u32 = 64;
@@ -259,7 +259,7 @@ mod tests {
                 .unwrap()
                 .to_cols_array()
                 .map(f64::from),
-            depth_convention: OceanDepthConvention::ZeroToOneReversed as u32,
+            depth_convention: OceanDepthConvention::ZeroToOneReversed,
             reserved: 0,
         };
         let mut params = core::mem::MaybeUninit::uninit();
@@ -276,7 +276,7 @@ mod tests {
                 H,
                 G,
                 &sao_camera,
-                OCEAN_SAO_DEPTH_WINDOW,
+                OceanSaoDepth::Window as u32,
                 &params,
                 &mut sao,
             )

@@ -9,8 +9,9 @@ use ocean_sao::scene::{AnalyticView, DepthFormat};
 use ocean_sao::{DepthSource, Estimator, MipFilter, NormalRejection, Sao, SaoError, SaoParams};
 
 use super::*;
+use crate::boundary::enums::Poked;
 use crate::camera::{OceanCamera, OceanDepthConvention, projection_from_matrix};
-use crate::sao_depth::{OCEAN_SAO_DEPTH_NDC, OCEAN_SAO_DEPTH_WINDOW};
+use crate::sao_depth::OceanSaoDepth;
 
 /// Input 72 x 56 with an 8 px guard band: output 56 x 40.
 const W: u32 = 72;
@@ -26,20 +27,20 @@ fn last_error() -> String {
         .into_owned()
 }
 
-fn convention_value(c: DepthConvention) -> u32 {
+fn convention_value(c: DepthConvention) -> OceanDepthConvention {
     if c == DepthConvention::ZERO_TO_ONE {
-        OceanDepthConvention::ZeroToOne as u32
+        OceanDepthConvention::ZeroToOne
     } else if c == DepthConvention::ZERO_TO_ONE_REVERSED {
-        OceanDepthConvention::ZeroToOneReversed as u32
+        OceanDepthConvention::ZeroToOneReversed
     } else {
-        OceanDepthConvention::NegOneToOne as u32
+        OceanDepthConvention::NegOneToOne
     }
 }
 
 fn source_value(s: DepthSource) -> u32 {
     match s {
-        DepthSource::Window => OCEAN_SAO_DEPTH_WINDOW,
-        DepthSource::Ndc => OCEAN_SAO_DEPTH_NDC,
+        DepthSource::Window => OceanSaoDepth::Window as u32,
+        DepthSource::Ndc => OceanSaoDepth::Ndc as u32,
     }
 }
 
@@ -101,21 +102,21 @@ fn custom() -> OceanSaoParams {
         samples: 13,
         spiral_turns: 10.0,
         max_mip: 4,
-        mip_filter: OCEAN_SAO_MIP_FILTER_HARMONIC_MEAN,
-        estimator: OCEAN_SAO_ESTIMATOR_ALCHEMY,
+        mip_filter: OceanSaoMipFilter::HarmonicMean,
+        estimator: OceanSaoEstimator::Alchemy,
         alchemy_sigma: 0.4,
         alchemy_beta: 2.0e-3,
         alchemy_k: 2.0,
         quad_filter: 0,
         normal_rejection: 1,
         normal_max_incidence: 80f32.to_radians(),
-        normals: OCEAN_SAO_NORMALS_QUAD,
+        normals: OceanSaoNormals::Quad,
         blur: OceanSaoBlurParams {
             taps: 9,
             stride: 2,
             depth_scale: 2000.0,
             sigma: 2.0,
-            weight: OCEAN_SAO_BLUR_WEIGHT_DEPTH,
+            weight: OceanSaoBlurWeight::Depth,
             world_extent: 0.0,
         },
         ..defaults()
@@ -162,7 +163,7 @@ fn defaults_are_the_crate_defaults() {
     assert_eq!(params_from(&p).unwrap(), SaoParams::default());
     // The estimator not chosen holds its own defaults.
     let alchemy = OceanSaoParams {
-        estimator: OCEAN_SAO_ESTIMATOR_ALCHEMY,
+        estimator: OceanSaoEstimator::Alchemy,
         ..p
     };
     assert_eq!(params_from(&alchemy).unwrap().estimator, Estimator::ALCHEMY);
@@ -508,21 +509,6 @@ fn create_refuses_bad_arguments_and_leaves_out_untouched() {
             W,
             H,
             G,
-            SaoCamera {
-                camera: OceanCamera {
-                    depth_convention: 7,
-                    ..camera.camera
-                },
-                ..camera
-            },
-            params,
-            OceanStatus::InvalidArgument,
-            "depth_convention",
-        ),
-        (
-            W,
-            H,
-            G,
             camera,
             OceanSaoParams {
                 samples: 0,
@@ -564,30 +550,6 @@ fn create_refuses_bad_arguments_and_leaves_out_untouched() {
             G,
             camera,
             OceanSaoParams {
-                mip_filter: 5,
-                ..params
-            },
-            OceanStatus::InvalidArgument,
-            "mip_filter",
-        ),
-        (
-            W,
-            H,
-            G,
-            camera,
-            OceanSaoParams {
-                estimator: 2,
-                ..params
-            },
-            OceanStatus::InvalidArgument,
-            "estimator",
-        ),
-        (
-            W,
-            H,
-            G,
-            camera,
-            OceanSaoParams {
                 quad_filter: 2,
                 ..params
             },
@@ -613,7 +575,7 @@ fn create_refuses_bad_arguments_and_leaves_out_untouched() {
             G,
             camera,
             OceanSaoParams {
-                estimator: OCEAN_SAO_ESTIMATOR_ALCHEMY,
+                estimator: OceanSaoEstimator::Alchemy,
                 alchemy_k: f32::INFINITY,
                 ..params
             },
@@ -640,6 +602,52 @@ fn create_refuses_bad_arguments_and_leaves_out_untouched() {
             message.starts_with("ocean_sao_create: ") && message.contains(needle),
             "{needle:?} not in {message:?}"
         );
+    }
+    // Unknown enumerators, from C memory: the camera's, then the parameters' in field order.
+    let poked_camera = Poked::new(
+        &camera.camera,
+        core::mem::offset_of!(OceanCamera, depth_convention),
+        7,
+    );
+    let good_camera: *const OceanCamera = &camera.camera;
+    let at = |f: usize| Poked::new(&params, f, 7);
+    let good_params: *const OceanSaoParams = &params;
+    for (c, p, needle) in [
+        (
+            poked_camera.as_ptr(),
+            good_params,
+            "camera->depth_convention = 7 is not an OceanDepthConvention (0, 1 or 2)",
+        ),
+        (
+            good_camera,
+            at(core::mem::offset_of!(OceanSaoParams, mip_filter)).as_ptr(),
+            "params->mip_filter = 7 is not an OCEAN_SAO_MIP_FILTER_* value (0 to 4)",
+        ),
+        (
+            good_camera,
+            at(core::mem::offset_of!(OceanSaoParams, estimator)).as_ptr(),
+            "params->estimator = 7 is neither OCEAN_SAO_ESTIMATOR_FALLOFF (0) nor",
+        ),
+        (
+            good_camera,
+            at(core::mem::offset_of!(OceanSaoParams, normals)).as_ptr(),
+            "params->normals = 7 is neither OCEAN_SAO_NORMALS_QUAD (0) nor",
+        ),
+        (
+            good_camera,
+            at(core::mem::offset_of!(OceanSaoParams, blur)
+                + core::mem::offset_of!(OceanSaoBlurParams, weight))
+            .as_ptr(),
+            "params->blur.weight = 7 is neither OCEAN_SAO_BLUR_WEIGHT_DEPTH (0) nor",
+        ),
+    ] {
+        let mut out = sentinel;
+        // SAFETY: readable structs (from C memory), a writable pointer.
+        let status = unsafe { ocean_sao_create(W, H, G, c, camera.depth_source, p, &mut out) };
+        let message = last_error();
+        assert_eq!(status, OceanStatus::InvalidArgument, "{message}");
+        assert_eq!(out, sentinel, "out written on failure");
+        assert!(message.contains(needle), "{needle:?} not in {message:?}");
     }
     // Members of the estimator not chosen, and thresholds of disabled filters, are not read.
     let (got, message) = attempt(

@@ -18,12 +18,12 @@ use std::sync::OnceLock;
 
 use ocean_gpu::shaders::{self, BindingKind, Language, ShaderError, Stage};
 
-use crate::boundary::{borrow, check_ptr, destroy, write_handle, write_out};
+use crate::boundary::{CEnum, borrow, check_enum, check_ptr, destroy, write_handle, write_out};
 use crate::status::{Error, OceanStatus, guard};
 
 /// Target language of `ocean_shader_export`.
 #[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern)]
 pub enum OceanShaderLanguage {
     /// Desktop GLSL, one file per entry point: `#version 330 core` for draw passes (vertex and
     /// fragment), `#version 430 core` for compute passes. Clip space is OpenGL's (y flipped and
@@ -37,6 +37,10 @@ pub enum OceanShaderLanguage {
     Msl = 3,
     /// SPIR-V 1.0, one binary module with every entry point (little-endian 32-bit words).
     Spirv = 4,
+}
+
+impl CEnum for OceanShaderLanguage {
+    const REFUSAL: &'static str = "is not an OceanShaderLanguage (0 to 4)";
 }
 
 /// The stage of an exported file.
@@ -91,8 +95,8 @@ pub struct OceanShaderBinding {
     pub group: u32,
     /// WGSL `@binding`.
     pub binding: u32,
-    /// An `OceanBindingKind` value.
-    pub kind: u32,
+    /// What kind of resource it is.
+    pub kind: OceanBindingKind,
     /// Byte size of the bound type, or of one element of a runtime-sized array; 0 for textures
     /// and samplers.
     pub size: u32,
@@ -158,22 +162,13 @@ fn names() -> &'static [CString] {
 }
 
 fn language_from(v: u32) -> Result<Language, Error> {
-    const GLSL: u32 = OceanShaderLanguage::Glsl as u32;
-    const GLSL_ES: u32 = OceanShaderLanguage::GlslEs as u32;
-    const HLSL: u32 = OceanShaderLanguage::Hlsl as u32;
-    const MSL: u32 = OceanShaderLanguage::Msl as u32;
-    const SPIRV: u32 = OceanShaderLanguage::Spirv as u32;
-    match v {
-        GLSL => Ok(Language::Glsl),
-        GLSL_ES => Ok(Language::GlslEs),
-        HLSL => Ok(Language::Hlsl),
-        MSL => Ok(Language::Msl),
-        SPIRV => Ok(Language::SpirV),
-        _ => Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!("language = {v} is not an OceanShaderLanguage (0 to 4)"),
-        )),
-    }
+    Ok(match check_enum::<OceanShaderLanguage>("language", v)? {
+        OceanShaderLanguage::Glsl => Language::Glsl,
+        OceanShaderLanguage::GlslEs => Language::GlslEs,
+        OceanShaderLanguage::Hlsl => Language::Hlsl,
+        OceanShaderLanguage::Msl => Language::Msl,
+        OceanShaderLanguage::Spirv => Language::SpirV,
+    })
 }
 
 fn kind_to(k: BindingKind) -> OceanBindingKind {
@@ -428,7 +423,7 @@ pub unsafe extern "C" fn ocean_shader_export_file(
 pub unsafe extern "C" fn ocean_shader_export_file_stage(
     shader_export: *const OceanShaderExport,
     index: usize,
-    stage: *mut u32,
+    stage: *mut OceanShaderStage,
     entry_point: *mut *const c_char,
 ) -> OceanStatus {
     guard("ocean_shader_export_file_stage", || {
@@ -438,7 +433,7 @@ pub unsafe extern "C" fn ocean_shader_export_file_stage(
         let f = file(&e, index)?;
         // SAFETY: both pointers checked and writable (this function's contract).
         unsafe {
-            write_out(stage, "stage", f.stage as u32)?;
+            write_out(stage, "stage", f.stage)?;
             write_out(entry_point, "entry_point", f.entry_point.as_ptr())
         }
     })
@@ -521,7 +516,7 @@ pub unsafe extern "C" fn ocean_shader_export_binding(
         let value = OceanShaderBinding {
             group: b.group,
             binding: b.binding,
-            kind: b.kind as u32,
+            kind: b.kind,
             size: b.size,
             glsl_binding: b.glsl_binding,
             reserved: 0,
@@ -585,7 +580,9 @@ mod tests {
                         assert_eq!(core::slice::from_raw_parts(data, len), f.code.as_bytes());
                         assert_eq!(*data.add(len), 0);
                         let (mut stage, mut ep) = (99u32, core::ptr::null());
-                        let s = ocean_shader_export_file_stage(e, k, &mut stage, &mut ep);
+                        // A C caller's `uint32_t`, written as the enum.
+                        let st = (&raw mut stage).cast::<OceanShaderStage>();
+                        let s = ocean_shader_export_file_stage(e, k, st, &mut ep);
                         assert_eq!(s, OceanStatus::Ok);
                         assert_eq!(stage, stage_to(f.stage) as u32);
                         assert_eq!(
@@ -613,7 +610,7 @@ mod tests {
                             (out.group, out.binding, out.size),
                             (b.group, b.binding, b.size)
                         );
-                        assert_eq!(out.kind, kind_to(b.kind) as u32);
+                        assert_eq!(out.kind, kind_to(b.kind));
                         assert_eq!(
                             out.glsl_binding,
                             b.glsl_binding.unwrap_or(OCEAN_NO_GLSL_BINDING)

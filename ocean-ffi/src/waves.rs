@@ -42,7 +42,7 @@ pub struct OceanDVec2 {
 /// functions take tangent-frame vectors (x along the wind, y across it, z along the normal), as
 /// each function says.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanDVec3 {
     /// x.
     pub x: f64,

@@ -15,8 +15,8 @@ use ocean_wtb::wind::MAX_EXPLICIT_TRAINS;
 use ocean_wtb::{BoxFrame, Terrain, TrainSource, WaterGrid, Wind, WtbError};
 
 use crate::boundary::{
-    borrow, byte_len, check_disjoint, check_finite, check_flag, check_ptr, check_reserved,
-    check_time, destroy, write_handle, write_out,
+    CEnum, CheckedStruct, EnumField, borrow, byte_len, check_disjoint, check_finite, check_flag,
+    check_ptr, check_reserved, check_time, destroy, read_checked, write_handle, write_out,
 };
 use crate::camera::{OceanCamera, read_camera};
 use crate::status::{Error, OceanStatus, guard};
@@ -26,7 +26,7 @@ use crate::waves::{OceanVec3, OceanWaveDesc, eval_error, wave_desc_in, wave_erro
 /// (origin_x + i*spacing, 0, origin_z + j*spacing), stored row-major at j*nx + i. The spacing is
 /// the same along x and z (a box's internal frame steps by it along both of its axes).
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanWaterGridDesc {
     /// World x of point (0, 0), metres, finite, |origin_x| <= 1e9.
     pub origin_x: f64,
@@ -112,9 +112,12 @@ pub struct OceanBoxDesc {
 
 /// Depth refraction (paper section 2.1), for `OceanEffects::refraction`.
 #[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
 pub enum OceanRefraction {
     /// No depth-dependent phase.
+    #[default]
     Off = 0,
     /// The paper's default: a depth-dependent phase lag accumulated along each wave ray, so
     /// fronts bend towards shallow water while the frequency never changes (Fig. 6).
@@ -124,11 +127,17 @@ pub enum OceanRefraction {
     Dispersion = 2,
 }
 
+impl CEnum for OceanRefraction {
+    const REFUSAL: &'static str = "is not an OceanRefraction (0, 1 or 2)";
+}
+
 /// Irregular height along the box's width (Eq. 8):
 /// A' = A (1 - scale sin(envelope_wavenumber (a - envelope_speed t)) sin(frequency b)), with
 /// (a, b) the box's internal coordinates.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
 pub struct OceanIrregular {
     /// 1: on; 0: off (the other members are then ignored). Other values are refused.
     pub enabled: u32,
@@ -149,7 +158,9 @@ pub struct OceanIrregular {
 /// sin(r t), with a rate r in [0, 1) hashed from the seed and the point's index, so it is
 /// deterministic and independent of threads.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
 pub struct OceanNoise {
     /// 1: on; 0: off (the other members are then ignored). Other values are refused.
     pub enabled: u32,
@@ -166,7 +177,9 @@ pub struct OceanNoise {
 /// the local depth so troughs stay above the sea floor, and the water level rises near the
 /// shore.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
 pub struct OceanBeach {
     /// 1: on; 0: off (the other members are then ignored). Other values are refused.
     pub enabled: u32,
@@ -184,10 +197,12 @@ pub struct OceanBeach {
 /// The switchable effects of paper section 2.1. `ocean_wtb_effects_default` fills in the library's
 /// defaults (phase-shift refraction and shoaling on, everything else off).
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
+)]
 pub struct OceanEffects {
-    /// Depth refraction: an `OceanRefraction` value (other values are refused).
-    pub refraction: u32,
+    /// Depth refraction (other values are refused).
+    pub refraction: OceanRefraction,
     /// 1: shoaling on (Green's law: the amplitude grows as (D_ref/D)^(1/4) in water shallower
     /// than half a wavelength, at most 1.5 times); 0: off. Other values are refused.
     pub shoaling: u32,
@@ -326,20 +341,23 @@ fn trains_error(e: WtbError) -> Error {
     }
 }
 
-fn refraction_from(v: u32, name: &str) -> Result<Refraction, Error> {
+impl CheckedStruct for OceanEffects {
+    const ENUM_FIELDS: &'static [EnumField] = &[EnumField::of::<OceanRefraction>(
+        "refraction",
+        core::mem::offset_of!(OceanEffects, refraction),
+    )];
+}
+
+fn refraction_from(v: OceanRefraction) -> Refraction {
     match v {
-        0 => Ok(Refraction::Off),
-        1 => Ok(Refraction::PhaseShift),
-        2 => Ok(Refraction::Dispersion),
-        _ => Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!("{name} = {v} is not an OceanRefraction (0, 1 or 2)"),
-        )),
+        OceanRefraction::Off => Refraction::Off,
+        OceanRefraction::PhaseShift => Refraction::PhaseShift,
+        OceanRefraction::Dispersion => Refraction::Dispersion,
     }
 }
 
 fn effects_from(e: &OceanEffects, name: &str) -> Result<Effects, Error> {
-    let refraction = refraction_from(e.refraction, &format!("{name}->refraction"))?;
+    let refraction = refraction_from(e.refraction);
     let shoaling = check_flag(&format!("{name}->shoaling"), e.shoaling)?;
     let round_waves = check_flag(&format!("{name}->round_waves"), e.round_waves)?;
     check_reserved(&format!("{name}->reserved"), e.reserved)?;
@@ -416,7 +434,7 @@ fn effects_to(e: &Effects) -> OceanEffects {
         Refraction::Dispersion => OceanRefraction::Dispersion,
     };
     OceanEffects {
-        refraction: refraction as u32,
+        refraction,
         shoaling: u32::from(e.shoaling),
         round_waves: u32::from(e.round_waves),
         reserved: 0,
@@ -996,9 +1014,8 @@ pub unsafe extern "C" fn ocean_wtb_scene_set_effects(
 ) -> OceanStatus {
     guard("ocean_wtb_scene_set_effects", || {
         let scene = borrow(scene, "scene")?;
-        check_ptr(effects, "effects")?;
-        // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
-        let e = effects_from(&unsafe { effects.read() }, "effects")?;
+        // SAFETY: forwarded from this function's contract.
+        let e = effects_from(&unsafe { read_checked(effects, "effects") }?, "effects")?;
         scene
             .lock()
             .set_effects(e)
@@ -1056,9 +1073,8 @@ pub unsafe extern "C" fn ocean_wtb_scene_set_budget_explicit(
 ) -> OceanStatus {
     guard("ocean_wtb_scene_set_budget_explicit", || {
         let scene = borrow(scene, "scene")?;
-        check_ptr(effects, "effects")?;
-        // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
-        let e = effects_from(&unsafe { effects.read() }, "effects")?;
+        // SAFETY: forwarded from this function's contract.
+        let e = effects_from(&unsafe { read_checked(effects, "effects") }?, "effects")?;
         scene
             .lock()
             .set_budget(Budget::Explicit(Selection {
@@ -1309,6 +1325,7 @@ unsafe fn evaluate(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::boundary::enums::read_poked;
     use crate::waves::OceanDVec2;
     use ocean_core::camera::DepthConvention;
     use ocean_wtb::scenarios;
@@ -1746,7 +1763,12 @@ mod tests {
                 && check_flag("f", 1).unwrap()
                 && !check_flag("f", 0).unwrap()
         );
-        assert!(refraction_from(3, "r").is_err());
+        let at = core::mem::offset_of!(OceanEffects, refraction);
+        let e = read_poked(&OceanEffects::default(), "effects", at, 3).unwrap_err();
+        assert_eq!(
+            e.message,
+            "effects->refraction = 3 is not an OceanRefraction (0, 1 or 2)"
+        );
         // The defaults round-trip through the C layout.
         let d = effects_to(&Effects::default());
         assert_eq!(effects_from(&d, "e").unwrap(), Effects::default());

@@ -84,6 +84,26 @@ fn header_has_the_promised_shape() {
         // One number to compare, and the run-time check of header against library.
         "#define OCEAN_VERSION (((OCEAN_VERSION_MAJOR << 16)",
         "OceanStatus ocean_check_version(uint32_t header_version);",
+        // Struct members that hold an enumeration have its type, so that C++ type-checks
+        // them (tests/tests/c_abi.rs compiles the misuse).
+        "OceanRefraction refraction;",
+        "OceanDepthConvention depth_convention;",
+        "OceanSaoMipFilter mip_filter;",
+        "OceanSaoEstimator estimator;",
+        "OceanSaoNormals normals;",
+        "OceanSaoBlurWeight weight;",
+        "OceanReliefConeKind kind;",
+        "OceanReliefTracer method;",
+        "OceanReliefSearch search;",
+        "OceanBindingKind kind;",
+        "OceanShaderStage *stage,",
+        // Enumerations that only parameters take are emitted too.
+        "OCEAN_SAO_DEPTH_NDC = 1,",
+        "OCEAN_RELIEF_EDGE_CLAMP = 1,",
+        "OCEAN_RELIEF_RANGE_NORMALIZE = 1,",
+        "OCEAN_RELIEF_ENCODING_F32 = 3,",
+        "OCEAN_RELIEF_MIP_GROUP = 1,",
+        "OCEAN_SHADER_LANGUAGE_SPIRV = 4,",
     ] {
         assert!(
             h.contains(needle),

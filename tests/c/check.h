@@ -71,7 +71,7 @@ static inline int expect_ok(OceanStatus s, const char *what)
  * `convention`; `f` = INFINITY for an infinite far plane. Written here from GLM's formulas, not
  * taken from the library, so the tests check that it reads such matrices. */
 static inline void check_perspective(double fov_y, double aspect, double n, double f,
-                                     uint32_t convention, double m[16])
+                                     OceanDepthConvention convention, double m[16])
 {
     const double t = tan(fov_y / 2.0);
     const int infinite = isinf(f);
@@ -95,7 +95,7 @@ static inline void check_perspective(double fov_y, double aspect, double n, doub
  * the perspective of check_perspective. */
 static inline OceanCamera check_camera_at(double x, double y, double z, double fov_y,
                                           double aspect, double n, double f,
-                                          uint32_t convention)
+                                          OceanDepthConvention convention)
 {
     OceanCamera c;
     memset(&c, 0, sizeof c);

@@ -603,7 +603,7 @@ static inline void plausible_OceanBoxDesc(OceanBoxDesc *p)
 
 static inline void plausible_OceanReliefMethod(OceanReliefMethod *p)
 {
-    p->method = OCEAN_RELIEF_METHOD_RELAXED;
+    p->method = OCEAN_RELIEF_TRACER_RELAXED;
     p->steps = 15;
     p->binary = 6;
     p->search = OCEAN_RELIEF_SEARCH_LAST_STEP;

@@ -112,13 +112,13 @@ static void test_flat_top(void)
     if (!OK(ocean_relief_map_create_u8(h, FLAT_TEXELS, FLAT, FLAT, OCEAN_RELIEF_EDGE_WRAP, &map)))
         return;
     OK(ocean_relief_cone_params_default(&p));
-    CHECK(p.kind == OCEAN_RELIEF_CONES_RELAXED && p.max_ratio == 1.0f, "default params");
+    CHECK(p.kind == OCEAN_RELIEF_CONE_KIND_RELAXED && p.max_ratio == 1.0f, "default params");
     OK(ocean_relief_cones_create(map, &p, NULL, NULL, &relaxed));
-    p.kind = OCEAN_RELIEF_CONES_CONSERVATIVE;
+    p.kind = OCEAN_RELIEF_CONE_KIND_CONSERVATIVE;
     OK(ocean_relief_cones_create(map, &p, NULL, NULL, &conservative));
     fan(rays, 0.1f);
-    methods[0] = method(OCEAN_RELIEF_METHOD_RELAXED, 15, 6, OCEAN_RELIEF_SEARCH_LAST_STEP);
-    methods[1] = method(OCEAN_RELIEF_METHOD_CONE_STEP, 21, 0, 0);
+    methods[0] = method(OCEAN_RELIEF_TRACER_RELAXED, 15, 6, OCEAN_RELIEF_SEARCH_LAST_STEP);
+    methods[1] = method(OCEAN_RELIEF_TRACER_CONE_STEP, 21, 0, 0);
     handles[0] = relaxed;
     handles[1] = conservative;
     for (m = 0; m < 2; m++) {
@@ -146,12 +146,12 @@ static void test_flat_half(void)
     OceanReliefMap *map = NULL;
     OceanReliefCones *cones = NULL;
     OceanReliefMips *mips = NULL;
-    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONES_RELAXED, 1.0f);
+    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONE_KIND_RELAXED, 1.0f);
     OceanReliefRay rays[FAN];
     OceanReliefHit hits[FAN];
-    OceanReliefMethod relaxed = method(OCEAN_RELIEF_METHOD_RELAXED, 15, 6,
+    OceanReliefMethod relaxed = method(OCEAN_RELIEF_TRACER_RELAXED, 15, 6,
                                        OCEAN_RELIEF_SEARCH_LAST_STEP);
-    OceanReliefMethod linear = method(OCEAN_RELIEF_METHOD_LINEAR, 16, 8, 0);
+    OceanReliefMethod linear = method(OCEAN_RELIEF_TRACER_LINEAR, 16, 8, 0);
     uint32_t side = 0, count = 0, level;
     size_t i, bad = 0;
 
@@ -261,10 +261,10 @@ static void test_box(void)
 {
     OceanReliefMap *map = NULL;
     OceanReliefCones *cones = NULL;
-    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONES_RELAXED, 4.0f);
-    OceanReliefMethod relaxed = method(OCEAN_RELIEF_METHOD_RELAXED, 15, 6,
+    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONE_KIND_RELAXED, 4.0f);
+    OceanReliefMethod relaxed = method(OCEAN_RELIEF_TRACER_RELAXED, 15, 6,
                                        OCEAN_RELIEF_SEARCH_LAST_STEP);
-    OceanReliefMethod shared = method(OCEAN_RELIEF_METHOD_RELAXED, 58, 6,
+    OceanReliefMethod shared = method(OCEAN_RELIEF_TRACER_RELAXED, 58, 6,
                                       OCEAN_RELIEF_SEARCH_SHARED);
     OceanReliefRay rays[3];
     OceanReliefHit hits[3];
@@ -368,7 +368,7 @@ static void test_progress_and_cancel(void)
     static float texels[4 * BOX_TEXELS];
     OceanReliefMap *map = NULL;
     OceanReliefCones *cones = NULL;
-    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONES_RELAXED, 1.0f);
+    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONE_KIND_RELAXED, 1.0f);
     Progress prog;
     size_t i;
     int untouched = 1;
@@ -438,10 +438,10 @@ static void test_quad(void)
     OceanReliefMap *map = NULL;
     OceanReliefQuadCones *cones = NULL, *sentinel = (OceanReliefQuadCones *)&map;
     OceanReliefCones *isotropic = NULL;
-    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONES_RELAXED, 4.0f);
-    OceanReliefMethod relaxed = method(OCEAN_RELIEF_METHOD_RELAXED, 15, 6,
+    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONE_KIND_RELAXED, 4.0f);
+    OceanReliefMethod relaxed = method(OCEAN_RELIEF_TRACER_RELAXED, 15, 6,
                                        OCEAN_RELIEF_SEARCH_LAST_STEP);
-    OceanReliefMethod shared = method(OCEAN_RELIEF_METHOD_RELAXED, 58, 6,
+    OceanReliefMethod shared = method(OCEAN_RELIEF_TRACER_RELAXED, 58, 6,
                                       OCEAN_RELIEF_SEARCH_SHARED);
     OceanReliefRay rays[2];
     OceanReliefHit hits[2];
@@ -558,7 +558,7 @@ static void test_quad(void)
     p.kind = 7;
     EXPECT_MSG(ocean_relief_quad_generate_texels(map, &p, NULL, NULL, quad, 16 * BOX_TEXELS),
                OCEAN_STATUS_INVALID_ARGUMENT, "kind");
-    p.kind = OCEAN_RELIEF_CONES_RELAXED;
+    p.kind = OCEAN_RELIEF_CONE_KIND_RELAXED;
     memset(&prog, 0, sizeof prog);
     prog.cancel_at = 5;
     EXPECT(ocean_relief_quad_generate_texels(map, &p, on_progress, &prog, quad, 16 * BOX_TEXELS),
@@ -643,8 +643,8 @@ static void test_errors(void)
     static float h[FLAT_TEXELS], out[4 * FLAT_TEXELS];
     OceanReliefMap *map = NULL, *sentinel = (OceanReliefMap *)&map;
     OceanReliefCones *cones = NULL;
-    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONES_RELAXED, 1.0f);
-    OceanReliefMethod good = method(OCEAN_RELIEF_METHOD_RELAXED, 15, 6, 0);
+    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONE_KIND_RELAXED, 1.0f);
+    OceanReliefMethod good = method(OCEAN_RELIEF_TRACER_RELAXED, 15, 6, 0);
     OceanReliefRay rays[2];
     OceanReliefHit hits[2];
     float *huge;
@@ -698,7 +698,7 @@ static void test_errors(void)
     EXPECT_MSG(ocean_relief_cones_create(map, &p, NULL, NULL, &cones),
                OCEAN_STATUS_INVALID_ARGUMENT, "kind");
     CHECK(cones == NULL, "cones handle written on failure");
-    p.kind = OCEAN_RELIEF_CONES_RELAXED;
+    p.kind = OCEAN_RELIEF_CONE_KIND_RELAXED;
     for (i = 0; i < 4 * FLAT_TEXELS; i++)
         out[i] = 7.0f;
     EXPECT(ocean_relief_generate_texels(map, &p, NULL, NULL, out, 4 * FLAT_TEXELS - 4),
@@ -754,7 +754,7 @@ static void test_uniforms(void)
 
     if (!OK(ocean_relief_scene_default(&scene)))
         return;
-    CHECK(scene.method.method == OCEAN_RELIEF_METHOD_RELAXED && scene.method.steps == 15 &&
+    CHECK(scene.method.method == OCEAN_RELIEF_TRACER_RELAXED && scene.method.steps == 15 &&
           scene.method.binary == 6 && scene.shadows == 1 && scene.light_color[0] == 1.0f &&
               scene.light_color[1] == 1.0f && scene.light_color[2] == 1.0f,
           "default scene");
@@ -780,7 +780,7 @@ static void test_uniforms(void)
           origin[3]);
     memcpy(words, block + 208, sizeof words);
     CHECK(words[0] == 256 && words[1] == OCEAN_RELIEF_EDGE_WRAP &&
-          words[2] == OCEAN_RELIEF_METHOD_RELAXED && words[3] == OCEAN_RELIEF_SEARCH_LAST_STEP,
+          words[2] == OCEAN_RELIEF_TRACER_RELAXED && words[3] == OCEAN_RELIEF_SEARCH_LAST_STEP,
           "trace words %u %u %u %u", words[0], words[1], words[2], words[3]);
     /* 15 cone steps, 6 bisections, shadows (1) and sRGB encoding (2). */
     CHECK(words[4] == 15 && words[5] == 6 && words[6] == 3, "step words %u %u %u", words[4],
@@ -840,7 +840,7 @@ static void test_lod(void)
     static float h[BOX_TEXELS], depths[BOX_TEXELS / 4];
     OceanReliefMap *map = NULL, *half = NULL, *none = NULL;
     OceanReliefCones *cones = NULL;
-    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONES_RELAXED, 1.0f);
+    OceanReliefConeParams p = cone_params(OCEAN_RELIEF_CONE_KIND_RELAXED, 1.0f);
     uint32_t side = 0, level = 99;
     const float t = 1.0f / BOX;
     size_t i, bad = 0;

@@ -657,7 +657,7 @@ void test_relief()
     const ocean::relief_cones q8 = cones.quantize(OCEAN_RELIEF_ENCODING_UNORM8);
     CHECK(q8.size() == N, "quantize");
 
-    const OceanReliefMethod method{OCEAN_RELIEF_METHOD_RELAXED, 15, 6, OCEAN_RELIEF_SEARCH_LAST_STEP};
+    const OceanReliefMethod method{OCEAN_RELIEF_TRACER_RELAXED, 15, 6, OCEAN_RELIEF_SEARCH_LAST_STEP};
     std::vector<OceanReliefRay> rays;
     for (int k = 0; k < 12; k++) {
         OceanReliefRay ray{};
@@ -841,7 +841,7 @@ void test_gpu()
         const char *fname = nullptr, *entry = nullptr;
         const std::uint8_t *data = nullptr;
         std::size_t len = 0;
-        std::uint32_t stage = 0;
+        OceanShaderStage stage = OCEAN_SHADER_STAGE_MODULE;
         OK(ocean_shader_export_file(ex.get(), i, &fname, &data, &len));
         OK(ocean_shader_export_file_stage(ex.get(), i, &stage, &entry));
         const ocean::shader_file f = ex.file(i);

@@ -602,6 +602,74 @@ fn cpp_header_compiles_as_cpp17() {
     }
 }
 
+/// Enumeration members of the header's structs have their enum type, so C++ refuses a plain
+/// integer there and takes the enumerator (and an explicit cast, for deliberate misuse). Each
+/// snippet is type-checked with `-fsyntax-only`: the integer ones must fail, the others pass.
+/// A member that regresses to `uint32_t` makes an integer snippet compile, and this fail.
+#[test]
+fn cpp_refuses_integers_in_enum_members() {
+    let include = workspace_root().join("include");
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("enum_members");
+    std::fs::create_dir_all(&dir).expect("create the output directory");
+    // (struct, member, enumerator): every enumeration member of an input struct.
+    let members = [
+        ("OceanEffects", "refraction", "OCEAN_REFRACTION_DISPERSION"),
+        (
+            "OceanCamera",
+            "depth_convention",
+            "OCEAN_DEPTH_CONVENTION_NEG_ONE_TO_ONE",
+        ),
+        ("OceanSaoParams", "mip_filter", "OCEAN_SAO_MIP_FILTER_MAX"),
+        ("OceanSaoParams", "estimator", "OCEAN_SAO_ESTIMATOR_ALCHEMY"),
+        ("OceanSaoParams", "normals", "OCEAN_SAO_NORMALS_QUAD"),
+        (
+            "OceanSaoBlurParams",
+            "weight",
+            "OCEAN_SAO_BLUR_WEIGHT_DEPTH",
+        ),
+        (
+            "OceanReliefConeParams",
+            "kind",
+            "OCEAN_RELIEF_CONE_KIND_CONSERVATIVE",
+        ),
+        (
+            "OceanReliefMethod",
+            "method",
+            "OCEAN_RELIEF_TRACER_CONE_STEP",
+        ),
+        ("OceanReliefMethod", "search", "OCEAN_RELIEF_SEARCH_BOOK"),
+    ];
+    let check = |name: &str, body: &str| -> bool {
+        let source = dir.join(format!("{name}.cpp"));
+        std::fs::write(
+            &source,
+            format!("#include \"ocean.h\"\nvoid f()\n{{\n{body}\n}}\n"),
+        )
+        .expect("write the snippet");
+        let mut cmd = Command::new(compiler("CXX", "c++"));
+        cmd.args(["-x", "c++", "-std=c++11", "-fsyntax-only", "-I"])
+            .arg(&include)
+            .arg(&source);
+        let out = cmd.output().expect("run the C++ compiler");
+        out.status.success()
+    };
+    for (i, (ty, member, enumerator)) in members.iter().enumerate() {
+        let int = format!("    {ty} s = {{}};\n    int v = 1;\n    s.{member} = v;\n    (void)s;");
+        assert!(
+            !check(&format!("int_{i}"), &int),
+            "C++ accepts an int in {ty}::{member}: is it a uint32_t again?"
+        );
+        let good = format!(
+            "    {ty} s = {{}};\n    s.{member} = {enumerator};\n    \
+             s.{member} = static_cast<decltype(s.{member})>(7);\n    (void)s;"
+        );
+        assert!(
+            check(&format!("enum_{i}"), &good),
+            "C++ refuses {enumerator} (or a cast) in {ty}::{member}"
+        );
+    }
+}
+
 /// Every C example of the README (its ```c blocks) compiles as C11 and as C++17 with the
 /// warnings of the other C tests, links against the library and exits 0: a user copying one
 /// into either kind of project gets a working program.

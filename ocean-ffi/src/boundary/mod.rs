@@ -6,7 +6,8 @@
 //! - [`handle`]: opaque handles, a registry of live objects with kinds ([`borrow`],
 //!   [`write_handle`], [`destroy`]);
 //! - [`pointer`]: pointers, lengths, input slices and out-parameters;
-//! - [`value`]: finiteness and the brief printing of numbers in messages.
+//! - [`value`]: finiteness and the brief printing of numbers in messages;
+//! - [`enums`]: enumerations, in structs ([`read_checked`]) and parameters ([`check_enum`]).
 //!
 //! # The contract every function follows
 //!
@@ -31,13 +32,16 @@
 //!
 //! No output is written on failure (but for that `needed`).
 
+pub(crate) mod enums;
 pub(crate) mod handle;
 pub(crate) mod pointer;
 pub(crate) mod value;
 
+pub(crate) use enums::{CEnum, CheckedStruct, EnumField, check_enum};
 pub(crate) use handle::{borrow, destroy, write_handle};
 pub(crate) use pointer::{
-    byte_len, check_disjoint, check_len, check_ptr, input, read_in, write_out, write_slice,
+    byte_len, check_disjoint, check_len, check_ptr, input, read_checked, read_in, write_out,
+    write_slice,
 };
 // The size-query convention serves the byte blocks of the GPU entry points alone.
 #[cfg(feature = "gpu")]

@@ -1,6 +1,7 @@
 //! Pointers, lengths and out-parameters from C: every check that turns a raw pointer into a
 //! Rust reference or slice, written once.
 
+use super::enums::{CheckedStruct, checked_from_bytes};
 use crate::status::{Error, OceanStatus};
 
 /// `OCEAN_STATUS_NULL_POINTER` for NULL, `OCEAN_STATUS_MISALIGNED_POINTER` for a pointer not
@@ -55,15 +56,36 @@ pub(crate) fn check_disjoint(
     Ok(())
 }
 
-/// Reads a caller's input struct after checking the pointer.
+/// Reads a caller's input struct after checking the pointer. Only for structs that every bit
+/// pattern is valid for (`AnyBitPattern`): one holding an enumeration is read by
+/// [`read_checked`].
 ///
 /// # Safety
 ///
 /// `p` must be NULL, misaligned, or point to a readable `T`.
-pub(crate) unsafe fn read_in<T: Copy>(p: *const T, name: &str) -> Result<T, Error> {
+pub(crate) unsafe fn read_in<T: bytemuck::AnyBitPattern>(
+    p: *const T,
+    name: &str,
+) -> Result<T, Error> {
     check_ptr(p, name)?;
     // SAFETY: non-NULL and aligned (checked); readable (caller's guarantee); copied out.
     Ok(unsafe { p.read() })
+}
+
+/// Reads a caller's input struct that holds enumerations (see [`super::enums`]) after checking
+/// the pointer: as bytes, each enumeration member's raw value checked in declaration order
+/// (`OCEAN_STATUS_INVALID_ARGUMENT`, naming `{name}->{member}` and the value), then cast.
+///
+/// # Safety
+///
+/// `p` must be NULL, misaligned, or point to a readable `T`.
+pub(crate) unsafe fn read_checked<T: CheckedStruct>(p: *const T, name: &str) -> Result<T, Error> {
+    check_ptr(p, name)?;
+    // SAFETY: non-NULL and aligned (checked); `size_of::<T>()` readable bytes (caller's
+    // guarantee), all initialised: the header's structs have no padding (its conventions), and
+    // bytes of any value are valid `u8`. Only read while the call lasts.
+    let bytes = unsafe { core::slice::from_raw_parts(p.cast::<u8>(), size_of::<T>()) };
+    checked_from_bytes(bytes, name)
 }
 
 /// Writes `*out` through a checked pointer, after `value` has been computed.
