@@ -1156,6 +1156,9 @@ typedef struct OceanCamera {
  * A 3D vector in double precision. World-space vectors are right-handed with y up; the BRDF
  * functions take tangent-frame vectors (x along the wind, y across it, z along the normal), as
  * each function says.
+ *
+ * The layout (three doubles, 24 bytes, 8-aligned) is that of GLM's `glm::dvec3` and
+ * `double[3]`: an array of `glm::dvec3` may be passed where an `OceanDVec3` array is taken.
  */
 typedef struct OceanDVec3 {
   /**
@@ -1287,6 +1290,9 @@ typedef struct OceanIrradiance {
 /**
  * A point on the sea plane y = 0 in double precision: world x and z in metres. World positions
  * cross the C ABI in double precision (a float resolves only 7.8 mm at 100 km).
+ *
+ * The layout (two doubles, 16 bytes, 8-aligned) is that of GLM's `glm::dvec2` and `double[2]`;
+ * the second member holds z, not y.
  */
 typedef struct OceanDVec2 {
   /**
@@ -1962,8 +1968,12 @@ typedef struct OceanShaderBinding {
    */
   uint32_t size;
   /**
-   * GLSL exports: the flattened binding number (`layout(binding = n)` in GLSL 4.30 and ES
-   * 3.10); `OCEAN_NO_GLSL_BINDING` otherwise (see there).
+   * GLSL exports: the binding number in GLSL, which has no groups (`layout(binding = n)` in
+   * GLSL 4.30 and ES 3.10; what `glBindBufferBase`, `glActiveTexture` and `glBindImageTexture`
+   * take). Each GLSL namespace counts from 0 on its own, in (group, binding) order: uniform
+   * blocks, shader storage blocks, texture units and image units; so the first resource of
+   * each kind in a pass has number 0. `OCEAN_NO_GLSL_BINDING` where there is none (see
+   * there).
    */
   uint32_t glsl_binding;
   /**
@@ -1990,7 +2000,9 @@ typedef struct OceanShaderBinding {
 /**
  * A 3D vector (metres for positions; unit length for normals), right-handed, y up.
  *
- * The layout (three packed floats, 12 bytes) is that of GLM's `glm::vec3` and `float[3]`.
+ * The layout (three packed floats, 12 bytes) is that of GLM's `glm::vec3` and `float[3]` in
+ * GLM's default configuration: an array of `glm::vec3` may be passed where an `OceanVec3` array
+ * is taken (not with `GLM_FORCE_DEFAULT_ALIGNED_GENTYPES`, which pads it to 16 bytes).
  */
 typedef struct OceanVec3 {
   /**

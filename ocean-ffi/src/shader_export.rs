@@ -100,8 +100,12 @@ pub struct OceanShaderBinding {
     /// Byte size of the bound type, or of one element of a runtime-sized array; 0 for textures
     /// and samplers.
     pub size: u32,
-    /// GLSL exports: the flattened binding number (`layout(binding = n)` in GLSL 4.30 and ES
-    /// 3.10); `OCEAN_NO_GLSL_BINDING` otherwise (see there).
+    /// GLSL exports: the binding number in GLSL, which has no groups (`layout(binding = n)` in
+    /// GLSL 4.30 and ES 3.10; what `glBindBufferBase`, `glActiveTexture` and `glBindImageTexture`
+    /// take). Each GLSL namespace counts from 0 on its own, in (group, binding) order: uniform
+    /// blocks, shader storage blocks, texture units and image units; so the first resource of
+    /// each kind in a pass has number 0. `OCEAN_NO_GLSL_BINDING` where there is none (see
+    /// there).
     pub glsl_binding: u32,
     /// Written as 0: room for a later member, and no padding the caller cannot see.
     pub reserved: u32,

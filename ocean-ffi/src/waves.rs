@@ -15,7 +15,9 @@ use crate::waves_domain::Reach;
 
 /// A 3D vector (metres for positions; unit length for normals), right-handed, y up.
 ///
-/// The layout (three packed floats, 12 bytes) is that of GLM's `glm::vec3` and `float[3]`.
+/// The layout (three packed floats, 12 bytes) is that of GLM's `glm::vec3` and `float[3]` in
+/// GLM's default configuration: an array of `glm::vec3` may be passed where an `OceanVec3` array
+/// is taken (not with `GLM_FORCE_DEFAULT_ALIGNED_GENTYPES`, which pads it to 16 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct OceanVec3 {
@@ -29,6 +31,9 @@ pub struct OceanVec3 {
 
 /// A point on the sea plane y = 0 in double precision: world x and z in metres. World positions
 /// cross the C ABI in double precision (a float resolves only 7.8 mm at 100 km).
+///
+/// The layout (two doubles, 16 bytes, 8-aligned) is that of GLM's `glm::dvec2` and `double[2]`;
+/// the second member holds z, not y.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct OceanDVec2 {
@@ -41,6 +46,9 @@ pub struct OceanDVec2 {
 /// A 3D vector in double precision. World-space vectors are right-handed with y up; the BRDF
 /// functions take tangent-frame vectors (x along the wind, y across it, z along the normal), as
 /// each function says.
+///
+/// The layout (three doubles, 24 bytes, 8-aligned) is that of GLM's `glm::dvec3` and
+/// `double[3]`: an array of `glm::dvec3` may be passed where an `OceanDVec3` array is taken.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanDVec3 {
