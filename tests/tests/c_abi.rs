@@ -670,19 +670,16 @@ fn cpp_refuses_integers_in_enum_members() {
     }
 }
 
-/// Every C example of the README (its ```c blocks) compiles as C11 and as C++17 with the
-/// warnings of the other C tests, links against the library and exits 0: a user copying one
-/// into either kind of project gets a working program.
-#[test]
-fn readme_c_examples_build_as_c11_and_cpp17_and_run() {
-    let root = workspace_root();
-    let readme = std::fs::read_to_string(root.join("README.md")).expect("read README.md");
-    let mut examples = Vec::new();
+/// The README's code blocks fenced with `fence` (e.g. ```c), in order.
+fn readme_blocks(fence: &str) -> Vec<String> {
+    let readme =
+        std::fs::read_to_string(workspace_root().join("README.md")).expect("read README.md");
+    let mut blocks = Vec::new();
     let mut block: Option<String> = None;
     for line in readme.lines() {
         match (&mut block, line.trim_end()) {
-            (None, "```c") => block = Some(String::new()),
-            (Some(_), "```") => examples.push(block.take().expect("open block")),
+            (None, l) if l == fence => block = Some(String::new()),
+            (Some(_), "```") => blocks.push(block.take().expect("open block")),
             (Some(text), _) => {
                 text.push_str(line);
                 text.push('\n');
@@ -690,10 +687,47 @@ fn readme_c_examples_build_as_c11_and_cpp17_and_run() {
             (None, _) => {}
         }
     }
-    assert!(!examples.is_empty(), "no ```c block in README.md");
+    blocks
+}
+
+/// Compiles `source` as `lang` under `std_flag` against the static library with the other
+/// tests' warnings, and runs it.
+fn build_and_run_snippet(
+    source: &Path,
+    exe: &Path,
+    compiler: OsString,
+    lang: &str,
+    std_flag: &str,
+) {
+    let mut cc = Command::new(compiler);
+    cc.args(["-x", lang, std_flag])
+        .args(WARNINGS)
+        .arg("-I")
+        .arg(workspace_root().join("include"))
+        .arg(source)
+        .args(["-x", "none"])
+        .arg(libocean(false))
+        .args(NATIVE_STATIC_LIBS)
+        .arg("-o")
+        .arg(exe);
+    run(
+        cc,
+        &format!("compile {} as {lang} {std_flag}", source.display()),
+    );
+    run(Command::new(exe), &format!("run {}", exe.display()));
+}
+
+/// Every C example of the README (its ```c blocks) compiles as C11 and as C++17 with the
+/// warnings of the other C tests, links against the library and exits 0: a user copying one
+/// into either kind of project gets a working program. Its C++ examples (```cpp, through
+/// `ocean.hpp` and GLM) do the same as C++17.
+#[test]
+fn readme_examples_build_and_run() {
     let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("readme");
     std::fs::create_dir_all(&out_dir).expect("create the output directory");
-    for (i, example) in examples.iter().enumerate() {
+    let c = readme_blocks("```c");
+    assert!(!c.is_empty(), "no ```c block in README.md");
+    for (i, example) in c.iter().enumerate() {
         let source = out_dir.join(format!("example_{i}.c"));
         std::fs::write(&source, example).expect("write the example");
         for (compiler, lang, std_flag) in [
@@ -701,25 +735,19 @@ fn readme_c_examples_build_as_c11_and_cpp17_and_run() {
             (compiler("CXX", "c++"), "c++", "-std=c++17"),
         ] {
             let exe = out_dir.join(format!("example_{i}_{lang}"));
-            let mut cc = Command::new(compiler);
-            cc.args(["-x", lang, std_flag])
-                .args(WARNINGS)
-                .arg("-I")
-                .arg(root.join("include"))
-                .arg(&source)
-                .args(["-x", "none"])
-                .arg(libocean(false))
-                .args(NATIVE_STATIC_LIBS)
-                .arg("-o")
-                .arg(&exe);
-            run(
-                cc,
-                &format!("compile README example {i} as {lang} {std_flag}"),
-            );
-            run(
-                Command::new(&exe),
-                &format!("run README example {i} ({lang})"),
-            );
+            build_and_run_snippet(&source, &exe, compiler, lang, std_flag);
         }
+    }
+    let cpp = readme_blocks("```cpp");
+    assert!(!cpp.is_empty(), "no ```cpp block in README.md");
+    let cxx = compiler("CXX", "c++");
+    if !ocean_tests::cpp_header_or_skip(&cxx, "glm/glm.hpp", "libglm-dev") {
+        return;
+    }
+    for (i, example) in cpp.iter().enumerate() {
+        let source = out_dir.join(format!("example_{i}.cpp"));
+        std::fs::write(&source, example).expect("write the example");
+        let exe = out_dir.join(format!("example_{i}_cpp17"));
+        build_and_run_snippet(&source, &exe, cxx.clone(), "c++", "-std=c++17");
     }
 }
