@@ -7,7 +7,7 @@ use glam::{DVec2, Vec2, Vec3};
 use ocean_core::{Depth, EvalError, Grid, WaveDesc, WaveError, WaveSet};
 
 use crate::boundary::{
-    Num, borrow, byte_len, check_disjoint, check_finite, check_ptr, check_time, destroy,
+    Num, borrow, byte_len, check_disjoint, check_finite, check_ptr, check_time, destroy, read_in,
     write_handle, write_out,
 };
 use crate::status::{Error, OceanStatus, guard};
@@ -105,7 +105,7 @@ pub struct OceanWaveDesc {
 /// at world (origin_x + i*spacing_x, origin_z + j*spacing_z). Outputs are row-major: point (i, j)
 /// is element j*nx + i.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct OceanGrid {
     /// World x of point (0, 0), metres, finite.
     pub origin_x: f64,
@@ -446,8 +446,8 @@ pub unsafe extern "C" fn ocean_waves_evaluate_grid(
         check_ptr(grid, "grid")?;
         check_ptr(out_pos, "out_pos")?;
         check_ptr(out_normal, "out_normal")?;
-        // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
-        let g = unsafe { grid.read() };
+        // SAFETY: forwarded from this function's contract.
+        let g = unsafe { read_in(grid, "grid") }?;
         if g.nx == 0 || g.nz == 0 {
             return Err(Error::new(
                 OceanStatus::Empty,

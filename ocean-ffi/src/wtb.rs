@@ -16,7 +16,7 @@ use ocean_wtb::{BoxFrame, Terrain, TrainSource, WaterGrid, Wind, WtbError};
 
 use crate::boundary::{
     CEnum, CheckedStruct, EnumField, borrow, byte_len, check_disjoint, check_finite, check_flag,
-    check_ptr, check_reserved, check_time, destroy, read_checked, write_handle, write_out,
+    check_ptr, check_reserved, check_time, destroy, read_checked, read_in, write_handle, write_out,
 };
 use crate::camera::{OceanCamera, read_camera};
 use crate::status::{Error, OceanStatus, guard};
@@ -53,7 +53,7 @@ pub struct OceanWaterGridDesc {
 /// seconds (amplitude falls linearly to 0); before `start` and after the decay the box does not
 /// exist.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanWindDesc {
     /// Wind speed, m/s, in (0, 100]. A zero wind is refused.
     pub speed: f64,
@@ -91,7 +91,7 @@ pub struct OceanWindDesc {
 
 /// A wave train box: its wind and its local parameters.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanBoxDesc {
     /// The wind that raises the box.
     pub wind: OceanWindDesc,
@@ -573,8 +573,8 @@ unsafe fn box_spec(
     if n_trains > 0 {
         check_ptr(trains, "trains")?;
     }
-    // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
-    let d = unsafe { desc.read() };
+    // SAFETY: forwarded from this function's contract.
+    let d = unsafe { read_in(desc, "desc") }?;
     let w = &d.wind;
     check_finite(
         "desc->wind.",
@@ -836,8 +836,8 @@ pub unsafe extern "C" fn ocean_wtb_scene_create(
         check_ptr(grid, "grid")?;
         check_terrain_ptr(terrain_heights, terrain_len)?;
         check_ptr(out.cast_const(), "out")?;
-        // SAFETY: non-NULL and aligned (checked), readable (caller's guarantee); copied out.
-        let g = water_grid(&unsafe { grid.read() }, "grid")?;
+        // SAFETY: forwarded from this function's contract.
+        let g = water_grid(&unsafe { read_in(grid, "grid") }?, "grid")?;
         // SAFETY: forwarded from this function's contract.
         let t = unsafe { terrain(&g, terrain_heights, terrain_len) }?;
         let scene = Scene::new(g, t)?;
