@@ -61,6 +61,17 @@
  *   ocean_status_message and ocean_last_error_message never change it. The text stays valid
  *   until the thread's next call of a status-returning function. ocean_status_message()
  *   gives a fixed text per code.
+ * - Output arrays come in three forms, each function saying which: (1) one result per input
+ *   (`xz` and `n` in, `n` results out, no length of their own); (2) an array whose size the
+ *   caller computes from the call's own arguments or a size query named in the function's
+ *   documentation (ocean_spectrum_wave_count, ocean_sky_map_level_info, ocean_relief_map_size,
+ *   ocean_relief_cones_size, ocean_relief_quad_cones_size, ocean_relief_mips_level_size), passed
+ *   with its length in elements, which must be exactly that size; (3) the byte blocks of the GPU
+ *   entry points (the uniform blocks, ocean_gpu_context_describe), passed as `out`, `len` and
+ *   `needed`: `*needed` receives the block's size in bytes on success and with
+ *   OCEAN_STATUS_BUFFER_TOO_SMALL, and `out` NULL with `len` 0 asks for the size alone.
+ *   Text and code the library owns (messages, exported shaders) are returned as pointers,
+ *   valid for as long as each function says.
  * - Every pointer is checked for NULL and alignment, every count for 0 and for overflow, every
  *   float for NaN and infinity; no call can crash the process on such input. What cannot be
  *   checked (that a non-NULL pointer really points to enough memory) is stated in each
