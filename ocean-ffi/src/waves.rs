@@ -344,8 +344,8 @@ pub unsafe extern "C" fn ocean_waves_evaluate(
         }
         waves.reach.check_time(time)?;
         waves.reach.check_points("xz", world)?;
-        let (local, rel) = evaluate_in_cells(&waves.set, world, time, nrm)?;
-        for ((out, p), (o, _)) in pos.iter_mut().zip(&rel).zip(&local) {
+        let (corners, rel) = evaluate_in_cells(&waves.set, world, time, nrm)?;
+        for ((out, p), o) in pos.iter_mut().zip(&rel).zip(&corners) {
             *out = OceanDVec3 {
                 x: o.x + f64::from(p.x),
                 y: f64::from(p.y),
@@ -363,33 +363,29 @@ const CELL: f64 = 64.0;
 
 /// Evaluates world rest points in runs of points that share a lattice cell, each relative to
 /// its cell's corner through the float kernel: the result of a point depends on the point
-/// alone, never on the batch around it. Returns each point's cell corner and offset, and the
-/// positions relative to the corner; writes the normals. Nothing is written on an error.
-#[allow(clippy::type_complexity)]
+/// alone, never on the batch around it. Returns each point's cell corner and its position
+/// relative to the corner; writes the normals. Nothing is written on an error.
 fn evaluate_in_cells(
     set: &WaveSet,
     world: &[DVec2],
     time: f64,
     nrm: &mut [OceanVec3],
-) -> Result<(Vec<(DVec2, Vec2)>, Vec<Vec3>), Error> {
-    let corner = |p: DVec2| (p / CELL).floor() * CELL;
-    let local: Vec<(DVec2, Vec2)> = world
+) -> Result<(Vec<DVec2>, Vec<Vec3>), Error> {
+    let corners: Vec<DVec2> = world.iter().map(|&p| (p / CELL).floor() * CELL).collect();
+    let offsets: Vec<Vec2> = world
         .iter()
-        .map(|&p| {
-            let o = corner(p);
-            (o, (p - o).as_vec2())
-        })
+        .zip(&corners)
+        .map(|(&p, &o)| (p - o).as_vec2())
         .collect();
-    let offsets: Vec<Vec2> = local.iter().map(|&(_, l)| l).collect();
     let mut rel = vec![Vec3::ZERO; world.len()];
     let mut normals = vec![Vec3::ZERO; world.len()];
     let mut start = 0;
     while start < world.len() {
-        let o = local[start].0;
+        let o = corners[start];
         let end = start
-            + local[start..]
+            + corners[start..]
                 .iter()
-                .position(|&(c, _)| c != o)
+                .position(|&c| c != o)
                 .unwrap_or(world.len() - start);
         let (pts, pos, nrm) = (
             &offsets[start..end],
@@ -406,7 +402,7 @@ fn evaluate_in_cells(
     }
     let out: &mut [Vec3] = bytemuck::cast_slice_mut(nrm);
     out.copy_from_slice(&normals);
-    Ok((local, rel))
+    Ok((corners, rel))
 }
 
 /// Evaluates the wave set on every point of `grid` at `time` seconds, on a global worker pool.
