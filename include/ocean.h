@@ -44,15 +44,15 @@
  * - Axes: right-handed, y up; the sea at rest is the plane y = 0, so rest positions and wave
  *   directions are (x, z) pairs on it.
  * - Errors: every fallible function returns an OceanStatus. OCEAN_STATUS_OK (0) is success; on
- *   any other value no output parameter has been written (but for the size that
- *   OCEAN_STATUS_BUFFER_TOO_SMALL reports in `needed`). When several errors apply, the first
- *   in this order is reported: (1) handles, in parameter order (NULL: NULL_POINTER; another
- *   kind, destroyed or never made: INVALID_HANDLE); (2) other pointers, in parameter order
- *   (NULL_POINTER, then MISALIGNED_POINTER); (3) counts (EMPTY, then LENGTH_OVERFLOW, then
- *   INVALID_ARGUMENT for overlapping buffers or inconsistent lengths); (4) values, in parameter
- *   and field order (NON_FINITE, then range: INVALID_ARGUMENT, TOO_STEEP); (5) the handle's
- *   state (NOT_FOUND, NOT_EVALUATED, OUTSIDE_GRID) and the work itself (INVALID_ARGUMENT when a
- *   result would not be finite, BUFFER_TOO_SMALL, CANCELLED, GPU_FAILURE).
+ *   any other value no output parameter has been written. When several errors apply, the
+ *   first in this order is reported: (1) handles, in parameter order (NULL: NULL_POINTER;
+ *   another kind, destroyed or never made: INVALID_HANDLE); (2) other pointers, in parameter
+ *   order (NULL_POINTER, then MISALIGNED_POINTER); (3) counts (EMPTY, then LENGTH_OVERFLOW,
+ *   then LENGTH_MISMATCH, after the values that decide a length where some do, then
+ *   INVALID_ARGUMENT for overlapping buffers); (4) values, in parameter and field order
+ *   (NON_FINITE, then range: INVALID_ARGUMENT, TOO_STEEP); (5) the handle's state (NOT_FOUND,
+ *   NOT_EVALUATED, OUTSIDE_GRID) and the work itself (INVALID_ARGUMENT when a result would not
+ *   be finite, CANCELLED, GPU_FAILURE).
  * - The last-error message: ocean_last_error_message() is the calling thread's message of its
  *   most recent failure, naming the function, the argument and the value ("" after a success).
  *   Every status-returning function sets it on failure and clears it on success. The destroy
@@ -61,17 +61,18 @@
  *   ocean_status_message and ocean_last_error_message never change it. The text stays valid
  *   until the thread's next call of a status-returning function. ocean_status_message()
  *   gives a fixed text per code.
- * - Output arrays come in three forms, each function saying which: (1) one result per input
- *   (`xz` and `n` in, `n` results out, no length of their own); (2) an array whose size the
- *   caller computes from the call's own arguments or a size query named in the function's
+ * - Output sizes: every output array has a length the caller knows before the call, in one
+ *   of two ways, each function saying which: (1) one result per input (`xz` and `n` in, `n`
+ *   results out, no length of their own); (2) an exact length, from the call's own arguments,
+ *   a constant (OCEAN_SURFACE_UNIFORMS_SIZE, OCEAN_RELIEF_UNIFORMS_SIZE,
+ *   OCEAN_SAO_UNIFORMS_SIZE, OCEAN_FRESNEL_TABLE_SIZE squared) or a size query named in the function's
  *   documentation (ocean_spectrum_wave_count, ocean_sky_map_level_info, ocean_relief_map_size,
- *   ocean_relief_cones_size, ocean_relief_quad_cones_size, ocean_relief_mips_level_size), passed
- *   with its length in elements, which must be exactly that size; (3) the byte blocks of the GPU
- *   entry points (the uniform blocks, ocean_gpu_context_describe), passed as `out`, `len` and
- *   `needed`: `*needed` receives the block's size in bytes on success and with
- *   OCEAN_STATUS_BUFFER_TOO_SMALL, and `out` NULL with `len` 0 asks for the size alone.
- *   Text and code the library owns (messages, exported shaders) are returned as pointers,
- *   valid for as long as each function says.
+ *   ocean_relief_cones_size, ocean_relief_quad_cones_size, ocean_relief_mips_level_size),
+ *   passed with the buffer as its length in elements (bytes for the uniform blocks). Any other
+ *   length, larger or smaller, is OCEAN_STATUS_LENGTH_MISMATCH and nothing is written: a buffer
+ *   sized for another texture or another version of a block is refused, never half-filled.
+ *   Text and code the library owns (messages, the adapter's description, exported shaders) are
+ *   returned as pointers, valid for as long as each function says.
  * - Every pointer is checked for NULL and alignment, every count for 0 and for overflow, every
  *   float for NaN and infinity; no call can crash the process on such input. What cannot be
  *   checked (that a non-NULL pointer really points to enough memory) is stated in each
@@ -262,8 +263,7 @@
  * Result of every fallible `ocean_*` function.
  *
  * `OCEAN_STATUS_OK` (0) is success; any other value is a failure, after which no output
- * parameter has been written (but for the size that `OCEAN_STATUS_BUFFER_TOO_SMALL` reports)
- * and `ocean_last_error_message()` describes what went wrong.
+ * parameter has been written and `ocean_last_error_message()` describes what went wrong.
  * The numeric values are stable: new codes are only ever appended.
  */
 enum OceanStatus
@@ -335,11 +335,12 @@ enum OceanStatus
    */
   OCEAN_STATUS_GPU_FAILURE = 12,
   /**
-   * A caller's buffer is too small for a variable-length result (or NULL, to ask for its
-   * size). The one status after which an output is written: the function's `needed`
-   * out-parameter holds the size required; the buffer itself is untouched.
+   * A buffer's length (`len`, `n`, `*_len`) is not the exact length the call needs: the
+   * function's documentation says how to know it beforehand (from the call's own arguments,
+   * a constant such as `OCEAN_SAO_UNIFORMS_SIZE`, or a named size query). Nothing was read
+   * or written through the buffer.
    */
-  OCEAN_STATUS_BUFFER_TOO_SMALL = 13,
+  OCEAN_STATUS_LENGTH_MISMATCH = 13,
   /**
    * The caller's progress callback asked to stop (returned nonzero); nothing was written.
    */
@@ -2457,34 +2458,19 @@ void ocean_gpu_context_destroy(struct OceanGpuContext *ctx);
 
 #if defined(OCEAN_GPU)
 /**
- * Copies a one-line, NUL-terminated UTF-8 description of the context's adapter (name,
- * backend, device type, driver) into `buf`, for logs and bug reports.
+ * Stores in `*out` a one-line, NUL-terminated UTF-8 description of the context's adapter
+ * (name, backend, device type, driver), for logs and bug reports. The text is owned by the
+ * context, fixed for its life and valid until it is destroyed, as the texts of an
+ * `OceanShaderExport` are.
  *
- * Size query: `*needed` receives the size the text needs in bytes, its terminating NUL
- * included.
- * - `buf` NULL and `len` 0: a pure query; returns `OCEAN_STATUS_OK` and writes only
- *   `*needed`.
- * - `len` >= the size: copies the text and its NUL to `buf[0..*needed]`, writes `*needed`,
- *   returns `OCEAN_STATUS_OK`.
- * - `len` smaller (`buf` not NULL): returns `OCEAN_STATUS_BUFFER_TOO_SMALL`, writes `*needed`
- *   (the one output written on a failure) and leaves `buf` untouched.
- *
- * The text is fixed for the life of the context, so querying, allocating and copying cannot
- * race.
- *
- * Other failures, with nothing written: `OCEAN_STATUS_NULL_POINTER` /
- * `_MISALIGNED_POINTER` for a bad `ctx` or `needed`, or `buf` NULL with `len` != 0;
- * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`.
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `ctx` or `out`, which
+ * is then left unchanged.
  *
  * # Safety
  *
- * `buf` NULL or `len` writable bytes that no other thread
- * touches during the call, and `needed` writable.
+ * `out` must be writable and untouched by other threads during the call.
  */
-OceanStatus ocean_gpu_context_describe(const struct OceanGpuContext *ctx,
-                                       char *buf,
-                                       size_t len,
-                                       size_t *needed);
+OceanStatus ocean_gpu_context_describe(const struct OceanGpuContext *ctx, const char **out);
 #endif
 
 #if defined(OCEAN_GPU)
@@ -2588,10 +2574,11 @@ OceanStatus ocean_renderer_set_lighting(struct OceanRenderer *renderer,
  * frame loop at full speed.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
- * `OCEAN_STATUS_EMPTY` if `width` or `height` is 0, `OCEAN_STATUS_INVALID_ARGUMENT` if `len`
- * is not width * height * 4, a side exceeds the device's largest texture, the camera is out of
- * its documented ranges or not above the sea (eye y <= 0), the context is not the renderer's,
- * or the renderer has no spectrum or no lighting yet; `OCEAN_STATUS_LENGTH_OVERFLOW` if
+ * `OCEAN_STATUS_EMPTY` if `width` or `height` is 0, `OCEAN_STATUS_LENGTH_MISMATCH` if `len`
+ * is not width * height * 4, `OCEAN_STATUS_INVALID_ARGUMENT` if a side exceeds the device's
+ * largest texture, the camera is out of its documented ranges or not above the sea
+ * (eye y <= 0), the context is not the renderer's, or the renderer has no spectrum or no
+ * lighting yet; `OCEAN_STATUS_LENGTH_OVERFLOW` if
  * width * height * 4 overflows; `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or
  * camera member; `OCEAN_STATUS_INVALID_ARGUMENT` for a `time` whose phase leaves the domain
  * of `ocean_waves_evaluate` (|omega t| of the fastest wave above 1e15 rad);
@@ -2844,8 +2831,9 @@ OceanStatus ocean_sky_map_level_info(const struct OceanSkyMap *sky_map,
  * upload expects. `len` counts floats and must be exactly side * side * 4.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
- * alignment for `rgba`), `OCEAN_STATUS_INVALID_ARGUMENT` if `level` does not exist or `len` is
- * not side * side * 4, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)` exceeds
+ * alignment for `rgba`), `OCEAN_STATUS_INVALID_ARGUMENT` if `level` does not exist,
+ * `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not side * side * 4,
+ * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)` exceeds
  * `PTRDIFF_MAX`. Nothing is written on failure.
  *
  * # Safety
@@ -3159,7 +3147,7 @@ OceanStatus ocean_spectrum_wave_count(const struct OceanSpectrum *spectrum, size
  * (`depth` = `INFINITY`). `n` must equal the wave count exactly.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (8-byte
- * alignment), `OCEAN_STATUS_INVALID_ARGUMENT` if `n` is not the wave count,
+ * alignment), `OCEAN_STATUS_LENGTH_MISMATCH` if `n` is not the wave count,
  * `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanWaveDesc)` exceeds `PTRDIFF_MAX`. Nothing
  * is written on failure.
  *
@@ -3394,18 +3382,16 @@ OceanStatus ocean_surface_draw_params_default(struct OceanSurfaceDrawParams *out
  * NULL), `OCEAN_STATUS_EMPTY` if `width` or `height` is 0 or the mesh has a side of 0,
  * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time`, parameter, camera or mesh member,
  * `OCEAN_STATUS_INVALID_ARGUMENT` for a parameter, camera or mesh outside its documented
- * ranges (the message names it) or a camera not above the sea, `OCEAN_STATUS_BUFFER_TOO_SMALL`
- * if `len` is below `OCEAN_SURFACE_UNIFORMS_SIZE`, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len`
- * exceeds `PTRDIFF_MAX`. `out`, `len` and `needed` follow the size query of
- * `ocean_gpu_context_describe`: `*needed` receives the block's size, on success and with
- * `OCEAN_STATUS_BUFFER_TOO_SMALL` (the one output written on a failure); `out` NULL and `len`
- * 0 only ask for it. A `time` whose phase leaves the domain of `ocean_waves_evaluate`
- * (|omega t| of the fastest wave above 1e15 rad) is `OCEAN_STATUS_INVALID_ARGUMENT`.
+ * ranges (the message names it) or a camera not above the sea,
+ * `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not `OCEAN_SURFACE_UNIFORMS_SIZE`,
+ * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. A `time` whose phase leaves
+ * the domain of `ocean_waves_evaluate` (|omega t| of the fastest wave above 1e15 rad) is
+ * `OCEAN_STATUS_INVALID_ARGUMENT`.
  *
  * # Safety
  *
- * `camera`, `params` and `mesh` (unless NULL) must be readable, `out` NULL or point to `len`
- * writable bytes that no other thread touches during the call, and `needed` writable.
+ * `camera`, `params` and `mesh` (unless NULL) must be readable, and `out` point to `len`
+ * writable bytes that no other thread touches during the call.
  */
 OceanStatus ocean_surface_uniforms(const struct OceanCamera *camera,
                                    const struct OceanSpectrum *spectrum,
@@ -3416,8 +3402,7 @@ OceanStatus ocean_surface_uniforms(const struct OceanCamera *camera,
                                    uint32_t width,
                                    uint32_t height,
                                    uint8_t *out,
-                                   size_t len,
-                                   size_t *needed);
+                                   size_t len);
 #endif
 
 #if defined(OCEAN_GPU)
@@ -3437,8 +3422,9 @@ OceanStatus ocean_surface_uniforms(const struct OceanCamera *camera,
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
  * alignment for `out`), `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or camera
- * member, `OCEAN_STATUS_INVALID_ARGUMENT` for a camera outside its documented ranges or a
- * `len` other than 12 * wave count, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)`
+ * member, `OCEAN_STATUS_INVALID_ARGUMENT` for a camera outside its documented ranges,
+ * `OCEAN_STATUS_LENGTH_MISMATCH` for a `len` other than 12 * wave count,
+ * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)`
  * exceeds `PTRDIFF_MAX`. A `time` whose phase
  * leaves the domain of `ocean_waves_evaluate` (|omega t| of the fastest wave above 1e15 rad)
  * is `OCEAN_STATUS_INVALID_ARGUMENT`. Nothing is written on failure.
@@ -3465,7 +3451,7 @@ OceanStatus ocean_surface_wave_texels(const struct OceanCamera *camera,
  * texture of 33 x 33 texels once.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`,
- * `OCEAN_STATUS_INVALID_ARGUMENT` for a `len` other than 33 * 33. Nothing is written on
+ * `OCEAN_STATUS_LENGTH_MISMATCH` for a `len` other than 33 * 33. Nothing is written on
  * failure.
  *
  * # Safety
@@ -3559,7 +3545,7 @@ OceanStatus ocean_relief_map_size(const struct OceanReliefMap *map, uint32_t *ou
  * upload them as the depth channel of the relief texture.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
- * `OCEAN_STATUS_INVALID_ARGUMENT` if `len` is not N * N. Nothing is written on failure.
+ * `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not N * N. Nothing is written on failure.
  *
  * # Safety
  *
@@ -3576,7 +3562,8 @@ OceanStatus ocean_relief_map_depths(const struct OceanReliefMap *map, float *dep
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
  * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `depth`, `OCEAN_STATUS_INVALID_ARGUMENT` if
- * `depth` is outside [0, 1e6] or `len` is not 3 N * N. Nothing is written on failure.
+ * `depth` is outside [0, 1e6], `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not 3 N * N.
+ * Nothing is written on failure.
  *
  * # Safety
  *
@@ -3655,7 +3642,7 @@ OceanStatus ocean_relief_cones_size(const struct OceanReliefCones *cones, uint32
  * texture and exactly what the CPU tracers read.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
- * `OCEAN_STATUS_INVALID_ARGUMENT` if `len` is not 4 N * N. Nothing is written on failure.
+ * `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not 4 N * N. Nothing is written on failure.
  *
  * # Safety
  *
@@ -3675,8 +3662,8 @@ OceanStatus ocean_relief_cones_texels(const struct OceanReliefCones *cones,
  * not included: take it from `ocean_relief_map_depths` (the cones are valid for those depths).
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (aligned for
- * the element type), `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding or a `len` that
- * is not 3 N * N. Nothing is written on failure.
+ * the element type), `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding,
+ * `OCEAN_STATUS_LENGTH_MISMATCH` for a `len` that is not 3 N * N. Nothing is written on failure.
  *
  * # Safety
  *
@@ -3707,7 +3694,7 @@ OceanStatus ocean_relief_cones_quantize(const struct OceanReliefCones *cones,
 /**
  * Generates the cone map of `map` straight into `rgba` (no handle): `len` = 4 N * N floats,
  * `[depth, c, D, E]` per texel, as `ocean_relief_cones_texels` writes them. Arguments,
- * callback and statuses as `ocean_relief_cones_create`, with `OCEAN_STATUS_INVALID_ARGUMENT`
+ * callback and statuses as `ocean_relief_cones_create`, with `OCEAN_STATUS_LENGTH_MISMATCH`
  * for a `len` that is not 4 N * N (checked before any work). `rgba` is written only on
  * success, and then wholly.
  *
@@ -3802,8 +3789,9 @@ OceanStatus ocean_relief_mips_level_size(const struct OceanReliefMips *mips,
  * rounded down, as `ocean_relief_cones_encode` writes level 0.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
- * `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding, a level that does not exist or a
- * `len` that is not 3 side * side. Nothing is written on failure.
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding or a level that does not exist,
+ * `OCEAN_STATUS_LENGTH_MISMATCH` for a `len` that is not 3 side * side. Nothing is written
+ * on failure.
  *
  * # Safety
  *
@@ -3876,16 +3864,13 @@ OceanStatus ocean_relief_scene_default(struct OceanReliefScene *out);
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
  * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite member, `OCEAN_STATUS_INVALID_ARGUMENT` for
  * a camera, scene, method, size or edge the description above refuses (the message names
- * it), `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_RELIEF_UNIFORMS_SIZE`,
- * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. `out`, `len` and `needed`
- * follow the size query of `ocean_gpu_context_describe`: `*needed` receives the block's size,
- * on success and with `OCEAN_STATUS_BUFFER_TOO_SMALL` (the one output written on a failure);
- * `out` NULL and `len` 0 only ask for it.
+ * it), `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not `OCEAN_RELIEF_UNIFORMS_SIZE`,
+ * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`.
  *
  * # Safety
  *
- * `camera` and `scene` must be readable, `out` NULL or point to `len` writable bytes that no
- * other thread touches during the call, and `needed` writable.
+ * `camera` and `scene` must be readable, and `out` point to `len` writable bytes that no
+ * other thread touches during the call.
  */
 OceanStatus ocean_relief_uniforms(const struct OceanCamera *camera,
                                   const struct OceanReliefScene *scene,
@@ -3894,8 +3879,7 @@ OceanStatus ocean_relief_uniforms(const struct OceanCamera *camera,
                                   uint32_t levels,
                                   uint32_t srgb_encode,
                                   uint8_t *out,
-                                  size_t len,
-                                  size_t *needed);
+                                  size_t len);
 #endif
 
 /**
@@ -4039,7 +4023,7 @@ OceanStatus ocean_relief_quad_cones_size(const struct OceanReliefQuadCones *cone
  * quadrant tracer reads.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
- * `OCEAN_STATUS_INVALID_ARGUMENT` if `len` is not 16 N * N. Nothing is written on failure.
+ * `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not 16 N * N. Nothing is written on failure.
  *
  * # Safety
  *
@@ -4053,7 +4037,7 @@ OceanStatus ocean_relief_quad_cones_texels(const struct OceanReliefQuadCones *co
 /**
  * Generates the quad-directional cone map of `map` straight into `rgba` (no handle): `len` =
  * 16 N * N floats, as `ocean_relief_quad_cones_texels` writes them. Arguments, callback and
- * statuses as `ocean_relief_quad_cones_create`, with `OCEAN_STATUS_INVALID_ARGUMENT` for a
+ * statuses as `ocean_relief_quad_cones_create`, with `OCEAN_STATUS_LENGTH_MISMATCH` for a
  * `len` that is not 16 N * N (checked before any work). `rgba` is written only on success,
  * and then wholly.
  *
@@ -4318,8 +4302,9 @@ OceanStatus ocean_sao_describe(const struct OceanSao *sao, struct OceanSaoInfo *
  * The result is computed in a buffer of the library's and copied to `ao` at the end.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
- * alignment for the floats), `OCEAN_STATUS_INVALID_ARGUMENT` if `depth_len` or `ao_len` is not
- * exactly the size above, the buffers overlap, or a depth value is outside the range (the
+ * alignment for the floats), `OCEAN_STATUS_LENGTH_MISMATCH` if `depth_len` or `ao_len` is not
+ * exactly the size above, `OCEAN_STATUS_INVALID_ARGUMENT` if the buffers overlap or a depth
+ * value is outside the range (the
  * message gives the first one, in row-major order, with its pixel), `OCEAN_STATUS_NON_FINITE`
  * for a NaN or infinite depth value (likewise), `OCEAN_STATUS_LENGTH_OVERFLOW` if a length in
  * bytes exceeds `PTRDIFF_MAX`. `ao` is written only on success, and then wholly.
@@ -4426,23 +4411,19 @@ OceanStatus ocean_sao_gpu_run(const struct OceanSaoGpu *sao_gpu,
  * 4. `sao_blur` `blur_horizontal`, then `blur_vertical`: packed to packed, the last one also
  *    writing A (`r32f`, output size), with a memory barrier between the dispatches.
  *
- * `out`, `len` and `needed` follow the size query of `ocean_gpu_context_describe`: `*needed`
- * receives `OCEAN_SAO_UNIFORMS_SIZE`; `out` NULL and `len` 0 only ask for it (and `*levels`).
- *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
- * `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_SAO_UNIFORMS_SIZE` (with `*needed`
- * written), `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing else is
- * written on failure.
+ * `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not `OCEAN_SAO_UNIFORMS_SIZE`,
+ * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing is written on
+ * failure.
  *
  * # Safety
  *
- * `out` must be NULL or point to `len` writable bytes, and `needed` and `levels` to writable
- * values, none touched by another thread during the call.
+ * `out` must point to `len` writable bytes and `levels` to a writable value, none touched by
+ * another thread during the call.
  */
 OceanStatus ocean_sao_uniforms(const struct OceanSao *sao,
                                uint8_t *out,
                                size_t len,
-                               size_t *needed,
                                uint32_t *levels);
 #endif
 
@@ -4875,9 +4856,9 @@ OceanStatus ocean_wtb_box_desc_default(struct OceanBoxDesc *out);
  * with `terrain_len` != 0; `OCEAN_STATUS_MISALIGNED_POINTER`; `OCEAN_STATUS_EMPTY` if `nx` or
  * `nz` is 0; `OCEAN_STATUS_LENGTH_OVERFLOW` if `nx * nz` overflows; `OCEAN_STATUS_NON_FINITE`
  * for a NaN or infinite origin, spacing or height; `OCEAN_STATUS_INVALID_ARGUMENT` for a side
- * outside 2 to 4096, a spacing outside [1e-3, 1e4] m, an origin beyond 1e9 m, or
- * `terrain_len` != nx * nz. On failure `*out` is unchanged. Free the scene with
- * `ocean_wtb_scene_destroy`.
+ * outside 2 to 4096, a spacing outside [1e-3, 1e4] m or an origin beyond 1e9 m;
+ * `OCEAN_STATUS_LENGTH_MISMATCH` if `terrain_len` != nx * nz. On failure `*out` is
+ * unchanged. Free the scene with `ocean_wtb_scene_destroy`.
  *
  * # Safety
  *
@@ -4905,7 +4886,7 @@ void ocean_wtb_scene_destroy(struct OceanWtbScene *scene);
  * evaluation.
  *
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (or NULL with
- * a length), `OCEAN_STATUS_INVALID_ARGUMENT` if `terrain_len` != nx * nz,
+ * a length), `OCEAN_STATUS_LENGTH_MISMATCH` if `terrain_len` != nx * nz,
  * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite height (the message gives its index). On
  * failure the scene keeps its terrain.
  *
@@ -5050,9 +5031,9 @@ OceanStatus ocean_wtb_scene_set_budget_explicit(struct OceanWtbScene *scene,
  * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
  * alignment for OceanVec3, 8 for the camera and stats), `OCEAN_STATUS_EMPTY` if `n`
  * is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanVec3)` exceeds `PTRDIFF_MAX`,
- * `OCEAN_STATUS_INVALID_ARGUMENT` if `n` != nx * nz, the outputs overlap, or the camera is
- * not one `OceanCamera` accepts, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or
- * matrix element. Nothing is written on failure.
+ * `OCEAN_STATUS_LENGTH_MISMATCH` if `n` != nx * nz, `OCEAN_STATUS_INVALID_ARGUMENT` if the
+ * outputs overlap or the camera is not one `OceanCamera` accepts, `OCEAN_STATUS_NON_FINITE`
+ * for a NaN or infinite `time` or matrix element. Nothing is written on failure.
  *
  * # Safety
  *

@@ -606,8 +606,7 @@ pub fn helpers(inp: &mut Input) {
         scene.poke_bytes(offset_of!(OceanReliefScene, method), m.bytes());
     }
     let args = (cam, scene, size, edge, levels, srgb, len);
-    // SAFETY: the camera and scene are locals; `bytes` holds `cap` >= `len` bytes; `needed` is a
-    // temporary.
+    // SAFETY: the camera and scene are locals; `bytes` holds `cap` >= `len` bytes.
     let st = unsafe {
         ocean_relief_uniforms(
             args.0.as_ptr(),
@@ -618,7 +617,6 @@ pub fn helpers(inp: &mut Input) {
             srgb,
             bytes.as_mut_ptr(),
             len,
-            &mut 0usize,
         )
     };
     check::status("ocean_relief_uniforms", &args, st);

@@ -176,7 +176,6 @@ pub fn draw_data(live: &mut Live, inp: &mut Input) {
             h,
             bytes.as_mut_ptr(),
             len,
-            &mut 0usize,
         )
     };
     check::status("ocean_surface_uniforms", &args, st);

@@ -27,14 +27,11 @@ public:
         check(ocean_gpu_context_create(&c));
         return gpu_context(c);
     }
-    /// A one-line description of the adapter.
-    std::string describe() const
+    /// A one-line description of the adapter, owned by the context (valid while it lives).
+    const char *describe() const
     {
-        std::size_t needed = 0;
-        check(ocean_gpu_context_describe(get(), nullptr, 0, &needed));
-        std::string text(needed, '\0');
-        check(ocean_gpu_context_describe(get(), &text[0], text.size(), &needed));
-        text.resize(needed > 0 ? needed - 1 : 0); // without the NUL
+        const char *text = nullptr;
+        check(ocean_gpu_context_describe(get(), &text));
         return text;
     }
 };
@@ -180,32 +177,26 @@ public:
     }
 };
 
-/// `ocean_surface_uniforms` into `out` (at least OCEAN_SURFACE_UNIFORMS_SIZE bytes, else
-/// ocean::error OCEAN_STATUS_BUFFER_TOO_SMALL); returns the bytes written. `mesh` may be null.
-/// `camera`: see make_camera.
-inline std::size_t surface_uniforms(const OceanCamera &camera, const spectrum &s,
-                                    const lighting &l, const OceanSurfaceDrawParams &params,
-                                    const OceanWaterGridDesc *mesh, double time,
-                                    std::uint32_t width, std::uint32_t height,
-                                    span<std::uint8_t> out)
+/// `ocean_surface_uniforms` into `out`: exactly OCEAN_SURFACE_UNIFORMS_SIZE bytes (else
+/// std::invalid_argument). `mesh` may be null. `camera`: see make_camera.
+inline void surface_uniforms(const OceanCamera &camera, const spectrum &s, const lighting &l,
+                             const OceanSurfaceDrawParams &params, const OceanWaterGridDesc *mesh,
+                             double time, std::uint32_t width, std::uint32_t height,
+                             span<std::uint8_t> out)
 {
-    std::size_t needed = 0;
+    detail::check_size("ocean::surface_uniforms: out", out.size(), OCEAN_SURFACE_UNIFORMS_SIZE);
     check(ocean_surface_uniforms(&camera, s.get(), l.get(), &params, mesh, time, width, height,
-                                 out.data(), out.size(), &needed));
-    return needed;
+                                 out.data(), out.size()));
 }
-/// `ocean_surface_uniforms` into a new vector of the block's size.
+/// `ocean_surface_uniforms` into a new vector.
 inline std::vector<std::uint8_t> surface_uniforms(const OceanCamera &camera, const spectrum &s,
                                                   const lighting &l,
                                                   const OceanSurfaceDrawParams &params,
                                                   const OceanWaterGridDesc *mesh, double time,
                                                   std::uint32_t width, std::uint32_t height)
 {
-    std::size_t needed = 0;
-    check(ocean_surface_uniforms(&camera, s.get(), l.get(), &params, mesh, time, width, height,
-                                 nullptr, 0, &needed));
-    std::vector<std::uint8_t> out(needed);
-    out.resize(surface_uniforms(camera, s, l, params, mesh, time, width, height, out));
+    std::vector<std::uint8_t> out(OCEAN_SURFACE_UNIFORMS_SIZE);
+    surface_uniforms(camera, s, l, params, mesh, time, width, height, out);
     return out;
 }
 /// `ocean_surface_wave_texels` into `out`: exactly 12 * wave count floats (else
@@ -239,13 +230,9 @@ inline std::vector<std::uint8_t> relief_uniforms(const OceanCamera &camera,
                                                  std::uint32_t size, std::uint32_t edge,
                                                  std::uint32_t levels, std::uint32_t srgb_encode)
 {
-    std::size_t needed = 0;
-    check(ocean_relief_uniforms(&camera, &scene, size, edge, levels, srgb_encode, nullptr, 0,
-                                &needed));
-    std::vector<std::uint8_t> out(needed);
+    std::vector<std::uint8_t> out(OCEAN_RELIEF_UNIFORMS_SIZE);
     check(ocean_relief_uniforms(&camera, &scene, size, edge, levels, srgb_encode, out.data(),
-                                out.size(), &needed));
-    out.resize(needed);
+                                out.size()));
     return out;
 }
 

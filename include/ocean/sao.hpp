@@ -79,9 +79,7 @@ public:
     sao_uniforms_block uniforms() const
     {
         sao_uniforms_block b{std::vector<std::uint8_t>(OCEAN_SAO_UNIFORMS_SIZE), 0};
-        std::size_t needed = 0;
-        check(ocean_sao_uniforms(get(), b.bytes.data(), b.bytes.size(), &needed, &b.levels));
-        b.bytes.resize(needed);
+        check(ocean_sao_uniforms(get(), b.bytes.data(), b.bytes.size(), &b.levels));
         return b;
     }
 #endif

@@ -16,8 +16,8 @@ use ocean_brdf::{Filter, FilteredSurface};
 use ocean_gpu::{GpuContext, GpuError, OceanOptions, OceanRenderer as GpuRenderer};
 
 use crate::boundary::{
-    borrow, byte_len, check_finite, check_flag, check_ptr, check_time, destroy, read_in,
-    write_handle, write_out, write_sized,
+    borrow, byte_len, check_finite, check_flag, check_len, check_ptr, check_time, destroy, read_in,
+    write_handle, write_out,
 };
 use crate::lighting::{OceanLighting, brdf_error};
 
@@ -191,50 +191,27 @@ pub extern "C" fn ocean_gpu_context_destroy(ctx: *mut OceanGpuContext) {
     destroy(ctx, "ocean_gpu_context_destroy", "ctx");
 }
 
-/// Copies a one-line, NUL-terminated UTF-8 description of the context's adapter (name,
-/// backend, device type, driver) into `buf`, for logs and bug reports.
+/// Stores in `*out` a one-line, NUL-terminated UTF-8 description of the context's adapter
+/// (name, backend, device type, driver), for logs and bug reports. The text is owned by the
+/// context, fixed for its life and valid until it is destroyed, as the texts of an
+/// `OceanShaderExport` are.
 ///
-/// Size query: `*needed` receives the size the text needs in bytes, its terminating NUL
-/// included.
-/// - `buf` NULL and `len` 0: a pure query; returns `OCEAN_STATUS_OK` and writes only
-///   `*needed`.
-/// - `len` >= the size: copies the text and its NUL to `buf[0..*needed]`, writes `*needed`,
-///   returns `OCEAN_STATUS_OK`.
-/// - `len` smaller (`buf` not NULL): returns `OCEAN_STATUS_BUFFER_TOO_SMALL`, writes `*needed`
-///   (the one output written on a failure) and leaves `buf` untouched.
-///
-/// The text is fixed for the life of the context, so querying, allocating and copying cannot
-/// race.
-///
-/// Other failures, with nothing written: `OCEAN_STATUS_NULL_POINTER` /
-/// `_MISALIGNED_POINTER` for a bad `ctx` or `needed`, or `buf` NULL with `len` != 0;
-/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`.
+/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `ctx` or `out`, which
+/// is then left unchanged.
 ///
 /// # Safety
 ///
-/// `buf` NULL or `len` writable bytes that no other thread
-/// touches during the call, and `needed` writable.
+/// `out` must be writable and untouched by other threads during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_gpu_context_describe(
     ctx: *const OceanGpuContext,
-    buf: *mut c_char,
-    len: usize,
-    needed: *mut usize,
+    out: *mut *const c_char,
 ) -> OceanStatus {
     guard("ocean_gpu_context_describe", || {
         let c = borrow(ctx, "ctx")?;
-        let text = c.description.as_bytes_with_nul();
+        // The text lives in the registry's entry, which stays until the context is destroyed.
         // SAFETY: forwarded from this function's contract.
-        unsafe {
-            write_sized(
-                buf.cast(),
-                "buf",
-                len,
-                needed,
-                text,
-                "the description (with its NUL)",
-            )
-        }
+        unsafe { write_out(out, "out", c.description.as_ptr()) }
     })
 }
 
@@ -432,10 +409,11 @@ pub extern "C" fn ocean_renderer_set_lighting(
 /// frame loop at full speed.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
-/// `OCEAN_STATUS_EMPTY` if `width` or `height` is 0, `OCEAN_STATUS_INVALID_ARGUMENT` if `len`
-/// is not width * height * 4, a side exceeds the device's largest texture, the camera is out of
-/// its documented ranges or not above the sea (eye y <= 0), the context is not the renderer's,
-/// or the renderer has no spectrum or no lighting yet; `OCEAN_STATUS_LENGTH_OVERFLOW` if
+/// `OCEAN_STATUS_EMPTY` if `width` or `height` is 0, `OCEAN_STATUS_LENGTH_MISMATCH` if `len`
+/// is not width * height * 4, `OCEAN_STATUS_INVALID_ARGUMENT` if a side exceeds the device's
+/// largest texture, the camera is out of its documented ranges or not above the sea
+/// (eye y <= 0), the context is not the renderer's, or the renderer has no spectrum or no
+/// lighting yet; `OCEAN_STATUS_LENGTH_OVERFLOW` if
 /// width * height * 4 overflows; `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or
 /// camera member; `OCEAN_STATUS_INVALID_ARGUMENT` for a `time` whose phase leaves the domain
 /// of `ocean_waves_evaluate` (|omega t| of the fastest wave above 1e15 rad);
@@ -477,12 +455,12 @@ pub unsafe extern "C" fn ocean_renderer_render_rgba8(
                 )
             })?;
         byte_len::<u8>(want, "out")?;
-        if len != want {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!("`len` is {len} bytes, a {width} x {height} RGBA8 image is exactly {want}"),
-            ));
-        }
+        check_len(
+            "len",
+            len,
+            want,
+            &format!("a {width} x {height} RGBA8 image (bytes)"),
+        )?;
         check_time(time)?;
         // SAFETY: forwarded from this function's contract (the pointer checked above).
         let camera = unsafe { read_camera(camera) }?;
@@ -583,17 +561,12 @@ mod tests {
 
     #[test]
     fn null_handles_are_refused_without_a_device() {
-        let mut needed = 7usize;
+        let mut text = c"untouched".as_ptr();
         // SAFETY: every pointer is NULL or valid.
         unsafe {
-            let s = ocean_gpu_context_describe(
-                core::ptr::null(),
-                core::ptr::null_mut(),
-                0,
-                &mut needed,
-            );
+            let s = ocean_gpu_context_describe(core::ptr::null(), &mut text);
             assert_eq!(s, OceanStatus::NullPointer);
-            assert_eq!(needed, 7);
+            assert_eq!(core::ffi::CStr::from_ptr(text), c"untouched");
             assert!(last_error().contains("ctx"), "{}", last_error());
             let s = ocean_gpu_context_create(core::ptr::null_mut());
             assert_eq!(s, OceanStatus::NullPointer);
@@ -631,12 +604,11 @@ mod tests {
     }
 
     /// The wrapper adds nothing: the image is `ocean_gpu`'s own for the same inputs, byte for
-    /// byte, and the size query of the description works.
+    /// byte, and the description is the context's.
     #[test]
     fn renders_what_ocean_gpu_renders() {
         let Some(ctx) = context() else { return };
         let (w, h) = (32u32, 24u32);
-        let mut needed = 0usize;
         let mut opts = OceanRendererOptions::default();
         let mut sp = OceanSpectrumParams::default();
         let mut sky = OceanSkyParams::default();
@@ -668,26 +640,16 @@ mod tests {
         let mut image = vec![0u8; (w * h * 4) as usize];
         // SAFETY: live handles and valid pointers throughout.
         unsafe {
-            assert_eq!(
-                ocean_gpu_context_describe(ctx, core::ptr::null_mut(), 0, &mut needed),
-                OceanStatus::Ok
-            );
-            let mut text = vec![0 as c_char; needed];
-            let mut small = [7 as c_char; 2];
-            let mut got = 0usize;
-            let s = ocean_gpu_context_describe(ctx, small.as_mut_ptr(), 2, &mut got);
-            assert_eq!(s, OceanStatus::BufferTooSmall);
-            assert_eq!((got, small), (needed, [7 as c_char; 2]));
-            let s = ocean_gpu_context_describe(ctx, text.as_mut_ptr(), needed, &mut got);
+            let mut text = core::ptr::null();
+            let s = ocean_gpu_context_describe(ctx, &mut text);
             assert_eq!(s, OceanStatus::Ok, "{}", last_error());
-            let text = core::ffi::CStr::from_ptr(text.as_ptr())
-                .to_str()
-                .unwrap()
-                .to_owned();
-            assert_eq!(text.len() + 1, needed);
             assert_eq!(
-                text,
+                core::ffi::CStr::from_ptr(text).to_str().unwrap(),
                 crate::boundary::borrow(ctx, "ctx").unwrap().ctx.describe()
+            );
+            assert_eq!(
+                ocean_gpu_context_describe(ctx, core::ptr::null_mut()),
+                OceanStatus::NullPointer
             );
 
             assert_eq!(ocean_renderer_options_default(&mut opts), OceanStatus::Ok);

@@ -18,8 +18,8 @@ use ocean_brdf::sky_map::{SKY_MAP_EXTENT, SKY_MAP_MAX_SIZE, SKY_MAP_MIN_SIZE};
 use ocean_brdf::{BrdfError, Lighting, SeaParams, SkyMap, SkyParams, SlopeVariance};
 
 use crate::boundary::{
-    borrow, byte_len, check_disjoint, check_finite, check_ptr, destroy, read_in, write_handle,
-    write_out,
+    borrow, byte_len, check_disjoint, check_finite, check_len, check_ptr, destroy, read_in,
+    write_handle, write_out,
 };
 use crate::status::{Error, OceanStatus, guard};
 use crate::waves::{OceanDVec2, OceanDVec3};
@@ -693,8 +693,9 @@ pub unsafe extern "C" fn ocean_sky_map_level_info(
 /// upload expects. `len` counts floats and must be exactly side * side * 4.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
-/// alignment for `rgba`), `OCEAN_STATUS_INVALID_ARGUMENT` if `level` does not exist or `len` is
-/// not side * side * 4, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)` exceeds
+/// alignment for `rgba`), `OCEAN_STATUS_INVALID_ARGUMENT` if `level` does not exist,
+/// `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not side * side * 4,
+/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)` exceeds
 /// `PTRDIFF_MAX`. Nothing is written on failure.
 ///
 /// # Safety
@@ -714,12 +715,12 @@ pub unsafe extern "C" fn ocean_sky_map_copy_level(
         byte_len::<f32>(len, "rgba")?;
         let texels = self::level(&m, level)?;
         let want = texels.len() * 4;
-        if len != want {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!("`len` is {len} floats, level {level} holds exactly {want}"),
-            ));
-        }
+        check_len(
+            "len",
+            len,
+            want,
+            &format!("level {level} (4 floats a texel)"),
+        )?;
         // SAFETY: non-NULL and 4-aligned (checked), `len` floats whose byte size fits in isize
         // (checked: it equals the level's size), writable and untouched by others (caller's
         // guarantee).

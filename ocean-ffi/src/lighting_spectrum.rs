@@ -8,7 +8,8 @@ use ocean_brdf::{Filter, SlopeVariance, Spectrum, SpectrumParams};
 use ocean_core::{Depth, WaveDesc};
 
 use crate::boundary::{
-    Num, borrow, byte_len, check_finite, check_ptr, destroy, read_in, write_handle, write_out,
+    Num, borrow, byte_len, check_finite, check_len, check_ptr, destroy, read_in, write_handle,
+    write_out,
 };
 use crate::lighting::brdf_error;
 
@@ -249,7 +250,7 @@ fn wave_desc_to(w: &WaveDesc) -> OceanWaveDesc {
 /// (`depth` = `INFINITY`). `n` must equal the wave count exactly.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (8-byte
-/// alignment), `OCEAN_STATUS_INVALID_ARGUMENT` if `n` is not the wave count,
+/// alignment), `OCEAN_STATUS_LENGTH_MISMATCH` if `n` is not the wave count,
 /// `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanWaveDesc)` exceeds `PTRDIFF_MAX`. Nothing
 /// is written on failure.
 ///
@@ -268,12 +269,7 @@ pub unsafe extern "C" fn ocean_spectrum_waves(
         check_ptr(out.cast_const(), "out")?;
         byte_len::<OceanWaveDesc>(n, "out")?;
         let waves = s.spectrum.waves();
-        if n != waves.len() {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!("`n` is {n}, the spectrum has exactly {} waves", waves.len()),
-            ));
-        }
+        check_len("n", n, waves.len(), "the spectrum's wave list")?;
         // SAFETY: non-NULL and aligned (checked), `n` elements whose byte size fits in isize
         // (checked), writable and untouched by others (caller's guarantee).
         let out = unsafe { core::slice::from_raw_parts_mut(out, n) };

@@ -13,8 +13,8 @@ use ocean_brdf::{Filter, FilteredSurface};
 use ocean_gpu::{MeshGrid, OceanOptions, WaveTexels};
 
 use crate::boundary::{
-    borrow, byte_len, check_finite, check_ptr, check_sized, check_time, read_in, write_block,
-    write_out,
+    borrow, byte_len, check_block_out, check_finite, check_len, check_ptr, check_time, read_in,
+    write_block, write_out,
 };
 use crate::camera::{OceanCamera, read_camera};
 use crate::lighting::{OceanLighting, brdf_error};
@@ -184,18 +184,16 @@ fn params_from(p: &OceanSurfaceDrawParams) -> Result<(OceanOptions, Filter), Err
 /// NULL), `OCEAN_STATUS_EMPTY` if `width` or `height` is 0 or the mesh has a side of 0,
 /// `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time`, parameter, camera or mesh member,
 /// `OCEAN_STATUS_INVALID_ARGUMENT` for a parameter, camera or mesh outside its documented
-/// ranges (the message names it) or a camera not above the sea, `OCEAN_STATUS_BUFFER_TOO_SMALL`
-/// if `len` is below `OCEAN_SURFACE_UNIFORMS_SIZE`, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len`
-/// exceeds `PTRDIFF_MAX`. `out`, `len` and `needed` follow the size query of
-/// `ocean_gpu_context_describe`: `*needed` receives the block's size, on success and with
-/// `OCEAN_STATUS_BUFFER_TOO_SMALL` (the one output written on a failure); `out` NULL and `len`
-/// 0 only ask for it. A `time` whose phase leaves the domain of `ocean_waves_evaluate`
-/// (|omega t| of the fastest wave above 1e15 rad) is `OCEAN_STATUS_INVALID_ARGUMENT`.
+/// ranges (the message names it) or a camera not above the sea,
+/// `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not `OCEAN_SURFACE_UNIFORMS_SIZE`,
+/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. A `time` whose phase leaves
+/// the domain of `ocean_waves_evaluate` (|omega t| of the fastest wave above 1e15 rad) is
+/// `OCEAN_STATUS_INVALID_ARGUMENT`.
 ///
 /// # Safety
 ///
-/// `camera`, `params` and `mesh` (unless NULL) must be readable, `out` NULL or point to `len`
-/// writable bytes that no other thread touches during the call, and `needed` writable.
+/// `camera`, `params` and `mesh` (unless NULL) must be readable, and `out` point to `len`
+/// writable bytes that no other thread touches during the call.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn ocean_surface_uniforms(
@@ -209,7 +207,6 @@ pub unsafe extern "C" fn ocean_surface_uniforms(
     height: u32,
     out: *mut u8,
     len: usize,
-    needed: *mut usize,
 ) -> OceanStatus {
     guard("ocean_surface_uniforms", || {
         let s = borrow(spectrum, "spectrum")?;
@@ -219,7 +216,7 @@ pub unsafe extern "C" fn ocean_surface_uniforms(
         if !mesh.is_null() {
             check_ptr(mesh, "mesh")?;
         }
-        check_sized(out.cast_const(), "out", len, needed.cast_const())?;
+        check_block_out::<ocean_gpu::FrameUniform>(out, len)?;
         // SAFETY: forwarded from this function's contract.
         let camera = unsafe { read_camera(camera) }?;
         // SAFETY: forwarded from this function's contract.
@@ -256,7 +253,7 @@ pub unsafe extern "C" fn ocean_surface_uniforms(
             mesh.as_ref(),
         )?;
         // SAFETY: forwarded from this function's contract.
-        unsafe { write_block(out, len, needed, &u) }?;
+        unsafe { write_block(out, len, &u) }?;
         Ok(())
     })
 }
@@ -276,8 +273,9 @@ pub unsafe extern "C" fn ocean_surface_uniforms(
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
 /// alignment for `out`), `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or camera
-/// member, `OCEAN_STATUS_INVALID_ARGUMENT` for a camera outside its documented ranges or a
-/// `len` other than 12 * wave count, `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)`
+/// member, `OCEAN_STATUS_INVALID_ARGUMENT` for a camera outside its documented ranges,
+/// `OCEAN_STATUS_LENGTH_MISMATCH` for a `len` other than 12 * wave count,
+/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)`
 /// exceeds `PTRDIFF_MAX`. A `time` whose phase
 /// leaves the domain of `ocean_waves_evaluate` (|omega t| of the fastest wave above 1e15 rad)
 /// is `OCEAN_STATUS_INVALID_ARGUMENT`. Nothing is written on failure.
@@ -307,15 +305,12 @@ pub unsafe extern "C" fn ocean_surface_wave_texels(
         let surface = FilteredSurface::new(&s.spectrum, Filter::PAPER)?;
         let waves = WaveTexels::new(&surface);
         let want = 4 * OCEAN_WAVE_TEXTURE_ROWS * waves.wave_count();
-        if len != want {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!(
-                    "`len` is {len} floats, the texture of {} waves holds exactly {want}",
-                    waves.wave_count()
-                ),
-            ));
-        }
+        check_len(
+            "len",
+            len,
+            want,
+            &format!("the texture of {} waves (floats)", waves.wave_count()),
+        )?;
         let texels = waves.frame_texels(&camera, time);
         // SAFETY: non-NULL and 4-aligned (checked), `len` floats whose byte size fits in isize
         // (checked), writable and untouched by others (caller's guarantee).
@@ -333,7 +328,7 @@ pub unsafe extern "C" fn ocean_surface_wave_texels(
 /// texture of 33 x 33 texels once.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`,
-/// `OCEAN_STATUS_INVALID_ARGUMENT` for a `len` other than 33 * 33. Nothing is written on
+/// `OCEAN_STATUS_LENGTH_MISMATCH` for a `len` other than 33 * 33. Nothing is written on
 /// failure.
 ///
 /// # Safety
@@ -345,15 +340,7 @@ pub unsafe extern "C" fn ocean_surface_fresnel_texels(out: *mut f32, len: usize)
         check_ptr(out.cast_const(), "out")?;
         byte_len::<f32>(len, "out")?;
         let texels = ocean_gpu::fresnel_table_texels();
-        if len != texels.len() {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!(
-                    "`len` is {len} floats, the table holds exactly {}",
-                    texels.len()
-                ),
-            ));
-        }
+        check_len("len", len, texels.len(), "the table (floats)")?;
         // SAFETY: non-NULL and 4-aligned (checked), `len` (= 1089) floats, writable and
         // untouched by others (caller's guarantee).
         unsafe { core::slice::from_raw_parts_mut(out, len) }.copy_from_slice(&texels);
@@ -479,8 +466,7 @@ mod tests {
                 96,
                 64,
                 out.as_mut_ptr(),
-                out.len(),
-                &mut 0usize,
+                OCEAN_SURFACE_UNIFORMS_SIZE,
             )
         };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
@@ -540,7 +526,6 @@ mod tests {
                 64,
                 no_mesh.as_mut_ptr(),
                 no_mesh.len(),
-                &mut 0usize,
             )
         };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
@@ -621,7 +606,6 @@ mod tests {
                     size.1,
                     out.as_mut_ptr(),
                     len,
-                    &mut 0usize,
                 )
             };
             assert!(out.iter().all(|&b| b == 7), "written on failure");
@@ -646,11 +630,16 @@ mod tests {
                 ..desc
             }
         };
-        let cases: [(OceanStatus, &str, (OceanStatus, String)); 13] = [
+        let cases: [(OceanStatus, &str, (OceanStatus, String)); 14] = [
             (
-                OceanStatus::BufferTooSmall,
-                "needs 352",
+                OceanStatus::LengthMismatch,
+                "holds exactly 352",
                 call(&desc, &good, &m, 0.0, (8, 8), 351),
+            ),
+            (
+                OceanStatus::LengthMismatch,
+                "holds exactly 352",
+                call(&desc, &good, &m, 0.0, (8, 8), 353),
             ),
             (
                 OceanStatus::Empty,
@@ -722,67 +711,19 @@ mod tests {
         unsafe {
             let o = out.as_mut_ptr();
             assert_eq!(
-                ocean_surface_uniforms(
-                    null(),
-                    spectrum,
-                    lighting,
-                    &good,
-                    &m,
-                    0.0,
-                    8,
-                    8,
-                    o,
-                    352,
-                    &mut 0usize
-                ),
+                ocean_surface_uniforms(null(), spectrum, lighting, &good, &m, 0.0, 8, 8, o, 352,),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_surface_uniforms(
-                    &desc,
-                    null(),
-                    lighting,
-                    &good,
-                    &m,
-                    0.0,
-                    8,
-                    8,
-                    o,
-                    352,
-                    &mut 0usize
-                ),
+                ocean_surface_uniforms(&desc, null(), lighting, &good, &m, 0.0, 8, 8, o, 352,),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_surface_uniforms(
-                    &desc,
-                    spectrum,
-                    null(),
-                    &good,
-                    &m,
-                    0.0,
-                    8,
-                    8,
-                    o,
-                    352,
-                    &mut 0usize
-                ),
+                ocean_surface_uniforms(&desc, spectrum, null(), &good, &m, 0.0, 8, 8, o, 352,),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_surface_uniforms(
-                    &desc,
-                    spectrum,
-                    lighting,
-                    null(),
-                    &m,
-                    0.0,
-                    8,
-                    8,
-                    o,
-                    352,
-                    &mut 0usize
-                ),
+                ocean_surface_uniforms(&desc, spectrum, lighting, null(), &m, 0.0, 8, 8, o, 352,),
                 OceanStatus::NullPointer
             );
             assert_eq!(
@@ -797,7 +738,6 @@ mod tests {
                     8,
                     null_mut(),
                     352,
-                    &mut 0usize
                 ),
                 OceanStatus::NullPointer
             );
@@ -811,7 +751,7 @@ mod tests {
             let t = texels.as_mut_ptr();
             assert_eq!(
                 ocean_surface_wave_texels(&desc, spectrum, 0.0, t, 12 * n + 1),
-                OceanStatus::InvalidArgument
+                OceanStatus::LengthMismatch
             );
             assert!(last_error().contains(&format!("exactly {}", 12 * n)));
             assert_eq!(
@@ -828,7 +768,7 @@ mod tests {
             );
             assert_eq!(
                 ocean_surface_fresnel_texels(t, 33 * 32),
-                OceanStatus::InvalidArgument
+                OceanStatus::LengthMismatch
             );
             assert!(last_error().contains("exactly 1089"));
             assert_eq!(

@@ -480,7 +480,7 @@ pub unsafe extern "C" fn ocean_relief_map_size(
 /// upload them as the depth channel of the relief texture.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
-/// `OCEAN_STATUS_INVALID_ARGUMENT` if `len` is not N * N. Nothing is written on failure.
+/// `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not N * N. Nothing is written on failure.
 ///
 /// # Safety
 ///
@@ -509,7 +509,8 @@ pub unsafe extern "C" fn ocean_relief_map_depths(
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
 /// `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `depth`, `OCEAN_STATUS_INVALID_ARGUMENT` if
-/// `depth` is outside [0, 1e6] or `len` is not 3 N * N. Nothing is written on failure.
+/// `depth` is outside [0, 1e6], `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not 3 N * N.
+/// Nothing is written on failure.
 ///
 /// # Safety
 ///
@@ -750,7 +751,7 @@ unsafe fn write_encoded(out: *mut c_void, values: &Interleaved) -> Result<(), Er
 /// texture and exactly what the CPU tracers read.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
-/// `OCEAN_STATUS_INVALID_ARGUMENT` if `len` is not 4 N * N. Nothing is written on failure.
+/// `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not 4 N * N. Nothing is written on failure.
 ///
 /// # Safety
 ///
@@ -781,8 +782,8 @@ pub unsafe extern "C" fn ocean_relief_cones_texels(
 /// not included: take it from `ocean_relief_map_depths` (the cones are valid for those depths).
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (aligned for
-/// the element type), `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding or a `len` that
-/// is not 3 N * N. Nothing is written on failure.
+/// the element type), `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding,
+/// `OCEAN_STATUS_LENGTH_MISMATCH` for a `len` that is not 3 N * N. Nothing is written on failure.
 ///
 /// # Safety
 ///
@@ -837,7 +838,7 @@ pub unsafe extern "C" fn ocean_relief_cones_quantize(
 
 /// Generates the cone map of `map` straight into `rgba` (no handle): `len` = 4 N * N floats,
 /// `[depth, c, D, E]` per texel, as `ocean_relief_cones_texels` writes them. Arguments,
-/// callback and statuses as `ocean_relief_cones_create`, with `OCEAN_STATUS_INVALID_ARGUMENT`
+/// callback and statuses as `ocean_relief_cones_create`, with `OCEAN_STATUS_LENGTH_MISMATCH`
 /// for a `len` that is not 4 N * N (checked before any work). `rgba` is written only on
 /// success, and then wholly.
 ///
@@ -1010,8 +1011,9 @@ pub unsafe extern "C" fn ocean_relief_mips_level_size(
 /// rounded down, as `ocean_relief_cones_encode` writes level 0.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
-/// `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding, a level that does not exist or a
-/// `len` that is not 3 side * side. Nothing is written on failure.
+/// `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding or a level that does not exist,
+/// `OCEAN_STATUS_LENGTH_MISMATCH` for a `len` that is not 3 side * side. Nothing is written
+/// on failure.
 ///
 /// # Safety
 ///

@@ -14,7 +14,7 @@ use ocean_relief::gpu_params::ReliefUniforms;
 use core::mem::offset_of;
 
 use crate::boundary::{
-    CheckedStruct, EnumField, check_finite, check_flag, check_ptr, check_sized, read_checked,
+    CheckedStruct, EnumField, check_block_out, check_finite, check_flag, check_ptr, read_checked,
     write_block, write_out,
 };
 use crate::camera::{OceanCamera, read_camera};
@@ -236,16 +236,13 @@ pub unsafe extern "C" fn ocean_relief_scene_default(out: *mut OceanReliefScene) 
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
 /// `OCEAN_STATUS_NON_FINITE` for a NaN or infinite member, `OCEAN_STATUS_INVALID_ARGUMENT` for
 /// a camera, scene, method, size or edge the description above refuses (the message names
-/// it), `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_RELIEF_UNIFORMS_SIZE`,
-/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. `out`, `len` and `needed`
-/// follow the size query of `ocean_gpu_context_describe`: `*needed` receives the block's size,
-/// on success and with `OCEAN_STATUS_BUFFER_TOO_SMALL` (the one output written on a failure);
-/// `out` NULL and `len` 0 only ask for it.
+/// it), `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not `OCEAN_RELIEF_UNIFORMS_SIZE`,
+/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`.
 ///
 /// # Safety
 ///
-/// `camera` and `scene` must be readable, `out` NULL or point to `len` writable bytes that no
-/// other thread touches during the call, and `needed` writable.
+/// `camera` and `scene` must be readable, and `out` point to `len` writable bytes that no
+/// other thread touches during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_relief_uniforms(
     camera: *const OceanCamera,
@@ -256,12 +253,11 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
     srgb_encode: u32,
     out: *mut u8,
     len: usize,
-    needed: *mut usize,
 ) -> OceanStatus {
     guard("ocean_relief_uniforms", || {
         check_ptr(camera, "camera")?;
         check_ptr(scene, "scene")?;
-        check_sized(out.cast_const(), "out", len, needed.cast_const())?;
+        check_block_out::<ReliefUniforms>(out, len)?;
         // SAFETY: forwarded from this function's contract.
         let camera = unsafe { read_camera(camera) }?;
         // SAFETY: forwarded from this function's contract.
@@ -277,7 +273,7 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
             srgb_encode,
         )?;
         // SAFETY: forwarded from this function's contract.
-        unsafe { write_block(out, len, needed, &u) }?;
+        unsafe { write_block(out, len, &u) }?;
         Ok(())
     })
 }
@@ -387,8 +383,7 @@ mod tests {
                 7,
                 1,
                 out.as_mut_ptr(),
-                out.len(),
-                &mut 0usize,
+                OCEAN_RELIEF_UNIFORMS_SIZE,
             )
         };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
@@ -444,17 +439,7 @@ mod tests {
                 let mut out = [7u8; 500];
                 // SAFETY: readable inputs, `out` holds at least `len` writable bytes.
                 let status = unsafe {
-                    ocean_relief_uniforms(
-                        desc,
-                        s,
-                        size,
-                        edge,
-                        levels,
-                        srgb,
-                        out.as_mut_ptr(),
-                        len,
-                        &mut 0usize,
-                    )
+                    ocean_relief_uniforms(desc, s, size, edge, levels, srgb, out.as_mut_ptr(), len)
                 };
                 assert!(out.iter().all(|&b| b == 7), "written on failure");
                 (status, last_error())
@@ -467,7 +452,7 @@ mod tests {
             f(&mut s);
             call(&desc, &s, 64, 0, 0, 448)
         };
-        let cases: [(OceanStatus, &str, (OceanStatus, String)); 18] = [
+        let cases: [(OceanStatus, &str, (OceanStatus, String)); 19] = [
             // 64 texels hold 6 levels (64 down to 2); a side that is not a power of two, one.
             (
                 OceanStatus::InvalidArgument,
@@ -485,9 +470,14 @@ mod tests {
                 call_levels(&desc, &good, 48, 0, 2, 0, 448),
             ),
             (
-                OceanStatus::BufferTooSmall,
-                "needs 448",
+                OceanStatus::LengthMismatch,
+                "holds exactly 448",
                 call(&desc, &good, 64, 0, 0, 447),
+            ),
+            (
+                OceanStatus::LengthMismatch,
+                "holds exactly 448",
+                call(&desc, &good, 64, 0, 0, 449),
             ),
             (
                 OceanStatus::InvalidArgument,
@@ -591,17 +581,7 @@ mod tests {
         let mut out = [7u8; 448];
         // SAFETY: readable inputs, `out` holds 448 writable bytes.
         let got = unsafe {
-            ocean_relief_uniforms(
-                &desc,
-                bad.as_ptr(),
-                64,
-                0,
-                1,
-                0,
-                out.as_mut_ptr(),
-                448,
-                &mut 0usize,
-            )
+            ocean_relief_uniforms(&desc, bad.as_ptr(), 64, 0, 1, 0, out.as_mut_ptr(), 448)
         };
         let message = last_error();
         assert!(out.iter().all(|&b| b == 7), "written on failure");
@@ -614,35 +594,15 @@ mod tests {
         // SAFETY: NULL pointers are refused before anything is read or written.
         unsafe {
             assert_eq!(
-                ocean_relief_uniforms(
-                    null(),
-                    &good,
-                    64,
-                    0,
-                    1,
-                    0,
-                    out.as_mut_ptr(),
-                    448,
-                    &mut 0usize
-                ),
+                ocean_relief_uniforms(null(), &good, 64, 0, 1, 0, out.as_mut_ptr(), 448,),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_relief_uniforms(
-                    &desc,
-                    null(),
-                    64,
-                    0,
-                    1,
-                    0,
-                    out.as_mut_ptr(),
-                    448,
-                    &mut 0usize
-                ),
+                ocean_relief_uniforms(&desc, null(), 64, 0, 1, 0, out.as_mut_ptr(), 448,),
                 OceanStatus::NullPointer
             );
             assert_eq!(
-                ocean_relief_uniforms(&desc, &good, 64, 0, 1, 0, null_mut(), 448, &mut 0usize),
+                ocean_relief_uniforms(&desc, &good, 64, 0, 1, 0, null_mut(), 448),
                 OceanStatus::NullPointer
             );
         }

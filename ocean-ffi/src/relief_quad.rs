@@ -170,7 +170,7 @@ pub unsafe extern "C" fn ocean_relief_quad_cones_size(
 /// quadrant tracer reads.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
-/// `OCEAN_STATUS_INVALID_ARGUMENT` if `len` is not 16 N * N. Nothing is written on failure.
+/// `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not 16 N * N. Nothing is written on failure.
 ///
 /// # Safety
 ///
@@ -200,7 +200,7 @@ pub unsafe extern "C" fn ocean_relief_quad_cones_texels(
 
 /// Generates the quad-directional cone map of `map` straight into `rgba` (no handle): `len` =
 /// 16 N * N floats, as `ocean_relief_quad_cones_texels` writes them. Arguments, callback and
-/// statuses as `ocean_relief_quad_cones_create`, with `OCEAN_STATUS_INVALID_ARGUMENT` for a
+/// statuses as `ocean_relief_quad_cones_create`, with `OCEAN_STATUS_LENGTH_MISMATCH` for a
 /// `len` that is not 16 N * N (checked before any work). `rgba` is written only on success,
 /// and then wholly.
 ///

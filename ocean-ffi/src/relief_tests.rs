@@ -381,7 +381,7 @@ fn cancellation_writes_nothing() {
             t.len(),
         )
     };
-    assert_eq!(s, OceanStatus::InvalidArgument);
+    assert_eq!(s, OceanStatus::LengthMismatch);
     assert!(rec.calls.is_empty());
     ocean_relief_map_destroy(m);
 }
@@ -420,7 +420,7 @@ fn map_errors_are_mapped_and_write_nothing() {
     assert!(msg.contains("OCEAN_RELIEF_MAX_SIDE"), "{msg}");
     // Wrong length.
     let (s, msg) = create(&h[..TEXELS - 1], N, N, wrap, refuse);
-    assert_eq!(s, OceanStatus::InvalidArgument);
+    assert_eq!(s, OceanStatus::LengthMismatch);
     assert!(msg.contains("1023") && msg.contains("1024"), "{msg}");
     // NaN, at texel (5, 2): the message names it.
     let mut bad = h.clone();
@@ -532,7 +532,7 @@ fn cone_errors_are_mapped_and_write_nothing() {
     let mut t = vec![-7.0f32; 4 * TEXELS + 1];
     // SAFETY: buffer of the given length.
     let s = unsafe { ocean_relief_cones_texels(c, t.as_mut_ptr(), t.len()) };
-    assert_eq!(s, OceanStatus::InvalidArgument);
+    assert_eq!(s, OceanStatus::LengthMismatch);
     assert!(t.iter().all(|&v| v == -7.0));
     let mut e = vec![0xEEu16; 3 * TEXELS + 2];
     // SAFETY: buffer of the given length.

@@ -15,8 +15,8 @@ use ocean_sao::{
 use core::mem::offset_of;
 
 use crate::boundary::{
-    CEnum, CheckedStruct, EnumField, borrow, byte_len, check_disjoint, check_flag, check_ptr,
-    destroy, read_checked, write_handle, write_out,
+    CEnum, CheckedStruct, EnumField, borrow, byte_len, check_disjoint, check_flag, check_len,
+    check_ptr, destroy, read_checked, write_handle, write_out,
 };
 use crate::camera::{OceanCamera, camera_status, read_camera};
 use crate::sao_depth::source_from;
@@ -620,21 +620,13 @@ pub(crate) unsafe fn buffers<'a>(
     let out_bytes = byte_len::<f32>(out_len, out_name)?;
     let v = sao.sao.viewport();
     let (w, h) = (v.input_width(), v.input_height());
-    if depth_len != v.input_len() {
-        return Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!(
-                "`depth_len` is {depth_len} floats, the {w} x {h} depth buffer holds exactly {}",
-                v.input_len()
-            ),
-        ));
-    }
-    if out_len != want {
-        return Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!("`{out_name}_len` is {out_len} floats, {what} holds exactly {want}"),
-        ));
-    }
+    check_len(
+        "depth_len",
+        depth_len,
+        v.input_len(),
+        &format!("the {w} x {h} depth buffer"),
+    )?;
+    check_len(&format!("{out_name}_len"), out_len, want, what)?;
     check_disjoint(
         (depth.cast::<u8>(), depth_bytes, "depth"),
         (out.cast_const().cast::<u8>(), out_bytes, out_name),
@@ -689,8 +681,9 @@ impl Buffers<'_> {
 /// The result is computed in a buffer of the library's and copied to `ao` at the end.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
-/// alignment for the floats), `OCEAN_STATUS_INVALID_ARGUMENT` if `depth_len` or `ao_len` is not
-/// exactly the size above, the buffers overlap, or a depth value is outside the range (the
+/// alignment for the floats), `OCEAN_STATUS_LENGTH_MISMATCH` if `depth_len` or `ao_len` is not
+/// exactly the size above, `OCEAN_STATUS_INVALID_ARGUMENT` if the buffers overlap or a depth
+/// value is outside the range (the
 /// message gives the first one, in row-major order, with its pixel), `OCEAN_STATUS_NON_FINITE`
 /// for a NaN or infinite depth value (likewise), `OCEAN_STATUS_LENGTH_OVERFLOW` if a length in
 /// bytes exceeds `PTRDIFF_MAX`. `ao` is written only on success, and then wholly.

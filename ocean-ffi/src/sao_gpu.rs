@@ -11,7 +11,7 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 use ocean_gpu::SaoPass;
 use ocean_sao::SaoUniforms;
 
-use crate::boundary::{borrow, destroy, write_block, write_handle};
+use crate::boundary::{borrow, check_block_out, destroy, write_block, write_handle};
 use crate::gpu::OceanGpuContext;
 use crate::sao::{OceanSao, buffers};
 use crate::status::{Error, OceanStatus, guard};
@@ -156,33 +156,30 @@ const _: () = assert!(size_of::<SaoUniforms>() == OCEAN_SAO_UNIFORMS_SIZE);
 /// 4. `sao_blur` `blur_horizontal`, then `blur_vertical`: packed to packed, the last one also
 ///    writing A (`r32f`, output size), with a memory barrier between the dispatches.
 ///
-/// `out`, `len` and `needed` follow the size query of `ocean_gpu_context_describe`: `*needed`
-/// receives `OCEAN_SAO_UNIFORMS_SIZE`; `out` NULL and `len` 0 only ask for it (and `*levels`).
-///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
-/// `OCEAN_STATUS_BUFFER_TOO_SMALL` if `len` is below `OCEAN_SAO_UNIFORMS_SIZE` (with `*needed`
-/// written), `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing else is
-/// written on failure.
+/// `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not `OCEAN_SAO_UNIFORMS_SIZE`,
+/// `OCEAN_STATUS_LENGTH_OVERFLOW` if `len` exceeds `PTRDIFF_MAX`. Nothing is written on
+/// failure.
 ///
 /// # Safety
 ///
-/// `out` must be NULL or point to `len` writable bytes, and `needed` and `levels` to writable
-/// values, none touched by another thread during the call.
+/// `out` must point to `len` writable bytes and `levels` to a writable value, none touched by
+/// another thread during the call.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ocean_sao_uniforms(
     sao: *const OceanSao,
     out: *mut u8,
     len: usize,
-    needed: *mut usize,
     levels: *mut u32,
 ) -> OceanStatus {
     guard("ocean_sao_uniforms", || {
         let s = borrow(sao, "sao")?;
-        crate::boundary::check_ptr(needed.cast_const(), "needed")?;
+        crate::boundary::check_ptr(out.cast_const(), "out")?;
         crate::boundary::check_ptr(levels.cast_const(), "levels")?;
+        check_block_out::<SaoUniforms>(out, len)?;
         let u = SaoUniforms::new(s.sao());
         // SAFETY: forwarded from this function's contract.
-        unsafe { write_block(out, len, needed, &u) }?;
+        unsafe { write_block(out, len, &u) }?;
         // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
         unsafe { levels.write(u.levels()) };
         Ok(())
@@ -319,45 +316,41 @@ mod tests {
         assert!(cpu_ao.iter().any(|&a| a < 0.5));
 
         // The uniform block the GLSL export reads: the bytes SaoPass uploads.
-        let mut block = vec![0u8; OCEAN_SAO_UNIFORMS_SIZE + 4];
+        let mut block = vec![0xAAu8; OCEAN_SAO_UNIFORMS_SIZE + 4];
         let mut levels = 0u32;
         // SAFETY: live handle, writable buffers.
         let status = unsafe {
             ocean_sao_uniforms(
                 sao,
                 block.as_mut_ptr(),
-                block.len(),
-                &mut 0usize,
+                OCEAN_SAO_UNIFORMS_SIZE,
                 &mut levels,
             )
         };
         assert_eq!(status, OceanStatus::Ok, "{}", last_error());
         let want = SaoUniforms::new(crate::boundary::borrow(sao, "sao").unwrap().sao());
         assert_eq!(&block[..OCEAN_SAO_UNIFORMS_SIZE], bytemuck::bytes_of(&want));
+        assert_eq!(block[OCEAN_SAO_UNIFORMS_SIZE..], [0xAA; 4]);
         assert_eq!(levels, want.levels());
         assert!((1..=14).contains(&levels));
-        let mut small = [7u8; 16];
-        let mut needed = 0usize;
-        // SAFETY: live handle, writable buffers.
-        let status = unsafe {
-            ocean_sao_uniforms(
-                sao,
-                small.as_mut_ptr(),
-                small.len(),
-                &mut needed,
-                &mut levels,
-            )
-        };
-        // Too small: the size needed is reported, the buffer untouched.
-        assert_eq!(status, OceanStatus::BufferTooSmall);
-        assert_eq!(needed, OCEAN_SAO_UNIFORMS_SIZE);
-        assert_eq!(small, [7u8; 16]);
-        // A pure query: NULL and 0 give the size.
-        needed = 0;
-        // SAFETY: live handle, writable outputs.
-        let status = unsafe { ocean_sao_uniforms(sao, null_mut(), 0, &mut needed, &mut levels) };
-        assert_eq!(status, OceanStatus::Ok, "{}", last_error());
-        assert_eq!(needed, OCEAN_SAO_UNIFORMS_SIZE);
+        // Any other length, one byte more or less: refused, nothing written.
+        for len in [OCEAN_SAO_UNIFORMS_SIZE - 1, OCEAN_SAO_UNIFORMS_SIZE + 1] {
+            let mut other = vec![7u8; OCEAN_SAO_UNIFORMS_SIZE + 1];
+            let mut untouched = 99u32;
+            // SAFETY: live handle, `other` holds at least `len` writable bytes.
+            let status =
+                unsafe { ocean_sao_uniforms(sao, other.as_mut_ptr(), len, &mut untouched) };
+            assert_eq!(status, OceanStatus::LengthMismatch, "{len}");
+            assert!(
+                last_error().contains("holds exactly 304"),
+                "{}",
+                last_error()
+            );
+            assert!(other.iter().all(|&b| b == 7) && untouched == 99);
+        }
+        // SAFETY: live handle; NULL is refused before anything is read or written.
+        let status = unsafe { ocean_sao_uniforms(sao, null_mut(), 0, &mut levels) };
+        assert_eq!(status, OceanStatus::NullPointer);
 
         // Another context: refused, nothing written.
         let Some(other) = context() else { return };

@@ -9,8 +9,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 /// Result of every fallible `ocean_*` function.
 ///
 /// `OCEAN_STATUS_OK` (0) is success; any other value is a failure, after which no output
-/// parameter has been written (but for the size that `OCEAN_STATUS_BUFFER_TOO_SMALL` reports)
-/// and `ocean_last_error_message()` describes what went wrong.
+/// parameter has been written and `ocean_last_error_message()` describes what went wrong.
 /// The numeric values are stable: new codes are only ever appended.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -52,10 +51,11 @@ pub enum OceanStatus {
     /// error, reading an image back failed, or naga could not translate a shader. The message
     /// carries the backend's text.
     GpuFailure = 12,
-    /// A caller's buffer is too small for a variable-length result (or NULL, to ask for its
-    /// size). The one status after which an output is written: the function's `needed`
-    /// out-parameter holds the size required; the buffer itself is untouched.
-    BufferTooSmall = 13,
+    /// A buffer's length (`len`, `n`, `*_len`) is not the exact length the call needs: the
+    /// function's documentation says how to know it beforehand (from the call's own arguments,
+    /// a constant such as `OCEAN_SAO_UNIFORMS_SIZE`, or a named size query). Nothing was read
+    /// or written through the buffer.
+    LengthMismatch = 13,
     /// The caller's progress callback asked to stop (returned nonzero); nothing was written.
     Cancelled = 14,
     /// A call answers for what the last evaluation drew, and there is none: the scene was
@@ -88,7 +88,7 @@ const ALL_STATUSES: [OceanStatus; 18] = [
     OceanStatus::OutsideGrid,
     OceanStatus::NoAdapter,
     OceanStatus::GpuFailure,
-    OceanStatus::BufferTooSmall,
+    OceanStatus::LengthMismatch,
     OceanStatus::Cancelled,
     OceanStatus::NotEvaluated,
     OceanStatus::InvalidHandle,
@@ -111,7 +111,9 @@ impl OceanStatus {
             OceanStatus::OutsideGrid => c"a wave train box lies wholly outside the water grid",
             OceanStatus::NoAdapter => c"no usable GPU adapter",
             OceanStatus::GpuFailure => c"the GPU backend failed",
-            OceanStatus::BufferTooSmall => c"the buffer is too small for the result",
+            OceanStatus::LengthMismatch => {
+                c"a buffer's length is not the exact length the call needs"
+            }
             OceanStatus::Cancelled => c"cancelled by the caller's progress callback",
             OceanStatus::NotEvaluated => c"no evaluated frame to answer for: evaluate first",
             OceanStatus::InvalidHandle => {

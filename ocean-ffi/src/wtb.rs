@@ -16,7 +16,8 @@ use ocean_wtb::{BoxFrame, Terrain, TrainSource, WaterGrid, Wind, WtbError};
 
 use crate::boundary::{
     CEnum, CheckedStruct, EnumField, borrow, byte_len, check_disjoint, check_finite, check_flag,
-    check_ptr, check_reserved, check_time, destroy, read_checked, read_in, write_handle, write_out,
+    check_len, check_ptr, check_reserved, check_time, destroy, read_checked, read_in, write_handle,
+    write_out,
 };
 use crate::camera::{OceanCamera, read_camera};
 use crate::status::{Error, OceanStatus, guard};
@@ -539,18 +540,16 @@ unsafe fn terrain(grid: &WaterGrid, heights: *const f32, len: usize) -> Result<T
         return Ok(Terrain::deep(grid));
     }
     byte_len::<f32>(len, "terrain_heights")?;
-    if len != grid.len() {
-        return Err(Error::new(
-            OceanStatus::InvalidArgument,
-            format!(
-                "`terrain_len` is {len}, the water grid has {} x {} = {} points: give one height \
-                 per point, row-major",
-                grid.nx(),
-                grid.nz(),
-                grid.len()
-            ),
-        ));
-    }
+    check_len(
+        "terrain_len",
+        len,
+        grid.len(),
+        &format!(
+            "the {} x {} water grid (one height per point, row-major)",
+            grid.nx(),
+            grid.nz()
+        ),
+    )?;
     // SAFETY: non-NULL and aligned (checked), the byte size fits in isize (checked), and the
     // caller guarantees `len` readable floats that nobody writes during the call.
     let h = unsafe { core::slice::from_raw_parts(heights, len) };
@@ -817,9 +816,9 @@ pub unsafe extern "C" fn ocean_wtb_box_desc_default(out: *mut OceanBoxDesc) -> O
 /// with `terrain_len` != 0; `OCEAN_STATUS_MISALIGNED_POINTER`; `OCEAN_STATUS_EMPTY` if `nx` or
 /// `nz` is 0; `OCEAN_STATUS_LENGTH_OVERFLOW` if `nx * nz` overflows; `OCEAN_STATUS_NON_FINITE`
 /// for a NaN or infinite origin, spacing or height; `OCEAN_STATUS_INVALID_ARGUMENT` for a side
-/// outside 2 to 4096, a spacing outside [1e-3, 1e4] m, an origin beyond 1e9 m, or
-/// `terrain_len` != nx * nz. On failure `*out` is unchanged. Free the scene with
-/// `ocean_wtb_scene_destroy`.
+/// outside 2 to 4096, a spacing outside [1e-3, 1e4] m or an origin beyond 1e9 m;
+/// `OCEAN_STATUS_LENGTH_MISMATCH` if `terrain_len` != nx * nz. On failure `*out` is
+/// unchanged. Free the scene with `ocean_wtb_scene_destroy`.
 ///
 /// # Safety
 ///
@@ -868,7 +867,7 @@ pub extern "C" fn ocean_wtb_scene_destroy(scene: *mut OceanWtbScene) {
 /// evaluation.
 ///
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (or NULL with
-/// a length), `OCEAN_STATUS_INVALID_ARGUMENT` if `terrain_len` != nx * nz,
+/// a length), `OCEAN_STATUS_LENGTH_MISMATCH` if `terrain_len` != nx * nz,
 /// `OCEAN_STATUS_NON_FINITE` for a NaN or infinite height (the message gives its index). On
 /// failure the scene keeps its terrain.
 ///
@@ -1129,9 +1128,9 @@ unsafe fn frustum(camera: *const OceanCamera) -> Result<Option<Frustum>, Error> 
 /// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
 /// alignment for OceanVec3, 8 for the camera and stats), `OCEAN_STATUS_EMPTY` if `n`
 /// is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if `n * sizeof(OceanVec3)` exceeds `PTRDIFF_MAX`,
-/// `OCEAN_STATUS_INVALID_ARGUMENT` if `n` != nx * nz, the outputs overlap, or the camera is
-/// not one `OceanCamera` accepts, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time` or
-/// matrix element. Nothing is written on failure.
+/// `OCEAN_STATUS_LENGTH_MISMATCH` if `n` != nx * nz, `OCEAN_STATUS_INVALID_ARGUMENT` if the
+/// outputs overlap or the camera is not one `OceanCamera` accepts, `OCEAN_STATUS_NON_FINITE`
+/// for a NaN or infinite `time` or matrix element. Nothing is written on failure.
 ///
 /// # Safety
 ///
@@ -1279,17 +1278,12 @@ unsafe fn evaluate(
             .unwrap_or_else(PoisonError::into_inner);
         let mut scene = scene.lock();
         let grid = *scene.grid();
-        if n != grid.len() {
-            return Err(Error::new(
-                OceanStatus::InvalidArgument,
-                format!(
-                    "`n` is {n}, the water grid has {} x {} = {} points",
-                    grid.nx(),
-                    grid.nz(),
-                    grid.len()
-                ),
-            ));
-        }
+        check_len(
+            "n",
+            n,
+            grid.len(),
+            &format!("the {} x {} water grid", grid.nx(), grid.nz()),
+        )?;
         let frame = scene.frame(time, view.as_ref())?;
         // SAFETY: both pointers are non-NULL and aligned, the byte size fits in isize and the
         // ranges are disjoint (all checked above); the caller guarantees `n` writable elements

@@ -375,21 +375,6 @@ static inline void matrix_written_within(int i, size_t len, size_t elem, const c
                 len, elem);
 }
 
-/* The size query (ocean_gpu_context_describe's rules, which every function with a `needed`
- * parameter follows): `*needed` is written on success and with OCEAN_STATUS_BUFFER_TOO_SMALL,
- * then above the `len` given. */
-static inline void matrix_needed_written(int i, int too_small, size_t len)
-{
-    size_t v;
-    if (memcmp(slot[i], sentinel_bytes, sizeof v) == 0) {
-        matrix_fail("`needed` not written");
-        return;
-    }
-    memcpy(&v, slot[i], sizeof v);
-    if (too_small && v <= len)
-        matrix_fail("`needed` = %zu with OCEAN_STATUS_BUFFER_TOO_SMALL for `len` = %zu", v, len);
-}
-
 static inline size_t matrix_count(size_t len, size_t elem)
 {
     return len < MATRIX_BUF / elem ? len : MATRIX_BUF / elem;

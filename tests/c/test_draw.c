@@ -39,7 +39,6 @@
 #include "check.h"
 
 /* The size the uniform-block functions report (OCEAN_*_UNIFORMS_SIZE). */
-static size_t needed_size;
 
 #define W 96
 #define H 64
@@ -109,7 +108,7 @@ static void test_uniforms(OceanSpectrum *spectrum, OceanLighting *lighting, size
     OK(ocean_surface_draw_params_default(&p));
     memset(block, 0xA5, sizeof block);
     if (!OK(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, 2.0, W, H, block,
-                                 sizeof block, &needed_size)))
+                                 OCEAN_SURFACE_UNIFORMS_SIZE)))
         return;
     CHECK(all_bytes(block + OCEAN_SURFACE_UNIFORMS_SIZE, 8, 0xA5), "wrote past the block");
     /* mesh_grid: (0 - 10, -4, -100 - (-20)), spacing 0.5; mesh_counts 64 x 32. */
@@ -136,12 +135,12 @@ static void test_uniforms(OceanSpectrum *spectrum, OceanLighting *lighting, size
           "sky (%g, %g)", f32_at(block, 256), f32_at(block, 260));
 
     /* Without a mesh: the mesh fields are zero, nothing else differs. */
-    OK(ocean_surface_uniforms(&cam, spectrum, lighting, &p, NULL, 2.0, W, H, plain, sizeof plain, &needed_size));
+    OK(ocean_surface_uniforms(&cam, spectrum, lighting, &p, NULL, 2.0, W, H, plain, sizeof plain));
     CHECK(memcmp(plain, block, 320) == 0, "the block depends on the mesh beyond its fields");
     CHECK(all_bytes(plain + 320, 32, 0), "mesh fields not zero without a mesh");
     /* Another time: the same block. */
     OK(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, 1.0e6, W, H, later,
-                            sizeof later, &needed_size));
+                            sizeof later));
     CHECK(memcmp(later, block, OCEAN_SURFACE_UNIFORMS_SIZE) == 0, "the block depends on time");
 }
 
@@ -219,45 +218,49 @@ static void test_errors(OceanSpectrum *spectrum, OceanLighting *lighting, size_t
 
     OK(ocean_surface_draw_params_default(&p));
     memset(block, 0x5A, sizeof block);
+    /* The block's exact size, neither less nor more (a buffer for another version of it). */
     EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, W, H, block,
-                                    len - 1, &needed_size),
-               OCEAN_STATUS_BUFFER_TOO_SMALL, "352");
-    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, 0, H, block, len, &needed_size),
+                                    len - 1),
+               OCEAN_STATUS_LENGTH_MISMATCH, "holds exactly 352");
+    EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, W, H, block,
+                                    len + 1),
+               OCEAN_STATUS_LENGTH_MISMATCH, "holds exactly 352");
+    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, 0, H, block, len),
            OCEAN_STATUS_EMPTY);
-    EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, NAN, W, H, block, len, &needed_size),
+    EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, NAN, W, H, block, len),
                OCEAN_STATUS_NON_FINITE, "time");
     EXPECT_MSG(ocean_surface_uniforms(&below, spectrum, lighting, &p, &mesh, 0.0, W, H, block,
-                                    len, &needed_size),
+                                    len),
                OCEAN_STATUS_INVALID_ARGUMENT, "above the sea");
     q = p;
     q.srgb_encode = 2;
-    EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len),
                OCEAN_STATUS_INVALID_ARGUMENT, "srgb_encode");
     q = p;
     q.n_max = 0.5;
-    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len),
            OCEAN_STATUS_INVALID_ARGUMENT);
     q = p;
     q.sky_map_size = 100;
-    EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &q, &mesh, 0.0, W, H, block, len),
                OCEAN_STATUS_INVALID_ARGUMENT, "sky_map_size");
     bad_mesh.spacing = 0.0;
     EXPECT_MSG(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &bad_mesh, 0.0, W, H, block,
-                                    len, &needed_size),
+                                    len),
                OCEAN_STATUS_INVALID_ARGUMENT, "mesh");
     bad_mesh = mesh;
     bad_mesh.nz = 0;
-    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &bad_mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &bad_mesh, 0.0, W, H, block, len),
            OCEAN_STATUS_EMPTY);
-    EXPECT(ocean_surface_uniforms(NULL, spectrum, lighting, &p, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(NULL, spectrum, lighting, &p, &mesh, 0.0, W, H, block, len),
            OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_surface_uniforms(&cam, NULL, lighting, &p, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(&cam, NULL, lighting, &p, &mesh, 0.0, W, H, block, len),
            OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_surface_uniforms(&cam, spectrum, NULL, &p, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(&cam, spectrum, NULL, &p, &mesh, 0.0, W, H, block, len),
            OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, NULL, &mesh, 0.0, W, H, block, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, NULL, &mesh, 0.0, W, H, block, len),
            OCEAN_STATUS_NULL_POINTER);
-    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, W, H, NULL, len, &needed_size),
+    EXPECT(ocean_surface_uniforms(&cam, spectrum, lighting, &p, &mesh, 0.0, W, H, NULL, len),
            OCEAN_STATUS_NULL_POINTER);
     CHECK(all_bytes(block, sizeof block, 0x5A), "the block was written on failure");
 
@@ -265,13 +268,13 @@ static void test_errors(OceanSpectrum *spectrum, OceanLighting *lighting, size_t
         texels[i] = 7.0f;
     if (12 * n + 1 <= sizeof texels / sizeof texels[0]) {
         EXPECT_MSG(ocean_surface_wave_texels(&cam, spectrum, 0.0, texels, 12 * n + 1),
-                   OCEAN_STATUS_INVALID_ARGUMENT, "exactly");
+                   OCEAN_STATUS_LENGTH_MISMATCH, "exactly");
     }
     EXPECT(ocean_surface_wave_texels(&cam, spectrum, INFINITY, texels, 12 * n),
            OCEAN_STATUS_NON_FINITE);
     EXPECT(ocean_surface_wave_texels(&cam, NULL, 0.0, texels, 12 * n), OCEAN_STATUS_NULL_POINTER);
     EXPECT(ocean_surface_wave_texels(&cam, spectrum, 0.0, NULL, 12 * n), OCEAN_STATUS_NULL_POINTER);
-    EXPECT_MSG(ocean_surface_fresnel_texels(texels, 33 * 32), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_surface_fresnel_texels(texels, 33 * 32), OCEAN_STATUS_LENGTH_MISMATCH,
                "1089");
     EXPECT(ocean_surface_fresnel_texels(NULL, 33 * 33), OCEAN_STATUS_NULL_POINTER);
     for (i = 0; i < sizeof texels / sizeof texels[0]; i++)

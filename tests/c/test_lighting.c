@@ -284,8 +284,8 @@ static void test_spectrum(void)
         CHECK(untouched == (OceanSpectrum *)&p, "a failed create wrote *out");
 
         memset(copy, 0x5a, sizeof copy);
-        EXPECT_MSG(ocean_spectrum_waves(s, copy, 39), OCEAN_STATUS_INVALID_ARGUMENT, "40");
-        EXPECT(ocean_spectrum_waves(s, copy, 41), OCEAN_STATUS_INVALID_ARGUMENT);
+        EXPECT_MSG(ocean_spectrum_waves(s, copy, 39), OCEAN_STATUS_LENGTH_MISMATCH, "40");
+        EXPECT(ocean_spectrum_waves(s, copy, 41), OCEAN_STATUS_LENGTH_MISMATCH);
         EXPECT(ocean_spectrum_waves(s, NULL, 40), OCEAN_STATUS_NULL_POINTER);
         EXPECT(ocean_spectrum_waves(NULL, copy, 40), OCEAN_STATUS_NULL_POINTER);
         {
@@ -1218,11 +1218,11 @@ static void test_lighting(void)
         for (k = 0; k < sizeof buf / sizeof buf[0]; k++)
             buf[k] = -7.0f;
         memcpy(pattern, buf, sizeof buf);
-        EXPECT_MSG(ocean_sky_map_copy_level(map, 4, buf, 65), OCEAN_STATUS_INVALID_ARGUMENT,
+        EXPECT_MSG(ocean_sky_map_copy_level(map, 4, buf, 65), OCEAN_STATUS_LENGTH_MISMATCH,
                    "64");
-        EXPECT(ocean_sky_map_copy_level(map, 4, buf, 63), OCEAN_STATUS_INVALID_ARGUMENT);
-        EXPECT(ocean_sky_map_copy_level(map, 4, buf, 16), OCEAN_STATUS_INVALID_ARGUMENT);
-        EXPECT(ocean_sky_map_copy_level(map, 4, buf, 0), OCEAN_STATUS_INVALID_ARGUMENT);
+        EXPECT(ocean_sky_map_copy_level(map, 4, buf, 63), OCEAN_STATUS_LENGTH_MISMATCH);
+        EXPECT(ocean_sky_map_copy_level(map, 4, buf, 16), OCEAN_STATUS_LENGTH_MISMATCH);
+        EXPECT(ocean_sky_map_copy_level(map, 4, buf, 0), OCEAN_STATUS_LENGTH_MISMATCH);
         EXPECT(ocean_sky_map_copy_level(map, 99, buf, 64), OCEAN_STATUS_INVALID_ARGUMENT);
         EXPECT(ocean_sky_map_copy_level(map, 4, NULL, 64), OCEAN_STATUS_NULL_POINTER);
         EXPECT(ocean_sky_map_copy_level(NULL, 4, buf, 64), OCEAN_STATUS_NULL_POINTER);

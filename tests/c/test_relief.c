@@ -44,7 +44,6 @@
 #include "check.h"
 
 /* The size the uniform-block functions report (OCEAN_*_UNIFORMS_SIZE). */
-static size_t needed_size;
 
 #define FLAT 16
 #define FLAT_TEXELS (FLAT * FLAT)
@@ -546,7 +545,7 @@ static void test_quad(void)
     for (i = 0; i < 16 * BOX_TEXELS; i++)
         quad[i] = 7.0f;
     EXPECT_MSG(ocean_relief_quad_cones_texels(cones, quad, 4 * BOX_TEXELS),
-               OCEAN_STATUS_INVALID_ARGUMENT, "len");
+               OCEAN_STATUS_LENGTH_MISMATCH, "len");
     EXPECT(ocean_relief_quad_cones_texels(cones, NULL, 16 * BOX_TEXELS),
            OCEAN_STATUS_NULL_POINTER);
     EXPECT(ocean_relief_quad_cones_texels(cones, (float *)((char *)quad + 2), 16 * BOX_TEXELS),
@@ -554,7 +553,7 @@ static void test_quad(void)
     EXPECT(ocean_relief_quad_cones_texels(NULL, quad, 16 * BOX_TEXELS),
            OCEAN_STATUS_NULL_POINTER);
     EXPECT_MSG(ocean_relief_quad_generate_texels(map, &p, NULL, NULL, quad, 16 * BOX_TEXELS - 1),
-               OCEAN_STATUS_INVALID_ARGUMENT, "len");
+               OCEAN_STATUS_LENGTH_MISMATCH, "len");
     p.kind = 7;
     EXPECT_MSG(ocean_relief_quad_generate_texels(map, &p, NULL, NULL, quad, 16 * BOX_TEXELS),
                OCEAN_STATUS_INVALID_ARGUMENT, "kind");
@@ -658,7 +657,7 @@ static void test_errors(void)
     EXPECT_MSG(ocean_relief_map_create_f32(h, 128, 16, 8, 0, 0, &map),
                OCEAN_STATUS_INVALID_ARGUMENT, "square");
     EXPECT(ocean_relief_map_create_f32(h, FLAT_TEXELS - 1, FLAT, FLAT, 0, 0, &map),
-           OCEAN_STATUS_INVALID_ARGUMENT);
+           OCEAN_STATUS_LENGTH_MISMATCH);
     EXPECT_MSG(ocean_relief_map_create_f32(h, FLAT_TEXELS, FLAT, FLAT, 5, 0, &map),
                OCEAN_STATUS_INVALID_ARGUMENT, "edge");
     EXPECT(ocean_relief_map_create_f32(NULL, FLAT_TEXELS, FLAT, FLAT, 0, 0, &map),
@@ -702,7 +701,7 @@ static void test_errors(void)
     for (i = 0; i < 4 * FLAT_TEXELS; i++)
         out[i] = 7.0f;
     EXPECT(ocean_relief_generate_texels(map, &p, NULL, NULL, out, 4 * FLAT_TEXELS - 4),
-           OCEAN_STATUS_INVALID_ARGUMENT);
+           OCEAN_STATUS_LENGTH_MISMATCH);
     EXPECT_MSG(ocean_relief_generate_encoded(map, &p, NULL, NULL, 9, out, 3 * FLAT_TEXELS),
                OCEAN_STATUS_INVALID_ARGUMENT, "encoding");
     EXPECT(ocean_relief_generate_encoded(map, &p, NULL, NULL, OCEAN_RELIEF_ENCODING_F32,
@@ -764,7 +763,7 @@ static void test_uniforms(void)
     /* A sky: its coefficients reach the block as E / pi, a Lambertian surface's radiance. */
     scene.sky.k[2].g = 3.0;
     if (!OK(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 8, 1, block,
-                                  sizeof block, &needed_size)))
+                                  sizeof block)))
         return;
     {
         float row[4];
@@ -803,25 +802,28 @@ static void test_uniforms(void)
         OceanReliefScene zeroed = scene;
         memset(zeroed.corners, 0, sizeof zeroed.corners);
         EXPECT(ocean_relief_uniforms(&camera, &zeroed, 256, OCEAN_RELIEF_EDGE_WRAP, 8, 1, block,
-                                     sizeof block, &needed_size),
+                                     sizeof block),
                OCEAN_STATUS_INVALID_ARGUMENT);
     }
     EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 9, 1, block,
-                                 sizeof block, &needed_size),
+                                 sizeof block),
            OCEAN_STATUS_INVALID_ARGUMENT);
 
     memset(small, 0x5A, sizeof small);
-    EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, 1, small,
-                                 sizeof small, &needed_size),
-           OCEAN_STATUS_BUFFER_TOO_SMALL);
+    EXPECT_MSG(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, 1, small,
+                                     sizeof small),
+               OCEAN_STATUS_LENGTH_MISMATCH, "holds exactly 448");
+    EXPECT_MSG(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, 1, small,
+                                     sizeof small + 2),
+               OCEAN_STATUS_LENGTH_MISMATCH, "holds exactly 448");
     scene.sky.k[8].b = NAN;
     EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, 1, block,
-                                 sizeof block, &needed_size),
+                                 sizeof block),
            OCEAN_STATUS_NON_FINITE);
     scene.sky.k[8].b = 0.0;
     scene.tiles_u = 0.0;
     EXPECT(ocean_relief_uniforms(&camera, &scene, 256, OCEAN_RELIEF_EDGE_WRAP, 1, 1, small,
-                                 sizeof block, &needed_size),
+                                 sizeof block),
            OCEAN_STATUS_INVALID_ARGUMENT);
     for (i = 0; i < sizeof small; i++)
         if (small[i] != 0x5A)

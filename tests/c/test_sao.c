@@ -32,7 +32,6 @@
 #include "check.h"
 
 /* The size the uniform-block functions report (OCEAN_*_UNIFORMS_SIZE). */
-static size_t needed_size;
 
 static const double PI = 3.14159265358979323846;
 
@@ -509,11 +508,11 @@ static void test_run_errors(const OceanSao *sao)
     EXPECT(ocean_sao_run(NULL, d, IN_LEN, ao, OUT_LEN), OCEAN_STATUS_NULL_POINTER);
     EXPECT(ocean_sao_run(sao, NULL, IN_LEN, ao, OUT_LEN), OCEAN_STATUS_NULL_POINTER);
     EXPECT(ocean_sao_run(sao, d, IN_LEN, NULL, OUT_LEN), OCEAN_STATUS_NULL_POINTER);
-    EXPECT_MSG(ocean_sao_run(sao, d, IN_LEN - 1, ao, OUT_LEN), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_run(sao, d, IN_LEN - 1, ao, OUT_LEN), OCEAN_STATUS_LENGTH_MISMATCH,
                "depth_len");
-    EXPECT_MSG(ocean_sao_run(sao, d, IN_LEN, ao, OUT_LEN + 1), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_run(sao, d, IN_LEN, ao, OUT_LEN + 1), OCEAN_STATUS_LENGTH_MISMATCH,
                "ao_len");
-    EXPECT_MSG(ocean_sao_run(sao, d, IN_LEN, ao, IN_LEN), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_run(sao, d, IN_LEN, ao, IN_LEN), OCEAN_STATUS_LENGTH_MISMATCH,
                "128 x 88");
     /* The AO written over the depth it reads. */
     EXPECT_MSG(ocean_sao_run(sao, d, IN_LEN, d + 10, OUT_LEN), OCEAN_STATUS_INVALID_ARGUMENT,
@@ -538,7 +537,7 @@ static void test_run_errors(const OceanSao *sao)
                "outside [0, 1]");
     d[100 * W + 17] = depth_gl[100 * W + 17];
     EXPECT(ocean_sao_view_z(sao, d, IN_LEN, NULL, IN_LEN), OCEAN_STATUS_NULL_POINTER);
-    EXPECT_MSG(ocean_sao_view_z(sao, d, IN_LEN, z, OUT_LEN), OCEAN_STATUS_INVALID_ARGUMENT,
+    EXPECT_MSG(ocean_sao_view_z(sao, d, IN_LEN, z, OUT_LEN), OCEAN_STATUS_LENGTH_MISMATCH,
                "z_len");
     EXPECT(ocean_sao_describe(NULL, NULL), OCEAN_STATUS_NULL_POINTER);
     CHECK(untouched(ao, OUT_LEN), "a failed run wrote the AO buffer");
@@ -551,18 +550,18 @@ static void test_run_errors(const OceanSao *sao)
 
 /* The uniform block of the exported shaders: its size, the z constants that ocean_sao_describe
  * reports at offset 0, the sizes at offsets 32-51 (the binding table's layout), a level count
- * for a 160 x 120 input (at most 1 + floor(log2(120)) = 7 levels), and BUFFER_TOO_SMALL with
- * nothing written for a short buffer. */
+ * for a 160 x 120 input (at most 1 + floor(log2(120)) = 7 levels), and LENGTH_MISMATCH with
+ * nothing written for a buffer of any other length. */
 static void check_uniforms(const OceanSao *sao)
 {
-    unsigned char block[OCEAN_SAO_UNIFORMS_SIZE], small[16];
+    unsigned char block[OCEAN_SAO_UNIFORMS_SIZE], other[OCEAN_SAO_UNIFORMS_SIZE + 1];
     float z[4];
     uint32_t sizes[5], levels = 0, kept = 99;
     OceanSaoInfo info;
     size_t i;
 
     CHECK(OCEAN_SAO_UNIFORMS_SIZE == 304, "uniform block of %d bytes", OCEAN_SAO_UNIFORMS_SIZE);
-    if (!OK(ocean_sao_uniforms(sao, block, sizeof block, &needed_size, &levels)) ||
+    if (!OK(ocean_sao_uniforms(sao, block, sizeof block, &levels)) ||
         !OK(ocean_sao_describe(sao, &info)))
         return;
     memcpy(z, block, sizeof z);
@@ -575,19 +574,17 @@ static void check_uniforms(const OceanSao *sao)
           sizes[2], sizes[3]);
     CHECK(sizes[4] == GUARD, "guard %u", sizes[4]);
     CHECK(levels >= 1 && levels <= 7, "%u z levels", levels);
-    memset(small, 7, sizeof small);
-    needed_size = 0;
-    EXPECT(ocean_sao_uniforms(sao, small, sizeof small, &needed_size, &kept),
-           OCEAN_STATUS_BUFFER_TOO_SMALL);
-    CHECK(small[0] == 7 && small[15] == 7 && kept == 99, "nothing but the size written");
-    CHECK(needed_size == OCEAN_SAO_UNIFORMS_SIZE, "needed %zu", needed_size);
-    /* NULL and 0 ask for the size; NULL with a length is an error. */
-    needed_size = 0;
-    OK(ocean_sao_uniforms(sao, NULL, 0, &needed_size, &kept));
-    CHECK(needed_size == OCEAN_SAO_UNIFORMS_SIZE, "queried %zu", needed_size);
-    EXPECT(ocean_sao_uniforms(sao, NULL, 16, &needed_size, &kept), OCEAN_STATUS_NULL_POINTER);
-    EXPECT_MSG(ocean_sao_uniforms(sao, small, sizeof small, NULL, &kept),
-               OCEAN_STATUS_NULL_POINTER, "needed");
+    memset(other, 7, sizeof other);
+    EXPECT_MSG(ocean_sao_uniforms(sao, other, sizeof other, &kept), OCEAN_STATUS_LENGTH_MISMATCH,
+               "holds exactly 304");
+    EXPECT_MSG(ocean_sao_uniforms(sao, other, sizeof other - 2, &kept),
+               OCEAN_STATUS_LENGTH_MISMATCH, "holds exactly 304");
+    for (i = 0; i < sizeof other && other[i] == 7; i++)
+        ;
+    CHECK(i == sizeof other && kept == 99, "written on failure");
+    EXPECT(ocean_sao_uniforms(sao, NULL, 0, &kept), OCEAN_STATUS_NULL_POINTER);
+    EXPECT_MSG(ocean_sao_uniforms(sao, other, sizeof block, NULL), OCEAN_STATUS_NULL_POINTER,
+               "levels");
 }
 
 /* The GPU passes on the library's headless device (ocean_sao_gpu_*): the CPU's AO within 2/255

@@ -596,8 +596,8 @@ static void test_create_errors(void)
     g.origin_z = -INFINITY;
     CREATE_FAILS(&g, NULL, 0, OCEAN_STATUS_NON_FINITE, "create(origin -inf)");
     g = grid_desc();
-    CREATE_FAILS(&g, terrain, NPTS - 1, OCEAN_STATUS_INVALID_ARGUMENT, "create(terrain short)");
-    CREATE_FAILS(&g, terrain, NPTS + 1, OCEAN_STATUS_INVALID_ARGUMENT, "create(terrain long)");
+    CREATE_FAILS(&g, terrain, NPTS - 1, OCEAN_STATUS_LENGTH_MISMATCH, "create(terrain short)");
+    CREATE_FAILS(&g, terrain, NPTS + 1, OCEAN_STATUS_LENGTH_MISMATCH, "create(terrain long)");
     CREATE_FAILS(&g, NULL, NPTS, OCEAN_STATUS_NULL_POINTER, "create(terrain NULL, len)");
     memcpy(bad, terrain, sizeof bad);
     bad[77] = NAN;
@@ -759,7 +759,7 @@ static void test_unchanged_after_errors(OceanWtbScene *s, uint32_t id_a)
     expect(ocean_wtb_scene_set_budget_explicit(s, 1, NULL), OCEAN_STATUS_NULL_POINTER,
            "budget(explicit NULL)");
 
-    expect(ocean_wtb_scene_set_terrain(s, terrain, NPTS - 1), OCEAN_STATUS_INVALID_ARGUMENT,
+    expect(ocean_wtb_scene_set_terrain(s, terrain, NPTS - 1), OCEAN_STATUS_LENGTH_MISMATCH,
            "terrain(short)");
     expect(ocean_wtb_scene_set_terrain(s, NULL, NPTS), OCEAN_STATUS_NULL_POINTER, "terrain(NULL)");
     memcpy(bad, terrain, sizeof bad);
@@ -844,7 +844,7 @@ static void test_evaluate_errors(OceanWtbScene *s)
     EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, pos, nrm, 0, NULL), OCEAN_STATUS_EMPTY,
                "evaluate(n 0)");
     EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, pos, nrm, NPTS - 1, NULL),
-               OCEAN_STATUS_INVALID_ARGUMENT, "evaluate(n != nx*nz)");
+               OCEAN_STATUS_LENGTH_MISMATCH, "evaluate(n != nx*nz)");
     EVAL_FAILS(ocean_wtb_scene_evaluate(s, 0.0, NULL, pos, nrm, SIZE_MAX, NULL),
                OCEAN_STATUS_LENGTH_OVERFLOW, "evaluate(n SIZE_MAX)");
     EVAL_FAILS(ocean_wtb_scene_evaluate(s, NAN, NULL, pos, nrm, NPTS, NULL),

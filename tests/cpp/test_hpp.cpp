@@ -869,15 +869,17 @@ void test_gpu()
                                                       ocean::defaults<OceanSeaParams>());
     const OceanWaterGridDesc mesh{-10.0, -30.0, 1.0, 20, 20};
     std::vector<std::uint8_t> block(OCEAN_SURFACE_UNIFORMS_SIZE), mine(block.size());
-    std::size_t needed = 0;
     OK(ocean_surface_uniforms(&cam, sp.get(), l.get(), &dp, &mesh, 2.5, 64, 48, block.data(),
-                              block.size(), &needed));
-    CHECK(ocean::surface_uniforms(cam, sp, l, dp, &mesh, 2.5, 64, 48, mine) == needed &&
-              same(mine, block) && same(ocean::surface_uniforms(cam, sp, l, dp, &mesh, 2.5, 64, 48), block),
+                              block.size()));
+    ocean::surface_uniforms(cam, sp, l, dp, &mesh, 2.5, 64, 48, mine);
+    CHECK(same(mine, block) && same(ocean::surface_uniforms(cam, sp, l, dp, &mesh, 2.5, 64, 48), block),
           "surface_uniforms = C");
-    std::vector<std::uint8_t> small_block(16);
-    expect_error([&] { ocean::surface_uniforms(cam, sp, l, dp, nullptr, 2.5, 64, 48, small_block); },
-                 OCEAN_STATUS_BUFFER_TOO_SMALL, "ocean_surface_uniforms", "surface_uniforms: small");
+    std::vector<std::uint8_t> long_block(OCEAN_SURFACE_UNIFORMS_SIZE + 1);
+    expect_invalid([&] { ocean::surface_uniforms(cam, sp, l, dp, nullptr, 2.5, 64, 48, long_block); },
+                   "surface_uniforms: size");
+    EXPECT_MSG(ocean_surface_uniforms(&cam, sp.get(), l.get(), &dp, &mesh, 2.5, 64, 48,
+                                      long_block.data(), long_block.size()),
+               OCEAN_STATUS_LENGTH_MISMATCH, "holds exactly 352");
     std::vector<float> waves(12 * sp.wave_count()), waves2(waves.size());
     OK(ocean_surface_wave_texels(&cam, sp.get(), 2.5, waves.data(), waves.size()));
     ocean::surface_wave_texels(cam, sp, 2.5, waves2);
@@ -891,14 +893,14 @@ void test_gpu()
     CHECK(same(ocean::surface_fresnel_texels(), fresnel), "surface_fresnel_texels = C");
     std::vector<std::uint8_t> relief_block(OCEAN_RELIEF_UNIFORMS_SIZE);
     OK(ocean_relief_uniforms(&cam, &rs, 8, OCEAN_RELIEF_EDGE_WRAP, 1, 1, relief_block.data(),
-                             relief_block.size(), &needed));
+                             relief_block.size()));
     CHECK(same(ocean::relief_uniforms(cam, rs, 8, OCEAN_RELIEF_EDGE_WRAP, 1, 1), relief_block),
           "relief_uniforms = C");
     const ocean::sao s = ocean::sao::create(32, 24, 2, sao_camera(), OCEAN_SAO_DEPTH_WINDOW,
                                             ocean::defaults<OceanSaoParams>());
     std::vector<std::uint8_t> sao_block(OCEAN_SAO_UNIFORMS_SIZE);
     std::uint32_t levels = 0;
-    OK(ocean_sao_uniforms(s.get(), sao_block.data(), sao_block.size(), &needed, &levels));
+    OK(ocean_sao_uniforms(s.get(), sao_block.data(), sao_block.size(), &levels));
     const ocean::sao_uniforms_block sb = s.uniforms();
     CHECK(same(sb.bytes, sao_block) && sb.levels == levels, "sao uniforms = C");
 
@@ -915,8 +917,8 @@ void test_gpu()
     raii<ocean::gpu_context>(
         "gpu_context", [] { return ocean::gpu_context::create(); },
         [](OceanGpuContext *c) {
-            std::size_t n = 0;
-            return ocean_gpu_context_describe(c, nullptr, 0, &n);
+            const char *text = nullptr;
+            return ocean_gpu_context_describe(c, &text);
         });
     const std::string adapter = ctx.describe();
     CHECK(!adapter.empty() && adapter.find('\0') == std::string::npos, "describe: %s",

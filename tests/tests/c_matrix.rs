@@ -22,20 +22,18 @@
 //!   0xFFFFFFFF, `SIZE_MAX`; strings: NULL, "", an unknown name, invalid UTF-8;
 //! - progress callbacks: one going on (success if the base succeeded) and one cancelling
 //!   (`OCEAN_STATUS_CANCELLED` if the base succeeded); `user`: NULL (the base's status);
-//! - a `needed` parameter (the size query): the buffer NULL with length 0 (success if the base
-//!   succeeded);
 //! - the error order: every variant again with the first handle destroyed
 //!   (`OCEAN_STATUS_INVALID_HANDLE` whatever else is wrong), and every count and value variant
 //!   again with each pointer NULL that is refused on its own (`OCEAN_STATUS_NULL_POINTER`).
 //!
 //! A length above `PTRDIFF_MAX` must give `OCEAN_STATUS_LENGTH_OVERFLOW` (counts come before the
-//! mismatch of a length with a size). Every call must return (a crash or a hang of more than
+//! mismatch of a length with a size), and a length of 1 where the documentation promises
+//! `OCEAN_STATUS_LENGTH_MISMATCH` for any length but one (not 1) must give it when the base call
+//! succeeds. Every call must return (a crash or a hang of more than
 //! 30 s is a failure; the program is then rerun from the next variant) with a known status other
 //! than `OCEAN_STATUS_PANIC`; a failure must leave a message starting with the function's name
-//! and every output buffer untouched (the one exception: `needed` with
-//! `OCEAN_STATUS_BUFFER_TOO_SMALL`, which must then hold more than the length given); a success
-//! must clear the message (one is set before every call), write `needed` if there is one, write
-//! no output beyond the length its Safety section gives it, and leave every float it could have
+//! and every output buffer untouched; a success must clear the message (one is set before every
+//! call), write no output beyond the length its Safety section gives it, and leave every float it could have
 //! written finite (+INFINITY where the member's documentation allows `INFINITY`). No call may
 //! change a const input, or the memory passed as a foreign handle. Destroy functions are given
 //! the same bad handles: NULL leaves the message alone, misuse is described there, and neither

@@ -19,18 +19,27 @@
 //! 2. other pointers, in parameter order: `OCEAN_STATUS_NULL_POINTER`, then
 //!    `OCEAN_STATUS_MISALIGNED_POINTER`;
 //! 3. counts: `OCEAN_STATUS_EMPTY` for zero, then `OCEAN_STATUS_LENGTH_OVERFLOW` when a byte
-//!    size exceeds `PTRDIFF_MAX`, then `OCEAN_STATUS_INVALID_ARGUMENT` for buffers that overlap
-//!    or a length that disagrees with a size given elsewhere;
+//!    size exceeds `PTRDIFF_MAX`, then `OCEAN_STATUS_LENGTH_MISMATCH` for a buffer whose length
+//!    is not the exact length the call needs ([`check_len`]; after the values that decide that
+//!    length, where some do: a level, the cone parameters), then
+//!    `OCEAN_STATUS_INVALID_ARGUMENT` for buffers that overlap;
 //! 4. values, in parameter order and struct fields in declaration order:
 //!    `OCEAN_STATUS_NON_FINITE` for NaN and infinities, then the range checks
 //!    (`OCEAN_STATUS_INVALID_ARGUMENT`, `OCEAN_STATUS_TOO_STEEP`, ...);
 //! 5. the state of a handle (`OCEAN_STATUS_NOT_FOUND`, `OCEAN_STATUS_NOT_EVALUATED`,
 //!    `OCEAN_STATUS_OUTSIDE_GRID`) and the work itself: a result that would not be finite is
-//!    `OCEAN_STATUS_INVALID_ARGUMENT`, naming the inputs that cause it; a caller's buffer
-//!    that is too small is `OCEAN_STATUS_BUFFER_TOO_SMALL` with the size needed written to the
-//!    function's `needed` out-parameter.
+//!    `OCEAN_STATUS_INVALID_ARGUMENT`, naming the inputs that cause it.
 //!
-//! No output is written on failure (but for that `needed`).
+//! No output is written on failure.
+//!
+//! # One sizing convention
+//!
+//! Every output array has a length the caller knows before the call: one result per input, or
+//! an exact length from the call's own arguments, a constant of the header
+//! (`OCEAN_*_UNIFORMS_SIZE`) or a named size query. The caller passes that length and
+//! [`check_len`] holds it to it, so a buffer sized for another texture or another version of a
+//! block is refused rather than half-filled. Text the library owns is returned as a pointer,
+//! never copied into a caller's buffer.
 
 pub(crate) mod enums;
 pub(crate) mod handle;
@@ -43,7 +52,6 @@ pub(crate) use pointer::{
     byte_len, check_disjoint, check_len, check_ptr, input, read_checked, read_in, write_out,
     write_slice,
 };
-// The size-query convention serves the byte blocks of the GPU entry points alone.
 #[cfg(feature = "gpu")]
-pub(crate) use pointer::{check_sized, write_block, write_sized};
+pub(crate) use pointer::{check_block_out, write_block};
 pub(crate) use value::{Approx, Num, check_finite, check_flag, check_reserved, check_time};

@@ -115,27 +115,6 @@ pub(crate) unsafe fn input<'a, T>(p: *const T, len: usize, name: &str) -> Result
     Ok(unsafe { core::slice::from_raw_parts(p, len) })
 }
 
-/// The pointer and count checks of [`write_sized`], in parameter order: `out` NULL with `len`
-/// != 0 (`OCEAN_STATUS_NULL_POINTER`), `needed`, then `len` beyond `PTRDIFF_MAX`. A function
-/// calls it before its values, which the header's error order reports later.
-#[cfg(feature = "gpu")]
-pub(crate) fn check_sized(
-    out: *const u8,
-    out_name: &str,
-    len: usize,
-    needed: *const usize,
-) -> Result<(), Error> {
-    if out.is_null() && len != 0 {
-        return Err(Error::new(
-            OceanStatus::NullPointer,
-            format!("`{out_name}` is NULL but `len` is {len} (pass NULL and 0 to query the size)"),
-        ));
-    }
-    check_ptr(needed, "needed")?;
-    byte_len::<u8>(len, out_name)?;
-    Ok(())
-}
-
 /// Checks that a caller's buffer of `len` values is exactly `want` long.
 ///
 /// A count above `PTRDIFF_MAX` is `OCEAN_STATUS_LENGTH_OVERFLOW` (its byte size overflows
@@ -144,7 +123,7 @@ pub(crate) fn check_len(name: &str, len: usize, want: usize, what: &str) -> Resu
     byte_len::<u8>(len, name)?;
     if len != want {
         return Err(Error::new(
-            OceanStatus::InvalidArgument,
+            OceanStatus::LengthMismatch,
             format!("`{name}` is {len} values long, {what} holds exactly {want}"),
         ));
     }
@@ -171,73 +150,36 @@ pub(crate) unsafe fn write_slice<T: Copy>(
     Ok(())
 }
 
-/// Copies a byte block into a caller's buffer by the size-query protocol that every function
-/// writing bytes follows (`ocean_gpu_context_describe`, the uniform blocks):
+/// Copies a uniform block, the bytes of a `Pod` struct, into the caller's `out`, whose `len`
+/// must be exactly the block's size (the header's `OCEAN_*_UNIFORMS_SIZE`).
 ///
-/// - `out` NULL and `len` 0: a pure query, `*needed` = the block's size, `OCEAN_STATUS_OK`;
-/// - `len` >= the size: the block is copied to `out[0..size]` and `*needed` = the size;
-/// - `len` smaller: `OCEAN_STATUS_BUFFER_TOO_SMALL`, `*needed` = the size (the one output
-///   written on a failure), `out` untouched.
-///
-/// The pointers and the count are checked first, by [`check_sized`].
+/// The pointer and the length are checked before the block is computed, by
+/// [`check_block_out`]; this checks them again (cheaply) so that no caller can skip them.
 ///
 /// # Safety
 ///
 /// `out` must be NULL or point to `len` writable bytes that no other thread touches during the
-/// call; `needed` must be NULL, misaligned or writable.
-#[cfg(feature = "gpu")]
-pub(crate) unsafe fn write_sized(
-    out: *mut u8,
-    out_name: &str,
-    len: usize,
-    needed: *mut usize,
-    bytes: &[u8],
-    what: &str,
-) -> Result<(), Error> {
-    check_sized(out.cast_const(), out_name, len, needed.cast_const())?;
-    let n = bytes.len();
-    if out.is_null() {
-        // SAFETY: non-NULL and aligned (checked), writable (caller's guarantee).
-        unsafe { needed.write(n) };
-        return Ok(());
-    }
-    // SAFETY: as above.
-    unsafe { needed.write(n) };
-    if len < n {
-        return Err(Error::new(
-            OceanStatus::BufferTooSmall,
-            format!("`len` is {len} bytes, {what} needs {n}"),
-        ));
-    }
-    // SAFETY: non-NULL, `n` <= `len` bytes whose size fits in isize (checked), writable and
-    // untouched by others (caller's guarantee); `u8` has alignment 1.
-    unsafe { core::slice::from_raw_parts_mut(out, n) }.copy_from_slice(bytes);
-    Ok(())
-}
-
-/// [`write_sized`] for a uniform block, the bytes of a `Pod` struct, into the caller's `out`.
-///
-/// # Safety
-///
-/// As [`write_sized`].
+/// call.
 #[cfg(feature = "gpu")]
 pub(crate) unsafe fn write_block<T: bytemuck::Pod>(
     out: *mut u8,
     len: usize,
-    needed: *mut usize,
     block: &T,
 ) -> Result<(), Error> {
-    // SAFETY: forwarded from this function's contract.
-    unsafe {
-        write_sized(
-            out,
-            "out",
-            len,
-            needed,
-            bytemuck::bytes_of(block),
-            "the uniform block",
-        )
-    }
+    let bytes = bytemuck::bytes_of(block);
+    check_block_out::<T>(out, len)?;
+    // SAFETY: non-NULL (checked; `u8` needs no alignment), `len` = the block's size (checked),
+    // writable and untouched by others (caller's guarantee).
+    unsafe { core::slice::from_raw_parts_mut(out, len) }.copy_from_slice(bytes);
+    Ok(())
+}
+
+/// The checks of a uniform block's output, in the header's order: `out` NULL, then `len`
+/// (overflow, then not exactly `size_of::<T>()`). A function calls it before its values.
+#[cfg(feature = "gpu")]
+pub(crate) fn check_block_out<T>(out: *mut u8, len: usize) -> Result<(), Error> {
+    check_ptr(out.cast_const(), "out")?;
+    check_len("len", len, size_of::<T>(), "the uniform block (bytes)")
 }
 
 #[cfg(test)]
@@ -245,8 +187,8 @@ mod tests {
     use super::*;
 
     /// A count above PTRDIFF_MAX is an overflow before it is a mismatch (the header's order:
-    /// EMPTY, then LENGTH_OVERFLOW, then INVALID_ARGUMENT); the bad-input matrix
-    /// (`tests/tests/c_matrix.rs`) found exact-length buffers answering INVALID_ARGUMENT.
+    /// EMPTY, then LENGTH_OVERFLOW, then LENGTH_MISMATCH); the bad-input matrix
+    /// (`tests/tests/c_matrix.rs`) found exact-length buffers answering the mismatch first.
     #[test]
     fn check_len_reports_overflow_before_mismatch() {
         for len in [usize::MAX, usize::MAX / 2 + 1] {
@@ -258,33 +200,32 @@ mod tests {
                 e.message
             );
         }
-        let e = check_len("len", usize::MAX / 2, 16, "the map").unwrap_err();
-        assert_eq!(e.status, OceanStatus::InvalidArgument, "{}", e.message);
+        for len in [usize::MAX / 2, 17, 15, 0] {
+            let e = check_len("len", len, 16, "the map").unwrap_err();
+            assert_eq!(e.status, OceanStatus::LengthMismatch, "{}", e.message);
+        }
         assert!(check_len("len", 16, 16, "the map").is_ok());
     }
 
-    /// The size query's pointers and count, in parameter order, whatever the values after them.
+    /// A uniform block's output: NULL first, then any length but the block's own (one byte
+    /// more is refused as well as one less: a buffer sized for another version of the block).
     #[cfg(feature = "gpu")]
     #[test]
-    fn check_sized_checks_pointers_then_the_count() {
-        let mut buf = [0u8; 8];
-        let mut needed = 0usize;
-        let (out, nd) = (buf.as_mut_ptr().cast_const(), &raw mut needed);
-        let status = |o, len, n| check_sized(o, "out", len, n).map_err(|e| e.status);
-        assert_eq!(status(out, 8, nd.cast_const()), Ok(()));
-        // The pure query.
-        assert_eq!(status(core::ptr::null(), 0, nd.cast_const()), Ok(()));
+    fn check_block_out_wants_exactly_the_block() {
+        let mut buf = [0u8; 9];
+        let out = buf.as_mut_ptr();
+        let status = |o, len| check_block_out::<[u32; 2]>(o, len).map_err(|e| e.status);
+        assert_eq!(status(out, 8), Ok(()));
         assert_eq!(
-            status(core::ptr::null(), 8, core::ptr::null()),
+            status(core::ptr::null_mut(), 8),
             Err(OceanStatus::NullPointer)
         );
-        assert_eq!(
-            status(out, 8, core::ptr::null()),
-            Err(OceanStatus::NullPointer)
-        );
-        assert_eq!(
-            status(out, usize::MAX, nd.cast_const()),
-            Err(OceanStatus::LengthOverflow)
-        );
+        assert_eq!(status(out, 9), Err(OceanStatus::LengthMismatch));
+        assert_eq!(status(out, 7), Err(OceanStatus::LengthMismatch));
+        assert_eq!(status(out, usize::MAX), Err(OceanStatus::LengthOverflow));
+        let mut block = [0u8; 8];
+        // SAFETY: `block` is 8 writable bytes.
+        assert!(unsafe { write_block(block.as_mut_ptr(), 8, &[1u32, 2u32]) }.is_ok());
+        assert_eq!(block, bytemuck::bytes_of(&[1u32, 2u32]));
     }
 }

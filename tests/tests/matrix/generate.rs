@@ -299,9 +299,28 @@ pub fn classify_function(h: &Header, f: &Function) -> Result<Class, String> {
     ))
 }
 
+/// The length parameters that the function's documentation holds to one exact value: those
+/// named in a sentence that promises `OCEAN_STATUS_LENGTH_MISMATCH` ("... if `len` is not
+/// 4 N * N"). A sentence runs to the next full stop followed by a space.
+fn exact_lengths(f: &Function) -> Vec<&str> {
+    let sentences: Vec<&str> = f
+        .doc
+        .split(". ")
+        .filter(|s| s.contains("OCEAN_STATUS_LENGTH_MISMATCH"))
+        .collect();
+    f.params
+        .iter()
+        .map(|p| p.name.as_str())
+        .filter(|n| {
+            let tick = format!("`{n}`");
+            sentences.iter().any(|s| s.contains(&tick))
+        })
+        .collect()
+}
+
 /// The length parameter that the function's documentation gives as the extent of output `out`:
 /// its Safety section says "`out` to `n` writable ..." (or "`a` and `b` `n` writable ...").
-/// Scalar outputs (`out_id`, `needed`) have none.
+/// Scalar outputs (`out_id`) have none.
 fn documented_extent<'f>(f: &'f Function, roles: &[Role], out: &str) -> Option<&'f str> {
     let doc = &f.doc;
     // The backticked words of the documentation, with where each ends.
@@ -618,7 +637,8 @@ impl Gen<'_> {
             }
         }
         let over = |p: &str| overrides.iter().find(|o| o.1 == p).map(|o| o.2);
-        let has_needed = f.params.iter().any(|p| p.name == "needed");
+        // The lengths the documentation holds to an exact value (LENGTH_MISMATCH otherwise).
+        let exact = exact_lengths(f);
 
         // The argument struct, the base, the call with its checks.
         let mut fields = String::new();
@@ -660,13 +680,7 @@ impl Gen<'_> {
                 Some(l) => format!("matrix_count({l}, sizeof({elem}))"),
                 None => format!("matrix_count(MATRIX_FEW, sizeof({elem}))"),
             };
-            let null_expect = || {
-                let mut s = vec!["OCEAN_STATUS_NULL_POINTER", "OCEAN_STATUS_OK"];
-                if has_needed {
-                    s.push("OCEAN_STATUS_BUFFER_TOO_SMALL");
-                }
-                Expect::Only(s)
-            };
+            let null_expect = || Expect::Only(vec!["OCEAN_STATUS_NULL_POINTER", "OCEAN_STATUS_OK"]);
             let pointer_variants = |variants: &mut Vec<Variant>, align_gt1: bool| {
                 variants.push(v(n, "NULL", format!("a.{n} = NULL;"), null_expect()));
                 if align_gt1 {
@@ -711,25 +725,7 @@ impl Gen<'_> {
             }
             if is_output {
                 let _ = writeln!(sentinels, "    matrix_sentinel({i});");
-                if n == "needed" {
-                    // The one output a failure writes: the size with BUFFER_TOO_SMALL, above
-                    // the length given (the nearest length before it).
-                    let len = f.params[..i]
-                        .iter()
-                        .zip(&roles[..i])
-                        .rev()
-                        .find(|(_, r)| **r == Role::Length)
-                        .map_or("0".to_owned(), |(q, _)| format!("a->{}", q.name));
-                    let _ = writeln!(
-                        checks_fail,
-                        "        if (s != OCEAN_STATUS_BUFFER_TOO_SMALL)\n            \
-                         matrix_untouched({i}, \"{n}\");\n        else\n            \
-                         matrix_needed_written({i}, 1, {len});"
-                    );
-                    let _ = writeln!(checks_ok, "        matrix_needed_written({i}, 0, 0);");
-                } else {
-                    let _ = writeln!(checks_fail, "        matrix_untouched({i}, \"{n}\");");
-                }
+                let _ = writeln!(checks_fail, "        matrix_untouched({i}, \"{n}\");");
             }
             if over(n).is_some() {
                 let scalar = matches!(
@@ -977,9 +973,13 @@ impl Gen<'_> {
                     ] {
                         // Above PTRDIFF_MAX a count overflows whatever its element, and counts
                         // come before values: OCEAN_STATUS_LENGTH_OVERFLOW, never the
-                        // INVALID_ARGUMENT of a length that disagrees with a size.
+                        // LENGTH_MISMATCH of a length that disagrees with a size. A length held
+                        // to an exact value answers any other (1 is none of the bases) with
+                        // LENGTH_MISMATCH, whatever the buffer: nothing is read or written.
                         let expect = if value.starts_with("SIZE_MAX") {
                             Expect::Only(vec!["OCEAN_STATUS_LENGTH_OVERFLOW"])
+                        } else if value == "1" && b != "1" && exact.contains(&n.as_str()) {
+                            Expect::IfBaseOk("OCEAN_STATUS_LENGTH_MISMATCH")
                         } else {
                             Expect::Any
                         };
@@ -1100,25 +1100,6 @@ impl Gen<'_> {
                     ..var.clone()
                 });
             }
-        }
-
-        // The pure size query: the buffer NULL and its length 0 succeed, writing only
-        // `needed`.
-        if has_needed {
-            let query = f.params.iter().zip(roles).find_map(|(p, r)| {
-                let out = matches!(r, Role::OutArray { .. } | Role::OutChars | Role::OutBytes);
-                let len = documented_extent(f, roles, &p.name)?;
-                out.then(|| (p.name.clone(), len.to_owned()))
-            });
-            let (buf, len) = query.ok_or(format!(
-                "{fname}: a `needed` parameter but no buffer documented as `len` writable"
-            ))?;
-            variants.push(v(
-                "(query)",
-                &format!("{buf} NULL, {len} 0"),
-                format!("a.{buf} = NULL;\n        a.{len} = 0;"),
-                Expect::IfBaseOk("OCEAN_STATUS_OK"),
-            ));
         }
 
         let args: Vec<String> = f.params.iter().map(|p| format!("a->{}", p.name)).collect();
