@@ -33,6 +33,15 @@
  *   padding the compiler inserts unseen: where alignment would leave a hole, a `reserved`
  *   member fills it, which callers must set to 0 (the _default functions do) and which the
  *   library writes as 0.
+ * - Extensions: every parameter struct starts with `OceanNext next` (a `const OceanChain *`),
+ *   as webgpu.h's descriptors start with `nextInChain`. A parameter struct never changes its
+ *   layout, so a program built against this header keeps working with later versions of the
+ *   library, and an ocean_*_default function never writes past the caller's struct. New
+ *   parameters come as extension structs, each starting with an OceanChain whose `s_type`
+ *   names it, linked from `next` and from each other's `next`. A library refuses an extension
+ *   it does not know (OCEAN_STATUS_INVALID_ARGUMENT, naming the member and the `s_type`)
+ *   rather than ignore what it asks for. This version defines none: `next` must be NULL, as
+ *   the _default functions and zero-initialisation leave it.
  * - Enumerations are enums with underlying type uint32_t (in C before C23, typedefs of
  *   uint32_t), and struct members that hold one have its type, so a C++ compiler refuses a
  *   plain integer there; the library checks every value it reads (others are refused with
@@ -49,8 +58,9 @@
  *   another kind, destroyed or never made: INVALID_HANDLE); (2) other pointers, in parameter
  *   order (NULL_POINTER, then MISALIGNED_POINTER); (3) counts (EMPTY, then LENGTH_OVERFLOW,
  *   then LENGTH_MISMATCH, after the values that decide a length where some do, then
- *   INVALID_ARGUMENT for overlapping buffers); (4) values, in parameter and field order
- *   (NON_FINITE, then range: INVALID_ARGUMENT, TOO_STEEP); (5) the handle's state (NOT_FOUND,
+ *   INVALID_ARGUMENT for overlapping buffers); (4) values, in parameter and field order, a
+ *   struct's `next` first (MISALIGNED_POINTER, then INVALID_ARGUMENT for an extension the
+ *   library does not know), then NON_FINITE, then range (INVALID_ARGUMENT, TOO_STEEP); (5) the handle's state (NOT_FOUND,
  *   NOT_EVALUATED, OUTSIDE_GRID) and the work itself (INVALID_ARGUMENT when a result would not
  *   be finite, CANCELLED, GPU_FAILURE).
  * - The last-error message: ocean_last_error_message() is the calling thread's message of its
@@ -76,7 +86,8 @@
  * - Every pointer is checked for NULL and alignment, every count for 0 and for overflow, every
  *   float for NaN and infinity; no call can crash the process on such input. What cannot be
  *   checked (that a non-NULL pointer really points to enough memory) is stated in each
- *   function's Safety section.
+ *   function's Safety section; a struct's `next` must, like the struct, be NULL or point to
+ *   readable memory (an OceanChain).
  * - Handles are opaque ids, not addresses: the library never reads through one. Each is
  *   registered with its kind while alive, and ids are never reused, so a handle of the wrong
  *   kind, a destroyed handle, a second destroy or a value the library never returned is
@@ -1073,6 +1084,32 @@ typedef struct OceanWaves OceanWaves;
  */
 typedef struct OceanWtbScene OceanWtbScene;
 
+/**
+ * The head of an extension struct: the link to the next extension and the type of this one.
+ * An extension struct starts with this member, so a pointer to it is a pointer to its head.
+ */
+typedef struct OceanChain {
+  /**
+   * The next extension of the same parameter struct, or NULL.
+   */
+  const struct OceanChain *next;
+  /**
+   * Which extension struct this head begins (an `OCEAN_S_TYPE_*` value; this version of
+   * the library defines none and refuses every value).
+   */
+  uint32_t s_type;
+  /**
+   * Set to 0.
+   */
+  uint32_t reserved;
+} OceanChain;
+
+/**
+ * The type of the `next` member of a parameter struct, `const OceanChain *`: NULL, or a
+ * pointer to the head of an extension struct.
+ */
+typedef const struct OceanChain *OceanNext;
+
 #if defined(OCEAN_GPU)
 /**
  * How an `OceanRenderer` draws. `ocean_renderer_options_default` fills in the library's
@@ -1080,6 +1117,11 @@ typedef struct OceanWtbScene OceanWtbScene;
  * with a 32-bit float depth buffer of its own.
  */
 typedef struct OceanRendererOptions {
+  /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
   /**
    * Screen-space size of a projected-grid cell, pixels, in [1, 256] (the paper: 8). Smaller
    * cells resolve shorter waves in the geometry and cost more vertices.
@@ -1244,6 +1286,11 @@ typedef struct OceanCieSky {
  */
 typedef struct OceanSkyParams {
   /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
+  /**
    * Unit vector towards the Sun, world space (y up); its length must be within 1e-6 of 1
    * and its elevation in [0, 90] degrees (y >= 0): the model has no twilight.
    */
@@ -1273,6 +1320,11 @@ typedef struct OceanSkyParams {
  * deep blue open ocean.
  */
 typedef struct OceanSeaParams {
+  /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
   /**
    * Diffuse reflectance of the water body, linear RGB, each channel in [0, 1]: the light
    * scattered back up is L_sea = albedo (E_sun sin(elevation) + E_sky) / pi.
@@ -1381,6 +1433,11 @@ typedef struct OceanSeaColorInput {
  */
 typedef struct OceanSpectrumParams {
   /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
+  /**
    * Wind speed 20 m above the sea, m/s (V_20 of Eq. 1), in [1e-3, 200].
    */
   double wind_speed;
@@ -1478,6 +1535,11 @@ typedef struct OceanSlopeVariance {
  */
 typedef struct OceanSurfaceDrawParams {
   /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
+  /**
    * N_min of the filter (paper section 7.1): a wave enters a pixel's normal once its
    * wavelength spans this many pixels (a grid vertex's position: grid cells). > 0.
    */
@@ -1551,6 +1613,11 @@ typedef struct OceanWaterGridDesc {
  */
 typedef struct OceanReliefConeParams {
   /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
+  /**
    * `OCEAN_RELIEF_CONE_KIND_RELAXED` (default) or `OCEAN_RELIEF_CONE_KIND_CONSERVATIVE`;
    * other values are refused.
    */
@@ -1579,6 +1646,11 @@ typedef int (*OceanReliefProgress)(void *user, size_t done, size_t total);
  * A tracer and its step counts.
  */
 typedef struct OceanReliefMethod {
+  /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
   /**
    * `OCEAN_RELIEF_TRACER_LINEAR`, `_CONE_STEP` or `_RELAXED`; other values are refused.
    */
@@ -1614,6 +1686,11 @@ typedef struct OceanReliefMethod {
  * triangle or quadrilateral of a mesh (its texture then continues beyond the quad's edges).
  */
 typedef struct OceanReliefScene {
+  /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
   /**
    * World position of the corner at texture coordinates (0, 0), metres.
    */
@@ -1800,6 +1877,11 @@ typedef struct OceanSaoBlurParams {
  */
 typedef struct OceanSaoParams {
   /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
+  /**
    * World-space radius r of the obscurance ball, metres, in [1e-4, 1e4] (default 1).
    */
   float radius;
@@ -1890,6 +1972,10 @@ typedef struct OceanSaoParams {
    * The blur passes.
    */
   struct OceanSaoBlurParams blur;
+  /**
+   * Set to 0 (fills the struct to a multiple of 8 bytes, the alignment of `next`).
+   */
+  uint32_t reserved;
 } OceanSaoParams;
 
 /**
@@ -2156,6 +2242,11 @@ typedef struct OceanBeach {
  */
 typedef struct OceanEffects {
   /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
+  /**
    * Depth refraction (other values are refused).
    */
   OceanRefraction refraction;
@@ -2203,6 +2294,11 @@ typedef struct OceanEffects {
  * exist.
  */
 typedef struct OceanWindDesc {
+  /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
   /**
    * Wind speed, m/s, in (0, 100]. A zero wind is refused.
    */
@@ -2269,6 +2365,11 @@ typedef struct OceanWindDesc {
  * A wave train box: its wind and its local parameters.
  */
 typedef struct OceanBoxDesc {
+  /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
   /**
    * The wind that raises the box.
    */

@@ -413,6 +413,7 @@ fn method(inp: &mut Input) -> CMem<OceanReliefMethod> {
         steps: 1 + inp.u32() % 64,
         binary: inp.u32() % 16,
         search: enum_below(inp, 3),
+        ..Default::default()
     };
     for v in [&mut m.steps, &mut m.binary] {
         if inp.u8() % 16 == 15 {

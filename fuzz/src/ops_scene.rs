@@ -140,7 +140,7 @@ fn box_desc(inp: &mut Input) -> OceanBoxDesc {
         decay: 5.0,
         seed: u64::from(inp.u8()),
         trains: 1 + inp.upto(MAX_TRAINS as usize - 1) as u32,
-        reserved: 0,
+        ..Default::default()
     };
     for v in [
         &mut w.speed,
@@ -164,8 +164,8 @@ fn box_desc(inp: &mut Input) -> OceanBoxDesc {
         wind: w,
         smoothing: 2.0,
         has_recovery: 0,
-        reserved: 0,
         recovery: 10.0,
+        ..Default::default()
     };
     tweak(inp, &mut b.smoothing);
     tweak_flag(inp, &mut b.has_recovery);

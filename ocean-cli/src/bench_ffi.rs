@@ -214,7 +214,7 @@ fn c_scenario_1(n: usize) -> Result<measure::Scene, String> {
                     decay: 0.0,
                     seed,
                     trains,
-                    reserved: 0,
+                    ..Default::default()
                 },
                 smoothing: 4.0,
                 ..Default::default()

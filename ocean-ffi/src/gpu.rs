@@ -15,9 +15,10 @@ use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use ocean_brdf::{Filter, FilteredSurface};
 use ocean_gpu::{GpuContext, GpuError, OceanOptions, OceanRenderer as GpuRenderer};
 
+use crate::boundary::OceanNext;
 use crate::boundary::{
-    borrow, byte_len, check_finite, check_flag, check_len, check_ptr, check_time, destroy, read_in,
-    write_handle, write_out,
+    borrow, byte_len, check_finite, check_flag, check_len, check_ptr, check_time, destroy,
+    read_params, write_handle, write_out,
 };
 use crate::lighting::{OceanLighting, brdf_error};
 
@@ -43,6 +44,9 @@ pub struct OceanGpuContext {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanRendererOptions {
+    /// Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+    /// function sets NULL.
+    pub next: OceanNext,
     /// Screen-space size of a projected-grid cell, pixels, in [1, 256] (the paper: 8). Smaller
     /// cells resolve shorter waves in the geometry and cost more vertices.
     pub cell_px: f64,
@@ -218,6 +222,7 @@ pub unsafe extern "C" fn ocean_gpu_context_describe(
 fn options_from_default() -> OceanRendererOptions {
     let d = OceanOptions::default();
     OceanRendererOptions {
+        next: OceanNext::NULL,
         cell_px: d.cell_px,
         margin: d.margin,
         max_distance: d.max_distance,
@@ -291,7 +296,7 @@ pub unsafe extern "C" fn ocean_renderer_create(
     guard("ocean_renderer_create", || {
         let c = borrow(ctx, "ctx")?;
         // SAFETY: forwarded from this function's contract.
-        let o = unsafe { read_in(options, "options") }?;
+        let o = unsafe { read_params(options, "options") }?;
         check_ptr(out.cast_const(), "out")?;
         let options = options_to_gpu(&o)?;
         let renderer = GpuRenderer::new(&c.ctx, options).map_err(|e| gpu_error("options: ", e))?;
@@ -716,3 +721,5 @@ mod tests {
         ocean_gpu_context_destroy(ctx);
     }
 }
+
+crate::boundary::chain::extensible!(OceanRendererOptions);

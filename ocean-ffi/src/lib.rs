@@ -57,6 +57,7 @@ mod waves_domain;
 mod wtb;
 mod wtb_query;
 
+pub use boundary::{OceanChain, OceanNext};
 pub use camera::{OceanCamera, OceanDepthConvention};
 #[cfg(feature = "gpu")]
 pub use gpu::{

@@ -17,8 +17,9 @@ use ocean_brdf::sky::CieSky;
 use ocean_brdf::sky_map::{SKY_MAP_EXTENT, SKY_MAP_MAX_SIZE, SKY_MAP_MIN_SIZE};
 use ocean_brdf::{BrdfError, Lighting, SeaParams, SkyMap, SkyParams, SlopeVariance};
 
+use crate::boundary::OceanNext;
 use crate::boundary::{
-    borrow, byte_len, check_disjoint, check_finite, check_len, check_ptr, destroy, read_in,
+    borrow, byte_len, check_disjoint, check_finite, check_len, check_ptr, destroy, read_params,
     write_handle, write_out,
 };
 use crate::status::{Error, OceanStatus, guard};
@@ -91,6 +92,9 @@ pub struct OceanCieSky {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanSkyParams {
+    /// Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+    /// function sets NULL.
+    pub next: OceanNext,
     /// Unit vector towards the Sun, world space (y up); its length must be within 1e-6 of 1
     /// and its elevation in [0, 90] degrees (y >= 0): the model has no twilight.
     pub sun_direction: OceanDVec3,
@@ -111,6 +115,9 @@ pub struct OceanSkyParams {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanSeaParams {
+    /// Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+    /// function sets NULL.
+    pub next: OceanNext,
     /// Diffuse reflectance of the water body, linear RGB, each channel in [0, 1]: the light
     /// scattered back up is L_sea = albedo (E_sun sin(elevation) + E_sky) / pi.
     pub albedo: OceanRgb,
@@ -238,6 +245,7 @@ fn sky_params_from(p: &OceanSkyParams) -> Result<SkyParams, Error> {
 
 fn sky_params_to(p: &SkyParams) -> OceanSkyParams {
     OceanSkyParams {
+        next: OceanNext::NULL,
         sun_direction: OceanDVec3::from_dvec3(p.sun_direction),
         sun_irradiance: OceanRgb::from_dvec3(p.sun_irradiance),
         zenith_radiance: OceanRgb::from_dvec3(p.zenith_radiance),
@@ -294,6 +302,7 @@ pub unsafe extern "C" fn ocean_sea_params_default(out: *mut OceanSeaParams) -> O
     guard("ocean_sea_params_default", || {
         let d = SeaParams::default();
         let p = OceanSeaParams {
+            next: OceanNext::NULL,
             albedo: OceanRgb::from_dvec3(d.albedo),
             fresnel_r: d.fresnel_r,
         };
@@ -333,9 +342,9 @@ pub unsafe extern "C" fn ocean_lighting_create(
         check_ptr(sea, "sea")?;
         check_ptr(out.cast_const(), "out")?;
         // SAFETY: forwarded from this function's contract.
-        let sky = sky_params_from(&unsafe { read_in(sky, "sky") }?)?;
+        let sky = sky_params_from(&unsafe { read_params(sky, "sky") }?)?;
         // SAFETY: forwarded from this function's contract.
-        let sea = sea_params_from(&unsafe { read_in(sea, "sea") }?)?;
+        let sea = sea_params_from(&unsafe { read_params(sea, "sea") }?)?;
         let lighting = Lighting::new(sky, sea)?;
         // SAFETY: forwarded from this function's contract.
         unsafe { write_handle(out, OceanLighting { lighting }) }
@@ -1100,3 +1109,5 @@ mod tests {
         ocean_lighting_destroy(l);
     }
 }
+
+crate::boundary::chain::extensible!(OceanSkyParams, OceanSeaParams);

@@ -7,8 +7,9 @@ use ocean_brdf::surface::pixel_footprint;
 use ocean_brdf::{Filter, SlopeVariance, Spectrum, SpectrumParams};
 use ocean_core::{Depth, WaveDesc};
 
+use crate::boundary::OceanNext;
 use crate::boundary::{
-    Num, borrow, byte_len, check_finite, check_len, check_ptr, destroy, read_in, write_handle,
+    Num, borrow, byte_len, check_finite, check_len, check_ptr, destroy, read_params, write_handle,
     write_out,
 };
 use crate::lighting::brdf_error;
@@ -40,6 +41,9 @@ pub const OCEAN_FILTER_N_MAX: f64 = 2.5;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanSpectrumParams {
+    /// Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+    /// function sets NULL.
+    pub next: OceanNext,
     /// Wind speed 20 m above the sea, m/s (V_20 of Eq. 1), in [1e-3, 200].
     pub wind_speed: f64,
     /// x component of the direction the wind blows towards, on the sea plane; with
@@ -109,6 +113,7 @@ pub unsafe extern "C" fn ocean_spectrum_params_default(
     guard("ocean_spectrum_params_default", || {
         let d = SpectrumParams::default();
         let p = OceanSpectrumParams {
+            next: OceanNext::NULL,
             wind_speed: d.wind_speed,
             wind_direction_x: d.wind_direction.x,
             wind_direction_z: d.wind_direction.y,
@@ -142,9 +147,10 @@ pub unsafe extern "C" fn ocean_spectrum_create(
     out: *mut *mut OceanSpectrum,
 ) -> OceanStatus {
     guard("ocean_spectrum_create", || {
-        // SAFETY: forwarded from this function's contract.
-        let p = unsafe { read_in(params, "params") }?;
+        check_ptr(params, "params")?;
         check_ptr(out.cast_const(), "out")?;
+        // SAFETY: forwarded from this function's contract.
+        let p = unsafe { read_params(params, "params") }?;
         check_finite(
             "params->",
             &[
@@ -740,3 +746,5 @@ mod tests {
         assert!(l.is_finite() && l > 0.0, "{l}");
     }
 }
+
+crate::boundary::chain::extensible!(OceanSpectrumParams);

@@ -12,9 +12,10 @@
 use ocean_brdf::{Filter, FilteredSurface};
 use ocean_gpu::{MeshGrid, OceanOptions, WaveTexels};
 
+use crate::boundary::OceanNext;
 use crate::boundary::{
     borrow, byte_len, check_block_out, check_finite, check_len, check_ptr, check_time, read_in,
-    write_block, write_out,
+    read_params, write_block, write_out,
 };
 use crate::camera::{OceanCamera, read_camera};
 use crate::lighting::{OceanLighting, brdf_error};
@@ -43,6 +44,9 @@ const _: () = assert!(ocean_brdf::fresnel_table::FRESNEL_TABLE_SIZE == OCEAN_FRE
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanSurfaceDrawParams {
+    /// Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+    /// function sets NULL.
+    pub next: OceanNext,
     /// N_min of the filter (paper section 7.1): a wave enters a pixel's normal once its
     /// wavelength spans this many pixels (a grid vertex's position: grid cells). > 0.
     pub n_min: f64,
@@ -84,6 +88,7 @@ pub unsafe extern "C" fn ocean_surface_draw_params_default(
     guard("ocean_surface_draw_params_default", || {
         let d = OceanOptions::default();
         let p = OceanSurfaceDrawParams {
+            next: OceanNext::NULL,
             n_min: OCEAN_FILTER_N_MIN,
             n_max: OCEAN_FILTER_N_MAX,
             cell_px: d.cell_px,
@@ -220,7 +225,7 @@ pub unsafe extern "C" fn ocean_surface_uniforms(
         // SAFETY: forwarded from this function's contract.
         let camera = unsafe { read_camera(camera) }?;
         // SAFETY: forwarded from this function's contract.
-        let (options, filter) = params_from(&unsafe { read_in(params, "params") }?)?;
+        let (options, filter) = params_from(&unsafe { read_params(params, "params") }?)?;
         let mesh = if mesh.is_null() {
             None
         } else {
@@ -802,3 +807,5 @@ mod tests {
         assert!(out.iter().all(|v| v.is_finite()));
     }
 }
+
+crate::boundary::chain::extensible!(OceanSurfaceDrawParams);

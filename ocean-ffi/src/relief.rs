@@ -18,9 +18,10 @@ use ocean_relief::{
     ConeKind, ConeMap, ConeParams, Edge, HeightMap, HeightRange, ReliefError, ReliefTexture,
 };
 
+use crate::boundary::OceanNext;
 use crate::boundary::{
     CEnum, CheckedStruct, EnumField, borrow, check_enum, check_len, check_ptr, destroy, input,
-    read_checked, write_handle, write_out, write_slice,
+    read_params_checked, write_handle, write_out, write_slice,
 };
 use crate::camera::camera_status;
 use crate::status::{Error, OceanStatus, guard};
@@ -146,6 +147,9 @@ pub type OceanReliefProgress =
     Clone, Copy, Debug, Default, PartialEq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
 )]
 pub struct OceanReliefConeParams {
+    /// Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+    /// function sets NULL.
+    pub next: OceanNext,
     /// `OCEAN_RELIEF_CONE_KIND_RELAXED` (default) or `OCEAN_RELIEF_CONE_KIND_CONSERVATIVE`;
     /// other values are refused.
     pub kind: OceanReliefConeKind,
@@ -550,6 +554,7 @@ pub unsafe extern "C" fn ocean_relief_cone_params_default(
     guard("ocean_relief_cone_params_default", || {
         let d = ConeParams::default();
         let p = OceanReliefConeParams {
+            next: OceanNext::NULL,
             kind: match d.kind {
                 ConeKind::Relaxed => OceanReliefConeKind::Relaxed,
                 ConeKind::Conservative => OceanReliefConeKind::Conservative,
@@ -630,7 +635,7 @@ pub unsafe extern "C" fn ocean_relief_cones_create(
         check_ptr(params, "params")?;
         check_ptr(out.cast_const(), "out")?;
         // SAFETY: forwarded from this function's contract (the pointer checked above).
-        let params = params_from(&unsafe { read_checked(params, "params") }?)?;
+        let params = params_from(&unsafe { read_params_checked(params, "params") }?)?;
         let cones = generate(&m.map, params, progress, user)?;
         let handle = OceanReliefCones::new(m.map.clone(), cones)?;
         // SAFETY: forwarded from this function's contract.
@@ -861,7 +866,7 @@ pub unsafe extern "C" fn ocean_relief_generate_texels(
         check_ptr(params, "params")?;
         check_ptr(rgba.cast_const(), "rgba")?;
         // SAFETY: forwarded from this function's contract (the pointer checked above).
-        let params = params_from(&unsafe { read_checked(params, "params") }?)?;
+        let params = params_from(&unsafe { read_params_checked(params, "params") }?)?;
         let n = m.map.size();
         check_len("len", len, 4 * n * n, "the texture (4 floats a texel)")?;
         let cones = generate(&m.map, params, progress, user)?;
@@ -899,7 +904,7 @@ pub unsafe extern "C" fn ocean_relief_generate_encoded(
         let encoding = encoding_from(encoding)?;
         check_encoded_out(out, encoding)?;
         // SAFETY: forwarded from this function's contract (the pointer checked above).
-        let params = params_from(&unsafe { read_checked(params, "params") }?)?;
+        let params = params_from(&unsafe { read_params_checked(params, "params") }?)?;
         let n = m.map.size();
         check_len("len", len, 3 * n * n, "the cone map (3 values a texel)")?;
         let cones = generate(&m.map, params, progress, user)?;
@@ -1049,3 +1054,5 @@ pub unsafe extern "C" fn ocean_relief_mips_copy_level(
 #[cfg(test)]
 #[path = "relief_tests.rs"]
 mod tests;
+
+crate::boundary::chain::extensible!(OceanReliefConeParams);

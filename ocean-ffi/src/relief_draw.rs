@@ -13,9 +13,10 @@ use ocean_relief::gpu_params::ReliefUniforms;
 
 use core::mem::offset_of;
 
+use crate::boundary::OceanNext;
 use crate::boundary::{
-    CheckedStruct, EnumField, check_block_out, check_finite, check_flag, check_ptr, read_checked,
-    write_block, write_out,
+    CheckedStruct, EnumField, check_block_out, check_chain, check_finite, check_flag, check_ptr,
+    read_params_checked, write_block, write_out,
 };
 use crate::camera::{OceanCamera, read_camera};
 use crate::lighting::{OceanIrradiance, finite_dvec3};
@@ -46,6 +47,9 @@ const _: () = assert!(size_of::<ReliefUniforms>() == OCEAN_RELIEF_UNIFORMS_SIZE)
     Clone, Copy, Debug, Default, PartialEq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
 )]
 pub struct OceanReliefScene {
+    /// Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+    /// function sets NULL.
+    pub next: OceanNext,
     /// World position of the corner at texture coordinates (0, 0), metres.
     pub origin: OceanDVec3,
     /// World vector from `origin` along u to the next corner.
@@ -91,6 +95,7 @@ fn method_to(m: &Method) -> OceanReliefMethod {
     let [method, search, steps, binary] = ocean_relief::gpu_params::method_codes(m);
     // ocean-relief's codes are the header's enumerators (a mismatch panics, inside the guard).
     OceanReliefMethod {
+        next: OceanNext::NULL,
         method: bytemuck::checked::cast(method),
         steps,
         binary,
@@ -173,6 +178,7 @@ pub unsafe extern "C" fn ocean_relief_scene_default(out: *mut OceanReliefScene) 
     guard("ocean_relief_scene_default", || {
         let d = ReliefScene::default();
         let s = OceanReliefScene {
+            next: OceanNext::NULL,
             origin: OceanDVec3::from_dvec3(d.origin),
             edge_u: OceanDVec3::from_dvec3(d.edge_u),
             edge_v: OceanDVec3::from_dvec3(d.edge_v),
@@ -261,7 +267,10 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
         // SAFETY: forwarded from this function's contract.
         let camera = unsafe { read_camera(camera) }?;
         // SAFETY: forwarded from this function's contract.
-        let scene = scene_from(&unsafe { read_checked(scene, "scene") }?)?;
+        let scene = unsafe { read_params_checked(scene, "scene") }?;
+        // SAFETY: as above (the method's extensions are readable as the scene's are).
+        unsafe { check_chain(&scene.method, "scene->method.next") }?;
+        let scene = scene_from(&scene)?;
         let edge = edge_from(edge)?;
         let srgb_encode = check_flag("srgb_encode", srgb_encode)?;
         let u = ocean_gpu::scene_uniforms(
@@ -340,6 +349,7 @@ mod tests {
             z: -4.0e4 + 0.5,
         };
         s.method = OceanReliefMethod {
+            next: OceanNext::NULL,
             method: OceanReliefTracer::Linear,
             steps: 20,
             binary: 5,
@@ -608,3 +618,5 @@ mod tests {
         }
     }
 }
+
+crate::boundary::chain::extensible!(OceanReliefScene);

@@ -14,7 +14,8 @@ use core::ffi::c_void;
 use ocean_relief::{HeightMap, QuadConeMap, QuadReliefTexture};
 
 use crate::boundary::{
-    borrow, check_len, check_ptr, destroy, read_checked, write_handle, write_out, write_slice,
+    borrow, check_len, check_ptr, destroy, read_params_checked, write_handle, write_out,
+    write_slice,
 };
 use crate::relief::{
     OceanReliefConeParams, OceanReliefMap, OceanReliefProgress, params_from, texels, with_progress,
@@ -120,7 +121,7 @@ pub unsafe extern "C" fn ocean_relief_quad_cones_create(
         check_ptr(params, "params")?;
         check_ptr(out.cast_const(), "out")?;
         // SAFETY: forwarded from this function's contract (the pointer checked above).
-        let params = unsafe { read_checked(params, "params") }?;
+        let params = unsafe { read_params_checked(params, "params") }?;
         let cones = generate_quad(&m.map, &params, progress, user)?;
         let texture = QuadReliefTexture::new(&m.map, &cones)?;
         let handle = OceanReliefQuadCones {
@@ -224,7 +225,7 @@ pub unsafe extern "C" fn ocean_relief_quad_generate_texels(
         check_ptr(rgba.cast_const(), "rgba")?;
         // The parameters before the length, as ocean_relief_generate_texels checks them.
         // SAFETY: forwarded from this function's contract (the pointer checked above).
-        let params = unsafe { read_checked(params, "params") }?;
+        let params = unsafe { read_params_checked(params, "params") }?;
         params_from(&params)?;
         let n = m.map.size();
         check_len(
@@ -341,6 +342,7 @@ mod tests {
         let s = unsafe { ocean_relief_map_create_f32(h.as_ptr(), h.len(), N, N, 0, 0, &mut map) };
         assert_eq!(s, OceanStatus::Ok, "{}", last_error());
         let p = OceanReliefConeParams {
+            next: crate::boundary::OceanNext::NULL,
             kind: OceanReliefConeKind::Relaxed,
             max_ratio: 2.0,
         };
@@ -378,6 +380,7 @@ mod tests {
         assert_eq!(direct, texels);
 
         let m = OceanReliefMethod {
+            next: crate::boundary::OceanNext::NULL,
             method: OceanReliefTracer::Relaxed,
             steps: 20,
             binary: 6,

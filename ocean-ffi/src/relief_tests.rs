@@ -46,7 +46,11 @@ fn map_f32(h: &[f32], edge: u32, range: u32) -> *mut OceanReliefMap {
 }
 
 fn params(kind: OceanReliefConeKind, max_ratio: f32) -> OceanReliefConeParams {
-    OceanReliefConeParams { kind, max_ratio }
+    OceanReliefConeParams {
+        next: crate::boundary::OceanNext::NULL,
+        kind,
+        max_ratio,
+    }
 }
 
 fn cones(map: *const OceanReliefMap, p: &OceanReliefConeParams) -> *mut OceanReliefCones {
@@ -701,6 +705,7 @@ fn trace_and_shadow_are_the_crates() {
     let methods = [
         (
             OceanReliefMethod {
+                next: crate::boundary::OceanNext::NULL,
                 method: OceanReliefTracer::Linear,
                 steps: 15,
                 binary: 6,
@@ -714,6 +719,7 @@ fn trace_and_shadow_are_the_crates() {
         ),
         (
             OceanReliefMethod {
+                next: crate::boundary::OceanNext::NULL,
                 method: OceanReliefTracer::ConeStep,
                 steps: 21,
                 binary: 0,
@@ -724,6 +730,7 @@ fn trace_and_shadow_are_the_crates() {
         ),
         (
             OceanReliefMethod {
+                next: crate::boundary::OceanNext::NULL,
                 method: OceanReliefTracer::Relaxed,
                 steps: 15,
                 binary: 6,
@@ -738,6 +745,7 @@ fn trace_and_shadow_are_the_crates() {
         ),
         (
             OceanReliefMethod {
+                next: crate::boundary::OceanNext::NULL,
                 method: OceanReliefTracer::Relaxed,
                 steps: 15,
                 binary: 6,
@@ -752,6 +760,7 @@ fn trace_and_shadow_are_the_crates() {
         ),
         (
             OceanReliefMethod {
+                next: crate::boundary::OceanNext::NULL,
                 method: OceanReliefTracer::Relaxed,
                 steps: 15,
                 binary: 6,
@@ -847,6 +856,7 @@ fn trace_errors_are_mapped_and_write_nothing() {
     let m = map_f32(&h, OCEAN_RELIEF_EDGE_WRAP, OCEAN_RELIEF_RANGE_REFUSE);
     let c = cones(m, &params(OceanReliefConeKind::Relaxed, 1.0));
     let good = OceanReliefMethod {
+        next: crate::boundary::OceanNext::NULL,
         method: OceanReliefTracer::Relaxed,
         steps: 15,
         binary: 6,
@@ -922,6 +932,7 @@ fn trace_errors_are_mapped_and_write_nothing() {
     }
     // Cone step mapping reads neither `binary` nor `search` (any enumerator).
     let csm = OceanReliefMethod {
+        next: crate::boundary::OceanNext::NULL,
         method: OceanReliefTracer::ConeStep,
         steps: 8,
         binary: 9999,

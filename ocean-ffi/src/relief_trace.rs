@@ -12,9 +12,10 @@ use ocean_relief::{Hit, ReliefError};
 
 use core::mem::offset_of;
 
+use crate::boundary::OceanNext;
 use crate::boundary::{
     CEnum, CheckedStruct, EnumField, Num, borrow, byte_len, check_disjoint, check_finite,
-    check_ptr, input, read_checked, write_out, write_slice,
+    check_ptr, input, read_params_checked, write_out, write_slice,
 };
 use crate::relief::{OceanReliefCones, relief_error};
 use crate::status::{Error, OceanStatus, guard};
@@ -77,6 +78,9 @@ const CHUNK: usize = 256;
     Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
 )]
 pub struct OceanReliefMethod {
+    /// Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+    /// function sets NULL.
+    pub next: OceanNext,
     /// `OCEAN_RELIEF_TRACER_LINEAR`, `_CONE_STEP` or `_RELAXED`; other values are refused.
     pub method: OceanReliefTracer,
     /// Linear steps, cone steps, or relaxed cone steps: 1 to `OCEAN_RELIEF_MAX_STEPS` (the
@@ -110,6 +114,7 @@ impl CheckedStruct for OceanReliefMethod {
 pub unsafe extern "C" fn ocean_relief_method_default(out: *mut OceanReliefMethod) -> OceanStatus {
     guard("ocean_relief_method_default", || {
         let method = OceanReliefMethod {
+            next: OceanNext::NULL,
             method: OceanReliefTracer::Relaxed,
             steps: 15,
             binary: 6,
@@ -364,7 +369,7 @@ pub(crate) unsafe fn trace_batch(
         (hits.cast_const().cast::<u8>(), out_bytes, "hits"),
     )?;
     // SAFETY: forwarded from this function's contract (the pointer checked above).
-    let method = method_from(&unsafe { read_checked(method, "method") }?)?;
+    let method = method_from(&unsafe { read_params_checked(method, "method") }?)?;
     // SAFETY: forwarded from this function's contract (pointer, size and overlap checked).
     let rays = unsafe { input(rays, count, "rays") }?;
     let rays = rays
@@ -475,7 +480,7 @@ pub(crate) unsafe fn shadow_batch(
         (in_shadow.cast_const(), out_bytes, "in_shadow"),
     )?;
     // SAFETY: forwarded from this function's contract (the pointer checked above).
-    let method = method_from(&unsafe { read_checked(method, "method") }?)?;
+    let method = method_from(&unsafe { read_params_checked(method, "method") }?)?;
     check_finite(
         "",
         &[
@@ -526,3 +531,5 @@ pub(crate) unsafe fn shadow_batch(
     // SAFETY: forwarded from this function's contract (checked above).
     unsafe { write_slice(in_shadow, "in_shadow", &out) }
 }
+
+crate::boundary::chain::extensible!(OceanReliefMethod);

@@ -14,9 +14,10 @@ use ocean_sao::{
 
 use core::mem::offset_of;
 
+use crate::boundary::OceanNext;
 use crate::boundary::{
     CEnum, CheckedStruct, EnumField, borrow, byte_len, check_disjoint, check_flag, check_len,
-    check_ptr, destroy, read_checked, write_handle, write_out,
+    check_ptr, destroy, read_params_checked, write_handle, write_out,
 };
 use crate::camera::{OceanCamera, camera_status, read_camera};
 use crate::sao_depth::source_from;
@@ -153,6 +154,9 @@ pub struct OceanSaoBlurParams {
     Clone, Copy, Debug, Default, PartialEq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
 )]
 pub struct OceanSaoParams {
+    /// Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+    /// function sets NULL.
+    pub next: OceanNext,
     /// World-space radius r of the obscurance ball, metres, in [1e-4, 1e4] (default 1).
     pub radius: f32,
     /// Samples per pixel, 1 to 64 (default 9, the paper's).
@@ -204,6 +208,8 @@ pub struct OceanSaoParams {
     pub z_min: f32,
     /// The blur passes.
     pub blur: OceanSaoBlurParams,
+    /// Set to 0 (fills the struct to a multiple of 8 bytes, the alignment of `next`).
+    pub reserved: u32,
 }
 
 impl CheckedStruct for OceanSaoParams {
@@ -249,6 +255,8 @@ impl OceanSaoParams {
             None => (0, DEFAULT_MAX_INCIDENCE),
         };
         Self {
+            next: OceanNext::NULL,
+            reserved: 0,
             radius: d.radius,
             samples: d.samples,
             spiral_turns: d.spiral_turns,
@@ -520,7 +528,7 @@ pub unsafe extern "C" fn ocean_sao_create(
         let camera = unsafe { read_camera(camera) }?;
         let source = source_from(depth_source)?;
         // SAFETY: forwarded from this function's contract (the pointer checked above).
-        let params = params_from(&unsafe { read_checked(params, "params") }?)?;
+        let params = params_from(&unsafe { read_params_checked(params, "params") }?)?;
         let viewport = Viewport::new(input_width as usize, input_height as usize, guard as usize)?;
         let projection = camera.projection();
         let sao = Sao::new(&projection, camera.depth(), source, viewport, params)
@@ -760,3 +768,5 @@ pub unsafe extern "C" fn ocean_sao_view_z(
 #[cfg(test)]
 #[path = "sao_tests.rs"]
 mod tests;
+
+crate::boundary::chain::extensible!(OceanSaoParams);

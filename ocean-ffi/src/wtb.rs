@@ -14,10 +14,11 @@ use ocean_wtb::scene::{BoxId, BoxSpec, Coverage, FrameStats, Scene, rectangles_o
 use ocean_wtb::wind::MAX_EXPLICIT_TRAINS;
 use ocean_wtb::{BoxFrame, Terrain, TrainSource, WaterGrid, Wind, WtbError};
 
+use crate::boundary::OceanNext;
 use crate::boundary::{
-    CEnum, CheckedStruct, EnumField, borrow, byte_len, check_disjoint, check_finite, check_flag,
-    check_len, check_ptr, check_reserved, check_time, destroy, read_checked, read_in, write_handle,
-    write_out,
+    CEnum, CheckedStruct, EnumField, borrow, byte_len, check_chain, check_disjoint, check_finite,
+    check_flag, check_len, check_ptr, check_reserved, check_time, destroy, read_in, read_params,
+    read_params_checked, write_handle, write_out,
 };
 use crate::camera::{OceanCamera, read_camera};
 use crate::status::{Error, OceanStatus, guard};
@@ -56,6 +57,9 @@ pub struct OceanWaterGridDesc {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanWindDesc {
+    /// Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+    /// function sets NULL.
+    pub next: OceanNext,
     /// Wind speed, m/s, in (0, 100]. A zero wind is refused.
     pub speed: f64,
     /// x component of the direction the wind blows towards; with `direction_z` a finite,
@@ -94,6 +98,9 @@ pub struct OceanWindDesc {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 pub struct OceanBoxDesc {
+    /// Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+    /// function sets NULL.
+    pub next: OceanNext,
     /// The wind that raises the box.
     pub wind: OceanWindDesc,
     /// Width of the smoothing area along the box's edges, metres, finite and >= 0: the
@@ -202,6 +209,9 @@ pub struct OceanBeach {
     Clone, Copy, Debug, Default, PartialEq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
 )]
 pub struct OceanEffects {
+    /// Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+    /// function sets NULL.
+    pub next: OceanNext,
     /// Depth refraction (other values are refused).
     pub refraction: OceanRefraction,
     /// 1: shoaling on (Green's law: the amplitude grows as (D_ref/D)^(1/4) in water shallower
@@ -435,6 +445,7 @@ fn effects_to(e: &Effects) -> OceanEffects {
         Refraction::Dispersion => OceanRefraction::Dispersion,
     };
     OceanEffects {
+        next: OceanNext::NULL,
         refraction,
         shoaling: u32::from(e.shoaling),
         round_waves: u32::from(e.round_waves),
@@ -573,8 +584,11 @@ unsafe fn box_spec(
         check_ptr(trains, "trains")?;
     }
     // SAFETY: forwarded from this function's contract.
-    let d = unsafe { read_in(desc, "desc") }?;
+    let d = unsafe { read_params(desc, "desc") }?;
     let w = &d.wind;
+    // SAFETY: forwarded from this function's contract (the extensions of the wind are
+    // readable as the box's are).
+    unsafe { check_chain(w, "desc->wind.next") }?;
     check_finite(
         "desc->wind.",
         &[
@@ -744,6 +758,7 @@ pub unsafe extern "C" fn ocean_wtb_effects_default(out: *mut OceanEffects) -> Oc
 /// box 100 m wide with a fetch of 200 m; fully grown at once and never dying (start 0, no
 /// build-up, sustain `INFINITY`, no decay); seed 0 and 3 trains.
 pub(crate) const DEFAULT_WIND: OceanWindDesc = OceanWindDesc {
+    next: OceanNext::NULL,
     speed: 10.0,
     direction_x: 1.0,
     direction_z: 0.0,
@@ -793,6 +808,7 @@ pub unsafe extern "C" fn ocean_wtb_wind_desc_default(out: *mut OceanWindDesc) ->
 pub unsafe extern "C" fn ocean_wtb_box_desc_default(out: *mut OceanBoxDesc) -> OceanStatus {
     guard("ocean_wtb_box_desc_default", || {
         let desc = OceanBoxDesc {
+            next: OceanNext::NULL,
             wind: DEFAULT_WIND,
             smoothing: 10.0,
             has_recovery: 0,
@@ -1014,7 +1030,10 @@ pub unsafe extern "C" fn ocean_wtb_scene_set_effects(
     guard("ocean_wtb_scene_set_effects", || {
         let scene = borrow(scene, "scene")?;
         // SAFETY: forwarded from this function's contract.
-        let e = effects_from(&unsafe { read_checked(effects, "effects") }?, "effects")?;
+        let e = effects_from(
+            &unsafe { read_params_checked(effects, "effects") }?,
+            "effects",
+        )?;
         scene
             .lock()
             .set_effects(e)
@@ -1073,7 +1092,10 @@ pub unsafe extern "C" fn ocean_wtb_scene_set_budget_explicit(
     guard("ocean_wtb_scene_set_budget_explicit", || {
         let scene = borrow(scene, "scene")?;
         // SAFETY: forwarded from this function's contract.
-        let e = effects_from(&unsafe { read_checked(effects, "effects") }?, "effects")?;
+        let e = effects_from(
+            &unsafe { read_params_checked(effects, "effects") }?,
+            "effects",
+        )?;
         scene
             .lock()
             .set_budget(Budget::Explicit(Selection {
@@ -1373,6 +1395,7 @@ mod tests {
         fetch: f64,
     ) -> OceanWindDesc {
         OceanWindDesc {
+            next: OceanNext::NULL,
             speed,
             direction_x: dir.0,
             direction_z: dir.1,
@@ -1412,6 +1435,7 @@ mod tests {
             (wind(5.0, (0.7, 1.0), (30.0, -30.0), 60.0, 90.0), 2, 12),
         ] {
             let desc = OceanBoxDesc {
+                next: OceanNext::NULL,
                 wind: OceanWindDesc { trains, seed, ..w },
                 smoothing: 4.0,
                 has_recovery: 0,
@@ -1768,3 +1792,5 @@ mod tests {
         assert_eq!(effects_from(&d, "e").unwrap(), Effects::default());
     }
 }
+
+crate::boundary::chain::extensible!(OceanEffects, OceanWindDesc, OceanBoxDesc);

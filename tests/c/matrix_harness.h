@@ -64,6 +64,10 @@ static unsigned char *sentinel_bytes;
 /* Memory no function of the library returned: a handle argument pointing here must be refused
  * without being read or written. */
 static _Alignas(64) unsigned char foreign_memory[64];
+/* The head of an extension of a type no version of the library defines (s_type 0xFFFF), and
+ * 8-aligned bytes whose address + 4 is a misaligned link. */
+static const OceanChain matrix_unknown_extension = {NULL, 0xFFFFu, 0u};
+static _Alignas(8) const unsigned char matrix_chain_bytes[32];
 
 static struct {
     long start;    /* first variant id to run (argv[1]); earlier ones are skipped */

@@ -53,6 +53,8 @@
 static OceanReliefMethod method(uint32_t m, uint32_t steps, uint32_t binary, uint32_t search)
 {
     OceanReliefMethod r;
+    /* A parameter struct starts from its defaults: they set `next` (no extensions). */
+    ocean_relief_method_default(&r);
     r.method = m;
     r.steps = steps;
     r.binary = binary;
@@ -63,6 +65,7 @@ static OceanReliefMethod method(uint32_t m, uint32_t steps, uint32_t binary, uin
 static OceanReliefConeParams cone_params(uint32_t kind, float max_ratio)
 {
     OceanReliefConeParams p;
+    ocean_relief_cone_params_default(&p);
     p.kind = kind;
     p.max_ratio = max_ratio;
     return p;

@@ -219,7 +219,7 @@ static OceanSeaColorInput sea_inputs[NSEA];
 static OceanReliefRay rays[NRAYS];
 static OceanReliefPoint relief_points[NRAYS];
 static OceanDVec2 queries[NQUERY];
-static const OceanReliefMethod RELAXED = {OCEAN_RELIEF_TRACER_RELAXED, 15, 6,
+static const OceanReliefMethod RELAXED = {NULL, OCEAN_RELIEF_TRACER_RELAXED, 15, 6,
                                           OCEAN_RELIEF_SEARCH_LAST_STEP};
 
 static OceanDVec3 dvec3(double x, double y, double z)

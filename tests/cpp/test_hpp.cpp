@@ -657,7 +657,8 @@ void test_relief()
     const ocean::relief_cones q8 = cones.quantize(OCEAN_RELIEF_ENCODING_UNORM8);
     CHECK(q8.size() == N, "quantize");
 
-    const OceanReliefMethod method{OCEAN_RELIEF_TRACER_RELAXED, 15, 6, OCEAN_RELIEF_SEARCH_LAST_STEP};
+    const OceanReliefMethod method{nullptr, OCEAN_RELIEF_TRACER_RELAXED, 15, 6,
+                                   OCEAN_RELIEF_SEARCH_LAST_STEP};
     std::vector<OceanReliefRay> rays;
     for (int k = 0; k < 12; k++) {
         OceanReliefRay ray{};

@@ -7,7 +7,8 @@
 //!   [`write_handle`], [`destroy`]);
 //! - [`pointer`]: pointers, lengths, input slices and out-parameters;
 //! - [`value`]: finiteness and the brief printing of numbers in messages;
-//! - [`enums`]: enumerations, in structs ([`read_checked`]) and parameters ([`check_enum`]).
+//! - [`enums`]: enumerations, in structs ([`read_checked`]) and parameters ([`check_enum`]);
+//! - [`chain`]: the extensions chained to parameter structs ([`read_params`]).
 //!
 //! # The contract every function follows
 //!
@@ -41,16 +42,19 @@
 //! block is refused rather than half-filled. Text the library owns is returned as a pointer,
 //! never copied into a caller's buffer.
 
+pub(crate) mod chain;
 pub(crate) mod enums;
 pub(crate) mod handle;
 pub(crate) mod pointer;
 pub(crate) mod value;
 
+pub(crate) use chain::check_chain;
+pub use chain::{OceanChain, OceanNext};
 pub(crate) use enums::{CEnum, CheckedStruct, EnumField, check_enum};
 pub(crate) use handle::{borrow, destroy, write_handle};
 pub(crate) use pointer::{
-    byte_len, check_disjoint, check_len, check_ptr, input, read_checked, read_in, write_out,
-    write_slice,
+    byte_len, check_disjoint, check_len, check_ptr, input, read_checked, read_in, read_params,
+    read_params_checked, write_out, write_slice,
 };
 #[cfg(feature = "gpu")]
 pub(crate) use pointer::{check_block_out, write_block};

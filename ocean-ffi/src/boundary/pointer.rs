@@ -1,6 +1,7 @@
 //! Pointers, lengths and out-parameters from C: every check that turns a raw pointer into a
 //! Rust reference or slice, written once.
 
+use super::chain::{Extensible, check_chain};
 use super::enums::{CheckedStruct, checked_from_bytes};
 use crate::status::{Error, OceanStatus};
 
@@ -85,7 +86,46 @@ pub(crate) unsafe fn read_checked<T: CheckedStruct>(p: *const T, name: &str) -> 
     // guarantee), all initialised: the header's structs have no padding (its conventions), and
     // bytes of any value are valid `u8`. Only read while the call lasts.
     let bytes = unsafe { core::slice::from_raw_parts(p.cast::<u8>(), size_of::<T>()) };
-    checked_from_bytes(bytes, name)
+    checked_from_bytes::<T>(bytes, name)?;
+    // The value is read again, typed, rather than cast from the bytes: a pointer member
+    // (`next`) keeps its provenance that way, and may be followed.
+    // SAFETY: as above; every enumeration member holds one of its values (checked), and
+    // nothing writes the struct during the call (caller's guarantee).
+    Ok(unsafe { p.read() })
+}
+
+/// Reads a caller's parameter struct (one that starts with `next`, see [`crate::chain`]) as
+/// [`read_in`] does, then checks its extensions.
+///
+/// # Safety
+///
+/// As [`read_in`], and the struct's `next` must be NULL, misaligned or point to a readable
+/// `OceanChain`.
+pub(crate) unsafe fn read_params<T: bytemuck::AnyBitPattern + Extensible>(
+    p: *const T,
+    name: &str,
+) -> Result<T, Error> {
+    // SAFETY: forwarded from this function's contract.
+    let v = unsafe { read_in(p, name) }?;
+    // SAFETY: as above.
+    unsafe { check_chain(&v, &format!("{name}->next")) }?;
+    Ok(v)
+}
+
+/// [`read_params`] for a parameter struct that holds enumerations, read by [`read_checked`].
+///
+/// # Safety
+///
+/// As [`read_params`].
+pub(crate) unsafe fn read_params_checked<T: CheckedStruct + Extensible>(
+    p: *const T,
+    name: &str,
+) -> Result<T, Error> {
+    // SAFETY: forwarded from this function's contract.
+    let v = unsafe { read_checked(p, name) }?;
+    // SAFETY: as above.
+    unsafe { check_chain(&v, &format!("{name}->next")) }?;
+    Ok(v)
 }
 
 /// Writes `*out` through a checked pointer, after `value` has been computed.

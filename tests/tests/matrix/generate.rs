@@ -411,6 +411,29 @@ fn leaves(h: &Header, s: &Struct, prefix: &str, out: &mut Vec<Leaf>) -> Result<(
     Ok(())
 }
 
+/// The access paths of the extension links (`const struct OceanChain *` members, `next`) of
+/// struct `name` and of the structs inside it: `.next`, `.method.next`.
+pub fn chain_links(h: &Header, name: &str) -> Vec<String> {
+    let Some(s) = h.struct_def(name) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for m in s.members.iter().filter(|m| m.dims.is_empty()) {
+        match (&m.ty.base, m.ty.stars) {
+            (Base::Struct(n), 1) if n == "OceanChain" => out.push(format!(".{}", m.name)),
+            (Base::Struct(n), 0) => {
+                out.extend(
+                    chain_links(h, n)
+                        .into_iter()
+                        .map(|p| format!(".{}{p}", m.name)),
+                );
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
 pub fn struct_leaves(h: &Header, name: &str) -> Result<Vec<Leaf>, String> {
     let s = h.struct_def(name).ok_or(format!("no struct {name}"))?;
     let mut out = Vec::new();
@@ -826,6 +849,26 @@ impl Gen<'_> {
                                 Expect::Any,
                             ));
                         }
+                    }
+                    // Extensions: one of a type no version defines (refused, never ignored),
+                    // and a misaligned link (refused before it is read).
+                    for link in chain_links(self.h, name) {
+                        let at = format!("(({name} *)(void *)slot[{i}])->{}", &link[1..]);
+                        variants.push(v(
+                            &format!("{n}[0]{link}"),
+                            "unknown extension",
+                            format!("{at} = &matrix_unknown_extension;"),
+                            Expect::IfBaseOk("OCEAN_STATUS_INVALID_ARGUMENT"),
+                        ));
+                        variants.push(v(
+                            &format!("{n}[0]{link}"),
+                            "misaligned",
+                            format!(
+                                "{at} = (const OceanChain *)(const void *)\
+                                 (matrix_chain_bytes + 4);"
+                            ),
+                            Expect::IfBaseOk("OCEAN_STATUS_MISALIGNED_POINTER"),
+                        ));
                     }
                 }
                 Role::OutStruct { name } => {

@@ -105,12 +105,27 @@ pub struct Header {
     pub aliases: Vec<(String, String)>,
     /// `typedef R (*X)(...);`.
     pub fn_types: Vec<String>,
+    /// `typedef const struct X *Y;`: pointer types, replaced by what they name wherever a
+    /// member or parameter uses them.
+    pub pointers: Vec<(String, CType)>,
     pub functions: Vec<Function>,
     /// `#define NAME value`.
     pub defines: Vec<(String, String)>,
 }
 
 impl Header {
+    /// `ty` with a pointer typedef replaced by the type it names.
+    fn resolve(&self, ty: CType) -> CType {
+        match self
+            .pointers
+            .iter()
+            .find(|(n, _)| ty.stars == 0 && n == ty.base_name())
+        {
+            Some((_, named)) => named.clone(),
+            None => ty,
+        }
+    }
+
     pub fn parse(text: &str) -> Result<Header, String> {
         let mut header = Header::default();
         let tokens = lex(text, &mut header.defines)?;
@@ -383,6 +398,7 @@ impl Parser<'_> {
                                     self.punct(';')?;
                                     let (ty, name, dims) = declaration(&decl)
                                         .map_err(|e| format!("struct {name}: {e}"))?;
+                                    let ty = h.resolve(ty);
                                     members.push(Member {
                                         name,
                                         ty,
@@ -406,6 +422,17 @@ impl Parser<'_> {
                 // The C23 spelling; excluded by the preprocessor for C11, kept for safety.
                 let _ = self.until(';')?;
                 self.punct(';')?;
+            }
+            "const" => {
+                // typedef const struct X *Y;
+                let mut decl = vec![Tok::Ident(first)];
+                decl.extend(self.until(';')?);
+                self.punct(';')?;
+                let (ty, name, dims) = declaration(&decl)?;
+                if ty.stars == 0 || !dims.is_empty() {
+                    return Err(format!("typedef {name}: not a pointer type"));
+                }
+                h.pointers.push((name, ty));
             }
             _ => {
                 if let Some(Tok::Punct('(')) = self.peek() {
