@@ -4802,7 +4802,8 @@ void ocean_waves_destroy(struct OceanWaves *waves);
  * with k_w = (2*pi/wavelength) * khat_w, khat_w the normalised direction and omega_w from the
  * dispersion relation (see `OceanWaveDesc`). Rest positions and outputs are world coordinates
  * in double precision: each point is evaluated relative to the corner of its 64 m lattice cell
- * (a float offset below 64 m, resolved to 4 µm) with the phases formed in double precision,
+ * (a float offset below 64 m, resolved to 4 µm) with the phases formed in double precision
+ * (`ocean_core::WaveSet::evaluate_world`, the same evaluation for Rust callers),
  * so the answer is as precise 100 km from the origin as at it, and a point gives the same bits
  * in any batch. Large `time` values (10^6 s) do not jitter either. The arithmetic is
  * bit-identical on every platform and thread count; large batches are split over a global

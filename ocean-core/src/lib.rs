@@ -90,6 +90,7 @@ pub mod trochoid;
 #[cfg(target_arch = "x86_64")]
 mod vector;
 pub mod wave;
+pub mod world;
 
 pub use camera::{
     Camera, CameraError, DepthConvention, DepthDirection, DepthRange, Far, Projection,

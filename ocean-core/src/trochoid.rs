@@ -563,6 +563,8 @@ impl WaveSet {
 }
 
 #[cfg(feature = "std")]
+pub(crate) use parallel::POINTS_PER_TASK;
+#[cfg(feature = "std")]
 pub use parallel::rows_per_task;
 
 #[cfg(feature = "std")]

@@ -3,7 +3,7 @@
 use core::mem::{align_of, size_of};
 
 use bytemuck::{Pod, Zeroable};
-use glam::{DVec2, Vec2, Vec3};
+use glam::{DVec2, DVec3, Vec3};
 use ocean_core::{Depth, EvalError, Grid, WaveDesc, WaveError, WaveSet};
 
 use crate::boundary::{
@@ -263,7 +263,8 @@ pub extern "C" fn ocean_waves_destroy(waves: *mut OceanWaves) {
 /// with k_w = (2*pi/wavelength) * khat_w, khat_w the normalised direction and omega_w from the
 /// dispersion relation (see `OceanWaveDesc`). Rest positions and outputs are world coordinates
 /// in double precision: each point is evaluated relative to the corner of its 64 m lattice cell
-/// (a float offset below 64 m, resolved to 4 µm) with the phases formed in double precision,
+/// (a float offset below 64 m, resolved to 4 µm) with the phases formed in double precision
+/// (`ocean_core::WaveSet::evaluate_world`, the same evaluation for Rust callers),
 /// so the answer is as precise 100 km from the origin as at it, and a point gives the same bits
 /// in any batch. Large `time` values (10^6 s) do not jitter either. The arithmetic is
 /// bit-identical on every platform and thread count; large batches are split over a global
@@ -344,65 +345,15 @@ pub unsafe extern "C" fn ocean_waves_evaluate(
         }
         waves.reach.check_time(time)?;
         waves.reach.check_points("xz", world)?;
-        let (corners, rel) = evaluate_in_cells(&waves.set, world, time, nrm)?;
-        for ((out, p), o) in pos.iter_mut().zip(&rel).zip(&corners) {
-            *out = OceanDVec3 {
-                x: o.x + f64::from(p.x),
-                y: f64::from(p.y),
-                z: o.y + f64::from(p.z),
-            };
-        }
-        Ok(())
-    })
-}
-
-/// Side of the lattice cells of `ocean_waves_evaluate`, metres: a power of two, so that cell
-/// corners are exact doubles and a point's offset from its corner (below 64 m) is a float
-/// resolved to 2^-18 m (4 µm).
-const CELL: f64 = 64.0;
-
-/// Evaluates world rest points in runs of points that share a lattice cell, each relative to
-/// its cell's corner through the float kernel: the result of a point depends on the point
-/// alone, never on the batch around it. Returns each point's cell corner and its position
-/// relative to the corner; writes the normals. Nothing is written on an error.
-fn evaluate_in_cells(
-    set: &WaveSet,
-    world: &[DVec2],
-    time: f64,
-    nrm: &mut [OceanVec3],
-) -> Result<(Vec<DVec2>, Vec<Vec3>), Error> {
-    let corners: Vec<DVec2> = world.iter().map(|&p| (p / CELL).floor() * CELL).collect();
-    let offsets: Vec<Vec2> = world
-        .iter()
-        .zip(&corners)
-        .map(|(&p, &o)| (p - o).as_vec2())
-        .collect();
-    let mut rel = vec![Vec3::ZERO; world.len()];
-    let mut normals = vec![Vec3::ZERO; world.len()];
-    let mut start = 0;
-    while start < world.len() {
-        let o = corners[start];
-        let end = start
-            + corners[start..]
-                .iter()
-                .position(|&c| c != o)
-                .unwrap_or(world.len() - start);
-        let (pts, pos, nrm) = (
-            &offsets[start..end],
-            &mut rel[start..end],
-            &mut normals[start..end],
-        );
-        if end - start >= PARALLEL_POINTS {
-            set.evaluate_points_par(o, pts, time, pos, nrm)
+        let pos: &mut [DVec3] = bytemuck::cast_slice_mut(pos);
+        let nrm: &mut [Vec3] = bytemuck::cast_slice_mut(nrm);
+        if n >= PARALLEL_POINTS {
+            waves.set.evaluate_world_par(world, time, pos, nrm)
         } else {
-            set.evaluate_points(o, pts, time, pos, nrm)
+            waves.set.evaluate_world(world, time, pos, nrm)
         }
-        .map_err(|e| eval_error(e, "xz"))?;
-        start = end;
-    }
-    let out: &mut [Vec3] = bytemuck::cast_slice_mut(nrm);
-    out.copy_from_slice(&normals);
-    Ok((corners, rel))
+        .map_err(|e| eval_error(e, "xz"))
+    })
 }
 
 /// Evaluates the wave set on every point of `grid` at `time` seconds, on a global worker pool.
