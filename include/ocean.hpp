@@ -14,6 +14,10 @@
 ///   library is called; so does a relief element type that does not match its encoding.
 /// - Allocation failures of the overloads that return `std::vector` are `std::bad_alloc` (or
 ///   `std::length_error` for a size that overflows `size_t`).
+/// - The cone map generators also take any callable `bool(std::size_t done, std::size_t total)`
+///   as their progress report (true goes on; false cancels: `ocean::error`
+///   OCEAN_STATUS_CANCELLED). What it throws cancels the work, never unwinds through the
+///   library, and is rethrown unchanged from the generating call.
 ///
 /// Handles: every opaque handle of ocean.h has a move-only owner here (`ocean::waves` owns an
 /// `OceanWaves *`, ...) that destroys it; `get()` gives the raw handle, `release()` gives it up.
@@ -34,6 +38,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <iterator>
 #include <limits>
 #include <stdexcept>

@@ -30,6 +30,37 @@ void check_encoding(const char *what, std::uint32_t encoding)
         throw std::invalid_argument(std::string(what) + ": element type does not match encoding " +
                                     std::to_string(encoding));
 }
+
+// A progress callable: `bool f(std::size_t done, std::size_t total)`, true to go on.
+template <typename F>
+using if_progress = std::enable_if_t<std::is_invocable_r<bool, F &, std::size_t, std::size_t>::value>;
+
+// Runs `call(progress, user)`, a generating function of the C API, with `f` as its
+// OceanReliefProgress. An exception `f` throws must not unwind through the library: the
+// trampoline catches it, cancels the work (nothing is written), and it is rethrown here once
+// the call has returned. `f` returning false cancels too: ocean::error OCEAN_STATUS_CANCELLED.
+template <typename F, typename Call>
+void with_progress(F &f, Call &&call)
+{
+    struct state {
+        F &f;
+        std::exception_ptr thrown;
+        static int trampoline(void *user, std::size_t done, std::size_t total) noexcept
+        {
+            state &s = *static_cast<state *>(user);
+            try {
+                return s.f(done, total) ? 0 : 1;
+            } catch (...) {
+                s.thrown = std::current_exception();
+                return 1;
+            }
+        }
+    } s{f, nullptr};
+    const OceanStatus status = call(&state::trampoline, static_cast<void *>(&s));
+    if (s.thrown)
+        std::rethrow_exception(s.thrown);
+    check(status);
+}
 } // namespace detail
 
 /// A square height map with its edge mode (`OceanReliefMap`), immutable and shareable.
@@ -108,6 +139,19 @@ public:
     {
         OceanReliefCones *c = nullptr;
         check(ocean_relief_cones_create(map.get(), &params, progress, user, &c));
+        return relief_cones(c);
+    }
+    /// `ocean_relief_cones_create` reporting to a callable `bool progress(done, total)` (true
+    /// to go on; false cancels: ocean::error OCEAN_STATUS_CANCELLED). What it throws cancels
+    /// the work and is rethrown from here.
+    template <typename F, typename = detail::if_progress<F>>
+    static relief_cones create(const relief_map &map, const OceanReliefConeParams &params,
+                               F &&progress)
+    {
+        OceanReliefCones *c = nullptr;
+        detail::with_progress(progress, [&](OceanReliefProgress p, void *user) {
+            return ocean_relief_cones_create(map.get(), &params, p, user, &c);
+        });
         return relief_cones(c);
     }
     /// The side N, texels.
@@ -232,6 +276,17 @@ public:
         check(ocean_relief_quad_cones_create(map.get(), &params, progress, user, &c));
         return relief_quad_cones(c);
     }
+    /// `ocean_relief_quad_cones_create` with a progress callable, as relief_cones::create.
+    template <typename F, typename = detail::if_progress<F>>
+    static relief_quad_cones create(const relief_map &map, const OceanReliefConeParams &params,
+                                    F &&progress)
+    {
+        OceanReliefQuadCones *c = nullptr;
+        detail::with_progress(progress, [&](OceanReliefProgress p, void *user) {
+            return ocean_relief_quad_cones_create(map.get(), &params, p, user, &c);
+        });
+        return relief_quad_cones(c);
+    }
     /// The side N, texels.
     std::uint32_t size() const
     {
@@ -278,6 +333,17 @@ inline std::vector<float> relief_generate_texels(const relief_map &map,
     check(ocean_relief_generate_texels(map.get(), &params, progress, user, out.data(), out.size()));
     return out;
 }
+/// relief_generate_texels with a progress callable, as relief_cones::create.
+template <typename F, typename = detail::if_progress<F>>
+std::vector<float> relief_generate_texels(const relief_map &map,
+                                          const OceanReliefConeParams &params, F &&progress)
+{
+    std::vector<float> out(4 * detail::mul(map.size(), map.size()));
+    detail::with_progress(progress, [&](OceanReliefProgress p, void *user) {
+        return ocean_relief_generate_texels(map.get(), &params, p, user, out.data(), out.size());
+    });
+    return out;
+}
 /// The cone map of `map` generated and encoded: 3 N * N elements (T as for
 /// relief_cones::encode).
 template <typename T>
@@ -292,6 +358,19 @@ std::vector<T> relief_generate_encoded(const relief_map &map, const OceanReliefC
                                         out.size()));
     return out;
 }
+/// relief_generate_encoded with a progress callable, as relief_cones::create.
+template <typename T, typename F, typename = detail::if_progress<F>>
+std::vector<T> relief_generate_encoded(const relief_map &map, const OceanReliefConeParams &params,
+                                       std::uint32_t encoding, F &&progress)
+{
+    detail::check_encoding<T>("ocean::relief_generate_encoded", encoding);
+    std::vector<T> out(3 * detail::mul(map.size(), map.size()));
+    detail::with_progress(progress, [&](OceanReliefProgress p, void *user) {
+        return ocean_relief_generate_encoded(map.get(), &params, p, user, encoding, out.data(),
+                                             out.size());
+    });
+    return out;
+}
 /// The quad-directional cone map of `map` generated straight into a vector: 16 N * N floats.
 inline std::vector<float> relief_quad_generate_texels(const relief_map &map,
                                                       const OceanReliefConeParams &params,
@@ -301,6 +380,18 @@ inline std::vector<float> relief_quad_generate_texels(const relief_map &map,
     std::vector<float> out(16 * detail::mul(map.size(), map.size()));
     check(ocean_relief_quad_generate_texels(map.get(), &params, progress, user, out.data(),
                                             out.size()));
+    return out;
+}
+/// relief_quad_generate_texels with a progress callable, as relief_cones::create.
+template <typename F, typename = detail::if_progress<F>>
+std::vector<float> relief_quad_generate_texels(const relief_map &map,
+                                               const OceanReliefConeParams &params, F &&progress)
+{
+    std::vector<float> out(16 * detail::mul(map.size(), map.size()));
+    detail::with_progress(progress, [&](OceanReliefProgress p, void *user) {
+        return ocean_relief_quad_generate_texels(map.get(), &params, p, user, out.data(),
+                                                 out.size());
+    });
     return out;
 }
 /// The ray of a tangent-space view vector entering at (start_u, start_v), `depth` deep.

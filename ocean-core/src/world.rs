@@ -66,11 +66,7 @@ impl WaveSet {
                 &mut rel[start..end],
                 &mut out_nrm[start..end],
             )?;
-            for (out, (&p, r)) in out_pos[start..end]
-                .iter_mut()
-                .zip(world[start..end].iter().zip(&rel[start..end]))
-            {
-                let o = corner(p);
+            for (out, r) in out_pos[start..end].iter_mut().zip(&rel[start..end]) {
                 *out = DVec3::new(o.x + f64::from(r.x), f64::from(r.y), o.y + f64::from(r.z));
             }
             start = end;

@@ -648,6 +648,47 @@ void test_relief()
                                                                 OCEAN_RELIEF_ENCODING_UNORM8),
                    enc8),
           "generate = the handle's texels");
+
+    // Progress as a callable: every report in order from 0 to the total (N rows in wrap
+    // mode), and the same result as without it.
+    std::vector<std::size_t> seen;
+    std::size_t reported_total = 0;
+    const auto record = [&](std::size_t done, std::size_t total) {
+        seen.push_back(done);
+        reported_total = total;
+        return true;
+    };
+    const ocean::relief_cones with_lambda = ocean::relief_cones::create(map, params, record);
+    bool ordered = seen.size() >= 2 && seen.front() == 0 && seen.back() == reported_total &&
+                   reported_total == N;
+    for (std::size_t k = 1; k < seen.size(); k++)
+        ordered = ordered && seen[k] > seen[k - 1];
+    CHECK(ordered && same(with_lambda.texels(), texels), "cones: %zu callable reports, total %zu",
+          seen.size(), reported_total);
+    CHECK(same(ocean::relief_generate_texels(map, params, record), texels) &&
+              same(ocean::relief_generate_encoded<std::uint8_t>(map, params,
+                                                                OCEAN_RELIEF_ENCODING_UNORM8, record),
+                   enc8),
+          "generate with a callable = the handle's texels");
+    // false cancels: ocean::error OCEAN_STATUS_CANCELLED, nothing made.
+    expect_error([&] { (void)ocean::relief_cones::create(map, params, [](std::size_t, std::size_t) { return false; }); },
+                 OCEAN_STATUS_CANCELLED, "ocean_relief_cones_create", "cones: callable cancels");
+    // What the callable throws cancels the work and comes back out of the call, unchanged
+    // (it never unwinds through the library).
+    int thrown_at = -1;
+    try {
+        (void)ocean::relief_quad_generate_texels(map, params, [&](std::size_t done, std::size_t) {
+            if (done > 0) {
+                thrown_at = int(done);
+                throw std::runtime_error("stop at the first band");
+            }
+            return true;
+        });
+        CHECK(false, "quad generate: the callable's exception was swallowed");
+    } catch (const std::runtime_error &e) {
+        CHECK(std::string(e.what()) == "stop at the first band" && thrown_at > 0,
+              "quad generate: rethrown %s", e.what());
+    }
     expect_invalid([&] { (void)cones.encode<float>(OCEAN_RELIEF_ENCODING_F16); },
                    "encode: element type");
     expect_invalid([&] { cones.texels(enc32); }, "texels: size");
