@@ -18,6 +18,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -31,15 +32,22 @@ constexpr double kPi = 3.14159265358979323846;
 int g_checks = 0;
 int g_failures = 0;
 
-template <typename... Args>
-void check(bool ok, const char *fmt, Args... args)
+// printf-style: C varargs with the format attribute, so that the compiler checks each
+// message's arguments against its format (clang refuses a non-literal format otherwise).
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+void check(bool ok, const char *fmt, ...)
 {
     ++g_checks;
     if (!ok) {
         ++g_failures;
         std::fprintf(stderr, "FAIL: ");
-        std::fprintf(stderr, fmt, args...);
-        std::fprintf(stderr, "\n");
+        va_list args;
+        va_start(args, fmt);
+        std::vfprintf(stderr, fmt, args);
+        va_end(args);
+        std::fputc('\n', stderr);
     }
 }
 
