@@ -30,18 +30,18 @@ use ocean_core::camera::{Camera, DepthConvention, Far, Projection};
 use ocean_core::frustum::Frustum;
 use ocean_core::rng::Pcg32;
 use ocean_wtb::effects::{Effects, Irregular, Noise, Refraction};
+use ocean_wtb::scenarios;
 use ocean_wtb::scene::{
     BoxId, BoxSpec, Coverage, DrawnSample, HeightSample, QUERY_TOLERANCE, Scene,
 };
-use ocean_wtb::{Terrain, TrainSource, WaterGrid, Wind};
 use serde_json::{Value, json};
 
 use crate::bench::{BenchArgs, cpu_name, interleaved_medians, memory_baseline};
 
 /// Grid sides of figure 1.
 const SIDES: [usize; 6] = [64, 128, 256, 512, 1024, 2048];
-/// Grid spacing, metres (fixed: the boxes grow with the grid).
-const SPACING: f64 = 1.0;
+/// Grid spacing, metres (the scenarios': the boxes grow with the grid).
+const SPACING: f64 = scenarios::SPACING;
 /// Frame step, seconds: every timed frame is a new instant.
 const DT: f64 = 1.0 / 60.0;
 /// Start time, seconds.
@@ -60,58 +60,6 @@ fn rebuild_runs(runs: u32) -> u32 {
     (runs / 2).max(5).min(runs)
 }
 
-/// A wind that is fully developed from t = 0 on and never dies (the scenarios of the tests).
-fn wind(
-    speed: f64,
-    direction: (f64, f64),
-    origin: (f64, f64),
-    size: (f64, f64),
-    trains: u32,
-    seed: u64,
-) -> Wind {
-    Wind {
-        speed,
-        direction: DVec2::new(direction.0, direction.1),
-        origin: DVec2::new(origin.0, origin.1),
-        width: size.0,
-        fetch: size.1,
-        start: -1.0,
-        build_up: 0.0,
-        sustain: f64::INFINITY,
-        decay: 0.0,
-        seed,
-        trains,
-    }
-}
-
-fn spec(w: Wind) -> BoxSpec {
-    BoxSpec {
-        wind: w,
-        trains: TrainSource::FromWind,
-        smoothing: 4.0,
-        recovery: None,
-    }
-}
-
-/// `side`² points 1 m apart on a floor sloping from 30 m deep (x = 0) to 1 m (far edge), as in
-/// ocean-wtb's scenario tests: shallow enough over most of the grid for refraction and shoaling
-/// to change every ray.
-fn sloping(side: usize) -> (WaterGrid, Terrain) {
-    let grid = WaterGrid::new(DVec2::ZERO, SPACING, side, side).expect("benchmark grid");
-    let far = (side - 1) as f64 * SPACING;
-    let terrain = Terrain::from_fn(&grid, |p| -(30.0 - 29.0 * p.x / far) as f32).expect("terrain");
-    (grid, terrain)
-}
-
-/// Basic Gerstner waves and depth refraction by phase shift: the paper's benchmark effects.
-fn paper_effects() -> Effects {
-    Effects {
-        refraction: Refraction::PhaseShift,
-        shoaling: false,
-        ..Effects::default()
-    }
-}
-
 /// Basic Gerstner waves only.
 fn basic_effects() -> Effects {
     Effects {
@@ -121,63 +69,21 @@ fn basic_effects() -> Effects {
     }
 }
 
-fn build(side: usize, effects: Effects, winds: &[Wind]) -> (Scene, Vec<(BoxId, BoxSpec)>) {
-    let (grid, terrain) = sloping(side);
-    let mut scene = Scene::new(grid, terrain).expect("scene");
-    scene.set_effects(effects).expect("effects");
-    let boxes = winds
-        .iter()
-        .map(|w| {
-            let s = spec(*w);
-            (scene.add_box(s.clone()).expect("box"), s)
-        })
-        .collect();
-    (scene, boxes)
+/// `ocean_wtb::scenarios::build`, with each box's id beside its spec (moved every frame by
+/// the rebuild figures).
+fn build(side: usize, effects: Effects, specs: Vec<BoxSpec>) -> (Scene, Vec<(BoxId, BoxSpec)>) {
+    let (scene, ids) = scenarios::build(side, effects, &specs).expect("benchmark scene");
+    (scene, ids.into_iter().zip(specs).collect())
 }
 
-/// The paper's scenario 1 (§3) as ocean-wtb's tests build it on 64², scaled to `side`²: two
-/// boxes covering most of the grid, one with one train and one with two.
+/// The paper's scenario 1 (`ocean_wtb::scenarios::scenario_1_boxes`) on `side`².
 fn scenario_1(side: usize, effects: Effects) -> (Scene, Vec<(BoxId, BoxSpec)>) {
-    let s = side as f64 / 64.0;
-    let winds = [
-        wind(
-            7.0,
-            (1.0, 0.15),
-            (-2.0 * s, -4.0 * s),
-            (66.0 * s, 70.0 * s),
-            1,
-            11,
-        ),
-        wind(
-            5.0,
-            (0.7, 1.0),
-            (30.0 * s, -30.0 * s),
-            (60.0 * s, 90.0 * s),
-            2,
-            12,
-        ),
-    ];
-    build(side, effects, &winds)
+    build(side, effects, scenarios::scenario_1_boxes(side))
 }
 
-/// The paper's scenario 2 (§3, Fig. 13), laid out on 256² and scaled to `side`²: seven boxes
-/// with one train each, 50–120 m a side at 256², in several directions, spread over the grid
-/// and overlapping in places.
+/// The paper's scenario 2 (`ocean_wtb::scenarios::scenario_2_boxes`) on `side`².
 fn scenario_2(side: usize, effects: Effects) -> (Scene, Vec<(BoxId, BoxSpec)>) {
-    let s = side as f64 / 256.0;
-    let w = |speed, dir, (x, z): (f64, f64), (width, fetch): (f64, f64), seed| {
-        wind(speed, dir, (x * s, z * s), (width * s, fetch * s), 1, seed)
-    };
-    let winds = [
-        w(6.0, (1.0, 0.1), (5.0, 5.0), (100.0, 110.0), 21),
-        w(5.0, (1.0, -0.1), (140.0, 15.0), (90.0, 100.0), 22),
-        w(7.0, (1.0, 0.3), (10.0, 115.0), (70.0, 90.0), 23),
-        w(5.5, (1.0, 0.0), (125.0, 110.0), (60.0, 120.0), 24),
-        w(4.5, (1.0, -0.2), (20.0, 195.0), (50.0, 80.0), 25),
-        w(6.5, (1.0, 0.15), (130.0, 175.0), (70.0, 110.0), 26),
-        w(8.0, (0.6, 1.0), (120.0, 40.0), (80.0, 120.0), 27),
-    ];
-    build(side, effects, &winds)
+    build(side, effects, scenarios::scenario_2_boxes(side))
 }
 
 /// A camera straight above the centre of a `side`² grid, looking down (`up = false`, its view
@@ -337,7 +243,7 @@ pub fn wtb(args: &BenchArgs) -> Result<Value, String> {
     let mut scenario = Vec::new();
     let mut kept = Vec::new();
     for side in SIDES {
-        let (scene, boxes) = scenario_1(side, paper_effects());
+        let (scene, boxes) = scenario_1(side, scenarios::paper_effects());
         let mut case = Case::new(scene, boxes, false, None);
         let mut base = Baseline::new(side);
         let [baseline_ms, frame_ms] =
@@ -387,7 +293,7 @@ pub fn wtb(args: &BenchArgs) -> Result<Value, String> {
     // 3. Culling on scenario 2 at 256².
     let culling = {
         let side = 256;
-        let (scene, boxes) = scenario_2(side, paper_effects());
+        let (scene, boxes) = scenario_2(side, scenarios::paper_effects());
         let mut all = Case::new(
             scene.clone(),
             boxes.clone(),
@@ -466,7 +372,7 @@ pub fn wtb(args: &BenchArgs) -> Result<Value, String> {
     // 5. Height queries on scenario 1 at 512².
     let queries = {
         let side = 512;
-        let (mut scene, _) = scenario_1(side, paper_effects());
+        let (mut scene, _) = scenario_1(side, scenarios::paper_effects());
         let frame = scene.frame(T0, None).map_err(|e| e.to_string())?;
         let mut rng = Pcg32::new(0x5157_4254, 3);
         let far = (side - 1) as f64 * SPACING;
@@ -583,7 +489,7 @@ pub fn wtb(args: &BenchArgs) -> Result<Value, String> {
             Ok(bench) => {
                 let mut sizes = Vec::new();
                 for side in [512, 1024] {
-                    let (mut scene, _) = scenario_1(side, paper_effects());
+                    let (mut scene, _) = scenario_1(side, scenarios::paper_effects());
                     let frame = scene.frame(T0, None).map_err(|e| e.to_string())?;
                     let mut v = bench.layers(&frame, runs)?;
                     v["side"] = json!(side);
@@ -644,7 +550,7 @@ const ISA_SIDE: usize = 1024;
 /// on every instruction set this CPU has, interleaved with a one-thread memory baseline. The
 /// outputs are compared bit for bit as well (they must agree: `ocean_core::isa`).
 fn isa_figure(runs: u32) -> Result<Value, String> {
-    let (mut scene, _) = scenario_1(ISA_SIDE, paper_effects());
+    let (mut scene, _) = scenario_1(ISA_SIDE, scenarios::paper_effects());
     let frame = scene.frame(T0, None).map_err(|e| e.to_string())?;
     let layers = frame.layers();
     let grid = frame.grid().grid();
