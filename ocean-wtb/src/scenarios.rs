@@ -126,30 +126,27 @@ pub fn scenario_1(n: usize) -> Result<Scene, WtbError> {
 /// size, as the paper reports (laid out on 256², scaled by n / 256).
 pub fn scenario_2_boxes(n: usize) -> Vec<BoxSpec> {
     let s = n as f64 / 256.0;
-    // (speed, direction, origin, (width, fetch), seed) at 256².
-    let boxes: [(f64, (f64, f64), (f64, f64), (f64, f64), u64); 7] = [
-        (6.0, (1.0, 0.1), (5.0, 5.0), (100.0, 110.0), 21),
-        (5.0, (1.0, -0.1), (140.0, 15.0), (90.0, 100.0), 22),
-        (7.0, (1.0, 0.3), (10.0, 115.0), (70.0, 90.0), 23),
-        (5.5, (1.0, 0.0), (125.0, 110.0), (60.0, 120.0), 24),
-        (4.5, (1.0, -0.2), (20.0, 195.0), (50.0, 80.0), 25),
-        (6.5, (1.0, 0.15), (130.0, 175.0), (70.0, 110.0), 26),
-        (8.0, (0.6, 1.0), (120.0, 40.0), (80.0, 120.0), 27),
-    ];
-    boxes
-        .iter()
-        .map(|&(speed, (dx, dz), (x, z), (width, fetch), seed)| {
-            spec(steady_wind(
-                speed,
-                DVec2::new(dx, dz),
-                DVec2::new(x, z) * s,
-                width * s,
-                fetch * s,
-                1,
-                seed,
-            ))
-        })
-        .collect()
+    // Speed, direction, origin, (width, fetch) and seed at 256².
+    let w = |speed, (dx, dz): (f64, f64), (x, z): (f64, f64), (width, fetch): (f64, f64), seed| {
+        spec(steady_wind(
+            speed,
+            DVec2::new(dx, dz),
+            DVec2::new(x, z) * s,
+            width * s,
+            fetch * s,
+            1,
+            seed,
+        ))
+    };
+    vec![
+        w(6.0, (1.0, 0.1), (5.0, 5.0), (100.0, 110.0), 21),
+        w(5.0, (1.0, -0.1), (140.0, 15.0), (90.0, 100.0), 22),
+        w(7.0, (1.0, 0.3), (10.0, 115.0), (70.0, 90.0), 23),
+        w(5.5, (1.0, 0.0), (125.0, 110.0), (60.0, 120.0), 24),
+        w(4.5, (1.0, -0.2), (20.0, 195.0), (50.0, 80.0), 25),
+        w(6.5, (1.0, 0.15), (130.0, 175.0), (70.0, 110.0), 26),
+        w(8.0, (0.6, 1.0), (120.0, 40.0), (80.0, 120.0), 27),
+    ]
 }
 
 /// The paper's scenario 2: [`scenario_2_boxes`] with [`paper_effects`] on [`sloping`].
