@@ -6,14 +6,27 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-/// Public items of the C ABI declared in the module sources (tests excluded).
+/// The Rust sources under `dir`, its subdirectories included.
+fn sources(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            sources(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// Public items of the C ABI declared in the module sources (tests excluded), in `src/` and
+/// its subdirectories (`src/boundary/` declares the extension chain's types).
 fn declared() -> BTreeSet<String> {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut items = BTreeSet::new();
-    for entry in std::fs::read_dir(&src).unwrap() {
-        let path = entry.unwrap().path();
-        let name = path.file_name().unwrap().to_str().unwrap().to_owned();
-        if path.extension().is_none_or(|e| e != "rs") || name == "lib.rs" {
+    let mut paths = Vec::new();
+    sources(&src, &mut paths);
+    for path in paths {
+        if path == src.join("lib.rs") {
             continue;
         }
         let text = std::fs::read_to_string(&path).unwrap();
