@@ -199,7 +199,7 @@ fn integral_tends_to_schlick() {
 
 #[test]
 fn fit_stays_close_to_the_integral_below_sigma_half() {
-    // The requirement: Eq. 26 against Eq. 24 for σ_x, σ_y < 0.5, all view angles.
+    // The requirement: Eq. 26 against Eq. 24 for σ_x, σ_y < 0.5, all view angles.
     // Sweep (release): σ_x, σ_y each in {0.02, 0.1, 0.2, 0.3, 0.4, 0.49} (isotropic and
     // anisotropic up to 25:1), φ_v in {0, 30, 60, 90}°, θ_v = 0, 1, …, 89, 89.5, 89.9, 89.99°.
     // Debug builds sweep σ in {0.02, 0.1, 0.49}, φ_v in {0, 90}°, θ_v every 5° plus 81,

@@ -24,7 +24,7 @@
 //! The constant-BRDF model is 32–49 % off beyond 300 m, 2.3–3.7 times the model's error on
 //! every such row. The model is the renderer's (`FilteredSurface::pixel` lit by
 //! `sea::pixel_color`, the CPU twin of `ocean_fs`), so these are the figures of what the GPU
-//! draws. The 5 % per row is **not met** for either component:
+//! draws. The target of 5 % per row is **not met** for either component:
 //! - near rows: the model's masking-aware normal (`sea::visible_normal`) halves the bias of the
 //!   waves resolved in the normals but not in the geometry (without it, rows 46–213 m: sky
 //!   +9.7 %, refracted −12 %; with it +5.7 %, −6.2 %); with the geometry holding every wave the normals hold (a 1-pixel
@@ -63,7 +63,7 @@
 //!
 //! (pooled: the model's sum over the rows against the reference's, the error from the rows'
 //! standard errors.) So the model's glitter is **29–35 % too dim** far away and 17–22 % near,
-//! 7–18 standard errors from the reference: the 5 % is not met, and the per-row noise
+//! 7–18 standard errors from the reference: the 5 % target is not met, and the per-row noise
 //! of the reference (about 12 % far) is smaller than the miss. The likely cause (not measured directly) is the
 //! one of the sky's far rows: the glints need a facet tilted about 12° towards the viewer, a
 //! slope of 0.22 across the wind, 2.3 σ into the tail of Ross's Gaussian, where

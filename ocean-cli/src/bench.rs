@@ -1,4 +1,4 @@
-//! `ocean bench`: figures for the issues' performance targets.
+//! `ocean bench`: the figures of each technique's performance targets (BENCHMARKS.md).
 //!
 //! Times are medians over repeated runs after a warm-up; every figure is measured in the same
 //! run as the baseline it is compared with.
@@ -40,16 +40,16 @@ pub struct BenchArgs {
 enum Suite {
     /// The trochoid (Gerstner) wave sum on a grid: CPU single-thread, all threads, GPU.
     Gerstner,
-    /// Wave train boxes (issue 3): scenario 1 from 64² to 2048², scaling, culling, effect
+    /// Wave train boxes: scenario 1 from 64² to 2048², scaling, culling, effect
     /// costs, height queries.
     Wtb,
-    /// Ocean lighting (issue 4): CPU sea-colour evaluations and the paper's validation
+    /// Ocean lighting: CPU sea-colour evaluations and the paper's validation
     /// (Fig. 10) against a detailed-geometry reference.
     Lighting,
     /// Scalable ambient obscurance: GPU time against the radius, with and without the z
     /// hierarchy, per pass at four resolutions with guard bands, and the CPU reference.
     Sao,
-    /// Relief mapping (issue 6): relaxed cone-map generation at 256², 512² and 1024², the
+    /// Relief mapping: relaxed cone-map generation at 256², 512² and 1024², the
     /// brute-force oracle at 128², progress overhead, GPU generation, CPU tracer rays per second
     /// per method, the level of detail's draw time and shimmer on the GPU, and the accuracy
     /// table.

@@ -149,7 +149,7 @@ impl Bench {
 }
 
 impl Bench {
-    /// The ocean renderer (issue 4): median GPU time of the render pass (timestamps, when the
+    /// The ocean renderer: median GPU time of the render pass (timestamps, when the
     /// adapter has them) and median wall time of record + submit + wait, for one frame of
     /// `surface` under `lighting` seen by `camera` at `size`, over `runs` runs after two
     /// warm-ups. Colour and depth are cleared by a separate pass before each timed one.

@@ -1,4 +1,4 @@
-//! `ocean bench lighting`: the figures of issue 4 ("Performance", "Validation").
+//! `ocean bench lighting`: the lighting figures (performance and the paper's validation).
 //!
 //! 1. **CPU sea colour**: Algorithm 5.1 ([`sea_color_unchecked`], with the 512² sky map)
 //!    evaluations per second on one thread and on all threads, over a fixed table of views,
@@ -87,7 +87,7 @@ pub fn print(doc: &Value) {
 const SIZES: [(u32, u32); 2] = [(1280, 720), (1920, 1080)];
 /// Camera heights of the GPU figures, metres (the paper's 4, 1000 and 8000 m views).
 const HEIGHTS: [f64; 3] = [4.0, 1000.0, 8000.0];
-/// The 8000 m view's cost relative to the 4 m view's, at most (issue 4).
+/// The 8000 m view's cost relative to the 4 m view's, at most (the lighting target).
 const TARGET_FAR_RATIO: f64 = 0.4;
 
 /// GPU time per frame of the ocean renderer (default spectrum: 60 waves from 2 cm to 30 m;

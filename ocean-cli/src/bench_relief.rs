@@ -1,11 +1,11 @@
-//! `ocean bench relief`: the figures of issue 6 (relief mapping by relaxed cone stepping) on
+//! `ocean bench relief`: the figures of relief mapping by relaxed cone stepping on
 //! ocean-relief's CPU code.
 //!
 //! 1. **Generation**: `ConeMap::generate` of relaxed cones capped at 1.0 (the book's cap) at
 //!    256², 512² and 1024², on three wrapped maps (`ocean_relief::maps`): fBm value noise with
 //!    6 octaves, smooth value noise with 2 octaves, round bumps; all threads of the rayon pool.
 //!    Targets (on 2 cores): 512² in at most 2 s and 1024² in at most 10 s, checked against the
-//!    slowest map's median. For scale, the issue quotes the book's brute-force listing at about
+//!    slowest map's median. For scale, the book's brute-force listing at about
 //!    15 s at 256² and an hour at 1024² on one core.
 //! 2. **Oracle**: `ConeMap::brute_force` (every pair of cells, `Θ(N⁴)`) and `generate` on the
 //!    fBm map at 128², timed in turn in the same rounds; their ratio, and whether the bits agree.

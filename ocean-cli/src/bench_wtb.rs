@@ -1,4 +1,4 @@
-//! `ocean bench wtb`: the wave train boxes figures of issue 3 ("Performance").
+//! `ocean bench wtb`: the wave train boxes figures (performance against the paper's §3).
 //!
 //! Every figure is a median of interleaved rounds ([`interleaved_medians`]) taken in the same
 //! run as the figure it is compared with:
@@ -1023,7 +1023,7 @@ fn print_wtb(r: &Value) {
         );
     }
     println!();
-    println!("Targets (issue 3):");
+    println!("Targets:");
     for t in r["targets"].as_array().into_iter().flatten() {
         println!(
             "   {:<48} {:>6} {:<14} measured {:>10.4}  {}",

@@ -8,7 +8,7 @@
 //! rock faces, relief-mapped by relaxed cone stepping (`ocean_gpu::ReliefRenderer`, cone maps
 //! generated at start-up and cached on disk, [`crate::cone_cache`]), self-shadowed by the Sun
 //! and writing the depth of their relief; and the ambient obscurance of the whole depth buffer
-//! ([`crate::composite`]).
+//! (`ocean_gpu::OceanRenderer::compose`).
 //!
 //! Every PNG is written to a temporary file and renamed when complete, the output directory is
 //! checked before anything is rendered, and an interruption (Ctrl-C, SIGTERM, SIGHUP) stops the

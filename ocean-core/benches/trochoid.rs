@@ -1,6 +1,6 @@
 //! Trochoid wave-sum benchmarks: grid evaluation, single- and multi-threaded.
 //!
-//! `ocean bench gerstner` prints the figures (with a memory baseline and the GPU); this
+//! `ocean bench gerstner` prints the Gerstner figures (with a memory baseline and the GPU); this
 //! criterion suite tracks the CPU kernel alone across changes.
 
 use std::f64::consts::TAU;

@@ -224,7 +224,7 @@ mod tests {
     }
 
     /// The crease scene, reversed-Z [0, 1] with an infinite far plane, through the C ABI on
-    /// the CPU and on the GPU: the parity (2/255 on 99.9% of the pixels), and a handle
+    /// the CPU and on the GPU: the parity bound (2/255 on 99.9% of the pixels), and a handle
     /// refused on a context it was not made on, with `ao` untouched.
     #[test]
     fn the_gpu_run_matches_the_cpu_run() {

@@ -301,7 +301,7 @@ mod tests {
 
     #[test]
     fn requested_limits_stay_within_webgpu_defaults() {
-        // Staying inside WebGPU's defaults keeps the WGSL portable to browsers (DESIGN.md).
+        // Staying inside WebGPU's defaults keeps the WGSL portable to browsers (ARCHITECTURE.md, "Shaders").
         let l = required_limits();
         assert!(l.check_limits(&wgpu::Limits::defaults()));
         assert_eq!(l.max_storage_buffers_per_shader_stage, 4);

@@ -40,7 +40,8 @@
 //! positions relative to its horizontal position `o`. The host forms the matrices of that frame
 //! in `f64` and, per wave and frame, `θ₀ = k·o − ωt + Φ` reduced modulo 2π in `f64`, so the
 //! shader's phase `k·(x − o) + θ₀` grows with the distance from the camera only, never with the
-//! time or the distance from the world origin (DESIGN.md); and a wave enters a sum only where
+//! time or the distance from the world origin (ARCHITECTURE.md, "Precision far from the
+//! origin"); and a wave enters a sum only where
 //! its wavelength spans a footprint, which bounds `k·(x − o)`. The shader reduces the phase
 //! modulo 2π again before its sine and cosine.
 //!
@@ -303,7 +304,7 @@ impl WaveTexels {
     }
 
     /// Row 0 for a frame at `time` seen from an eye at horizontal position `o` (world x, z):
-    /// `θ₀ = k·o − ωt + Φ` reduced modulo 2π in `f64` (DESIGN.md), so the shader's phase
+    /// `θ₀ = k·o − ωt + Φ` reduced modulo 2π in `f64` (ARCHITECTURE.md), so the shader's phase
     /// `k·(x − o) + θ₀` never holds a large number in `f32`.
     pub fn phases(&self, o: DVec2, time: f64) -> Vec<[f32; 4]> {
         self.waves

@@ -1,5 +1,5 @@
 //! Storing cone maps: every encoding rounds **down** (a decoded ratio is never above the exact
-//! one, so a valid cone stays valid), as the issue and the pitfalls list require.
+//! one, so a valid cone stays valid), as a cone map must be.
 //!
 //! - [`Encoding::Unorm8`]: the book's 8-bit channel (§18.4.1), the ratio clamped to 1.0:
 //!   `k = ⌊255·min(r, 1)⌋`, decoded as `k/255` (a GPU's unorm conversion).

@@ -32,7 +32,7 @@ fn fast_generator_matches_brute_force() {
             }
         }
     }
-    // And at 64², the largest size the issue names, on two maps.
+    // And at 64², the largest size of the validity target, on two maps.
     for (name, map) in maps(64, Edge::Wrap)
         .into_iter()
         .filter(|(n, _)| *n == "fBm" || *n == "boxes")

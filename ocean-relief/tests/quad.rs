@@ -161,7 +161,7 @@ fn assert_layers_valid(
 /// at any depth and slope, that crosses the surface twice inside the cone it uses: relaxed 64²
 /// maps in both edge modes (cap 4, 2×2 apexes per cell, 32 directions, so 9 per quadrant with
 /// both axes), conservative 64² wrap (cap 1, 16 directions: 5 per quadrant), and relaxed 128²
-/// wrap (the largest size the issue names; cap 1, 12 directions: 4 per quadrant).
+/// wrap (the largest size of the validity target; cap 1, 12 directions: 4 per quadrant).
 #[test]
 fn quadrant_cones_are_valid() {
     let cases = [

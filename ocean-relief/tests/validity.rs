@@ -73,7 +73,7 @@ fn cones_64_are_valid() {
     );
 }
 
-/// 128² maps (the largest the issue names), relaxed, wrap mode: 2×2 apexes per cell, 12
+/// 128² maps (the largest size of the validity target), relaxed, wrap mode: 2×2 apexes per cell, 12
 /// directions.
 #[test]
 fn relaxed_128_is_valid() {

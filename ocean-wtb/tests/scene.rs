@@ -235,7 +235,7 @@ fn overlap_heights_and_culling() {
 #[test]
 fn queries_agree_with_the_grid_within_1_mm() {
     // Query the world (x, z) where each interior grid point was displaced to: the answer must
-    // be that grid point's height, within 1 mm (the bound); the residual of the
+    // be that grid point's height, within 1 mm (the query bound); the residual of the
     // horizontal inversion stays below its 0.1 mm tolerance.
     for mut s in [scenario_1(), island()] {
         let t = 9.25;

@@ -139,7 +139,7 @@ pub fn realistic_waves() -> WaveSet {
     WaveSet::from_descs(&descs).expect("valid wave set")
 }
 
-/// The parity tolerances between the GPU and its CPU twin: heights within 1 mm RMS,
+/// The parity tolerances (ARCHITECTURE.md, "CPU and GPU twins") between the GPU and its CPU twin: heights within 1 mm RMS,
 /// horizontal positions within 1 mm at every point, normals within 0.1° at every point.
 pub const HEIGHT_RMS_TOL_M: f64 = 1e-3;
 /// See [`HEIGHT_RMS_TOL_M`].
@@ -171,7 +171,7 @@ pub fn assert_parity(label: &str, d: &GridDiff) {
     );
 }
 
-/// The 256 × 256 parity grid (0.5 m × 0.75 m cells) at `origin`.
+/// The 256 × 256 parity grid (0.5 m × 0.75 m cells) at `origin`.
 pub fn grid_256(origin: glam::DVec2) -> ocean_core::Grid {
     ocean_core::Grid {
         origin,

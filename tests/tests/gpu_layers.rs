@@ -3,7 +3,7 @@
 //! field μ = [m cos φ, m sin φ] over a grid rectangle (wave-train-boxes Eq. 6-7 with amplitude
 //! m·A and phase θ + φ), plus an additive height field.
 //!
-//! Tolerances (DESIGN.md, "CPU and GPU twins"): heights within 1 mm RMS, horizontal positions
+//! Tolerances (ARCHITECTURE.md, "CPU and GPU twins"): heights within 1 mm RMS, horizontal positions
 //! within 1 mm (max), normals within 0.1° as the *maximum* angle over all points. Both sides run
 //! the same `f32` operations in the same order on the same sin/cos tables, so on Mesa's software
 //! drivers the outputs are bit-identical (the tests print how many points are); real GPUs may
@@ -171,7 +171,7 @@ fn edge_layers() -> Vec<LayerData> {
     ]
 }
 
-/// The parity cases: 256 × 256 at t = 0, 100 and 10⁶ s near the origin and at
+/// The parity cases: 256 × 256 at t = 0, 100 and 10⁶ s near the origin and at
 /// t = 100 and 10⁶ s 100 km from it, with a height field.
 #[test]
 fn parity_overlapping_modulated_layers_with_height_field() {

@@ -1,4 +1,4 @@
-//! GPU/CPU parity of relief mapping (issue 6): `ocean_gpu::ReliefRenderer`'s tracer and shadow
+//! GPU/CPU parity of relief mapping: `ocean_gpu::ReliefRenderer`'s tracer and shadow
 //! test against `ocean_relief`'s CPU tracers and `shadow::in_shadow` (through its probe, on rays
 //! at 0–80° from the normal over several maps, both edge modes and every method), its headless
 //! render against the CPU twin pixel by pixel (the depth it writes against
@@ -6,13 +6,13 @@
 //! occlusion in the caller's depth buffer, `ocean_gpu::ConeMapGenerator` against
 //! `ConeMap::generate`; then bad input.
 //!
-//! Acceptance (the issue): GPU hits within 0.01 texel of the CPU's, cone maps equal up to
+//! Acceptance (ARCHITECTURE.md, "CPU and GPU twins"): GPU hits within 0.01 texel of the CPU's, cone maps equal up to
 //! quantisation. Both were measured bit-identical on Mesa's lavapipe (Vulkan) and llvmpipe (GL):
 //! the tracer does the CPU's exact bilinear fetch and rounds every operation as the CPU does
 //! (`relief_common.wgsl`), the generator computes the CPU's `f64` bound in double-`f32`
 //! (`relief_cone.wgsl`). On software adapters the tests assert that bit for bit, so a
-//! divergence in arithmetic fails long before the issue's tolerance would; on other adapters
-//! they assert the issue's tolerances.
+//! divergence in arithmetic fails long before the parity tolerance would; on other adapters
+//! they assert the parity tolerances.
 //!
 //! Run with `OCEAN_REQUIRE_GPU=1` to turn a missing adapter into a failure.
 
@@ -60,7 +60,7 @@ impl Rng {
 /// Side of the test maps.
 const N: usize = 64;
 
-/// The issue's tolerance on hits, texels.
+/// The parity tolerance on hits, texels.
 const HIT_TOL_TEXELS: f32 = 0.01;
 
 /// Six procedural maps (smooth and white noise, boxes with steep walls, thin walls, pins,
@@ -158,7 +158,7 @@ fn texel_distance(a: Vec3, b: Vec3, scale: f32, n: usize) -> f32 {
 
 /// The probe runs the draw pass's tracer and shadow test on 480 rays per map, edge mode and
 /// method (47 040 rays and shadow tests). Expected: the CPU's fetch counts exactly, hits within
-/// the issue's 0.01 texel (bit-identical and the same shadow flags on software adapters, as
+/// the parity bound of 0.01 texel (bit-identical and the same shadow flags on software adapters, as
 /// measured on lavapipe and llvmpipe).
 #[test]
 fn probe_matches_the_cpu_tracers() {
@@ -228,7 +228,7 @@ fn probe_matches_the_cpu_tracers() {
 /// `QuadReliefTexture::trace` and `QuadReliefTexture::in_shadow` (whose light rays pick their
 /// own quadrant), relaxed quadrant cones for linear search and relaxed cone stepping,
 /// conservative ones (QDCSM, §18.1) for cone step mapping. Expected as for the isotropic
-/// tracer: the CPU's fetch counts exactly, hits within the issue's 0.01 texel, bit-identical
+/// tracer: the CPU's fetch counts exactly, hits within the parity bound of 0.01 texel, bit-identical
 /// with the same shadow flags on software adapters (the WGSL is the isotropic tracer's
 /// arithmetic; only the layer index of each `textureLoad` differs). Every quadrant must be
 /// exercised: the rays' azimuths are uniform, so each layer gets about a quarter of them.
@@ -359,7 +359,7 @@ fn footprint(rng: &mut Rng, k: usize) -> [Vec2; 2] {
 /// picks a level from 0 to 5 (`footprint`). Expected: the probe reads the level
 /// `mip_level` picks for the footprint, exactly, and traces and shadows there as the CPU does on
 /// that level's texture (`Method::trace`, `in_shadow`; `QuadReliefTexture::trace`,
-/// `::in_shadow`): the same fetch counts, hits within the issue's 0.01 texel (of level 0),
+/// `::in_shadow`): the same fetch counts, hits within the parity bound of 0.01 texel (of level 0),
 /// bit-identical with the same shadow flags on software adapters. Every level must be read.
 /// (Measured: 40 320 rays, 5 760 at each of levels 0–4 and 11 520 at level 5, all
 /// bit-identical on lavapipe and llvmpipe. With the levels uploaded as a mip chain instead of

@@ -6,7 +6,7 @@
 //! every MIP filter, no hierarchy, the sample and blur options, hash values above 2²⁴, and the
 //! caller's Depth32Float, Depth24Plus and Depth16Unorm textures; then bad input.
 //!
-//! Acceptance (the issue, DESIGN.md "CPU and GPU twins"): the final A within 2/255 of the CPU
+//! Acceptance (ARCHITECTURE.md, "CPU and GPU twins"): the final A within 2/255 of the CPU
 //! on at least 99.9% of the output pixels. The per-stage bounds below leave room for hardware
 //! that fuses multiply-adds or approximates division. On Mesa's lavapipe (Vulkan) and llvmpipe
 //! (GL) every stage of every case was measured bit-identical to the CPU (except the raw A where
@@ -28,7 +28,7 @@ use ocean_sao::{
 };
 use ocean_tests::gpu_context_or_skip;
 
-/// The issue's tolerance on the final A.
+/// The parity tolerance on the final A.
 const AO_TOL: f32 = 2.0 / 255.0;
 /// The share of output pixels that must be within [`AO_TOL`].
 const AO_SHARE: f64 = 0.999;

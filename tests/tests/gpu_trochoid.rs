@@ -1,7 +1,7 @@
 //! GPU/CPU parity of the trochoid displacement pass (`ocean_gpu::TrochoidPass`) against its CPU
 //! twin `WaveSet::evaluate_grid`.
 //!
-//! Tolerances (DESIGN.md, "CPU and GPU twins"): heights within 1 mm RMS; normals within 0.1° as
+//! Tolerances (ARCHITECTURE.md, "CPU and GPU twins"): heights within 1 mm RMS; normals within 0.1° as
 //! the *maximum* angle over all points (the RMS angle is printed too). Both sides run the same
 //! `f32` arithmetic (angle addition of per-row and per-column sines and cosines, then the same
 //! sums) on the same sin/cos tables from `WaveSet::grid_sin_cos`, so the real differences are
@@ -53,7 +53,7 @@ fn parity(ctx: &GpuContext, pass: &TrochoidPass, grid: &Grid, t: f64, label: &st
     d
 }
 
-/// The parity cases: 256 × 256 at t = 0, 100 and 10⁶ s (each labelled in failures).
+/// The parity cases: 256 × 256 at t = 0, 100 and 10⁶ s (each labelled in failures).
 #[test]
 fn parity_256_at_t_0_100_and_1e6() {
     let Some(ctx) = gpu_context_or_skip() else {

@@ -1,6 +1,6 @@
 //! Wave train boxes on the GPU: every visible box of a frame becomes a modulated layer, and
-//! `ocean_gpu::LayersPass` must draw the same water as `Frame::evaluate` on the CPU (issue 3:
-//! heights within 1 mm RMS, normals within 0.1°) on the paper's scenarios, with land, shadows,
+//! `ocean_gpu::LayersPass` must draw the same water as `Frame::evaluate` on the CPU (heights
+//! within 1 mm RMS, normals within 0.1°) on the paper's scenarios, with land, shadows,
 //! refraction, shoaling and every time-dependent effect.
 
 use glam::Vec3;

@@ -10,7 +10,7 @@
 // - `ocean_vs`/`ocean_fs`: the projected grid, frame.counts.x × frame.counts.y vertices,
 //   vertex (i, j) at pixel frame.viewport.zw + cell_px (i, j), indexed as triangles of the
 //   cells (vertex index j·counts.x + i). The grid overlaps the viewport by a margin on every
-//   side, so waves that pull its edges inwards do not uncover the background (DESIGN.md).
+//   side, so waves that pull its edges inwards do not uncover the background.
 // - `mesh_vs`/`mesh_fs`: the caller's own water mesh instead of the projected grid (a wave
 //   train box scene's grid evaluated on the CPU each frame): vertex buffers at locations 0
 //   (position relative to the mesh's grid point (0, 0) at rest, vec3) and 1 (unit normal,

@@ -9,7 +9,7 @@
 // rest positions (x, z) relative to o = (o_x, o_z), the eye's horizontal position. So the
 // numbers stay small wherever the camera is. The host forms in f64 the matrices of this frame
 // and, per wave, the phase at o (see `waves` below), so a phase k·x − ωt + Φ that reaches 10⁸
-// rad at t = 10⁶ s or 100 km from the origin never reaches f32 unreduced (DESIGN.md).
+// rad at t = 10⁶ s or 100 km from the origin never reaches f32 unreduced (ARCHITECTURE.md).
 //
 // Clip space is WebGPU's (z in [0, w]); the host folds an OpenGL [-1, 1] camera into it, and
 // naga's GLSL export (ADJUST_COORDINATE_SPACE) maps it back. Pixel coordinates have their
