@@ -35,7 +35,7 @@ use glam::{DVec2, DVec3};
 use ocean_brdf::fresnel::schlick;
 use ocean_brdf::ross::lambda;
 use ocean_brdf::spectrum::{Spectrum, SpectrumParams};
-use ocean_core::trochoid::PointSums;
+use ocean_core::PointSums;
 use ocean_core::{Pcg32, WaveSet};
 
 /// Eye height, metres (the validation's).

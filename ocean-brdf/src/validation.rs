@@ -43,7 +43,7 @@
 use alloc::vec::Vec;
 
 use glam::{DVec2, DVec3};
-use ocean_core::trochoid::PointSums;
+use ocean_core::PointSums;
 use ocean_core::{Camera, DepthConvention, Far, Projection, WaveSet};
 use rayon::prelude::*;
 

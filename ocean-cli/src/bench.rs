@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use glam::{DVec2, Vec3};
-use ocean_core::trochoid::rows_per_task;
+use ocean_core::parallel::rows_per_task;
 use ocean_core::{Depth, Grid, WaveDesc, WaveSet};
 use rayon::prelude::*;
 use serde_json::{Value, json};

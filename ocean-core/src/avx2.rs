@@ -17,9 +17,7 @@ use core::arch::x86_64::{__m256, __m256d, __m256i};
 use glam::Vec3;
 use pulp::x86::V3;
 
-use crate::kernel::{HALF, LANES};
-use crate::layers::{ActiveLayer, LayerRow};
-use crate::trochoid::{GridRow, LANE_INDEX};
+use crate::kernel::{ActiveLayer, GridRow, HALF, LANE_INDEX, LANES, LayerRow};
 use crate::vector::{Sums, Vector, angle_sum, modulate};
 
 const _: () = assert!(HALF == 8, "one AVX2 vector per half chunk");

@@ -17,9 +17,7 @@ use core::arch::x86_64::{__m512, __m512i, __mmask16};
 use glam::Vec3;
 use pulp::x86::V4;
 
-use crate::kernel::LANES;
-use crate::layers::{ActiveLayer, LayerRow};
-use crate::trochoid::{GridRow, LANE_INDEX};
+use crate::kernel::{ActiveLayer, GridRow, LANE_INDEX, LANES, LayerRow};
 use crate::vector::{Sums, Vector, angle_sum, modulate};
 
 const _: () = assert!(LANES == 16, "one AVX-512 vector per chunk");

@@ -61,3 +61,43 @@ impl Grid {
         )
     }
 }
+
+/// A rectangle of grid points: columns `i0..i0 + nx`, rows `j0..j0 + nz`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GridRect {
+    /// First column.
+    pub i0: usize,
+    /// First row.
+    pub j0: usize,
+    /// Number of columns.
+    pub nx: usize,
+    /// Number of rows.
+    pub nz: usize,
+}
+
+impl GridRect {
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.nx * self.nz
+    }
+
+    /// Whether the rectangle holds no point.
+    pub fn is_empty(&self) -> bool {
+        self.nx == 0 || self.nz == 0
+    }
+
+    /// Whether the rectangle lies inside a grid of `size` (columns, rows) points; an empty
+    /// rectangle does if its first point does or it sits on the far edge.
+    pub fn fits(&self, size: (usize, usize)) -> bool {
+        let inside =
+            |start: usize, len: usize, n: usize| start.checked_add(len).is_some_and(|end| end <= n);
+        inside(self.i0, self.nx, size.0) && inside(self.j0, self.nz, size.1)
+    }
+
+    /// Index into a row-major array over this rectangle of grid point (i, j), if inside.
+    #[inline]
+    pub fn index(&self, i: usize, j: usize) -> Option<usize> {
+        let (di, dj) = (i.checked_sub(self.i0)?, j.checked_sub(self.j0)?);
+        (di < self.nx && dj < self.nz).then_some(dj * self.nx + di)
+    }
+}

@@ -220,3 +220,115 @@ impl Acc<LANES> {
         }
     }
 }
+
+// The arguments of the row kernels, shared by the portable kernels (`trochoid`, `layers`) and
+// their AVX2 and AVX-512 twins, which must not depend on the modules that dispatch to them.
+
+/// 0, 1, …, LANES − 1 as floats.
+pub(crate) const LANE_INDEX: [f32; LANES] = {
+    let mut v = [0.0f32; LANES];
+    let mut l = 0;
+    while l < LANES {
+        v[l] = l as f32;
+        l += 1;
+    }
+    v
+};
+
+/// sin and cos of one wave's phase at the columns of one chunk.
+#[derive(Clone, Copy)]
+pub(crate) struct ColumnSinCos {
+    pub(crate) sin: [f32; LANES],
+    pub(crate) cos: [f32; LANES],
+}
+
+impl ColumnSinCos {
+    pub(crate) const ZERO: Self = Self {
+        sin: [0.0; LANES],
+        cos: [0.0; LANES],
+    };
+}
+
+/// One grid row: the arguments of `trochoid`'s grid row kernel (and of its AVX2 and AVX-512
+/// twins, `crate::avx2::HalfGrid` and `crate::avx512::WideGrid`).
+pub(crate) struct GridRow<'a> {
+    pub(crate) coeffs: &'a [WaveCoeffs],
+    pub(crate) rows: &'a [[f32; 2]],
+    pub(crate) cols: &'a [ColumnSinCos],
+    pub(crate) dx: f32,
+    pub(crate) z: f32,
+    pub(crate) pos: &'a mut [Vec3],
+    pub(crate) nrm: &'a mut [Vec3],
+}
+
+/// One layer's data for one grid row.
+pub(crate) struct ActiveLayer<'a> {
+    pub(crate) coeffs: &'a [WaveCoeffs],
+    /// Where the sin and cos of each wave's row phase lie in the row's table (`layers`'s
+    /// `Scratch::rows`).
+    pub(crate) rows: core::ops::Range<usize>,
+    /// The layer's column table (see `trochoid`'s `GridPlan`).
+    pub(crate) cols: &'a [ColumnSinCos],
+    /// The grid column of `modulation[0]`.
+    pub(crate) first: usize,
+    /// The layer's modulation along this row, over the row's span of non-zero values: zero
+    /// on either side.
+    pub(crate) modulation: &'a [[f32; 2]],
+}
+
+impl ActiveLayer<'_> {
+    /// The grid column past the row's span.
+    #[inline(always)]
+    fn end(&self) -> usize {
+        self.first + self.modulation.len()
+    }
+
+    /// Whether the span reaches into the `n` columns from grid column `col`.
+    #[inline(always)]
+    pub(crate) fn touches(&self, col: usize, n: usize) -> bool {
+        self.end() > col && self.first < col + n
+    }
+
+    /// The `n` values of μ from grid column `col`, if the span holds all of them.
+    #[inline(always)]
+    pub(crate) fn run(&self, col: usize, n: usize) -> Option<&[[f32; 2]]> {
+        (col >= self.first && col + n <= self.end())
+            .then(|| &self.modulation[col - self.first..][..n])
+    }
+
+    /// μ on the `N` lanes from grid column `col` where the span covers them in part (at most
+    /// two runs a layer and row): real and imaginary parts, zero outside the span. Kept out of
+    /// line so that the kernels' loops do not carry its index arithmetic.
+    #[inline(never)]
+    pub(crate) fn partial<const N: usize>(&self, col: usize) -> ([f32; N], [f32; N]) {
+        let (mut re, mut im) = ([0.0f32; N], [0.0f32; N]);
+        for l in 0..N {
+            let i = col + l;
+            if i >= self.first && i < self.end() {
+                [re[l], im[l]] = self.modulation[i - self.first];
+            }
+        }
+        (re, im)
+    }
+
+    /// The column table entries of chunk `c`, one a wave.
+    #[inline(always)]
+    pub(crate) fn table(&self, c: usize) -> &[ColumnSinCos] {
+        let waves = self.coeffs.len();
+        &self.cols[c * waves..(c + 1) * waves]
+    }
+}
+
+/// One grid row of a layered evaluation: the arguments of `layers`'s row kernel and of its
+/// AVX2 and AVX-512 twins.
+pub(crate) struct LayerRow<'a> {
+    pub(crate) layers: &'a [ActiveLayer<'a>],
+    pub(crate) rows: &'a [[f32; 2]],
+    pub(crate) height: Option<&'a [f32]>,
+    /// Chunk of the row where `pos` and `nrm` start.
+    pub(crate) first_chunk: usize,
+    pub(crate) dx: f32,
+    pub(crate) z: f32,
+    pub(crate) pos: &'a mut [Vec3],
+    pub(crate) nrm: &'a mut [Vec3],
+}

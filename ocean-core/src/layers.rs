@@ -33,50 +33,12 @@ use pulp::WithSimd;
 
 use crate::error::EvalError;
 use crate::grid::Grid;
+pub use crate::grid::GridRect;
 use crate::isa::{Isa, Kernel};
-use crate::kernel::{Acc, HALF, LANES, WaveCoeffs};
+use crate::kernel::{Acc, HALF, LANES};
+use crate::kernel::{ActiveLayer, ColumnSinCos, LANE_INDEX, LayerRow};
 use crate::modulation::Modulation;
-use crate::trochoid::{ColumnSinCos, GridPlan, LANE_INDEX, WaveSet, check_outputs, check_time};
-
-/// A rectangle of grid points: columns `i0..i0 + nx`, rows `j0..j0 + nz`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct GridRect {
-    /// First column.
-    pub i0: usize,
-    /// First row.
-    pub j0: usize,
-    /// Number of columns.
-    pub nx: usize,
-    /// Number of rows.
-    pub nz: usize,
-}
-
-impl GridRect {
-    /// Number of points.
-    pub fn len(&self) -> usize {
-        self.nx * self.nz
-    }
-
-    /// Whether the rectangle holds no point.
-    pub fn is_empty(&self) -> bool {
-        self.nx == 0 || self.nz == 0
-    }
-
-    /// Whether the rectangle lies inside a grid of `size` (columns, rows) points; an empty
-    /// rectangle does if its first point does or it sits on the far edge.
-    pub fn fits(&self, size: (usize, usize)) -> bool {
-        let inside =
-            |start: usize, len: usize, n: usize| start.checked_add(len).is_some_and(|end| end <= n);
-        inside(self.i0, self.nx, size.0) && inside(self.j0, self.nz, size.1)
-    }
-
-    /// Index into a row-major array over this rectangle of grid point (i, j), if inside.
-    #[inline]
-    pub fn index(&self, i: usize, j: usize) -> Option<usize> {
-        let (di, dj) = (i.checked_sub(self.i0)?, j.checked_sub(self.j0)?);
-        (di < self.nx && dj < self.nz).then_some(dj * self.nx + di)
-    }
-}
+use crate::trochoid::{GridPlan, WaveSet, check_outputs, check_time};
 
 /// One wave set modulated over a rectangle of the grid (see the module documentation).
 #[derive(Clone, Copy, Debug)]
@@ -233,75 +195,6 @@ struct Scratch<'p> {
     /// The active layers' row tables, one after another.
     rows: Vec<[f32; 2]>,
     active: Vec<ActiveLayer<'p>>,
-}
-
-/// One layer's data for one grid row.
-pub(crate) struct ActiveLayer<'a> {
-    pub(crate) coeffs: &'a [WaveCoeffs],
-    /// Where the sin and cos of each wave's row phase lie in [`Scratch::rows`].
-    pub(crate) rows: core::ops::Range<usize>,
-    /// The layer's column table (see [`GridPlan`]).
-    pub(crate) cols: &'a [ColumnSinCos],
-    /// The grid column of `modulation[0]`.
-    pub(crate) first: usize,
-    /// The layer's modulation along this row, over the row's span of non-zero values: zero
-    /// on either side.
-    pub(crate) modulation: &'a [[f32; 2]],
-}
-
-impl ActiveLayer<'_> {
-    /// The grid column past the row's span.
-    #[inline(always)]
-    fn end(&self) -> usize {
-        self.first + self.modulation.len()
-    }
-
-    /// Whether the span reaches into the `n` columns from grid column `col`.
-    #[inline(always)]
-    pub(crate) fn touches(&self, col: usize, n: usize) -> bool {
-        self.end() > col && self.first < col + n
-    }
-
-    /// The `n` values of μ from grid column `col`, if the span holds all of them.
-    #[inline(always)]
-    pub(crate) fn run(&self, col: usize, n: usize) -> Option<&[[f32; 2]]> {
-        (col >= self.first && col + n <= self.end())
-            .then(|| &self.modulation[col - self.first..][..n])
-    }
-
-    /// μ on the `N` lanes from grid column `col` where the span covers them in part (at most
-    /// two runs a layer and row): real and imaginary parts, zero outside the span. Kept out of
-    /// line so that the kernels' loops do not carry its index arithmetic.
-    #[inline(never)]
-    pub(crate) fn partial<const N: usize>(&self, col: usize) -> ([f32; N], [f32; N]) {
-        let (mut re, mut im) = ([0.0f32; N], [0.0f32; N]);
-        for l in 0..N {
-            let i = col + l;
-            if i >= self.first && i < self.end() {
-                [re[l], im[l]] = self.modulation[i - self.first];
-            }
-        }
-        (re, im)
-    }
-
-    /// The column table entries of chunk `c`, one a wave.
-    #[inline(always)]
-    pub(crate) fn table(&self, c: usize) -> &[ColumnSinCos] {
-        let waves = self.coeffs.len();
-        &self.cols[c * waves..(c + 1) * waves]
-    }
-}
-
-pub(crate) struct LayerRow<'a> {
-    pub(crate) layers: &'a [ActiveLayer<'a>],
-    pub(crate) rows: &'a [[f32; 2]],
-    pub(crate) height: Option<&'a [f32]>,
-    /// Chunk of the row where `pos` and `nrm` start.
-    pub(crate) first_chunk: usize,
-    pub(crate) dx: f32,
-    pub(crate) z: f32,
-    pub(crate) pos: &'a mut [Vec3],
-    pub(crate) nrm: &'a mut [Vec3],
 }
 
 impl pulp::WithSimd for LayerRow<'_> {
@@ -579,7 +472,7 @@ pub fn evaluate_layers_region_par(
     };
     let nx = grid.size.0;
     let (a, b) = plan.chunk_columns(&chunks);
-    let per_task = crate::trochoid::rows_per_task(nx);
+    let per_task = crate::parallel::rows_per_task(nx);
     let (first, last) = (rows.start, rows.end);
     out_pos[first * nx..last * nx]
         .par_chunks_mut(nx * per_task)

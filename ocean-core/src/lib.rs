@@ -81,7 +81,10 @@ pub mod layers;
 pub mod math;
 pub mod modulation;
 pub mod num;
+#[cfg(feature = "std")]
+pub mod parallel;
 pub mod phase;
+pub mod point_sums;
 pub mod rng;
 pub mod rows;
 pub mod sincos;
@@ -108,9 +111,10 @@ pub use layers::{
 pub use layers::{evaluate_layers_par, evaluate_layers_region_par};
 pub use modulation::Modulation;
 pub use num::Num;
+pub use point_sums::{PointSums, SampleF64};
 pub use rng::Pcg32;
 pub use timed::{LaneSums, TimedWaves};
-pub use trochoid::{PointSums, Sample, SampleF64, WaveSet};
+pub use trochoid::{Sample, WaveSet};
 pub use wave::{Wave, WaveDesc};
 
 pub use glam;

@@ -13,7 +13,7 @@ use alloc::vec::Vec;
 use core::ops::Range;
 
 use crate::error::EvalError;
-use crate::layers::GridRect;
+use crate::grid::GridRect;
 
 /// `[m cos φ, m sin φ]` per point of a grid rectangle, row-major, every value finite (see the
 /// [module documentation](self) and [`crate::layers`]).

@@ -17,8 +17,9 @@ use glam::DVec2;
 
 use crate::error::EvalError;
 use crate::phase::{reduce_angle, reduce_angle_f32, reduce_angle_fast};
+use crate::point_sums::PointSums;
 use crate::sincos::sincos;
-use crate::trochoid::{PointSums, WaveSet, check_time};
+use crate::trochoid::{WaveSet, check_time};
 
 /// One wave at one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]

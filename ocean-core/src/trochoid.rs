@@ -7,12 +7,11 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use glam::{DVec2, DVec3, Vec2, Vec3};
+use glam::{DVec2, Vec2, Vec3};
 
 use crate::error::{EvalError, WaveError};
 use crate::grid::Grid;
-use crate::kernel::{Acc, HALF, LANES, WaveCoeffs};
-use crate::math;
+use crate::kernel::{Acc, ColumnSinCos, GridRow, HALF, LANE_INDEX, LANES, WaveCoeffs};
 use crate::phase::reduce_angle_f32;
 use crate::sincos::sincos;
 use crate::wave::{Wave, WaveDesc};
@@ -24,76 +23,6 @@ pub struct Sample {
     pub displacement: Vec3,
     /// Unit surface normal (y up).
     pub normal: Vec3,
-}
-
-/// Surface point from the `f64` reference path.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SampleF64 {
-    /// Displaced position minus rest position: (Δx, y, Δz), metres.
-    pub displacement: DVec3,
-    /// Unit surface normal (y up).
-    pub normal: DVec3,
-}
-
-/// The running sums of a surface at one point, in `f64` (Eq. 6, 7 and their derivatives).
-///
-/// `jxx`, `jxz`, `jzz` form the horizontal Jacobian ∂p/∂p₀ of the displaced position with respect
-/// to the rest position, and (`sx`, `sz`) the height gradient ∂y/∂p₀; start from
-/// [`PointSums::REST`] (the identity and zero) and add wave sets with
-/// [`WaveSet::add_sums_f64`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PointSums {
-    /// Horizontal displacement along x, metres.
-    pub dx: f64,
-    /// Height, metres.
-    pub y: f64,
-    /// Horizontal displacement along z, metres.
-    pub dz: f64,
-    /// ∂pₓ/∂x₀.
-    pub jxx: f64,
-    /// ∂pₓ/∂z₀ = ∂p_z/∂x₀.
-    pub jxz: f64,
-    /// ∂p_z/∂z₀.
-    pub jzz: f64,
-    /// ∂y/∂x₀.
-    pub sx: f64,
-    /// ∂y/∂z₀.
-    pub sz: f64,
-}
-
-impl PointSums {
-    /// The sea at rest: no displacement, identity Jacobian, flat.
-    pub const REST: Self = Self {
-        dx: 0.0,
-        y: 0.0,
-        dz: 0.0,
-        jxx: 1.0,
-        jxz: 0.0,
-        jzz: 1.0,
-        sx: 0.0,
-        sz: 0.0,
-    };
-
-    /// (Δx, y, Δz).
-    pub fn displacement(&self) -> DVec3 {
-        DVec3::new(self.dx, self.y, self.dz)
-    }
-
-    /// The unit normal ∂p/∂z₀ × ∂p/∂x₀ (y up), or +y where it vanishes (a cusp).
-    pub fn normal(&self) -> DVec3 {
-        let n = DVec3::new(
-            self.sz * self.jxz - self.jzz * self.sx,
-            self.jzz * self.jxx - self.jxz * self.jxz,
-            self.jxz * self.sx - self.sz * self.jxx,
-        );
-        let len = math::sqrt(n.length_squared());
-        if len > 0.0 { n / len } else { DVec3::Y }
-    }
-
-    /// det ∂p/∂p₀: positive where the surface does not fold.
-    pub fn jacobian_det(&self) -> f64 {
-        self.jxx * self.jzz - self.jxz * self.jxz
-    }
 }
 
 /// A sum of trochoid waves, evaluated by
@@ -108,17 +37,17 @@ impl PointSums {
 /// exceed it) and produce folded crests where the waves align.
 #[derive(Clone, Debug, PartialEq)]
 pub struct WaveSet {
-    waves: Vec<Wave>,
-    coeffs: Vec<WaveCoeffs>,
+    pub(crate) waves: Vec<Wave>,
+    pub(crate) coeffs: Vec<WaveCoeffs>,
     /// The `f64` twins of `coeffs` for the point paths: A, A kₓ/|k|, A k_z/|k|, A kₓ²/|k|,
     /// A kₓk_z/|k|, A k_z²/|k|, A kₓ, A k_z, each formed in the order the reference once
     /// formed it per call (so results are unchanged) but without a division per evaluation.
-    coeffs64: Vec<[f64; 8]>,
+    pub(crate) coeffs64: Vec<[f64; 8]>,
 }
 
 /// Per-wave `f64` constants for one evaluation time.
 #[derive(Clone, Copy)]
-struct Timed {
+pub(crate) struct Timed {
     k: DVec2,
     /// k·origin − ωt + Φ, unreduced.
     base: f64,
@@ -165,18 +94,6 @@ pub(crate) fn dispatch<K: pulp::WithSimd>(kernel: K) -> K::Output {
     pulp::Arch::new().dispatch(kernel)
 }
 
-/// One grid row: the arguments of [`grid_row_kernel`] (and of its AVX-512 twin,
-/// `crate::avx512::WideGrid`).
-pub(crate) struct GridRow<'a> {
-    pub(crate) coeffs: &'a [WaveCoeffs],
-    pub(crate) rows: &'a [[f32; 2]],
-    pub(crate) cols: &'a [ColumnSinCos],
-    pub(crate) dx: f32,
-    pub(crate) z: f32,
-    pub(crate) pos: &'a mut [Vec3],
-    pub(crate) nrm: &'a mut [Vec3],
-}
-
 impl pulp::WithSimd for GridRow<'_> {
     type Output = ();
     #[inline(always)]
@@ -194,12 +111,12 @@ impl pulp::WithSimd for GridRow<'_> {
 }
 
 /// A run of scattered points: the arguments of [`points_kernel`].
-struct Points<'a> {
-    coeffs: &'a [WaveCoeffs],
-    timed: &'a [Timed],
-    local: &'a [Vec2],
-    pos: &'a mut [Vec3],
-    nrm: &'a mut [Vec3],
+pub(crate) struct Points<'a> {
+    pub(crate) coeffs: &'a [WaveCoeffs],
+    pub(crate) timed: &'a [Timed],
+    pub(crate) local: &'a [Vec2],
+    pub(crate) pos: &'a mut [Vec3],
+    pub(crate) nrm: &'a mut [Vec3],
 }
 
 impl pulp::WithSimd for Points<'_> {
@@ -273,7 +190,7 @@ impl WaveSet {
         self.waves.iter().map(Wave::amplitude).sum()
     }
 
-    fn timed(&self, origin: DVec2, t: f64) -> Vec<Timed> {
+    pub(crate) fn timed(&self, origin: DVec2, t: f64) -> Vec<Timed> {
         self.waves
             .iter()
             .map(|w| Timed {
@@ -281,165 +198,6 @@ impl WaveSet {
                 base: w.phase_at(origin, t),
             })
             .collect()
-    }
-
-    /// The `f64` reference: every quantity in double precision with the platform's (or libm's)
-    /// `sin` and `cos`. Slow; the oracle the `f32` paths are tested against.
-    pub fn sample_f64(&self, rest: DVec2, t: f64) -> Result<SampleF64, EvalError> {
-        let mut sums = PointSums::REST;
-        self.add_sums_f64(rest, t, [1.0, 0.0], &mut sums)?;
-        Ok(SampleF64 {
-            displacement: sums.displacement(),
-            normal: sums.normal(),
-        })
-    }
-
-    /// Adds this set's contribution at world rest position `rest` and time `t`, multiplied by
-    /// the complex amplitude `mu` = [m cos φ, m sin φ] (amplitudes m·Aᵢ, phases θᵢ + φ; `[1, 0]`
-    /// for the plain sum), to `sums`, in `f64`. Several sets, or several layers of
-    /// [`crate::layers`], add into the same sums; [`PointSums`] then gives the displacement,
-    /// the normal and the horizontal Jacobian that a height query inverts.
-    pub fn add_sums_f64(
-        &self,
-        rest: DVec2,
-        t: f64,
-        mu: [f64; 2],
-        sums: &mut PointSums,
-    ) -> Result<(), EvalError> {
-        check_time(t)?;
-        if !rest.is_finite() {
-            return Err(EvalError::Position { index: 0 });
-        }
-        if !(mu[0].is_finite() && mu[1].is_finite()) {
-            return Err(EvalError::Position { index: 0 });
-        }
-        self.accumulate_sums(rest, t, mu, sums, |theta| {
-            (math::sin(theta), math::cos(theta))
-        });
-        Ok(())
-    }
-
-    /// Adds `Σᵢ wᵢ · waveᵢ` at world rest position `rest` and time `t` to `sums`, in `f64`: each
-    /// wave scaled by its own real weight, as the lighting paper's filters do (Bruneton et al.
-    /// Eq. 2 and 3, weights w_p and w_n). `weights` gives the weights of the first waves, in
-    /// order; the waves after its end have weight zero and are not visited, nor are waves of
-    /// weight zero, so the cost follows the number of resolved waves (a prefix, when the set is
-    /// sorted by wavelength from the longest). Allocates nothing.
-    ///
-    /// # Errors
-    ///
-    /// [`EvalError::Position`] for a non-finite position or weight, or more weights than waves;
-    /// [`EvalError::Time`] for a non-finite time. `sums` is unchanged on error.
-    pub fn add_weighted_sums_f64(
-        &self,
-        rest: DVec2,
-        t: f64,
-        weights: impl IntoIterator<Item = f64>,
-        sums: &mut PointSums,
-    ) -> Result<(), EvalError> {
-        self.add_filtered_sums_f64(rest, t, weights, [1.0, 0.0], sums)
-    }
-
-    /// [`WaveSet::add_weighted_sums_f64`] with the waves also multiplied by the complex
-    /// amplitude `mu` = [m cos φ, m sin φ] (amplitudes m·wᵢ·Aᵢ, phases θᵢ + φ), as
-    /// [`WaveSet::add_sums_f64`]: a wave train box's trains at one point, filtered per wave
-    /// (local waves on the filtered ocean of Bruneton et al., their §6). With `mu` = [1, 0]
-    /// the sums equal those of [`WaveSet::add_weighted_sums_f64`] (up to the sign of zeros).
-    ///
-    /// # Errors
-    ///
-    /// As [`WaveSet::add_weighted_sums_f64`], and [`EvalError::Position`] for a non-finite
-    /// `mu`. `sums` is unchanged on error.
-    pub fn add_filtered_sums_f64(
-        &self,
-        rest: DVec2,
-        t: f64,
-        weights: impl IntoIterator<Item = f64>,
-        mu: [f64; 2],
-        sums: &mut PointSums,
-    ) -> Result<(), EvalError> {
-        check_time(t)?;
-        if !(rest.is_finite() && mu[0].is_finite() && mu[1].is_finite()) {
-            return Err(EvalError::Position { index: 0 });
-        }
-        let mut acc = *sums;
-        let mut waves = self.waves.iter().zip(&self.coeffs64);
-        for m in weights {
-            let Some((w, c64)) = waves.next() else {
-                return Err(EvalError::Position { index: 0 });
-            };
-            if !m.is_finite() {
-                return Err(EvalError::Position { index: 0 });
-            }
-            if m == 0.0 {
-                continue;
-            }
-            let theta = w.phase_at(rest, t);
-            let (sin, cos) = (math::sin(theta), math::cos(theta));
-            // sin(θ + φ), cos(θ + φ) times |μ| by angle addition; exact for μ = [1, 0].
-            let s = m * (sin * mu[0] + cos * mu[1]);
-            let c = m * (cos * mu[0] - sin * mu[1]);
-            let [a, ahx, ahz, cxx, cxz, czz, gx, gz] = *c64;
-            acc.dx -= ahx * s;
-            acc.dz -= ahz * s;
-            acc.y += a * c;
-            acc.jxx -= cxx * c;
-            acc.jxz -= cxz * c;
-            acc.jzz -= czz * c;
-            acc.sx -= gx * s;
-            acc.sz -= gz * s;
-        }
-        *sums = acc;
-        Ok(())
-    }
-
-    /// [`WaveSet::add_sums_f64`] with each phase reduced in `f64` and its sine and cosine from
-    /// the kernel's deterministic [`sincos`] (absolute error ≤ 1.5·10⁻⁷), several times faster:
-    /// for point queries, where micrometres do not matter and throughput does. Many evaluations
-    /// at one time (a frame's height queries) go faster still through
-    /// [`WaveSet::at_time`] and [`crate::TimedWaves`], which reduce Φ − ωt once per wave.
-    pub fn add_sums(
-        &self,
-        rest: DVec2,
-        t: f64,
-        mu: [f64; 2],
-        sums: &mut PointSums,
-    ) -> Result<(), EvalError> {
-        check_time(t)?;
-        if !(rest.is_finite() && mu[0].is_finite() && mu[1].is_finite()) {
-            return Err(EvalError::Position { index: 0 });
-        }
-        self.accumulate_sums(rest, t, mu, sums, |theta| {
-            let (s, c) = sincos(reduce_angle_f32(theta));
-            (f64::from(s), f64::from(c))
-        });
-        Ok(())
-    }
-
-    #[inline(always)]
-    fn accumulate_sums(
-        &self,
-        rest: DVec2,
-        t: f64,
-        mu: [f64; 2],
-        sums: &mut PointSums,
-        sin_cos: impl Fn(f64) -> (f64, f64),
-    ) {
-        for (w, c64) in self.waves.iter().zip(&self.coeffs64) {
-            let (sin, cos) = sin_cos(w.phase_at(rest, t));
-            // m sin(θ + φ) and m cos(θ + φ), as in the layers kernel.
-            let s = sin * mu[0] + cos * mu[1];
-            let c = cos * mu[0] - sin * mu[1];
-            let [a, ahx, ahz, cxx, cxz, czz, gx, gz] = *c64;
-            sums.dx -= ahx * s;
-            sums.dz -= ahz * s;
-            sums.y += a * c;
-            sums.jxx -= cxx * c;
-            sums.jxz -= cxz * c;
-            sums.jzz -= czz * c;
-            sums.sx -= gx * s;
-            sums.sz -= gz * s;
-        }
     }
 
     /// Displacement and normal at one world rest position, through the `f32` kernel (the same
@@ -478,7 +236,7 @@ impl WaveSet {
         Ok(())
     }
 
-    fn check_points(
+    pub(crate) fn check_points(
         &self,
         origin: DVec2,
         local: &[Vec2],
@@ -562,84 +320,6 @@ impl WaveSet {
     }
 }
 
-#[cfg(feature = "std")]
-pub(crate) use parallel::POINTS_PER_TASK;
-#[cfg(feature = "std")]
-pub use parallel::rows_per_task;
-
-#[cfg(feature = "std")]
-mod parallel {
-    use super::*;
-    use rayon::prelude::*;
-
-    /// Points per parallel task: large enough to amortise rayon's scheduling (about a
-    /// microsecond per task), small enough to balance the load over many threads.
-    pub(crate) const POINTS_PER_TASK: usize = 16 * 1024;
-
-    /// Whole grid rows per parallel task for rows of `nx` points.
-    pub fn rows_per_task(nx: usize) -> usize {
-        (POINTS_PER_TASK / nx.max(1)).max(1)
-    }
-
-    impl WaveSet {
-        /// [`WaveSet::evaluate_grid`] on the current rayon thread pool (run it inside
-        /// `ThreadPool::install` to choose the thread count). Output is bit-identical to the
-        /// single-threaded path for every thread count.
-        pub fn evaluate_grid_par(
-            &self,
-            grid: &Grid,
-            t: f64,
-            out_pos: &mut [Vec3],
-            out_nrm: &mut [Vec3],
-        ) -> Result<(), EvalError> {
-            let plan = GridPlan::new(self, grid, t, out_pos, out_nrm)?;
-            let mut cols = vec![ColumnSinCos::ZERO; plan.col_table_len()];
-            let block = plan.waves;
-            cols.par_chunks_mut(block * 16)
-                .enumerate()
-                .for_each(|(c, chunk)| plan.fill_columns(chunk, c * 16));
-            let nx = grid.size.0;
-            let rows = rows_per_task(nx);
-            out_pos
-                .par_chunks_mut(nx * rows)
-                .zip(out_nrm.par_chunks_mut(nx * rows))
-                .enumerate()
-                .for_each(|(task, (p, n))| {
-                    for (r, (p, n)) in p.chunks_mut(nx).zip(n.chunks_mut(nx)).enumerate() {
-                        plan.row(&self.coeffs, &cols, task * rows + r, p, n);
-                    }
-                });
-            Ok(())
-        }
-
-        /// [`WaveSet::evaluate_points`] on the current rayon thread pool; bit-identical to it.
-        pub fn evaluate_points_par(
-            &self,
-            origin: DVec2,
-            local: &[Vec2],
-            t: f64,
-            out_pos: &mut [Vec3],
-            out_nrm: &mut [Vec3],
-        ) -> Result<(), EvalError> {
-            let timed = self.check_points(origin, local, t, out_pos, out_nrm)?;
-            local
-                .par_chunks(POINTS_PER_TASK)
-                .zip(out_pos.par_chunks_mut(POINTS_PER_TASK))
-                .zip(out_nrm.par_chunks_mut(POINTS_PER_TASK))
-                .for_each(|((l, p), n)| {
-                    dispatch(Points {
-                        coeffs: &self.coeffs,
-                        timed: &timed,
-                        local: l,
-                        pos: p,
-                        nrm: n,
-                    });
-                });
-            Ok(())
-        }
-    }
-}
-
 #[inline(always)]
 fn row_phase(tw: &Timed, grid: &Grid, j: usize) -> f32 {
     reduce_angle_f32(tw.base + tw.k.y * (j as f64 * grid.spacing.y))
@@ -654,14 +334,14 @@ fn col_phase(tw: &Timed, grid: &Grid, i: usize) -> f32 {
 pub(crate) struct GridPlan<'a> {
     grid: &'a Grid,
     timed: Vec<Timed>,
-    waves: usize,
+    pub(crate) waves: usize,
     chunks: usize,
     /// The instruction set the rows run on: [`Isa::best`](crate::Isa::best)'s.
     kernel: crate::isa::Kernel,
 }
 
 impl<'a> GridPlan<'a> {
-    fn new(
+    pub(crate) fn new(
         set: &WaveSet,
         grid: &'a Grid,
         t: f64,
@@ -717,7 +397,7 @@ impl<'a> GridPlan<'a> {
         }
     }
 
-    fn row(
+    pub(crate) fn row(
         &self,
         coeffs: &[WaveCoeffs],
         cols: &[ColumnSinCos],
@@ -753,31 +433,6 @@ impl<'a> GridPlan<'a> {
             Kernel::Avx512(simd) => pulp::Simd::vectorize(simd, crate::avx512::WideGrid(simd, row)),
         }
     }
-}
-
-/// 0, 1, …, LANES − 1 as floats.
-pub(crate) const LANE_INDEX: [f32; LANES] = {
-    let mut v = [0.0f32; LANES];
-    let mut l = 0;
-    while l < LANES {
-        v[l] = l as f32;
-        l += 1;
-    }
-    v
-};
-
-/// sin and cos of one wave's phase at the columns of one chunk.
-#[derive(Clone, Copy)]
-pub(crate) struct ColumnSinCos {
-    pub(crate) sin: [f32; LANES],
-    pub(crate) cos: [f32; LANES],
-}
-
-impl ColumnSinCos {
-    pub(crate) const ZERO: Self = Self {
-        sin: [0.0; LANES],
-        cos: [0.0; LANES],
-    };
 }
 
 /// One grid row. The phase of wave w at column i of row j is R_j + C_i, so its sine and cosine

@@ -105,7 +105,7 @@ mod parallel {
     use rayon::prelude::*;
 
     use super::*;
-    use crate::trochoid::POINTS_PER_TASK;
+    use crate::parallel::POINTS_PER_TASK;
 
     impl WaveSet {
         /// [`WaveSet::evaluate_world`] on the current rayon thread pool, in tasks of

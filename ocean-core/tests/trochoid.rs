@@ -404,7 +404,7 @@ fn grid_sin_cos_tables_give_each_phase() {
 /// skipped; bad weights (or more weights than waves) are refused and leave the sums alone.
 #[test]
 fn weighted_sums_scale_each_wave() {
-    use ocean_core::trochoid::PointSums;
+    use ocean_core::PointSums;
     let descs = [
         WaveDesc {
             amplitude: 0.5,

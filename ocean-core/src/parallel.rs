@@ -1,0 +1,80 @@
+//! Multi-threaded batch evaluation on the current rayon pool: the task sizes every threaded
+//! loop of the crate shares, and [`WaveSet`]'s threaded grid and point evaluations, each
+//! bit-identical to its single-threaded twin for every thread count.
+
+use alloc::vec;
+
+use glam::{DVec2, Vec2, Vec3};
+use rayon::prelude::*;
+
+use crate::error::EvalError;
+use crate::grid::Grid;
+use crate::kernel::ColumnSinCos;
+use crate::trochoid::{GridPlan, Points, WaveSet, dispatch};
+
+/// Points per parallel task: large enough to amortise rayon's scheduling (about a
+/// microsecond per task), small enough to balance the load over many threads.
+pub(crate) const POINTS_PER_TASK: usize = 16 * 1024;
+
+/// Whole grid rows per parallel task for rows of `nx` points.
+pub fn rows_per_task(nx: usize) -> usize {
+    (POINTS_PER_TASK / nx.max(1)).max(1)
+}
+
+impl WaveSet {
+    /// [`WaveSet::evaluate_grid`] on the current rayon thread pool (run it inside
+    /// `ThreadPool::install` to choose the thread count). Output is bit-identical to the
+    /// single-threaded path for every thread count.
+    pub fn evaluate_grid_par(
+        &self,
+        grid: &Grid,
+        t: f64,
+        out_pos: &mut [Vec3],
+        out_nrm: &mut [Vec3],
+    ) -> Result<(), EvalError> {
+        let plan = GridPlan::new(self, grid, t, out_pos, out_nrm)?;
+        let mut cols = vec![ColumnSinCos::ZERO; plan.col_table_len()];
+        let block = plan.waves;
+        cols.par_chunks_mut(block * 16)
+            .enumerate()
+            .for_each(|(c, chunk)| plan.fill_columns(chunk, c * 16));
+        let nx = grid.size.0;
+        let rows = rows_per_task(nx);
+        out_pos
+            .par_chunks_mut(nx * rows)
+            .zip(out_nrm.par_chunks_mut(nx * rows))
+            .enumerate()
+            .for_each(|(task, (p, n))| {
+                for (r, (p, n)) in p.chunks_mut(nx).zip(n.chunks_mut(nx)).enumerate() {
+                    plan.row(&self.coeffs, &cols, task * rows + r, p, n);
+                }
+            });
+        Ok(())
+    }
+
+    /// [`WaveSet::evaluate_points`] on the current rayon thread pool; bit-identical to it.
+    pub fn evaluate_points_par(
+        &self,
+        origin: DVec2,
+        local: &[Vec2],
+        t: f64,
+        out_pos: &mut [Vec3],
+        out_nrm: &mut [Vec3],
+    ) -> Result<(), EvalError> {
+        let timed = self.check_points(origin, local, t, out_pos, out_nrm)?;
+        local
+            .par_chunks(POINTS_PER_TASK)
+            .zip(out_pos.par_chunks_mut(POINTS_PER_TASK))
+            .zip(out_nrm.par_chunks_mut(POINTS_PER_TASK))
+            .for_each(|((l, p), n)| {
+                dispatch(Points {
+                    coeffs: &self.coeffs,
+                    timed: &timed,
+                    local: l,
+                    pos: p,
+                    nrm: n,
+                });
+            });
+        Ok(())
+    }
+}
