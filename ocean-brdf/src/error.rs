@@ -1,5 +1,6 @@
-//! Errors of the lighting model's inputs.
+//! Errors of the lighting model's inputs, and the checks that raise them.
 
+use glam::DVec3;
 use ocean_core::Num;
 
 /// Why an input of the lighting model was refused.
@@ -41,4 +42,19 @@ pub(crate) fn check(name: &'static str, v: f64, min: f64, max: f64) -> Result<f6
         });
     }
     Ok(v)
+}
+
+/// How far a direction's length may be from 1 (the crate's documented tolerance).
+const UNIT_TOLERANCE: f64 = 1e-6;
+
+/// Validates a direction: finite, unit within the crate's tolerance; returns it normalised.
+pub(crate) fn check_direction(name: &'static str, d: DVec3) -> Result<DVec3, BrdfError> {
+    if !d.is_finite() {
+        return Err(BrdfError::NotFinite(name));
+    }
+    let len = libm::sqrt(d.dot(d));
+    if (len - 1.0).abs() > UNIT_TOLERANCE {
+        return Err(BrdfError::NotUnit(name));
+    }
+    Ok(d / len)
 }

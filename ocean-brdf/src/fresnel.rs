@@ -9,9 +9,9 @@
 
 use glam::{DVec2, DVec3};
 
+use crate::error::check_direction;
 use crate::error::{BrdfError, check};
 use crate::quadrature::{composite_nodes, gauss_legendre, standard_normal};
-use crate::ross::check_direction;
 
 /// Reflectance of water at normal incidence, `R` of Eq. 14 (for a refractive index of 1.33,
 /// `((1.33 - 1)/(1.33 + 1))² ≈ 0.02`).

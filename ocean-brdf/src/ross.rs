@@ -24,7 +24,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::error::{BrdfError, check};
+use crate::error::{BrdfError, check, check_direction};
 use crate::fresnel::schlick;
 
 /// √π (to the nearest f64).
@@ -36,9 +36,6 @@ const SQRT_2PI: f64 = 2.506_628_274_631_000_7;
 /// cancellation between `exp(-a²)` and `a √π erfc(a)` (which costs about `log10(2a²)` digits:
 /// one at 2, four at 26).
 const LAMBDA_SWITCH: f64 = 2.0;
-
-/// How far a direction's length may be from 1 (the crate's documented tolerance).
-const UNIT_TOLERANCE: f64 = 1e-6;
 
 /// The Gaussian slope distribution `p(ζ)`, Eq. 7.
 ///
@@ -362,18 +359,6 @@ pub fn sun_radiance_unchecked(
 #[inline]
 fn ratio(num: f64, den: f64) -> f64 {
     if num == 0.0 { 0.0 } else { num / den }
-}
-
-/// Validates a direction: finite, unit within the crate's tolerance; returns it normalised.
-pub(crate) fn check_direction(name: &'static str, d: DVec3) -> Result<DVec3, BrdfError> {
-    if !d.is_finite() {
-        return Err(BrdfError::NotFinite(name));
-    }
-    let len = libm::sqrt(d.dot(d));
-    if (len - 1.0).abs() > UNIT_TOLERANCE {
-        return Err(BrdfError::NotUnit(name));
-    }
-    Ok(d / len)
 }
 
 /// Validates a pair of slope variances for the functions that need a density `p(ζ)`:

@@ -15,13 +15,15 @@
 
 use glam::{DVec2, DVec3};
 
+use crate::error::check_direction;
 use crate::error::{BrdfError, check};
 use crate::fresnel::{WATER_R, sigma_v2};
 use crate::fresnel_table::effective_fresnel_table_unchecked;
-use crate::ross::{check_direction, sun_radiance_unchecked};
+use crate::ross::sun_radiance_unchecked;
 use crate::sky::{Sky, SkyParams, check_rgb, stereographic};
 use crate::sky_map::SkyMap;
 use crate::surface::PixelSurface;
+pub use crate::surface::{tangent_frame, visible_normal};
 use crate::variance::SlopeVariance;
 
 /// The finite-difference step of Algorithm 5.1's slope derivatives of `U` (Fig. 9: "precise
@@ -136,21 +138,6 @@ impl SeaLight {
     pub fn total(&self) -> DVec3 {
         self.sun + self.sky + self.sea
     }
-}
-
-/// The tangent frame of Algorithm 5.1: `t_x` along the wind projected on the surface, `t_y`
-/// across it, with `(t_x, t_y, n)` right-handed. `wind` is a horizontal direction `(x, z)`
-/// (any length but zero); should it be parallel to `n`, any tangent is used.
-pub fn tangent_frame(n: DVec3, wind: DVec2) -> (DVec3, DVec3) {
-    let w = DVec3::new(wind.x, 0.0, wind.y);
-    let mut tx = w - n * w.dot(n);
-    let len = tx.length();
-    if len > 1e-9 * w.length() && len > 0.0 {
-        tx /= len;
-    } else {
-        tx = n.any_orthonormal_vector();
-    }
-    (tx, n.cross(tx))
 }
 
 /// Algorithm 5.1, `SEACOLOR(v, l, n, t_x, t_y, σ_x, σ_y)`, with validated inputs.
@@ -354,76 +341,4 @@ pub fn visible_sky_footprint(
         du_x: axis_du(along),
         du_y: axis_du(across),
     }
-}
-
-/// The masking-aware normal of a pixel: Eq. 3's normal `n` with the slopes that the filtered
-/// geometry does not mask redistributed to the slopes a viewer sees.
-///
-/// §3.2 notes that the normals of Eq. 3 stay exact farther than the geometry of Eq. 2, but
-/// that the *apparent* normals become wrong, because the waves resolved in the normals and not
-/// in the geometry (weights `w_n − w_p`, slope variances `normal_only`, see
-/// [`crate::FilteredSurface::normal_only_variance`]) are no longer masked: a pixel samples
-/// their slopes `ζ_n` (relative to the geometry's normal `n_geo`) with the density `p_n`, as if
-/// the viewer saw every facet, while a viewer sees facets with the visible-slope density of
-/// Eq. 10. The paper only reflects the normals that end up back-facing. Here the whole
-/// distribution is corrected, in Ross's own model (Eq. 5–11):
-///
-/// - in the tangent frame of `n_geo`, the surface below the geometry is the sum of the
-///   normal-only slopes `ζ_n ~ N(0, Σ_n)` and of the BRDF's `ζ_r ~ N(0, Σ_r)` (`brdf`, Eq. 4),
-///   and the facets seen from `v` have the density `p_n(ζ_n) p_r(ζ_r) (v_z − (ζ_n + ζ_r)·v_xy)⁺`
-///   normalised by `(1 + Λ) cos θ_v` of the summed variances (Eq. 10, 11);
-/// - its conditional density of `ζ_r` given `ζ_n` is Eq. 10 in the frame of the normal of
-///   slopes `ζ_n`, which is what Algorithm 5.1 evaluates around the normal it is given; so only
-///   the marginal of `ζ_n` must change, from `p_n` to the visible one;
-/// - in whitened slopes, along the axis `e` of `(σ_nx v_x, σ_ny v_y)` (length `c_n`; `c_r`
-///   likewise for the BRDF's slopes, `c² = c_n² + c_r²`), the visible density of the combined
-///   coordinate `t` is a Gaussian times the ramp `(a − t)⁺`, `a = v_z / c`, with mean
-///   `μ = −Φ(a)/Z` and second moment `(a Φ(a) + 2 φ(a))/Z`, `Z = a Φ(a) + φ(a)` (the moments
-///   [`visible_sky_footprint`] uses); the normal-only coordinate `s_n = (c_n t + c_r w)/c`
-///   (`w` standard normal, independent) then has the visible mean `(c_n/c) μ` and variance
-///   `(c_n/c)² Var t + (c_r/c)²`, and the coordinate across `e` keeps its density.
-///
-/// The pixel's `s_n` (standard normal over the sea, since it is a fixed function of the rest
-/// position) is mapped affinely onto that mean and variance: a monotone map, so the pattern of
-/// the normals is kept (crests stay crests), and the visible slopes get Eq. 10's first two
-/// moments. With no normal-only waves (`c_n = 0`), a normal view (`a → ∞`, `μ → 0`,
-/// `Var → 1`) or everything in the geometry, `n` is returned unchanged. Vectors are unit, in
-/// world space; `wind` as in [`sea_color`].
-pub fn visible_normal(
-    v: DVec3,
-    n: DVec3,
-    n_geo: DVec3,
-    wind: DVec2,
-    normal_only: SlopeVariance,
-    brdf: SlopeVariance,
-) -> DVec3 {
-    let (tx, ty) = tangent_frame(n_geo, wind);
-    let v_t = DVec3::new(v.dot(tx), v.dot(ty), v.dot(n_geo));
-    let n_t = DVec3::new(n.dot(tx), n.dot(ty), n.dot(n_geo));
-    let sn = DVec2::new(libm::sqrt(normal_only.x), libm::sqrt(normal_only.y));
-    let sr = DVec2::new(libm::sqrt(brdf.x), libm::sqrt(brdf.y));
-    let axis = sn * DVec2::new(v_t.x, v_t.y);
-    let c_n = axis.length();
-    let c_r = (sr * DVec2::new(v_t.x, v_t.y)).length();
-    if !(c_n > 0.0 && v_t.z > 0.0 && n_t.z > 0.0 && sn.min_element() > 0.0) {
-        return n;
-    }
-    let c = libm::hypot(c_n, c_r);
-    let e = axis / c_n;
-    let a = v_t.z / c;
-    let cdf = 0.5 * libm::erfc(-a * core::f64::consts::FRAC_1_SQRT_2);
-    let pdf = libm::exp(-0.5 * a * a) * 0.398_942_280_401_432_7;
-    let z = a * cdf + pdf;
-    let mean_t = -cdf / z;
-    let var_t = ((a * cdf + 2.0 * pdf) / z - mean_t * mean_t).max(0.0);
-    let (kn, kr) = (c_n / c, c_r / c);
-    let mean = kn * mean_t;
-    let dev = libm::sqrt(kn * kn * var_t + kr * kr);
-    // The pixel's slopes relative to the geometry, whitened.
-    let zeta = DVec2::new(-n_t.x, -n_t.y) / n_t.z;
-    let u = zeta / sn;
-    let s = u.dot(e);
-    let u = u + e * (mean + dev * s - s);
-    let f = crate::ross::facet_normal(u * sn);
-    (tx * f.x + ty * f.y + n_geo * f.z).normalize()
 }

@@ -15,9 +15,9 @@
 
 use glam::{DVec2, DVec3};
 
+use crate::error::check_direction;
 use crate::error::{BrdfError, check};
 use crate::quadrature::{composite_nodes, gauss_legendre};
-use crate::ross::check_direction;
 use crate::variance::SUN_ANGULAR_RADIUS;
 
 /// The stereographic projection of a world direction (y up) from the nadir onto the horizontal
