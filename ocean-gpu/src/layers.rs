@@ -257,7 +257,7 @@ pub struct LayersStats {
 }
 
 /// Bind groups a [`LayersPass`] keeps (least recently used evicted first).
-pub const BIND_GROUP_CACHE: usize = crate::trochoid::BIND_GROUP_CACHE;
+pub const BIND_GROUP_CACHE: usize = crate::pipeline::BIND_GROUP_CACHE;
 
 /// Initial capacity of the descriptor buffer, in layers.
 const INITIAL_LAYERS: u64 = 8;

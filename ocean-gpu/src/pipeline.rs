@@ -98,6 +98,10 @@ pub(crate) fn compute_pipelines_with(
     })
 }
 
+/// Bind groups a displacement pass keeps (`TrochoidPass`, `LayersPass`; the least recently used
+/// is evicted first).
+pub(crate) const BIND_GROUP_CACHE: usize = 4;
+
 /// Bind groups kept for the targets a grid pass wrote last, least recently used first: a frame
 /// loop that alternates between a few targets builds each bind group once.
 #[derive(Debug, Default)]
@@ -121,7 +125,7 @@ impl BindGroupCache {
 
     /// The bind group of a [`displace_pipeline`] layout over `inputs` (bindings 0, 1 and 2) and
     /// `target` (3 and 4, `out_size` bytes each), and whether it had to be created. At most
-    /// [`crate::trochoid::BIND_GROUP_CACHE`] are kept.
+    /// [`BIND_GROUP_CACHE`] are kept.
     pub(crate) fn get(
         &mut self,
         device: &wgpu::Device,
@@ -159,7 +163,7 @@ impl BindGroupCache {
                 entry(4, output(&target.normals)),
             ],
         });
-        if self.entries.len() == crate::trochoid::BIND_GROUP_CACHE {
+        if self.entries.len() == BIND_GROUP_CACHE {
             self.entries.remove(0);
         }
         self.entries.push(CachedBindGroup {

@@ -227,7 +227,7 @@ pub struct TrochoidStats {
 /// Bind groups a [`TrochoidPass`] keeps (the least recently used is evicted first): enough for
 /// a few targets used in turn (levels of detail, double buffering) without rebuilding them every
 /// frame. A cached bind group keeps its target's buffers alive until it is evicted.
-pub const BIND_GROUP_CACHE: usize = 4;
+pub const BIND_GROUP_CACHE: usize = crate::pipeline::BIND_GROUP_CACHE;
 
 /// Initial capacity of the coefficient buffer, in waves.
 const INITIAL_WAVES: u64 = 16;

@@ -221,7 +221,7 @@ impl BoxSetup {
             // centres (below 10⁻³ cells on a 4096² grid): still under 1 in all, so at most two
             // candidates per axis.
             half: (traversal.cell_half_extent() + 0.05) as f32,
-            cell: (s / ocean_wtb::frame::FIXED_ONE as f64) as f32,
+            cell: (s / ocean_wtb::box_frame::FIXED_ONE as f64) as f32,
             smoothing: b.smoothing as f32,
             recovery: b.recovery as f32,
             amplitude: b.amplitude as f32,
