@@ -7,8 +7,8 @@
 //! and shifts by exactly 1 under a quarter turn, so the arcs are computed without rounding in the
 //! angles themselves. Arcs are closed and carry their end vectors.
 
-use crate::bound::up32;
-use crate::quad::Quadrant;
+use crate::quadrant::Quadrant;
+use crate::round::up32;
 
 /// Pseudo-angle of a non-zero vector, in `[0, 4)`.
 #[inline]

@@ -105,7 +105,8 @@
 use alloc::vec::Vec;
 
 use crate::map::{Edge, HeightMap};
-use crate::quad::Quadrant;
+use crate::quadrant::Quadrant;
+use crate::round::{down32, up32};
 
 /// "Infinite" extent of a clamp-mode border strip, in texels: larger than any reach a cone can
 /// have (`MAX_RATIO_LIMIT·MAX_SIDE`), exact in `f64` and in products with `f32` values.
@@ -142,18 +143,6 @@ pub(crate) struct Cell {
     pub twist: i8,
     /// All four corners equal.
     pub flat: bool,
-}
-
-/// `x` rounded down to `f32`.
-pub(crate) fn down32(x: f64) -> f32 {
-    let f = x as f32;
-    if f64::from(f) > x { f.next_down() } else { f }
-}
-
-/// `x` rounded up to `f32`.
-pub(crate) fn up32(x: f64) -> f32 {
-    let f = x as f32;
-    if f64::from(f) < x { f.next_up() } else { f }
 }
 
 impl Cell {

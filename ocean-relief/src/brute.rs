@@ -7,7 +7,7 @@
 
 use crate::bound::{ConeKind, Grid, candidate};
 use crate::map::Edge;
-use crate::quad::Quadrant;
+use crate::quadrant::Quadrant;
 use crate::search::{CHANNELS, NEAR_DISTANCE};
 
 /// `w(q)`, `D(q)` and `E(q)` of apex cell `(qi, qj)` (spatial position), for every direction

@@ -27,7 +27,7 @@ use core::f64::consts::TAU;
 use crate::bound::ConeKind;
 use crate::line::{Piece, walk};
 use crate::map::{Edge, HeightMap};
-use crate::quad::Quadrant;
+use crate::quadrant::Quadrant;
 use crate::sample::Taps;
 use crate::{ReliefError, for_rows};
 

@@ -37,10 +37,11 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::bound::{ConeKind, Grid, down32};
+use crate::bound::{ConeKind, Grid};
 use crate::map::{Edge, HeightMap};
 use crate::progress::{NoProgress, Progress, band_rows};
-use crate::quad::Quadrant;
+use crate::quadrant::Quadrant;
+use crate::round::down32;
 use crate::search::{CHANNELS, Pyramid, Scratch, Search};
 use crate::{ReliefError, brute, check_range, for_rows};
 

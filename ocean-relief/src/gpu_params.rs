@@ -18,7 +18,7 @@ use bytemuck::{Pod, Zeroable};
 use crate::bound::ConeKind;
 use crate::cone::{ConeParams, MAX_RATIO_LIMIT};
 use crate::map::Edge;
-use crate::quad::Quadrant;
+use crate::quadrant::Quadrant;
 use crate::trace::{BinarySearch, MAX_STEPS, Method};
 use crate::{ReliefError, check_range};
 

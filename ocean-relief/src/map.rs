@@ -28,27 +28,7 @@ use crate::ReliefError;
 /// texel at this size).
 pub const MAX_SIDE: usize = 4096;
 
-/// What the surface is beyond the texture's borders (module documentation).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-pub enum Edge {
-    /// The texture tiles: texel `i` is texel `i mod N` (sampler addressing *repeat*).
-    #[default]
-    Wrap,
-    /// Texel indices are clamped to `0 ..= N − 1` (sampler addressing *clamp-to-edge*).
-    Clamp,
-}
-
-impl Edge {
-    /// Texel index `i` (any integer) resolved into `0 .. n`.
-    #[inline(always)]
-    pub fn resolve(self, i: i64, n: usize) -> usize {
-        match self {
-            // rem_euclid of a positive modulus is in 0 .. n.
-            Edge::Wrap => i.rem_euclid(n as i64) as usize,
-            Edge::Clamp => i.clamp(0, n as i64 - 1) as usize,
-        }
-    }
-}
+pub use crate::sample::Edge;
 
 /// What to do with heights outside `[0, 1]`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]

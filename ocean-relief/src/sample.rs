@@ -15,7 +15,27 @@
 //! exact form instead. Depth and cone ratio are fetched together with the same weights (the
 //! book keeps them in one texel, §18.4.1), which is what the cone maps are made valid for.
 
-use crate::map::Edge;
+/// What the surface is beyond the texture's borders (see [`crate::map`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Edge {
+    /// The texture tiles: texel `i` is texel `i mod N` (sampler addressing *repeat*).
+    #[default]
+    Wrap,
+    /// Texel indices are clamped to `0 ..= N − 1` (sampler addressing *clamp-to-edge*).
+    Clamp,
+}
+
+impl Edge {
+    /// Texel index `i` (any integer) resolved into `0 .. n`.
+    #[inline(always)]
+    pub fn resolve(self, i: i64, n: usize) -> usize {
+        match self {
+            // rem_euclid of a positive modulus is in 0 .. n.
+            Edge::Wrap => i.rem_euclid(n as i64) as usize,
+            Edge::Clamp => i.clamp(0, n as i64 - 1) as usize,
+        }
+    }
+}
 
 /// The four taps and weights of one bilinear fetch.
 #[derive(Clone, Copy, Debug, PartialEq)]
