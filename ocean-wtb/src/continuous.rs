@@ -32,7 +32,7 @@ use ocean_core::LaneSums;
 use crate::batch::QUERY_SORT_MIN;
 use crate::batch::{check_batch, grid_order, nearest_point, scatter, sorted_batch};
 use crate::error::WtbError;
-use crate::scene::{Frame, FrameLayer};
+use crate::frame::{Frame, FrameLayer};
 
 /// A continuous height query's answer.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -44,7 +44,7 @@ use ocean_core::{GridRect, LayersEvaluator};
 use crate::batch::QUERY_SORT_MIN;
 use crate::batch::{check_batch, grid_order, nearest_point, sorted_batch};
 use crate::error::WtbError;
-use crate::scene::Frame;
+use crate::frame::Frame;
 
 /// The triangle of the drawn mesh that a query landed on.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -308,6 +308,26 @@ pub fn wavenumber(wavelength: f64) -> f64 {
     TAU / wavelength
 }
 
+/// The part of the effects that the static cache depends on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct StaticKey {
+    pub(crate) refraction: bool,
+    pub(crate) shoaling: bool,
+    pub(crate) round_waves: bool,
+    pub(crate) beach: Option<Beach>,
+}
+
+impl StaticKey {
+    pub(crate) fn of(e: &Effects) -> Self {
+        Self {
+            refraction: e.refraction == Refraction::PhaseShift,
+            shoaling: e.shoaling,
+            round_waves: e.round_waves,
+            beach: e.beach,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

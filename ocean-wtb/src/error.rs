@@ -22,16 +22,18 @@ pub enum WtbError {
         /// Largest accepted value.
         max: f64,
     },
-    /// The water grid has fewer than 2 or more than [`crate::grid::MAX_SIDE`] points along a side.
-    #[error(
-        "water grid size {nx} x {nz} is outside 2 x 2 ..= {max} x {max}",
-        max = crate::grid::MAX_SIDE
-    )]
+    /// The water grid has fewer than `min` ([`crate::grid::MIN_SIDE`]) or more than `max`
+    /// ([`crate::grid::MAX_SIDE`]) points along a side.
+    #[error("water grid size {nx} x {nz} is outside {min} x {min} ..= {max} x {max}")]
     GridSize {
         /// Columns (along x).
         nx: usize,
         /// Rows (along z).
         nz: usize,
+        /// Fewest points a side may have.
+        min: usize,
+        /// Most points a side may have.
+        max: usize,
     },
     /// The water grid's spacing differs along x and z (a box's internal frame has the grid's
     /// spacing along both of its axes, paper §2).

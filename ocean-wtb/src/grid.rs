@@ -22,7 +22,7 @@
 use glam::DVec2;
 use ocean_core::Grid;
 
-pub use crate::error::WtbError;
+use crate::error::WtbError;
 
 /// Fewest points along each side of a water grid.
 pub const MIN_SIDE: usize = 2;
@@ -119,7 +119,7 @@ impl WaterGrid {
         check_position("centre", centre)?;
         check_range("spacing", spacing, MIN_SPACING, MAX_SPACING)?;
         if !(MIN_SIDE..=MAX_SIDE).contains(&n) {
-            return Err(WtbError::GridSize { nx: n, nz: n });
+            return Err(grid_size(n, n));
         }
         Self::from_grid(Grid::centred(centre, spacing, n))
     }
@@ -139,7 +139,7 @@ impl WaterGrid {
         }
         let (nx, nz) = grid.size;
         if !(MIN_SIDE..=MAX_SIDE).contains(&nx) || !(MIN_SIDE..=MAX_SIDE).contains(&nz) {
-            return Err(WtbError::GridSize { nx, nz });
+            return Err(grid_size(nx, nz));
         }
         Ok(Self { grid })
     }
@@ -265,5 +265,15 @@ impl WaterGrid {
         let lo = self.grid.origin;
         let hi = self.max_corner();
         p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y
+    }
+}
+
+/// [`WtbError::GridSize`] for a grid of `nx × nz` points.
+fn grid_size(nx: usize, nz: usize) -> WtbError {
+    WtbError::GridSize {
+        nx,
+        nz,
+        min: MIN_SIDE,
+        max: MAX_SIDE,
     }
 }

@@ -73,6 +73,7 @@ extern crate alloc;
 extern crate std;
 
 mod batch;
+pub mod box_frame;
 pub mod budget;
 pub mod continuous;
 pub mod drawn;
@@ -88,9 +89,9 @@ pub mod shore;
 pub mod terrain;
 pub mod wind;
 
+pub use box_frame::{BoxFrame, FixedTraversal, GridPoint, RayInfo, Traversal};
 pub use error::WtbError;
 pub use filter::TrainFilter;
-pub use frame::{BoxFrame, FixedTraversal, GridPoint, RayInfo, Traversal};
 pub use grid::WaterGrid;
 pub use terrain::Terrain;
 pub use wind::{LifePhase, TrainSource, Wind, WindState};

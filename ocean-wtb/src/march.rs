@@ -25,13 +25,15 @@ use ocean_core::math;
 use ocean_core::sincos::sincos;
 use ocean_core::{Modulation, WaveSet};
 
+use crate::box_frame::BoxFrame;
+use crate::effects::StaticKey;
 use crate::effects::{self, Beach, Effects, Refraction};
 use crate::error::WtbError;
-use crate::frame::BoxFrame;
+use crate::frame::FrameStats;
 use crate::grid::WaterGrid;
-use crate::scene::{ActionKind, ActionPoint, BoxId, FrameStats, StaticKey, for_rows};
 use crate::shore;
 use crate::terrain::Terrain;
+use ocean_core::rows::for_rows;
 
 /// What the ray march of one box reads (see the [module documentation](self)).
 #[derive(Clone, Debug, PartialEq)]
@@ -60,6 +62,43 @@ pub struct MarchBox {
     pub beach: Option<Beach>,
     /// Radius of the land factor's smoothing, cells ([`shore::radius`]).
     pub shore_radius: usize,
+}
+
+/// A box's handle in a [`Scene`](crate::scene::Scene).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct BoxId(pub(crate) u32);
+
+impl BoxId {
+    /// The number behind the handle (stable for the box's life).
+    pub fn get(self) -> u32 {
+        self.0
+    }
+}
+
+/// What happens at an action point of a ray.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ActionKind {
+    /// The ray reaches land: the amplitude is zero from here.
+    LandStart,
+    /// The ray leaves land: the amplitude recovers from here (Fig. 5).
+    LandEnd,
+    /// The water becomes shallower than half the peak wavelength: shoaling and refraction start.
+    Shallow,
+    /// The water becomes deep again.
+    Deep,
+}
+
+/// A point along a wave ray where the trains' parameters change (Fig. 2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ActionPoint {
+    /// The ray.
+    pub ray: u32,
+    /// Distance along the ray (internal coordinate a), metres.
+    pub a: f64,
+    /// The grid point where it happens.
+    pub index: usize,
+    /// What happens.
+    pub kind: ActionKind,
 }
 
 /// One ray's result: (rectangle index, modulation without the land factor, land factor) per

@@ -45,8 +45,8 @@ use glam::DVec2;
 use ocean_core::math::{cos, sin};
 use ocean_core::{Depth, GRAVITY, Pcg32, WaveDesc};
 
+use crate::box_frame::{BoxFrame, unit_direction};
 use crate::error::WtbError;
-use crate::frame::{BoxFrame, unit_direction};
 use crate::grid::{check_position, check_range};
 
 /// α of Eq. 1 (Resio et al. 1999).

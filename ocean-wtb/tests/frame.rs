@@ -7,7 +7,7 @@ use std::fmt::Write;
 
 use glam::DVec2;
 use ocean_wtb::WtbError;
-use ocean_wtb::frame::{BoxFrame, Traversal};
+use ocean_wtb::box_frame::{BoxFrame, Traversal};
 use ocean_wtb::grid::WaterGrid;
 
 /// What one traversal did, checked against the rules of `ocean_wtb::frame`.

@@ -61,18 +61,30 @@ fn rejects_bad_grids() {
     let o = DVec2::ZERO;
     assert_eq!(
         WaterGrid::new(o, 1.0, 1, 8),
-        Err(WtbError::GridSize { nx: 1, nz: 8 })
+        Err(WtbError::GridSize {
+            nx: 1,
+            nz: 8,
+            min: 2,
+            max: MAX_SIDE
+        })
     );
     assert_eq!(
         WaterGrid::new(o, 1.0, 8, 0),
-        Err(WtbError::GridSize { nx: 8, nz: 0 })
+        Err(WtbError::GridSize {
+            nx: 8,
+            nz: 0,
+            min: 2,
+            max: MAX_SIDE
+        })
     );
     assert!(WaterGrid::new(o, 1.0, MAX_SIDE, MAX_SIDE).is_ok());
     assert_eq!(
         WaterGrid::new(o, 1.0, MAX_SIDE + 1, 2),
         Err(WtbError::GridSize {
             nx: MAX_SIDE + 1,
-            nz: 2
+            nz: 2,
+            min: 2,
+            max: MAX_SIDE
         })
     );
     assert!(WaterGrid::new(o, 1.0, usize::MAX, usize::MAX).is_err());
