@@ -94,79 +94,86 @@ pub struct ShaderEntry {
     pub description: &'static str,
 }
 
-/// Source of the trochoid displacement pass, after the shared `surface.wgsl` (the unit normal
-/// of the CPU kernel). The host uploads sines and cosines, which the shader combines by angle
-/// addition.
-pub const TROCHOID_WGSL: &str = concat!(
-    include_str!("shaders/surface.wgsl"),
-    include_str!("shaders/trochoid.wgsl")
+/// Declares a shader's WGSL from one list of files (shared snippets first): `$name`, their
+/// concatenation, and `$files`, the list itself for the registry, so the two cannot disagree.
+macro_rules! wgsl {
+    ($(#[$doc:meta])* $name:ident, $files:ident = [$($file:literal),+ $(,)?]) => {
+        $(#[$doc])*
+        pub const $name: &str = concat!($(include_str!(concat!("shaders/", $file))),+);
+        const $files: &[&str] = &[$($file),+];
+    };
+}
+
+wgsl!(
+    /// Source of the trochoid displacement pass, after the shared `grid_normal.wgsl` (the unit
+    /// normal of the CPU kernel). The host uploads sines and cosines, which the shader combines by
+    /// angle addition.
+    TROCHOID_WGSL, TROCHOID_FILES = ["grid_normal.wgsl", "trochoid.wgsl"]
 );
 
-/// Source of the layered (wave-train-box) displacement pass: sums of wave sets modulated by
-/// complex amplitude fields over grid rectangles, plus an additive height field. Like the
-/// trochoid pass it combines host-made sines and cosines by angle addition.
-pub const LAYERS_WGSL: &str = concat!(
-    include_str!("shaders/surface.wgsl"),
-    include_str!("shaders/layers.wgsl")
+wgsl!(
+    /// Source of the layered (wave-train-box) displacement pass: sums of wave sets modulated by
+    /// complex amplitude fields over grid rectangles, plus an additive height field. Like the
+    /// trochoid pass it combines host-made sines and cosines by angle addition.
+    LAYERS_WGSL, LAYERS_FILES = ["grid_normal.wgsl", "layers.wgsl"]
 );
 
-/// Source of the wave-train-box ray march: the modulation of one box from its rays, land and
-/// depth, for the layers pass; after the shared time snippet.
-pub const WTB_MARCH_WGSL: &str = concat!(
-    include_str!("shaders/wtb_time.wgsl"),
-    include_str!("shaders/wtb_march.wgsl")
+wgsl!(
+    /// Source of the wave-train-box ray march: the modulation of one box from its rays, land and
+    /// depth, for the layers pass; after the shared time snippet.
+    WTB_MARCH_WGSL, WTB_MARCH_FILES = ["wtb_time.wgsl", "wtb_march.wgsl"]
 );
 
-/// Source of the wave-train-box height field: capillary noise (Eq. 9) and the beach run-up on
-/// every grid point, for the layers pass; after the shared time snippet.
-pub const WTB_HEIGHT_WGSL: &str = concat!(
-    include_str!("shaders/wtb_time.wgsl"),
-    include_str!("shaders/wtb_height.wgsl")
+wgsl!(
+    /// Source of the wave-train-box height field: capillary noise (Eq. 9) and the beach run-up on
+    /// every grid point, for the layers pass; after the shared time snippet.
+    WTB_HEIGHT_WGSL, WTB_HEIGHT_FILES = ["wtb_time.wgsl", "wtb_height.wgsl"]
 );
 
-/// Source of the ocean renderer (Bruneton et al. 2010, §7.1): the projected grid's vertex stage
-/// (Eq. 2), the per-pixel normals, slope variances and lighting of the fragment stage (Eq. 3, 4,
-/// Algorithm 5.1), and a sky background; after the shared surface, ocean and lighting snippets.
-pub const OCEAN_WGSL: &str = concat!(
-    include_str!("shaders/surface.wgsl"),
-    include_str!("shaders/ocean_common.wgsl"),
-    include_str!("shaders/ocean_light.wgsl"),
-    include_str!("shaders/ocean.wgsl")
+wgsl!(
+    /// Source of the ocean renderer (Bruneton et al. 2010, §7.1): the projected grid's vertex stage
+    /// (Eq. 2), the per-pixel normals, slope variances and lighting of the fragment stage (Eq. 3,
+    /// 4, Algorithm 5.1), and a sky background; after the shared grid normal, ocean and
+    /// lighting snippets.
+    OCEAN_WGSL, OCEAN_FILES = [
+        "grid_normal.wgsl",
+        "ocean_common.wgsl",
+        "ocean_light.wgsl",
+        "ocean.wgsl",
+    ]
 );
 
-/// Source of the ocean renderer's probes: compute entry points running the renderer's own
-/// surface and lighting functions on lists of inputs, for the parity tests.
-pub const OCEAN_PROBE_WGSL: &str = concat!(
-    include_str!("shaders/surface.wgsl"),
-    include_str!("shaders/ocean_common.wgsl"),
-    include_str!("shaders/ocean_light.wgsl"),
-    include_str!("shaders/ocean_probe.wgsl")
+wgsl!(
+    /// Source of the ocean renderer's probes: compute entry points running the renderer's own
+    /// surface and lighting functions on lists of inputs, for the parity tests.
+    OCEAN_PROBE_WGSL, OCEAN_PROBE_FILES = [
+        "grid_normal.wgsl",
+        "ocean_common.wgsl",
+        "ocean_light.wgsl",
+        "ocean_probe.wgsl",
+    ]
 );
 
-/// Source of SAO pass 1 (McGuire, Mara & Luebke 2012, §2.2): camera-space z from the depth
-/// buffer (Eq. 2), after the shared `sao_common.wgsl` (the parameter block).
-pub const SAO_Z_WGSL: &str = concat!(
-    include_str!("shaders/sao_common.wgsl"),
-    include_str!("shaders/sao_z.wgsl")
+wgsl!(
+    /// Source of SAO pass 1 (McGuire, Mara & Luebke 2012, §2.2): camera-space z from the depth
+    /// buffer (Eq. 2), after the shared `sao_common.wgsl` (the parameter block).
+    SAO_Z_WGSL, SAO_Z_FILES = ["sao_common.wgsl", "sao_z.wgsl"]
 );
 
-/// Source of SAO pass 2: one z MIP level from the previous one under Table 1's filters.
-pub const SAO_MIP_WGSL: &str = concat!(
-    include_str!("shaders/sao_common.wgsl"),
-    include_str!("shaders/sao_mip.wgsl")
+wgsl!(
+    /// Source of SAO pass 2: one z MIP level from the previous one under Table 1's filters.
+    SAO_MIP_WGSL, SAO_MIP_FILES = ["sao_common.wgsl", "sao_mip.wgsl"]
 );
 
-/// Source of SAO pass 3: the distributed AO samples (Eq. 1, 3–10 and the appendix's falloff),
-/// the 2×2 quad bilateral and the packing of A and z (§2.3).
-pub const SAO_AO_WGSL: &str = concat!(
-    include_str!("shaders/sao_common.wgsl"),
-    include_str!("shaders/sao_ao.wgsl")
+wgsl!(
+    /// Source of SAO pass 3: the distributed AO samples (Eq. 1, 3–10 and the appendix's falloff),
+    /// the 2×2 quad bilateral and the packing of A and z (§2.3).
+    SAO_AO_WGSL, SAO_AO_FILES = ["sao_common.wgsl", "sao_ao.wgsl"]
 );
 
-/// Source of SAO passes 4 and 5: the horizontal and vertical bilateral blur (§2.4).
-pub const SAO_BLUR_WGSL: &str = concat!(
-    include_str!("shaders/sao_common.wgsl"),
-    include_str!("shaders/sao_blur.wgsl")
+wgsl!(
+    /// Source of SAO passes 4 and 5: the horizontal and vertical bilateral blur (§2.4).
+    SAO_BLUR_WGSL, SAO_BLUR_FILES = ["sao_common.wgsl", "sao_blur.wgsl"]
 );
 
 /// The order-2 spherical-harmonic irradiance of an environment (`sh_irradiance`, from
@@ -174,53 +181,65 @@ pub const SAO_BLUR_WGSL: &str = concat!(
 /// engine's own shaders that light solids with the sea's sky.
 pub const IRRADIANCE_WGSL: &str = include_str!("shaders/irradiance.wgsl");
 
-/// Source of the relief-mapping draw pass (Policarpo & Oliveira, GPU Gems 3 ch. 18): the quad's
-/// vertex stage and the fragment stage that traces, shades, self-shadows and writes the hit's
-/// depth; after the shared tracer `relief_common.wgsl` and the isotropic texture
-/// `relief_texture.wgsl`.
-pub const RELIEF_WGSL: &str = concat!(
-    include_str!("shaders/relief_common.wgsl"),
-    include_str!("shaders/relief_texture.wgsl"),
-    include_str!("shaders/irradiance.wgsl"),
-    include_str!("shaders/relief_draw.wgsl")
+wgsl!(
+    /// Source of the relief-mapping draw pass (Policarpo & Oliveira, GPU Gems 3 ch. 18): the quad's
+    /// vertex stage and the fragment stage that traces, shades, self-shadows and writes the hit's
+    /// depth; after the shared tracer `relief_common.wgsl` and the isotropic texture
+    /// `relief_texture.wgsl`.
+    RELIEF_WGSL, RELIEF_FILES = [
+        "relief_common.wgsl",
+        "relief_texture.wgsl",
+        "irradiance.wgsl",
+        "relief_draw.wgsl",
+    ]
 );
 
-/// [`RELIEF_WGSL`] reading a quad-directional cone map (§18.1, `ocean_relief::quad`): the same
-/// tracer and draw pass, the texture a 4-layer array (`relief_texture_quad.wgsl`) whose layer
-/// each ray picks once from its direction's quadrant.
-pub const RELIEF_QUAD_WGSL: &str = concat!(
-    include_str!("shaders/relief_common.wgsl"),
-    include_str!("shaders/relief_texture_quad.wgsl"),
-    include_str!("shaders/irradiance.wgsl"),
-    include_str!("shaders/relief_draw.wgsl")
+wgsl!(
+    /// [`RELIEF_WGSL`] reading a quad-directional cone map (§18.1, `ocean_relief::quad`): the same
+    /// tracer and draw pass, the texture a 4-layer array (`relief_texture_quad.wgsl`) whose layer
+    /// each ray picks once from its direction's quadrant.
+    RELIEF_QUAD_WGSL, RELIEF_QUAD_FILES = [
+        "relief_common.wgsl",
+        "relief_texture_quad.wgsl",
+        "irradiance.wgsl",
+        "relief_draw.wgsl",
+    ]
 );
 
-/// Source of the relief tracer's probe: the draw pass's own tracer and shadow test on lists of
-/// rays (parity tests), and a depth-texture copy for headless readback.
-pub const RELIEF_PROBE_WGSL: &str = concat!(
-    include_str!("shaders/relief_common.wgsl"),
-    include_str!("shaders/relief_texture.wgsl"),
-    include_str!("shaders/relief_probe.wgsl")
+wgsl!(
+    /// Source of the relief tracer's probe: the draw pass's own tracer and shadow test on lists of
+    /// rays (parity tests), and a depth-texture copy for headless readback.
+    RELIEF_PROBE_WGSL, RELIEF_PROBE_FILES = [
+        "relief_common.wgsl",
+        "relief_texture.wgsl",
+        "relief_probe.wgsl",
+    ]
 );
 
-/// [`RELIEF_PROBE_WGSL`] on a quad-directional cone map (`relief_texture_quad.wgsl`).
-pub const RELIEF_QUAD_PROBE_WGSL: &str = concat!(
-    include_str!("shaders/relief_common.wgsl"),
-    include_str!("shaders/relief_texture_quad.wgsl"),
-    include_str!("shaders/relief_probe.wgsl")
+wgsl!(
+    /// [`RELIEF_PROBE_WGSL`] on a quad-directional cone map (`relief_texture_quad.wgsl`).
+    RELIEF_QUAD_PROBE_WGSL, RELIEF_QUAD_PROBE_FILES = [
+        "relief_common.wgsl",
+        "relief_texture_quad.wgsl",
+        "relief_probe.wgsl",
+    ]
 );
 
-/// Source of the cone-map generator: relaxed and conservative cone maps by the branch-and-bound
-/// over a min-depth pyramid of `ocean_relief::ConeMap::generate`, in double-`f32` arithmetic.
-pub const RELIEF_CONE_WGSL: &str = include_str!("shaders/relief_cone.wgsl");
+wgsl!(
+    /// Source of the cone-map generator: relaxed and conservative cone maps by the branch-and-bound
+    /// over a min-depth pyramid of `ocean_relief::ConeMap::generate`, in double-`f32` arithmetic.
+    RELIEF_CONE_WGSL, RELIEF_CONE_FILES = ["relief_cone.wgsl"]
+);
 
-/// Source of the depth resolve of a multisampled frame: each pixel's nearest sample.
-pub const DEPTH_RESOLVE_WGSL: &str = include_str!("shaders/depth_resolve.wgsl");
+wgsl!(
+    /// Source of the depth resolve of a multisampled frame: each pixel's nearest sample.
+    DEPTH_RESOLVE_WGSL, DEPTH_RESOLVE_FILES = ["depth_resolve.wgsl"]
+);
 
 static SHADERS: [ShaderEntry; 16] = [
     ShaderEntry {
         name: "trochoid",
-        files: &["surface.wgsl", "trochoid.wgsl"],
+        files: TROCHOID_FILES,
         source: TROCHOID_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[EntryPoint {
@@ -231,7 +250,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "layers",
-        files: &["surface.wgsl", "layers.wgsl"],
+        files: LAYERS_FILES,
         source: LAYERS_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[EntryPoint {
@@ -243,7 +262,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "wtb_march",
-        files: &["wtb_time.wgsl", "wtb_march.wgsl"],
+        files: WTB_MARCH_FILES,
         source: WTB_MARCH_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[
@@ -282,7 +301,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "wtb_height",
-        files: &["wtb_time.wgsl", "wtb_height.wgsl"],
+        files: WTB_HEIGHT_FILES,
         source: WTB_HEIGHT_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[EntryPoint {
@@ -294,12 +313,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "ocean",
-        files: &[
-            "surface.wgsl",
-            "ocean_common.wgsl",
-            "ocean_light.wgsl",
-            "ocean.wgsl",
-        ],
+        files: OCEAN_FILES,
         source: OCEAN_WGSL,
         kind: ShaderKind::Draw,
         entry_points: &[
@@ -348,12 +362,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "ocean_probe",
-        files: &[
-            "surface.wgsl",
-            "ocean_common.wgsl",
-            "ocean_light.wgsl",
-            "ocean_probe.wgsl",
-        ],
+        files: OCEAN_PROBE_FILES,
         source: OCEAN_PROBE_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[
@@ -371,7 +380,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "sao_z",
-        files: &["sao_common.wgsl", "sao_z.wgsl"],
+        files: SAO_Z_FILES,
         source: SAO_Z_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[EntryPoint {
@@ -383,7 +392,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "sao_mip",
-        files: &["sao_common.wgsl", "sao_mip.wgsl"],
+        files: SAO_MIP_FILES,
         source: SAO_MIP_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[EntryPoint {
@@ -395,7 +404,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "sao_ao",
-        files: &["sao_common.wgsl", "sao_ao.wgsl"],
+        files: SAO_AO_FILES,
         source: SAO_AO_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[
@@ -414,7 +423,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "sao_blur",
-        files: &["sao_common.wgsl", "sao_blur.wgsl"],
+        files: SAO_BLUR_FILES,
         source: SAO_BLUR_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[
@@ -432,12 +441,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "relief",
-        files: &[
-            "relief_common.wgsl",
-            "relief_texture.wgsl",
-            "irradiance.wgsl",
-            "relief_draw.wgsl",
-        ],
+        files: RELIEF_FILES,
         source: RELIEF_WGSL,
         kind: ShaderKind::Draw,
         entry_points: &[
@@ -462,11 +466,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "relief_probe",
-        files: &[
-            "relief_common.wgsl",
-            "relief_texture.wgsl",
-            "relief_probe.wgsl",
-        ],
+        files: RELIEF_PROBE_FILES,
         source: RELIEF_PROBE_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[
@@ -484,12 +484,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "relief_quad",
-        files: &[
-            "relief_common.wgsl",
-            "relief_texture_quad.wgsl",
-            "irradiance.wgsl",
-            "relief_draw.wgsl",
-        ],
+        files: RELIEF_QUAD_FILES,
         source: RELIEF_QUAD_WGSL,
         kind: ShaderKind::Draw,
         entry_points: &[
@@ -512,11 +507,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "relief_quad_probe",
-        files: &[
-            "relief_common.wgsl",
-            "relief_texture_quad.wgsl",
-            "relief_probe.wgsl",
-        ],
+        files: RELIEF_QUAD_PROBE_FILES,
         source: RELIEF_QUAD_PROBE_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[
@@ -535,7 +526,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "relief_cone",
-        files: &["relief_cone.wgsl"],
+        files: RELIEF_CONE_FILES,
         source: RELIEF_CONE_WGSL,
         kind: ShaderKind::Compute,
         entry_points: &[
@@ -562,7 +553,7 @@ static SHADERS: [ShaderEntry; 16] = [
     },
     ShaderEntry {
         name: "depth_resolve",
-        files: &["depth_resolve.wgsl"],
+        files: DEPTH_RESOLVE_FILES,
         source: DEPTH_RESOLVE_WGSL,
         kind: ShaderKind::Draw,
         entry_points: &[

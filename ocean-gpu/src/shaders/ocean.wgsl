@@ -1,7 +1,7 @@
 // The ocean renderer of Bruneton, Neyret & Holzschuch (2010), §7.1: a projected grid displaced by
 // the filtered trochoids (vertex stage, Eq. 2), per-pixel filtered normals and slope variances
 // (fragment stage, Eq. 3 and 4) lit by Algorithm 5.1, and a sky background. Assembled after
-// surface.wgsl, ocean_common.wgsl and ocean_light.wgsl; driven by `ocean_gpu::OceanRenderer`.
+// grid_normal.wgsl, ocean_common.wgsl and ocean_light.wgsl; driven by `ocean_gpu::OceanRenderer`.
 //
 // Draw calls (no vertex buffers; bindings of ocean_common.wgsl, group 0):
 // - `sky_vs`/`sky_fs`: 3 vertices, a full-screen triangle on the far plane: the sky map's

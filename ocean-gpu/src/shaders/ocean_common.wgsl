@@ -1,5 +1,5 @@
 // The filtered ocean surface of Bruneton, Neyret & Holzschuch (2010), §3.2 and §7.1, shared by
-// the renderer (ocean.wgsl) and its probes (ocean_probe.wgsl); prepended after surface.wgsl
+// the renderer (ocean.wgsl) and its probes (ocean_probe.wgsl); prepended after grid_normal.wgsl
 // (whose `unit_normal` turns the summed derivatives into the normal). The CPU twins are in
 // `ocean_brdf::surface`: `pixel_ray`, `sea_plane_hit`, `pixel_footprint` and
 // `FilteredSurface::{position, normal, variance}`; every function below follows one of them.

@@ -1,7 +1,7 @@
 // Probes of the ocean renderer: compute entry points that run the renderer's own functions
 // (ocean_common.wgsl, ocean_light.wgsl) on a list of inputs and write what they return, so the
 // parity tests compare exactly what the vertex and fragment stages compute with the CPU twins.
-// Assembled after surface.wgsl, ocean_common.wgsl and ocean_light.wgsl; driven by
+// Assembled after grid_normal.wgsl, ocean_common.wgsl and ocean_light.wgsl; driven by
 // `OceanRenderer::probe_surface` and `OceanRenderer::probe_sea_color`.
 //
 // One invocation per item, 64 per workgroup, item index global_invocation_id.x; frame.probe.x
