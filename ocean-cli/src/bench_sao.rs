@@ -40,7 +40,7 @@ use std::time::Instant;
 
 use ocean_core::{Camera, DepthConvention, Far, Projection};
 use ocean_gpu::{GpuContext, GpuError, SaoPass, SaoStage, SaoTimer, wgpu};
-use ocean_sao::scene::{AnalyticView, DepthFormat};
+use ocean_sao::analytic::{AnalyticView, DepthFormat};
 use ocean_sao::{DepthSource, Sao, SaoParams, Viewport};
 use serde_json::{Value, json};
 
@@ -421,8 +421,8 @@ const QUALITY: (usize, usize, usize) = (640, 360, 32);
 /// `reference::screen_obscurance`: the same falloff, 256 exact-depth samples over Eq. 5's disk
 /// per pixel), over the geometry pixels: mean absolute error, MSE and correlation.
 fn quality(no_gpu: bool) -> Result<Value, String> {
+    use ocean_sao::analytic::{CameraRays, NO_FACE};
     use ocean_sao::reference::{self, ReferenceParams};
-    use ocean_sao::scene::{CameraRays, NO_FACE};
     let (w, h, guard) = QUALITY;
     let (iw, ih) = (w + 2 * guard, h + 2 * guard);
     let views = [
@@ -469,8 +469,8 @@ fn quality(no_gpu: bool) -> Result<Value, String> {
 /// (`reference::buffer_obscurance`: 256 samples over Eq. 5's disk, occluders and normals from
 /// the buffer's own texels).
 fn built_in_quality() -> Result<Vec<Value>, String> {
+    use ocean_sao::analytic::CameraRays;
     use ocean_sao::reference::{self, ReferenceParams};
-    use ocean_sao::scene::CameraRays;
     let (w, h, guard) = QUALITY;
     let (iw, ih) = (w + 2 * guard, h + 2 * guard);
     let mut scene = crate::scene::SceneFile::parse(crate::scene::DEFAULT_SCENE, "built-in")?;

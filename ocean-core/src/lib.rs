@@ -81,12 +81,10 @@ pub mod layers;
 pub mod math;
 pub mod modulation;
 pub mod num;
-#[cfg(feature = "std")]
 pub mod parallel;
 pub mod phase;
 pub mod point_sums;
 pub mod rng;
-pub mod rows;
 pub mod sincos;
 pub mod timed;
 pub mod trochoid;

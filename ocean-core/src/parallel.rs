@@ -1,26 +1,55 @@
-//! Multi-threaded batch evaluation on the current rayon pool: the task sizes every threaded
-//! loop of the crate shares, and [`WaveSet`]'s threaded grid and point evaluations, each
-//! bit-identical to its single-threaded twin for every thread count.
+//! Threaded loops on the current rayon pool (with `std`): [`for_rows`], which the CPU
+//! reference kernels of the other crates run their rows through (in order without `std`), the
+//! task sizes every threaded loop of the crate shares, and the threaded grid and point
+//! evaluations of [`WaveSet`](crate::WaveSet). Each is bit-identical to its single-threaded
+//! twin for every thread count.
 
+#[cfg(feature = "std")]
 use alloc::vec;
 
+#[cfg(feature = "std")]
 use glam::{DVec2, Vec2, Vec3};
+#[cfg(feature = "std")]
 use rayon::prelude::*;
 
+#[cfg(feature = "std")]
 use crate::error::EvalError;
+#[cfg(feature = "std")]
 use crate::grid::Grid;
+#[cfg(feature = "std")]
 use crate::kernel::ColumnSinCos;
+#[cfg(feature = "std")]
 use crate::trochoid::{GridPlan, Points, WaveSet, dispatch};
 
+/// Runs `f(row index, row)` over the rows of `data` (rows of `width` values; the last may be
+/// shorter), on the current rayon pool with `std`, in order without. Each row is computed
+/// independently of the others, so the result is the same on any thread count.
+pub fn for_rows<T: Send>(data: &mut [T], width: usize, f: impl Fn(usize, &mut [T]) + Sync) {
+    #[cfg(feature = "std")]
+    {
+        use rayon::prelude::*;
+        data.par_chunks_mut(width.max(1))
+            .enumerate()
+            .for_each(|(j, row)| f(j, row));
+    }
+    #[cfg(not(feature = "std"))]
+    for (j, row) in data.chunks_mut(width.max(1)).enumerate() {
+        f(j, row);
+    }
+}
+
+#[cfg(feature = "std")]
 /// Points per parallel task: large enough to amortise rayon's scheduling (about a
 /// microsecond per task), small enough to balance the load over many threads.
 pub(crate) const POINTS_PER_TASK: usize = 16 * 1024;
 
+#[cfg(feature = "std")]
 /// Whole grid rows per parallel task for rows of `nx` points.
 pub fn rows_per_task(nx: usize) -> usize {
     (POINTS_PER_TASK / nx.max(1)).max(1)
 }
 
+#[cfg(feature = "std")]
 impl WaveSet {
     /// [`WaveSet::evaluate_grid`] on the current rayon thread pool (run it inside
     /// `ThreadPool::install` to choose the thread count). Output is bit-identical to the
@@ -76,5 +105,21 @@ impl WaveSet {
                 });
             });
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_row_once_with_its_index() {
+        let mut v = [0u32; 10];
+        for_rows(&mut v, 4, |j, row| {
+            for (i, x) in row.iter_mut().enumerate() {
+                *x = 10 * j as u32 + i as u32;
+            }
+        });
+        assert_eq!(v, [0, 1, 2, 3, 10, 11, 12, 13, 20, 21]);
     }
 }

@@ -6,7 +6,7 @@
 //! bit-identical to `ocean_relief::Method::trace` and `ocean_relief::shadow::in_shadow`.
 
 use glam::{Vec2, Vec3};
-use ocean_core::rows::for_rows;
+use ocean_core::parallel::for_rows;
 use ocean_relief::trace::{BinarySearch, MAX_STEPS, Method, Ray};
 use ocean_relief::{Hit, ReliefError};
 

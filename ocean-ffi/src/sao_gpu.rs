@@ -192,7 +192,7 @@ mod tests {
 
     use ocean_core::camera::{DepthConvention, Far, Projection};
     use ocean_sao::DepthSource;
-    use ocean_sao::scene::{AnalyticView, DepthFormat};
+    use ocean_sao::analytic::{AnalyticView, DepthFormat};
 
     use super::*;
     use crate::camera::OceanCamera;

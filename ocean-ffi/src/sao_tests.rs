@@ -5,7 +5,7 @@ use core::ffi::CStr;
 use core::ptr::{null, null_mut};
 
 use ocean_core::camera::{DepthConvention, Far, Projection};
-use ocean_sao::scene::{AnalyticView, DepthFormat};
+use ocean_sao::analytic::{AnalyticView, DepthFormat};
 use ocean_sao::{DepthSource, Estimator, MipFilter, NormalRejection, Sao, SaoError, SaoParams};
 
 use super::*;

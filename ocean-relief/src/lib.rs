@@ -110,4 +110,4 @@ pub use quad::{QuadConeMap, QuadReliefTexture, Quadrant};
 pub use relief::ReliefTexture;
 pub use trace::{BinarySearch, Hit, MAX_TEXCOORD, Method, Ray};
 
-pub(crate) use ocean_core::rows::for_rows;
+pub(crate) use ocean_core::parallel::for_rows;

@@ -20,11 +20,11 @@
 //! - [`pack`]: A and z in one RGBA8 texel (§2.3).
 //! - [`blur`]: the separable bilateral reconstruction (§2.4).
 //! - [`pipeline`]: [`Sao`], the passes in order.
-//! - [`scene`], [`reference`](mod@reference): analytic scenes, an exact rasteriser and brute-force obscurance.
+//! - [`analytic`], [`reference`](mod@reference): analytic scenes, an exact rasteriser and brute-force obscurance.
 //!
 //! ```
 //! use ocean_core::{DepthConvention, Far, Projection};
-//! use ocean_sao::scene::{AnalyticView, DepthFormat};
+//! use ocean_sao::analytic::{AnalyticView, DepthFormat};
 //! use ocean_sao::{DepthSource, Sao, SaoParams, Viewport};
 //!
 //! let view = AnalyticView::box_in_room();
@@ -64,6 +64,7 @@ extern crate alloc;
 #[cfg(feature = "std")]
 extern crate std;
 
+pub mod analytic;
 pub mod blur;
 pub mod error;
 pub mod gpu_params;
@@ -74,7 +75,6 @@ pub mod pipeline;
 pub mod reconstruct;
 pub mod reference;
 pub mod sample;
-pub mod scene;
 pub mod spiral;
 pub mod viewport;
 
@@ -88,4 +88,4 @@ pub use reconstruct::{
 };
 pub use viewport::{MAX_SIDE, Viewport};
 
-pub(crate) use ocean_core::rows::for_rows;
+pub(crate) use ocean_core::parallel::for_rows;

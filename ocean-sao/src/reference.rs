@@ -33,9 +33,9 @@ use glam::DVec3;
 use ocean_core::math::{cos, sin, sqrt};
 
 use crate::SaoError;
+use crate::analytic::{CameraRays, Scene};
 use crate::for_rows;
 use crate::params::{Estimator, SaoParams};
-use crate::scene::{CameraRays, Scene};
 use crate::viewport::Viewport;
 
 /// The falloff's parameters and the number of strata.

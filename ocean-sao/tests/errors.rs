@@ -4,8 +4,8 @@ mod common;
 
 use common::{Render, perspective};
 use ocean_core::{CameraError, DepthConvention, Far, Projection};
+use ocean_sao::analytic::{AnalyticView, DepthFormat};
 use ocean_sao::reference::ReferenceParams;
-use ocean_sao::scene::{AnalyticView, DepthFormat};
 use ocean_sao::{
     BlurParams, DepthSource, Estimator, MAX_SIDE, MipFilter, NormalRejection, Sao, SaoError,
     SaoParams, Viewport, ZConstants, ZHierarchy,

@@ -2,7 +2,7 @@
 //! the guard band modulo `2^M` (`ocean_sao::hierarchy`), not at the input's corner.
 
 use ocean_core::DepthConvention;
-use ocean_sao::scene::{AnalyticView, DepthFormat, guarded_perspective, worst_against_aligned};
+use ocean_sao::analytic::{AnalyticView, DepthFormat, guarded_perspective, worst_against_aligned};
 use ocean_sao::{DepthSource, Sao, SaoParams, Viewport};
 
 /// Output size; the input is the output plus the guard band on every side.

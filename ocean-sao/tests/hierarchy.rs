@@ -3,8 +3,8 @@
 mod common;
 
 use common::Render;
+use ocean_sao::analytic::AnalyticView;
 use ocean_sao::reference::compare;
-use ocean_sao::scene::AnalyticView;
 use ocean_sao::{MipFilter, SaoParams, ZHierarchy};
 
 /// A `w × h` level 0 whose values are all distinct and negative: `−(1 + x + 100·y)`.

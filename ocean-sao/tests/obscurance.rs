@@ -6,8 +6,8 @@ mod common;
 
 use common::{Render, convention_name, hex_grid, projections};
 use ocean_core::{DepthConvention, DepthRange};
+use ocean_sao::analytic::{AnalyticView, CameraRays, DepthFormat};
 use ocean_sao::reference::{self, Comparison, ReferenceParams, compare};
-use ocean_sao::scene::{AnalyticView, CameraRays, DepthFormat};
 use ocean_sao::{DepthSource, Estimator, NormalRejection, SaoParams};
 
 /// Input 144 × 112 with a 16 px guard band: output 112 × 80.

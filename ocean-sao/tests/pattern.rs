@@ -6,7 +6,7 @@ mod common;
 
 use common::{Render, perspective};
 use ocean_core::{DepthConvention, Far};
-use ocean_sao::scene::{AnalyticView, DepthFormat, NO_FACE};
+use ocean_sao::analytic::{AnalyticView, DepthFormat, NO_FACE};
 use ocean_sao::{BlurParams, DepthSource, SaoParams};
 
 /// 640 × 360 output with a 32 px guard band.

@@ -6,8 +6,8 @@ mod common;
 use common::{FAR, NEAR, Render, convention_name, orthographic, perspective, projections};
 use glam::{DVec3, DVec4};
 use ocean_core::{DepthConvention, DepthRange, Far, Projection};
+use ocean_sao::analytic::{AnalyticView, DepthFormat, NO_FACE};
 use ocean_sao::reconstruct::{FaceNormal, face_normal};
-use ocean_sao::scene::{AnalyticView, DepthFormat, NO_FACE};
 use ocean_sao::{DepthSource, NormalEstimate, ProjectionInfo, SKY_Z, Viewport, ZConstants};
 
 const EPS32: f64 = f32::EPSILON as f64 * 0.5; // unit roundoff of f32

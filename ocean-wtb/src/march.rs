@@ -33,7 +33,7 @@ use crate::frame::FrameStats;
 use crate::grid::WaterGrid;
 use crate::shore;
 use crate::terrain::Terrain;
-use ocean_core::rows::for_rows;
+use ocean_core::parallel::for_rows;
 
 /// What the ray march of one box reads (see the [module documentation](self)).
 #[derive(Clone, Debug, PartialEq)]

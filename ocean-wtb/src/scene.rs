@@ -734,7 +734,7 @@ fn build_cache(
     })
 }
 
-use ocean_core::rows::for_rows;
+use ocean_core::parallel::for_rows;
 
 /// Height-only terms: capillary noise on every grid point (Eq. 9) and the beach run-up.
 fn height_field(grid: &WaterGrid, terrain: &Terrain, e: &Effects, t: f64) -> Option<Vec<f32>> {

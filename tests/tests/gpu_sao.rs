@@ -18,10 +18,10 @@
 
 use ocean_core::{DepthConvention, Far, Projection};
 use ocean_gpu::{GpuContext, GpuError, SaoPass, SaoStage, SaoStages, SaoTimer, wgpu};
-use ocean_sao::pack::texel_key;
-use ocean_sao::scene::{
+use ocean_sao::analytic::{
     AnalyticView, DepthFormat, Raster, guarded_perspective, worst_against_aligned,
 };
+use ocean_sao::pack::texel_key;
 use ocean_sao::{
     BlurParams, DepthSource, Estimator, MipFilter, NormalRejection, Sao, SaoError, SaoParams,
     Stages, Viewport,
@@ -108,7 +108,7 @@ impl Case {
         for y in 0..vp.output_height() {
             for x in 0..vp.output_width() {
                 let i = (y + g) * vp.input_width() + x + g;
-                n += usize::from(self.raster.face[i] != ocean_sao::scene::NO_FACE);
+                n += usize::from(self.raster.face[i] != ocean_sao::analytic::NO_FACE);
             }
         }
         n

@@ -3,7 +3,7 @@
 #![allow(dead_code)]
 
 use ocean_core::{Camera, DepthConvention, Far, Projection};
-use ocean_sao::scene::{AnalyticView, DepthFormat, NO_FACE, Raster};
+use ocean_sao::analytic::{AnalyticView, DepthFormat, NO_FACE, Raster};
 use ocean_sao::{DepthSource, Sao, SaoParams, Stages, Viewport};
 
 /// Near plane of every test camera (m).
