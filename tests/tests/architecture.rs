@@ -33,7 +33,6 @@ const KNOWN_LONG: &[&str] = &[
     "ocean-ffi/src/sao_tests.rs",
     "ocean-ffi/src/wtb.rs",
     "ocean-gpu/src/layers.rs",
-    "ocean-gpu/src/ocean.rs",
     "ocean-gpu/src/relief.rs",
     "ocean-gpu/src/shaders.rs",
     "tests/tests/gpu_ocean.rs",

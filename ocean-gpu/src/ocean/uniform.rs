@@ -1,0 +1,344 @@
+//! The host side of the renderer's uniform data: the `Frame` block of `ocean_common.wgsl`
+//! ([`FrameUniform`], built by [`frame_uniform`]), the wave texture ([`WaveTexels`]) and the
+//! caller's water mesh ([`MeshGrid`]), with the camera-relative matrices and the phases reduced
+//! in `f64` that they carry (the module documentation of [`crate::ocean`], "Precision").
+
+use super::*;
+
+/// The shaders' uniform block, byte for byte the WGSL `Frame` of `ocean_common.wgsl` (352 bytes,
+/// std140); the field documentation is there.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct FrameUniform {
+    /// Camera-relative position → clip (WebGPU depth range).
+    pub view_proj: [[f32; 4]; 4],
+    /// Clip → camera-relative position.
+    pub inv_view_proj: [[f32; 4]; 4],
+    /// Eye height, distance cap, NDC depth of the near plane, NDC depth halfway to the far one.
+    pub camera: [f32; 4],
+    /// Viewport size (px), pixel position of grid vertex (0, 0).
+    pub viewport: [f32; 4],
+    /// Cell size (px), N_min, N_max, exposure.
+    pub grid: [f32; 4],
+    /// Grid vertices per row, grid rows, waves, flags (bit 0: sRGB-encode in the shader).
+    pub counts: [u32; 4],
+    /// Wind direction (x, z), Fresnel R, the Sun's solid angle.
+    pub sea: [f32; 4],
+    /// Unit vector towards the Sun, cos of its angular radius.
+    pub sun_dir: [f32; 4],
+    /// The Sun's radiance (rgb), NDC depth of the far plane.
+    pub sun_radiance: [f32; 4],
+    /// `L_sea` (rgb).
+    pub sea_radiance: [f32; 4],
+    /// Sky map size, its stereographic half-width, the Sun's least slope variance.
+    pub sky: [f32; 4],
+    /// Probe item count.
+    pub probe: [u32; 4],
+    /// Local waves: the local grid's point (0, 0) relative to o, 1 / its spacing.
+    pub local: [f32; 4],
+    /// Local grid points per row and rows, local trains.
+    pub local_counts: [u32; 4],
+    /// The caller's mesh (`mesh_vs`): its grid point (0, 0) at rest relative to the eye, its
+    /// spacing.
+    pub mesh_grid: [f32; 4],
+    /// The mesh's grid points per row and rows.
+    pub mesh_counts: [u32; 4],
+}
+
+/// The wave texture of a filtered surface (binding 1 of `ocean_common.wgsl`): one column per
+/// wave, longest first, three rows of `rgba32float` texels.
+///
+/// Row 0 holds `(λ, k_x, k_z, θ₀)` with the phase `θ₀ = k·o − ωt + Φ` of the frame (`o` the
+/// eye's horizontal position), reduced modulo 2π in `f64`; row 1 `(A, A k_x/|k|, A k_z/|k|, 0)`;
+/// row 2 `(k·A, (k̂·wind)², S_x, S_y)`, `S` the slope variance (Eq. 4 with `w_r = 1`, Appendix
+/// A) of the wave and every shorter one, summed in `f64`. Rows 1 and 2 are fixed; row 0
+/// changes every frame ([`WaveTexels::phases`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct WaveTexels {
+    pub(super) waves: Vec<Wave>,
+    /// Rows 0 to 2, row-major, row 0's phases 0.
+    pub(super) texels: Vec<[f32; 4]>,
+    pub(super) n_min: f64,
+    pub(super) n_max: f64,
+    pub(super) wind: DVec2,
+}
+
+impl WaveTexels {
+    /// The texels of `surface`'s waves (sorted longest first, as [`FilteredSurface`] keeps
+    /// them), with its filter thresholds and wind for the uniform block.
+    pub fn new(surface: &FilteredSurface) -> Self {
+        let waves = surface.wave_set().waves();
+        let n = waves.len();
+        let wind = surface.wind();
+        let mut texels = vec![[0.0f32; 4]; n * WAVE_ROWS as usize];
+        // The variance of wave i and every shorter one (they follow it), in f64.
+        let mut suffix = DVec2::ZERO;
+        for i in (0..n).rev() {
+            let w = &waves[i];
+            let k = w.wave_vector();
+            let m = w.wavenumber();
+            let a = w.amplitude();
+            let (ka, cos2) = wave_variance_term(w, wind);
+            let var = trochoid_slope_variance(ka);
+            suffix += DVec2::new(var * cos2, var * (1.0 - cos2));
+            texels[i] = [surface.wavelengths()[i] as f32, k.x as f32, k.y as f32, 0.0];
+            texels[n + i] = [a as f32, (a * k.x / m) as f32, (a * k.y / m) as f32, 0.0];
+            texels[2 * n + i] = [ka as f32, cos2 as f32, suffix.x as f32, suffix.y as f32];
+        }
+        Self {
+            waves: waves.to_vec(),
+            texels,
+            n_min: surface.filter().n_min(),
+            n_max: surface.filter().n_max(),
+            wind,
+        }
+    }
+
+    /// The number of waves: the texture's width.
+    pub fn wave_count(&self) -> usize {
+        self.waves.len()
+    }
+
+    /// Row 0 for a frame at `time` seen from an eye at horizontal position `o` (world x, z):
+    /// `θ₀ = k·o − ωt + Φ` reduced modulo 2π in `f64` (ARCHITECTURE.md), so the shader's phase
+    /// `k·(x − o) + θ₀` never holds a large number in `f32`.
+    pub fn phases(&self, o: DVec2, time: f64) -> Vec<[f32; 4]> {
+        self.waves
+            .iter()
+            .zip(&self.texels)
+            .map(|(w, t)| [t[0], t[1], t[2], reduce_angle(w.phase_at(o, time)) as f32])
+            .collect()
+    }
+
+    /// The whole texture for a frame at `time` seen by `camera`: the three rows, row-major,
+    /// row 0 with [`phases`](Self::phases) at the eye's horizontal position.
+    pub fn frame_texels(&self, camera: &Camera, time: f64) -> Vec<[f32; 4]> {
+        let eye = camera.eye();
+        let phases = self.phases(DVec2::new(eye.x, eye.z), time);
+        let mut texels = self.texels.clone();
+        texels[..phases.len()].copy_from_slice(&phases);
+        texels
+    }
+}
+
+/// A water mesh that `mesh_vs` draws (ocean.wgsl): a grid of `nx × nz` points, point `(i, j)`
+/// resting at world `(origin.x + i·spacing, 0, origin.y + j·spacing)`, its vertex index
+/// `j·nx + i` (a wave train box scene's water grid, [`ocean_wtb::WaterGrid`]'s layout).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshGrid {
+    /// World `(x, z)` of grid point (0, 0), metres.
+    pub origin: DVec2,
+    /// Distance between neighbouring points along x and z, metres, > 0.
+    pub spacing: f64,
+    /// Points per row (along x), ≥ 1.
+    pub nx: u32,
+    /// Rows (along z), ≥ 1.
+    pub nz: u32,
+}
+
+/// The depth remap from a camera's NDC depth to WebGPU's: `z' = (z + 1)/2` for OpenGL's
+/// `[−1, 1]` range, the identity otherwise (as a matrix acting on clip coordinates, and on one
+/// NDC value).
+pub(super) fn depth_remap(camera: &Camera) -> (DMat4, fn(f64) -> f64) {
+    match camera.depth().range() {
+        DepthRange::NegOneToOne => (
+            DMat4::from_cols(
+                DVec4::X,
+                DVec4::Y,
+                DVec4::new(0.0, 0.0, 0.5, 0.0),
+                DVec4::new(0.0, 0.0, 0.5, 1.0),
+            ),
+            |z| 0.5 * z + 0.5,
+        ),
+        DepthRange::ZeroToOne => (DMat4::IDENTITY, |z| z),
+    }
+}
+
+/// The grid's vertex counts (per row, rows) for a viewport.
+pub(super) fn grid_counts(
+    options: &OceanOptions,
+    width: u32,
+    height: u32,
+) -> Result<(u32, u32), GpuError> {
+    let count = |extent: u32| {
+        let span = f64::from(extent) * (1.0 + 2.0 * options.margin);
+        (span / options.cell_px).ceil() + 1.0
+    };
+    let (nx, ny) = (count(width), count(height));
+    let vertices = nx * ny;
+    if vertices > f64::from(u32::MAX) {
+        return Err(GpuError::TooLarge {
+            what: "projected grid (vertices)",
+            needed: vertices as u64,
+            limit: u64::from(u32::MAX),
+        });
+    }
+    Ok((nx as u32, ny as u32))
+}
+
+pub(super) fn mat_f32(m: DMat4, what: &'static str) -> Result<[[f32; 4]; 4], GpuError> {
+    let f = m.as_mat4();
+    if f.is_finite() {
+        Ok(f.to_cols_array_2d())
+    } else {
+        Err(invalid(
+            what,
+            "not representable in f32 (degenerate camera)",
+        ))
+    }
+}
+
+pub(super) fn rgb(v: DVec3, w: f32) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, w]
+}
+
+/// The uniform block `Frame` of `ocean_common.wgsl` for one frame of `width × height` pixels
+/// (`size`) seen by `camera` at `time`: what [`OceanRenderer::render`] draws with, and what a
+/// caller drawing the exported shader in its own pipeline uploads. The surface's filter and
+/// wind and the lighting's Sun, sky and sea fill their fields (the lighting's stay zero for
+/// `None`: nothing lit); `mesh`, if given, is the water mesh `mesh_vs` draws (its origin
+/// stored relative to the eye, subtracted in `f64`). The local waves and the probe count are
+/// zero (none). Pair it with [`WaveTexels::frame_texels`] for the same camera and time.
+///
+/// The camera's matrices are formed relative to its eye in `f64` and folded into WebGPU's
+/// clip space (an OpenGL `[−1, 1]` camera's `z` is halved and shifted; naga's GLSL export maps
+/// it back).
+///
+/// # Errors
+///
+/// [`GpuError::InvalidInput`] for an option outside its documented range, an empty viewport,
+/// a camera not above the sea (`eye.y ≤ 0`) or whose matrices overflow `f32`, or a mesh with a
+/// non-finite origin, a spacing that is not finite and positive, or no points;
+/// [`GpuError::Eval`] for a non-finite time; [`GpuError::TooLarge`] for a projected grid
+/// beyond 2³² − 1 vertices.
+pub fn frame_uniform(
+    options: &OceanOptions,
+    surface: &WaveTexels,
+    lighting: Option<&Lighting>,
+    camera: &Camera,
+    time: f64,
+    size: (u32, u32),
+    mesh: Option<&MeshGrid>,
+) -> Result<FrameUniform, GpuError> {
+    options.check()?;
+    let (width, height) = size;
+    if width == 0 || height == 0 {
+        return Err(invalid("viewport", format!("{width} x {height} is empty")));
+    }
+    if !time.is_finite() {
+        return Err(GpuError::Eval(EvalError::Time(time)));
+    }
+    let eye = camera.eye();
+    if !eye.is_finite() || eye.y <= 0.0 {
+        return Err(invalid(
+            "camera",
+            format!(
+                "the eye at ({}, {}, {}) must be above the sea (y > 0)",
+                eye.x, eye.y, eye.z
+            ),
+        ));
+    }
+    let (nx, ny) = grid_counts(options, width, height)?;
+    let o = DVec2::new(eye.x, eye.z);
+    let (remap, to_wgpu) = depth_remap(camera);
+    let view_proj = remap * camera.view_projection_f64() * DMat4::from_translation(eye);
+    let inv_view_proj =
+        DMat4::from_translation(-eye) * camera.inverse_view_projection_f64() * remap.inverse();
+    let depth = camera.depth();
+    let near = to_wgpu(depth.near_ndc());
+    let far = to_wgpu(depth.far_ndc());
+    let mut u = lighting_uniform(options, surface, lighting);
+    u.view_proj = mat_f32(view_proj, "camera view-projection")?;
+    u.inv_view_proj = mat_f32(inv_view_proj, "camera inverse view-projection")?;
+    u.camera = [
+        eye.y as f32,
+        options.max_distance as f32,
+        near as f32,
+        (0.5 * (near + far)) as f32,
+    ];
+    u.viewport = [
+        width as f32,
+        height as f32,
+        (-options.margin * f64::from(width)) as f32,
+        (-options.margin * f64::from(height)) as f32,
+    ];
+    u.counts[0] = nx;
+    u.counts[1] = ny;
+    u.sun_radiance[3] = far as f32;
+    if let Some(m) = mesh {
+        let origin = m.origin - o;
+        let fits = |v: f64| v.is_finite() && (v as f32).is_finite();
+        if !fits(origin.x) || !fits(origin.y) {
+            return Err(invalid(
+                "mesh",
+                format!(
+                    "its origin ({}, {}) must be finite and within f32's range of the eye",
+                    m.origin.x, m.origin.y
+                ),
+            ));
+        }
+        if !(m.spacing.is_finite() && m.spacing > 0.0 && (m.spacing as f32) > 0.0) {
+            return Err(invalid(
+                "mesh",
+                format!("its spacing {} must be finite and > 0", m.spacing),
+            ));
+        }
+        if m.nx == 0 || m.nz == 0 {
+            return Err(invalid(
+                "mesh",
+                format!("{} x {} points: it needs at least one", m.nx, m.nz),
+            ));
+        }
+        u.mesh_grid = [
+            origin.x as f32,
+            (-eye.y) as f32,
+            origin.y as f32,
+            m.spacing as f32,
+        ];
+        u.mesh_counts = [m.nx, m.nz, 0, 0];
+    }
+    Ok(u)
+}
+
+/// The uniform block's surface and lighting fields (the lighting's are zero
+/// without a lighting).
+pub(super) fn lighting_uniform(
+    options: &OceanOptions,
+    surface: &WaveTexels,
+    lighting: Option<&Lighting>,
+) -> FrameUniform {
+    let mut u = FrameUniform {
+        grid: [
+            options.cell_px as f32,
+            surface.n_min as f32,
+            surface.n_max as f32,
+            options.exposure as f32,
+        ],
+        counts: [
+            0,
+            0,
+            surface.waves.len() as u32,
+            u32::from(!options.color_format.is_srgb()),
+        ],
+        sky: [
+            options.sky_map_size as f32,
+            SKY_MAP_EXTENT as f32,
+            // Set with the lighting below; until then no Sun is drawn.
+            0.0,
+            0.0,
+        ],
+        ..Default::default()
+    };
+    u.sea[0] = surface.wind.x as f32;
+    u.sea[1] = surface.wind.y as f32;
+    if let Some(l) = lighting {
+        let sky = l.sky();
+        u.sea[2] = l.sea().fresnel_r as f32;
+        u.sea[3] = sky.sun_solid_angle() as f32;
+        u.sun_dir = rgb(sky.sun_direction(), sky.sun_angular_radius().cos() as f32);
+        u.sky[2] = sky.sun_min_variance() as f32;
+        u.sun_radiance = rgb(sky.sun_radiance(), 0.0);
+        u.sea_radiance = rgb(l.sea_radiance(), 0.0);
+    }
+    u
+}
