@@ -133,7 +133,7 @@ pub(crate) fn gpu_error(context: &str, e: GpuError) -> Error {
         | GpuError::UnsuitableAdapter { .. }
         | GpuError::RequestDevice(_) => OceanStatus::NoAdapter,
         GpuError::Brdf(b) => return brdf_error(context, *b),
-        GpuError::Wtb(w) => return crate::wtb::wtb_error(context, *w),
+        GpuError::Wtb(w) => return crate::wtb_params::wtb_error(context, *w),
         GpuError::Sao(e) => return crate::sao::sao_error(context, *e),
         GpuError::Relief(e) => return crate::relief::relief_error(context, *e),
         GpuError::Eval(ocean_core::EvalError::Time(_)) => OceanStatus::NonFinite,
@@ -511,6 +511,8 @@ pub unsafe extern "C" fn ocean_renderer_render_rgba8(
     })
 }
 
+crate::boundary::chain::extensible!(OceanRendererOptions);
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -721,5 +723,3 @@ mod tests {
         ocean_gpu_context_destroy(ctx);
     }
 }
-
-crate::boundary::chain::extensible!(OceanRendererOptions);

@@ -55,6 +55,7 @@ mod version;
 mod waves;
 mod waves_domain;
 mod wtb;
+mod wtb_params;
 mod wtb_query;
 
 pub use boundary::{OceanChain, OceanNext};
@@ -159,15 +160,17 @@ pub use waves::{
     ocean_waves_max_amplitude, ocean_waves_steepness_sum,
 };
 pub use wtb::{
+    OceanWtbScene, ocean_wtb_scene_add_box, ocean_wtb_scene_box_count, ocean_wtb_scene_create,
+    ocean_wtb_scene_destroy, ocean_wtb_scene_evaluate, ocean_wtb_scene_evaluate_incremental,
+    ocean_wtb_scene_remove_box, ocean_wtb_scene_reset_coverage,
+    ocean_wtb_scene_set_budget_explicit, ocean_wtb_scene_set_budget_seconds,
+    ocean_wtb_scene_set_budget_unlimited, ocean_wtb_scene_set_effects, ocean_wtb_scene_set_terrain,
+    ocean_wtb_scene_update_box,
+};
+pub use wtb_params::{
     OceanBeach, OceanBoxDesc, OceanEffects, OceanFrameStats, OceanIrregular, OceanNoise,
-    OceanRefraction, OceanWaterGridDesc, OceanWindDesc, OceanWtbScene, ocean_wtb_box_desc_default,
-    ocean_wtb_effects_default, ocean_wtb_scene_add_box, ocean_wtb_scene_box_count,
-    ocean_wtb_scene_create, ocean_wtb_scene_destroy, ocean_wtb_scene_evaluate,
-    ocean_wtb_scene_evaluate_incremental, ocean_wtb_scene_remove_box,
-    ocean_wtb_scene_reset_coverage, ocean_wtb_scene_set_budget_explicit,
-    ocean_wtb_scene_set_budget_seconds, ocean_wtb_scene_set_budget_unlimited,
-    ocean_wtb_scene_set_effects, ocean_wtb_scene_set_terrain, ocean_wtb_scene_update_box,
-    ocean_wtb_wind_desc_default,
+    OceanRefraction, OceanWaterGridDesc, OceanWindDesc, ocean_wtb_box_desc_default,
+    ocean_wtb_effects_default, ocean_wtb_wind_desc_default,
 };
 pub use wtb_query::{
     OceanDrawnSample, OceanHeightSample, ocean_wtb_scene_heights_continuous,

@@ -920,6 +920,8 @@ pub unsafe extern "C" fn ocean_sea_color_batch(
 
 const _: () = assert!(size_of::<OceanRgb>() == 24 && align_of::<OceanRgb>() == 8);
 
+crate::boundary::chain::extensible!(OceanSkyParams, OceanSeaParams);
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1109,5 +1111,3 @@ mod tests {
         ocean_lighting_destroy(l);
     }
 }
-
-crate::boundary::chain::extensible!(OceanSkyParams, OceanSeaParams);

@@ -584,6 +584,8 @@ pub unsafe extern "C" fn ocean_pixel_footprint(
     })
 }
 
+crate::boundary::chain::extensible!(OceanSpectrumParams);
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -746,5 +748,3 @@ mod tests {
         assert!(l.is_finite() && l > 0.0, "{l}");
     }
 }
-
-crate::boundary::chain::extensible!(OceanSpectrumParams);

@@ -7,7 +7,8 @@ use core::ffi::CStr;
 use crate::lighting::{OceanLighting, OceanSeaColorInput, OceanSeaLight, OceanSkyMap};
 use crate::status::{OceanStatus, ocean_last_error_message};
 use crate::waves::{OceanDVec2, OceanDVec3, OceanVec3, OceanWaveDesc, OceanWaves};
-use crate::wtb::{OceanBoxDesc, OceanEffects, OceanWaterGridDesc, OceanWtbScene};
+use crate::wtb::OceanWtbScene;
+use crate::wtb_params::{OceanBoxDesc, OceanEffects, OceanWaterGridDesc};
 use crate::wtb_query::OceanHeightSample;
 
 /// `Ok` for `OCEAN_STATUS_OK`, else the status and the thread's last-error message.

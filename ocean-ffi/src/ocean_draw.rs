@@ -22,7 +22,7 @@ use crate::lighting::{OceanLighting, brdf_error};
 use crate::lighting_spectrum::{OCEAN_FILTER_N_MAX, OCEAN_FILTER_N_MIN, OceanSpectrum};
 use crate::status::{Error, OceanStatus, guard};
 use crate::waves_domain::Reach;
-use crate::wtb::{OceanWaterGridDesc, water_grid};
+use crate::wtb_params::{OceanWaterGridDesc, water_grid};
 
 /// Size in bytes of the exported `ocean` shader's uniform block `Frame` (binding 0, std140);
 /// `ocean_surface_uniforms` writes it.
@@ -352,6 +352,8 @@ pub unsafe extern "C" fn ocean_surface_fresnel_texels(out: *mut f32, len: usize)
         Ok(())
     })
 }
+
+crate::boundary::chain::extensible!(OceanSurfaceDrawParams);
 
 #[cfg(test)]
 mod tests {
@@ -807,5 +809,3 @@ mod tests {
         assert!(out.iter().all(|v| v.is_finite()));
     }
 }
-
-crate::boundary::chain::extensible!(OceanSurfaceDrawParams);

@@ -1051,8 +1051,8 @@ pub unsafe extern "C" fn ocean_relief_mips_copy_level(
     })
 }
 
+crate::boundary::chain::extensible!(OceanReliefConeParams);
+
 #[cfg(test)]
 #[path = "relief_tests.rs"]
 mod tests;
-
-crate::boundary::chain::extensible!(OceanReliefConeParams);

@@ -287,6 +287,8 @@ pub unsafe extern "C" fn ocean_relief_uniforms(
     })
 }
 
+crate::boundary::chain::extensible!(OceanReliefScene);
+
 #[cfg(test)]
 mod tests {
     use core::ptr::{null, null_mut};
@@ -618,5 +620,3 @@ mod tests {
         }
     }
 }
-
-crate::boundary::chain::extensible!(OceanReliefScene);

@@ -765,8 +765,8 @@ pub unsafe extern "C" fn ocean_sao_view_z(
     })
 }
 
+crate::boundary::chain::extensible!(OceanSaoParams);
+
 #[cfg(test)]
 #[path = "sao_tests.rs"]
 mod tests;
-
-crate::boundary::chain::extensible!(OceanSaoParams);

@@ -31,7 +31,6 @@ const KNOWN_LONG: &[&str] = &[
     "ocean-ffi/src/relief.rs",
     "ocean-ffi/src/relief_tests.rs",
     "ocean-ffi/src/sao_tests.rs",
-    "ocean-ffi/src/wtb.rs",
     "ocean-gpu/src/layers.rs",
     "ocean-gpu/src/relief.rs",
     "ocean-gpu/src/shaders.rs",

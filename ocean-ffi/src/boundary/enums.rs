@@ -165,7 +165,7 @@ impl<T: bytemuck::NoUninit> Poked<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::wtb::{OceanEffects, OceanRefraction};
+    use crate::wtb_params::{OceanEffects, OceanRefraction};
 
     #[test]
     fn parameters_and_members_are_checked_before_any_enum_is_made() {
