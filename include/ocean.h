@@ -2150,6 +2150,124 @@ typedef struct OceanGrid {
 } OceanGrid;
 
 /**
+ * A wind, which creates one wave train box (paper section 2).
+ *
+ * The box is the rectangle origin + a*u + b*v, a in [0, length], b in [0, width], with u the
+ * unit wind direction and v = (-u.z, u.x) (u turned 90 degrees clockwise seen from above, so
+ * for u = +x, v = +z): `origin` is the rear corner on the left when looking along the wind.
+ * Its length grows from 0 to `fetch` during the build-up. Fully developed, the trains reach a
+ * crest-to-trough height H = 0.21 speed^2 / 9.81 (Eq. 1): their amplitudes sum to H/2.
+ *
+ * Lifecycle, with age = time - start: build-up for age in [0, build_up) (length and amplitude
+ * grow linearly from 0), sustain for `sustain` seconds at full size, then decay for `decay`
+ * seconds (amplitude falls linearly to 0); before `start` and after the decay the box does not
+ * exist.
+ */
+typedef struct OceanWindDesc {
+  /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
+  /**
+   * Wind speed, m/s, in (0, 100]. A zero wind is refused.
+   */
+  double speed;
+  /**
+   * x component of the direction the wind blows towards; with `direction_z` a finite,
+   * non-zero vector (normalised here).
+   */
+  double direction_x;
+  /**
+   * z component of the wind direction.
+   */
+  double direction_z;
+  /**
+   * World x of the box's origin corner, metres, |origin_x| <= 1e9.
+   */
+  double origin_x;
+  /**
+   * World z of the box's origin corner, metres, |origin_z| <= 1e9.
+   */
+  double origin_z;
+  /**
+   * Width across the wind, metres, in (0, 1e7] and at most 2^24 grid spacings.
+   */
+  double width;
+  /**
+   * Fetch: the full length along the wind, metres, in (0, 1e7] and at most 2^24 grid
+   * spacings.
+   */
+  double fetch;
+  /**
+   * Time the wind starts, seconds, finite.
+   */
+  double start;
+  /**
+   * Build-up duration, seconds, finite and >= 0.
+   */
+  double build_up;
+  /**
+   * Sustain duration, seconds, >= 0; `INFINITY` for a wind that never dies.
+   */
+  double sustain;
+  /**
+   * Decay duration, seconds, finite and >= 0.
+   */
+  double decay;
+  /**
+   * Seed of the documented wind-to-trains mapping (PCG32); the same seed gives the same
+   * trains on every platform.
+   */
+  uint64_t seed;
+  /**
+   * Number of wave trains the wind raises, 1 to 8 (ignored when explicit trains are given).
+   */
+  uint32_t trains;
+  /**
+   * Must be 0: room for a later member (the `_default` functions set it), and no padding
+   * the caller cannot see.
+   */
+  uint32_t reserved;
+} OceanWindDesc;
+
+/**
+ * A wave train box: its wind and its local parameters.
+ */
+typedef struct OceanBoxDesc {
+  /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
+  /**
+   * The wind that raises the box.
+   */
+  struct OceanWindDesc wind;
+  /**
+   * Width of the smoothing area along the box's edges, metres, finite and >= 0: the
+   * amplitude rises linearly from 0 on an edge to full at this distance inside (Fig. 4);
+   * 0 gives hard edges.
+   */
+  double smoothing;
+  /**
+   * 1: `recovery` is used; 0: the recovery distance is the default, two peak wavelengths.
+   * Other values are refused.
+   */
+  uint32_t has_recovery;
+  /**
+   * Must be 0: room for a later member (the `_default` functions set it), and no padding
+   * the caller cannot see.
+   */
+  uint32_t reserved;
+  /**
+   * Distance behind land over which the amplitude recovers linearly to full, metres, finite
+   * and >= 0 (0: at once). Read only when `has_recovery` is 1.
+   */
+  double recovery;
+} OceanBoxDesc;
+
+/**
  * Irregular height along the box's width (Eq. 8):
  * A' = A (1 - scale sin(envelope_wavenumber (a - envelope_speed t)) sin(frequency b)), with
  * (a, b) the box's internal coordinates.
@@ -2278,124 +2396,6 @@ typedef struct OceanEffects {
    */
   struct OceanBeach beach;
 } OceanEffects;
-
-/**
- * A wind, which creates one wave train box (paper section 2).
- *
- * The box is the rectangle origin + a*u + b*v, a in [0, length], b in [0, width], with u the
- * unit wind direction and v = (-u.z, u.x) (u turned 90 degrees clockwise seen from above, so
- * for u = +x, v = +z): `origin` is the rear corner on the left when looking along the wind.
- * Its length grows from 0 to `fetch` during the build-up. Fully developed, the trains reach a
- * crest-to-trough height H = 0.21 speed^2 / 9.81 (Eq. 1): their amplitudes sum to H/2.
- *
- * Lifecycle, with age = time - start: build-up for age in [0, build_up) (length and amplitude
- * grow linearly from 0), sustain for `sustain` seconds at full size, then decay for `decay`
- * seconds (amplitude falls linearly to 0); before `start` and after the decay the box does not
- * exist.
- */
-typedef struct OceanWindDesc {
-  /**
-   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
-   * function sets NULL.
-   */
-  OceanNext next;
-  /**
-   * Wind speed, m/s, in (0, 100]. A zero wind is refused.
-   */
-  double speed;
-  /**
-   * x component of the direction the wind blows towards; with `direction_z` a finite,
-   * non-zero vector (normalised here).
-   */
-  double direction_x;
-  /**
-   * z component of the wind direction.
-   */
-  double direction_z;
-  /**
-   * World x of the box's origin corner, metres, |origin_x| <= 1e9.
-   */
-  double origin_x;
-  /**
-   * World z of the box's origin corner, metres, |origin_z| <= 1e9.
-   */
-  double origin_z;
-  /**
-   * Width across the wind, metres, in (0, 1e7] and at most 2^24 grid spacings.
-   */
-  double width;
-  /**
-   * Fetch: the full length along the wind, metres, in (0, 1e7] and at most 2^24 grid
-   * spacings.
-   */
-  double fetch;
-  /**
-   * Time the wind starts, seconds, finite.
-   */
-  double start;
-  /**
-   * Build-up duration, seconds, finite and >= 0.
-   */
-  double build_up;
-  /**
-   * Sustain duration, seconds, >= 0; `INFINITY` for a wind that never dies.
-   */
-  double sustain;
-  /**
-   * Decay duration, seconds, finite and >= 0.
-   */
-  double decay;
-  /**
-   * Seed of the documented wind-to-trains mapping (PCG32); the same seed gives the same
-   * trains on every platform.
-   */
-  uint64_t seed;
-  /**
-   * Number of wave trains the wind raises, 1 to 8 (ignored when explicit trains are given).
-   */
-  uint32_t trains;
-  /**
-   * Must be 0: room for a later member (the `_default` functions set it), and no padding
-   * the caller cannot see.
-   */
-  uint32_t reserved;
-} OceanWindDesc;
-
-/**
- * A wave train box: its wind and its local parameters.
- */
-typedef struct OceanBoxDesc {
-  /**
-   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
-   * function sets NULL.
-   */
-  OceanNext next;
-  /**
-   * The wind that raises the box.
-   */
-  struct OceanWindDesc wind;
-  /**
-   * Width of the smoothing area along the box's edges, metres, finite and >= 0: the
-   * amplitude rises linearly from 0 on an edge to full at this distance inside (Fig. 4);
-   * 0 gives hard edges.
-   */
-  double smoothing;
-  /**
-   * 1: `recovery` is used; 0: the recovery distance is the default, two peak wavelengths.
-   * Other values are refused.
-   */
-  uint32_t has_recovery;
-  /**
-   * Must be 0: room for a later member (the `_default` functions set it), and no padding
-   * the caller cannot see.
-   */
-  uint32_t reserved;
-  /**
-   * Distance behind land over which the amplitude recovers linearly to full, metres, finite
-   * and >= 0 (0: at once). Read only when `has_recovery` is 1.
-   */
-  double recovery;
-} OceanBoxDesc;
 
 /**
  * What one evaluation ran.
@@ -2865,151 +2865,6 @@ OceanStatus ocean_lighting_environment_radiance(const struct OceanLighting *ligh
                                                 struct OceanRgb *out);
 
 /**
- * Renders the sky map of `lighting`, `size` x `size` texels at level 0, and stores a new
- * handle in `*out`.
- *
- * Texel (i, j) of level 0 (row-major: element j*size + i) holds the environment's radiance
- * (`ocean_lighting_environment_radiance`) towards the direction whose stereographic projection
- * is u = (2 t - 1) E, with t = ((i + 0.5)/size, (j + 0.5)/size) and E = `OCEAN_SKY_MAP_EXTENT`:
- * the direction r = (2 u_x, 1 - |u|^2, 2 u_y) / (1 + |u|^2) (so u = (r_x, r_z)/(1 + r_y); the
- * zenith is at the centre, the horizon on the circle |u| = 1), and the below-horizon radiance
- * outside that circle. Each coarser level is the 2x2 mean of the one above, down to 1x1. Every
- * channel is rounded to binary16 (the precision of the GPU's `rgba16float` texture), stored as
- * float; alpha is 1.
- *
- * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
- * `OCEAN_STATUS_INVALID_ARGUMENT` if `size` is not a power of two in
- * [`OCEAN_SKY_MAP_MIN_SIZE`, `OCEAN_SKY_MAP_MAX_SIZE`] or a radiance exceeds binary16's range
- * (65504: scale the radiance unit down). On failure `*out` is unchanged. Free the map with
- * `ocean_sky_map_destroy`.
- *
- * # Safety
- *
- * `out` must point to a writable pointer.
- */
-OceanStatus ocean_lighting_sky_map_create(const struct OceanLighting *lighting,
-                                          uint32_t size,
-                                          struct OceanSkyMap **out);
-
-/**
- * Frees a sky map. NULL does nothing; a handle of another kind or already destroyed frees nothing
- * and sets the last-error message (see the header's notes on handles).
- */
-void ocean_sky_map_destroy(struct OceanSkyMap *sky_map);
-
-/**
- * Stores the number of mip levels of the map, log2(size) + 1, in `*out_count`.
- *
- * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out_count`
- * is written only on success.
- *
- * # Safety
- *
- * `out_count` must be writable.
- */
-OceanStatus ocean_sky_map_level_count(const struct OceanSkyMap *sky_map, uint32_t *out_count);
-
-/**
- * Stores the side of mip `level` in texels, max(size >> level, 1), in `*out_size`: the level
- * holds out_size * out_size RGBA texels.
- *
- * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
- * `OCEAN_STATUS_INVALID_ARGUMENT` if `level` >= the level count. `*out_size` is written only on
- * success.
- *
- * # Safety
- *
- * `out_size` must be writable.
- */
-OceanStatus ocean_sky_map_level_info(const struct OceanSkyMap *sky_map,
-                                     uint32_t level,
-                                     uint32_t *out_size);
-
-/**
- * Copies mip `level` into `rgba`: side * side texels (side from `ocean_sky_map_level_info`),
- * row-major from texture coordinate (0, 0) (texel (i, j) at element j*side + i), 4 floats
- * each (R, G, B, A = 1), the layout an `RGBA32F` or (after conversion) `RGBA16F` texture
- * upload expects. `len` counts floats and must be exactly side * side * 4.
- *
- * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
- * alignment for `rgba`), `OCEAN_STATUS_INVALID_ARGUMENT` if `level` does not exist,
- * `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not side * side * 4,
- * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)` exceeds
- * `PTRDIFF_MAX`. Nothing is written on failure.
- *
- * # Safety
- *
- * `rgba` must point to `len` writable floats that no other
- * thread touches during the call.
- */
-OceanStatus ocean_sky_map_copy_level(const struct OceanSkyMap *sky_map,
-                                     uint32_t level,
-                                     float *rgba,
-                                     size_t len);
-
-/**
- * The sea's colour for one pixel: Algorithm 5.1 (paper Fig. 9), the three terms of the
- * radiance towards the viewer, stored in `*out`.
- *
- * - `v`: unit vector from the surface point towards the viewer, world space (y up);
- * - `n`: the filtered unit normal of Eq. 3, world space (a normal facing away from `v` is
- *   reflected about the plane normal to `v`, paper section 3.2);
- * - `wind`: the horizontal wind direction (x, z), any finite non-zero length; the tangent
- *   frame is t_x = the wind projected on the surface, t_y = n x t_x (for n = +y and wind +x,
- *   t_y = -z);
- * - `sigma_x2`, `sigma_y2`: the slope variances of the unresolved waves along t_x and t_y
- *   (Eq. 4, from `ocean_spectrum_slope_variance`), finite and >= 0 (0: a mirror);
- * - `sky_map`: a map made from this `lighting` (any size).
- *
- * The Sun's term uses the variances raised to at least rho^2/16 (the solar disc, rho = 4.653e-3
- * rad), the sky's term the effective Fresnel fit F_bar of Eq. 26 times the sky map filtered
- * over the slopes' Gaussian (Eq. 27, a 9-sample trilinear rule), the sea's term
- * L_sea (1 - F_bar) (Eq. 28). Deterministic: the same bits on every platform.
- *
- * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
- * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite input, `OCEAN_STATUS_INVALID_ARGUMENT` if `v`
- * or `n` is not a unit vector (length within 1e-6 of 1), the wind is zero, a variance is
- * negative, or `sky_map` was made from a lighting with other parameters. `*out` is written only
- * on success.
- *
- * # Safety
- *
- * `out` writable.
- */
-OceanStatus ocean_sea_color(const struct OceanLighting *lighting,
-                            const struct OceanSkyMap *sky_map,
-                            struct OceanDVec3 v,
-                            struct OceanDVec3 n,
-                            struct OceanDVec2 wind,
-                            double sigma_x2,
-                            double sigma_y2,
-                            struct OceanSeaLight *out);
-
-/**
- * `ocean_sea_color` for `n` pixels: `out[i]` receives the colour of `inputs[i]`, bit-identical
- * to `ocean_sea_color` with the same arguments.
- *
- * Every input is validated before anything is written: on failure the message names the
- * first bad one (`inputs[i].member`) and `out` is untouched.
- *
- * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (8-byte
- * alignment), `OCEAN_STATUS_EMPTY` if `n` is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if
- * `n * sizeof(OceanSeaColorInput)` exceeds `PTRDIFF_MAX`, `OCEAN_STATUS_INVALID_ARGUMENT` if the
- * two arrays overlap, and the statuses of `ocean_sea_color` for a bad input.
- *
- * # Safety
- *
- * `inputs` point to `n` readable
- * `OceanSeaColorInput`s and `out` to `n` writable `OceanSeaLight`s, none modified by another
- * thread during the call.
- */
-OceanStatus ocean_sea_color_batch(const struct OceanLighting *lighting,
-                                  const struct OceanSkyMap *sky_map,
-                                  const struct OceanSeaColorInput *inputs,
-                                  size_t n,
-                                  struct OceanSeaLight *out);
-
-/**
  * The Ross BRDF (Eq. 13) with Schlick's Fresnel factor (Eq. 14), 1/steradian, stored in
  * `*out`:
  *
@@ -3192,6 +3047,151 @@ OceanStatus ocean_tone_map(struct OceanRgb radiance, double exposure, struct Oce
  * `out` must be writable.
  */
 OceanStatus ocean_linear_to_srgb(double linear, double *out);
+
+/**
+ * The sea's colour for one pixel: Algorithm 5.1 (paper Fig. 9), the three terms of the
+ * radiance towards the viewer, stored in `*out`.
+ *
+ * - `v`: unit vector from the surface point towards the viewer, world space (y up);
+ * - `n`: the filtered unit normal of Eq. 3, world space (a normal facing away from `v` is
+ *   reflected about the plane normal to `v`, paper section 3.2);
+ * - `wind`: the horizontal wind direction (x, z), any finite non-zero length; the tangent
+ *   frame is t_x = the wind projected on the surface, t_y = n x t_x (for n = +y and wind +x,
+ *   t_y = -z);
+ * - `sigma_x2`, `sigma_y2`: the slope variances of the unresolved waves along t_x and t_y
+ *   (Eq. 4, from `ocean_spectrum_slope_variance`), finite and >= 0 (0: a mirror);
+ * - `sky_map`: a map made from this `lighting` (any size).
+ *
+ * The Sun's term uses the variances raised to at least rho^2/16 (the solar disc, rho = 4.653e-3
+ * rad), the sky's term the effective Fresnel fit F_bar of Eq. 26 times the sky map filtered
+ * over the slopes' Gaussian (Eq. 27, a 9-sample trilinear rule), the sea's term
+ * L_sea (1 - F_bar) (Eq. 28). Deterministic: the same bits on every platform.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_NON_FINITE` for a NaN or infinite input, `OCEAN_STATUS_INVALID_ARGUMENT` if `v`
+ * or `n` is not a unit vector (length within 1e-6 of 1), the wind is zero, a variance is
+ * negative, or `sky_map` was made from a lighting with other parameters. `*out` is written only
+ * on success.
+ *
+ * # Safety
+ *
+ * `out` writable.
+ */
+OceanStatus ocean_sea_color(const struct OceanLighting *lighting,
+                            const struct OceanSkyMap *sky_map,
+                            struct OceanDVec3 v,
+                            struct OceanDVec3 n,
+                            struct OceanDVec2 wind,
+                            double sigma_x2,
+                            double sigma_y2,
+                            struct OceanSeaLight *out);
+
+/**
+ * `ocean_sea_color` for `n` pixels: `out[i]` receives the colour of `inputs[i]`, bit-identical
+ * to `ocean_sea_color` with the same arguments.
+ *
+ * Every input is validated before anything is written: on failure the message names the
+ * first bad one (`inputs[i].member`) and `out` is untouched.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (8-byte
+ * alignment), `OCEAN_STATUS_EMPTY` if `n` is 0, `OCEAN_STATUS_LENGTH_OVERFLOW` if
+ * `n * sizeof(OceanSeaColorInput)` exceeds `PTRDIFF_MAX`, `OCEAN_STATUS_INVALID_ARGUMENT` if the
+ * two arrays overlap, and the statuses of `ocean_sea_color` for a bad input.
+ *
+ * # Safety
+ *
+ * `inputs` point to `n` readable
+ * `OceanSeaColorInput`s and `out` to `n` writable `OceanSeaLight`s, none modified by another
+ * thread during the call.
+ */
+OceanStatus ocean_sea_color_batch(const struct OceanLighting *lighting,
+                                  const struct OceanSkyMap *sky_map,
+                                  const struct OceanSeaColorInput *inputs,
+                                  size_t n,
+                                  struct OceanSeaLight *out);
+
+/**
+ * Renders the sky map of `lighting`, `size` x `size` texels at level 0, and stores a new
+ * handle in `*out`.
+ *
+ * Texel (i, j) of level 0 (row-major: element j*size + i) holds the environment's radiance
+ * (`ocean_lighting_environment_radiance`) towards the direction whose stereographic projection
+ * is u = (2 t - 1) E, with t = ((i + 0.5)/size, (j + 0.5)/size) and E = `OCEAN_SKY_MAP_EXTENT`:
+ * the direction r = (2 u_x, 1 - |u|^2, 2 u_y) / (1 + |u|^2) (so u = (r_x, r_z)/(1 + r_y); the
+ * zenith is at the centre, the horizon on the circle |u| = 1), and the below-horizon radiance
+ * outside that circle. Each coarser level is the 2x2 mean of the one above, down to 1x1. Every
+ * channel is rounded to binary16 (the precision of the GPU's `rgba16float` texture), stored as
+ * float; alpha is 1.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `size` is not a power of two in
+ * [`OCEAN_SKY_MAP_MIN_SIZE`, `OCEAN_SKY_MAP_MAX_SIZE`] or a radiance exceeds binary16's range
+ * (65504: scale the radiance unit down). On failure `*out` is unchanged. Free the map with
+ * `ocean_sky_map_destroy`.
+ *
+ * # Safety
+ *
+ * `out` must point to a writable pointer.
+ */
+OceanStatus ocean_lighting_sky_map_create(const struct OceanLighting *lighting,
+                                          uint32_t size,
+                                          struct OceanSkyMap **out);
+
+/**
+ * Frees a sky map. NULL does nothing; a handle of another kind or already destroyed frees nothing
+ * and sets the last-error message (see the header's notes on handles).
+ */
+void ocean_sky_map_destroy(struct OceanSkyMap *sky_map);
+
+/**
+ * Stores the number of mip levels of the map, log2(size) + 1, in `*out_count`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out_count`
+ * is written only on success.
+ *
+ * # Safety
+ *
+ * `out_count` must be writable.
+ */
+OceanStatus ocean_sky_map_level_count(const struct OceanSkyMap *sky_map, uint32_t *out_count);
+
+/**
+ * Stores the side of mip `level` in texels, max(size >> level, 1), in `*out_size`: the level
+ * holds out_size * out_size RGBA texels.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `level` >= the level count. `*out_size` is written only on
+ * success.
+ *
+ * # Safety
+ *
+ * `out_size` must be writable.
+ */
+OceanStatus ocean_sky_map_level_info(const struct OceanSkyMap *sky_map,
+                                     uint32_t level,
+                                     uint32_t *out_size);
+
+/**
+ * Copies mip `level` into `rgba`: side * side texels (side from `ocean_sky_map_level_info`),
+ * row-major from texture coordinate (0, 0) (texel (i, j) at element j*side + i), 4 floats
+ * each (R, G, B, A = 1), the layout an `RGBA32F` or (after conversion) `RGBA16F` texture
+ * upload expects. `len` counts floats and must be exactly side * side * 4.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer (4-byte
+ * alignment for `rgba`), `OCEAN_STATUS_INVALID_ARGUMENT` if `level` does not exist,
+ * `OCEAN_STATUS_LENGTH_MISMATCH` if `len` is not side * side * 4,
+ * `OCEAN_STATUS_LENGTH_OVERFLOW` if `len * sizeof(float)` exceeds
+ * `PTRDIFF_MAX`. Nothing is written on failure.
+ *
+ * # Safety
+ *
+ * `rgba` must point to `len` writable floats that no other
+ * thread touches during the call.
+ */
+OceanStatus ocean_sky_map_copy_level(const struct OceanSkyMap *sky_map,
+                                     uint32_t level,
+                                     float *rgba,
+                                     size_t len);
 
 /**
  * Stores the default spectrum parameters in `*out`: wind 10 m/s along +x, 60 waves from
@@ -4904,48 +4904,6 @@ OceanStatus ocean_waves_steepness_sum(const struct OceanWaves *waves, double *ou
 OceanStatus ocean_waves_max_amplitude(const struct OceanWaves *waves, double *out_amplitude);
 
 /**
- * Stores the library's default effects in `*out`: refraction `OCEAN_REFRACTION_PHASE_SHIFT`,
- * shoaling on, round waves, irregular height, noise and beach off (as a new scene has them).
- *
- * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
- * then left unchanged.
- *
- * # Safety
- *
- * `out` must be writable.
- */
-OceanStatus ocean_wtb_effects_default(struct OceanEffects *out);
-
-/**
- * Stores a valid wind in `*out`: 10 m/s (H = 2.14 m fully developed, Eq. 1) towards +x from
- * the origin, a box 100 m wide with a fetch of 200 m, full from time 0 and never dying
- * (`sustain` = `INFINITY`), seed 0, 3 trains. Set at least the origin, direction and extent
- * for your grid.
- *
- * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
- * then left unchanged.
- *
- * # Safety
- *
- * `out` must be writable.
- */
-OceanStatus ocean_wtb_wind_desc_default(struct OceanWindDesc *out);
-
-/**
- * Stores a valid box in `*out`: the wind of `ocean_wtb_wind_desc_default`, edges smoothed
- * over 10 m (Fig. 4), and the default recovery behind land (two peak wavelengths:
- * `has_recovery` = 0).
- *
- * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
- * then left unchanged.
- *
- * # Safety
- *
- * `out` must be writable.
- */
-OceanStatus ocean_wtb_box_desc_default(struct OceanBoxDesc *out);
-
-/**
  * Creates a scene: a water grid over a terrain, no boxes yet, the default effects
  * (`ocean_wtb_effects_default`) and no budget limit. Stores the new handle in `*out`.
  *
@@ -5182,6 +5140,48 @@ OceanStatus ocean_wtb_scene_evaluate_incremental(struct OceanWtbScene *scene,
  * Returns `OCEAN_STATUS_NULL_POINTER` or `OCEAN_STATUS_MISALIGNED_POINTER` for a bad handle.
  */
 OceanStatus ocean_wtb_scene_reset_coverage(struct OceanWtbScene *scene);
+
+/**
+ * Stores the library's default effects in `*out`: refraction `OCEAN_REFRACTION_PHASE_SHIFT`,
+ * shoaling on, round waves, irregular height, noise and beach off (as a new scene has them).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_wtb_effects_default(struct OceanEffects *out);
+
+/**
+ * Stores a valid wind in `*out`: 10 m/s (H = 2.14 m fully developed, Eq. 1) towards +x from
+ * the origin, a box 100 m wide with a fetch of 200 m, full from time 0 and never dying
+ * (`sustain` = `INFINITY`), seed 0, 3 trains. Set at least the origin, direction and extent
+ * for your grid.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_wtb_wind_desc_default(struct OceanWindDesc *out);
+
+/**
+ * Stores a valid box in `*out`: the wind of `ocean_wtb_wind_desc_default`, edges smoothed
+ * over 10 m (Fig. 4), and the default recovery behind land (two peak wavelengths:
+ * `has_recovery` = 0).
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_wtb_box_desc_default(struct OceanBoxDesc *out);
 
 /**
  * Answers `n` height queries at world (x, z) = `xz[k]` on the **drawn** surface, into

@@ -513,6 +513,8 @@ pub unsafe extern "C" fn ocean_renderer_render_rgba8(
 
 crate::boundary::chain::extensible!(OceanRendererOptions);
 
+crate::boundary::handle::handles!(OceanGpuContext, OceanRenderer);
+
 #[cfg(test)]
 mod tests {
     use super::*;

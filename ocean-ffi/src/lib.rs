@@ -33,6 +33,8 @@ mod camera;
 mod gpu;
 mod lighting;
 mod lighting_brdf;
+mod lighting_sea;
+mod lighting_sky_map;
 mod lighting_spectrum;
 #[doc(hidden)]
 pub mod measure;
@@ -69,19 +71,21 @@ pub use gpu::{
 };
 pub use lighting::{
     OCEAN_SKY_MAP_EXTENT, OCEAN_SKY_MAP_MAX_SIZE, OCEAN_SKY_MAP_MIN_SIZE, OceanCieSky,
-    OceanIrradiance, OceanLighting, OceanRgb, OceanSeaColorInput, OceanSeaLight, OceanSeaParams,
-    OceanSkyMap, OceanSkyParams, ocean_lighting_below_horizon_radiance, ocean_lighting_create,
-    ocean_lighting_destroy, ocean_lighting_environment_radiance, ocean_lighting_irradiance,
-    ocean_lighting_sea_radiance, ocean_lighting_sky_irradiance, ocean_lighting_sky_map_create,
-    ocean_lighting_sun_radiance, ocean_lighting_sun_solid_angle, ocean_sea_color,
-    ocean_sea_color_batch, ocean_sea_params_default, ocean_sky_map_copy_level,
-    ocean_sky_map_destroy, ocean_sky_map_level_count, ocean_sky_map_level_info,
-    ocean_sky_params_default,
+    OceanIrradiance, OceanLighting, OceanRgb, OceanSeaParams, OceanSkyParams,
+    ocean_lighting_below_horizon_radiance, ocean_lighting_create, ocean_lighting_destroy,
+    ocean_lighting_environment_radiance, ocean_lighting_irradiance, ocean_lighting_sea_radiance,
+    ocean_lighting_sky_irradiance, ocean_lighting_sun_radiance, ocean_lighting_sun_solid_angle,
+    ocean_sea_params_default, ocean_sky_params_default,
 };
 pub use lighting_brdf::{
     OCEAN_DEFAULT_EXPOSURE, OCEAN_WATER_R, ocean_effective_fresnel_fit,
     ocean_effective_fresnel_integral, ocean_effective_fresnel_table, ocean_linear_to_srgb,
     ocean_ross_brdf, ocean_schlick, ocean_sun_radiance, ocean_tone_map,
+};
+pub use lighting_sea::{OceanSeaColorInput, OceanSeaLight, ocean_sea_color, ocean_sea_color_batch};
+pub use lighting_sky_map::{
+    OceanSkyMap, ocean_lighting_sky_map_create, ocean_sky_map_copy_level, ocean_sky_map_destroy,
+    ocean_sky_map_level_count, ocean_sky_map_level_info,
 };
 pub use lighting_spectrum::{
     OCEAN_FILTER_N_MAX, OCEAN_FILTER_N_MIN, OceanSlopeVariance, OceanSpectrum, OceanSpectrumParams,

@@ -586,6 +586,8 @@ pub unsafe extern "C" fn ocean_pixel_footprint(
 
 crate::boundary::chain::extensible!(OceanSpectrumParams);
 
+crate::boundary::handle::handles!(OceanSpectrum);
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -4,7 +4,9 @@
 
 use core::ffi::CStr;
 
-use crate::lighting::{OceanLighting, OceanSeaColorInput, OceanSeaLight, OceanSkyMap};
+use crate::lighting::OceanLighting;
+use crate::lighting_sea::{OceanSeaColorInput, OceanSeaLight};
+use crate::lighting_sky_map::OceanSkyMap;
 use crate::status::{OceanStatus, ocean_last_error_message};
 use crate::waves::{OceanDVec2, OceanDVec3, OceanVec3, OceanWaveDesc, OceanWaves};
 use crate::wtb::OceanWtbScene;

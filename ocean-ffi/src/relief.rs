@@ -1053,6 +1053,8 @@ pub unsafe extern "C" fn ocean_relief_mips_copy_level(
 
 crate::boundary::chain::extensible!(OceanReliefConeParams);
 
+crate::boundary::handle::handles!(OceanReliefMap, OceanReliefCones, OceanReliefMips);
+
 #[cfg(test)]
 #[path = "relief_tests.rs"]
 mod tests;

@@ -314,6 +314,8 @@ pub unsafe extern "C" fn ocean_relief_quad_shadow(
     })
 }
 
+crate::boundary::handle::handles!(OceanReliefQuadCones);
+
 #[cfg(test)]
 mod tests {
     use core::ptr::null_mut;

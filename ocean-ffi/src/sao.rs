@@ -767,6 +767,8 @@ pub unsafe extern "C" fn ocean_sao_view_z(
 
 crate::boundary::chain::extensible!(OceanSaoParams);
 
+crate::boundary::handle::handles!(OceanSao);
+
 #[cfg(test)]
 #[path = "sao_tests.rs"]
 mod tests;

@@ -186,6 +186,8 @@ pub unsafe extern "C" fn ocean_sao_uniforms(
     })
 }
 
+crate::boundary::handle::handles!(OceanSaoGpu);
+
 #[cfg(test)]
 mod tests {
     use core::ptr::null_mut;

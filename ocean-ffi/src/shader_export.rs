@@ -533,6 +533,8 @@ pub unsafe extern "C" fn ocean_shader_export_binding(
     })
 }
 
+crate::boundary::handle::handles!(OceanShaderExport);
+
 #[cfg(test)]
 mod tests {
     use super::*;

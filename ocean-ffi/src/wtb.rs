@@ -594,6 +594,8 @@ unsafe fn evaluate(
     })
 }
 
+crate::boundary::handle::handles!(OceanWtbScene);
+
 #[cfg(test)]
 #[path = "wtb_tests.rs"]
 mod tests;

@@ -38,35 +38,16 @@ pub(crate) trait Handle: Any + Send + Sync {
     const NAME: &'static str;
 }
 
-/// Declares the handle types, each named after itself.
+/// Declares handle types, each named after itself: every module that hands out a handle
+/// declares its own, so that this module knows none of them.
 macro_rules! handles {
-    ($($(#[$attr:meta])* $module:ident :: $ty:ident),* $(,)?) => {
-        $($(#[$attr])* impl Handle for crate::$module::$ty {
+    ($($ty:ident),* $(,)?) => {
+        $(impl $crate::boundary::handle::Handle for $ty {
             const NAME: &'static str = stringify!($ty);
         })*
     };
 }
-
-handles!(
-    waves::OceanWaves,
-    wtb::OceanWtbScene,
-    lighting_spectrum::OceanSpectrum,
-    lighting::OceanLighting,
-    lighting::OceanSkyMap,
-    relief::OceanReliefMap,
-    relief::OceanReliefCones,
-    relief::OceanReliefMips,
-    relief_quad::OceanReliefQuadCones,
-    sao::OceanSao,
-    #[cfg(feature = "gpu")]
-    sao_gpu::OceanSaoGpu,
-    #[cfg(feature = "gpu")]
-    gpu::OceanGpuContext,
-    #[cfg(feature = "gpu")]
-    gpu::OceanRenderer,
-    #[cfg(feature = "gpu")]
-    shader_export::OceanShaderExport,
-);
+pub(crate) use handles;
 
 /// Distance between consecutive ids: handles look like aligned pointers to a C debugger.
 const STRIDE: usize = 16;
