@@ -31,7 +31,6 @@ const KNOWN_LONG: &[&str] = &[
     "ocean-ffi/src/sao_tests.rs",
     "ocean-gpu/src/layers.rs",
     "ocean-gpu/src/relief.rs",
-    "ocean-gpu/src/shaders.rs",
     "tests/tests/gpu_ocean.rs",
     "tests/tests/gpu_relief.rs",
     "tests/tests/gpu_sao.rs",
