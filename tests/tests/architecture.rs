@@ -29,7 +29,6 @@ const KNOWN_LONG: &[&str] = &[
     "ocean-ffi/src/relief.rs",
     "ocean-ffi/src/relief_tests.rs",
     "ocean-ffi/src/sao_tests.rs",
-    "ocean-gpu/src/layers.rs",
     "ocean-gpu/src/relief.rs",
     "tests/tests/gpu_ocean.rs",
     "tests/tests/gpu_relief.rs",
