@@ -3833,78 +3833,6 @@ OceanStatus ocean_relief_generate_encoded(const struct OceanReliefMap *map,
                                           void *out,
                                           size_t len);
 
-/**
- * Builds the mip chain of the cone map of `cones`, level 0 (the cone map) down to 1x1, and
- * stores a handle in `*out`. `rule`: `OCEAN_RELIEF_MIP_WINDOW` (the 4x4-window minimum, valid
- * under bilinear sampling; use it) or `OCEAN_RELIEF_MIP_GROUP` (the book's 2x2 minimum, valid
- * under nearest sampling only). Every channel takes the same minimum.
- *
- * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
- * `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown rule or a side that is not a power of two.
- * `*out` is written only on success.
- *
- * # Safety
- *
- * `out` must be writable.
- */
-OceanStatus ocean_relief_mips_create(const struct OceanReliefCones *cones,
-                                     uint32_t rule,
-                                     struct OceanReliefMips **out);
-
-/**
- * Frees a mip chain. NULL does nothing; a handle of another kind or already destroyed frees
- * nothing and sets the last-error message (see the header's notes on handles).
- */
-void ocean_relief_mips_destroy(struct OceanReliefMips *mips);
-
-/**
- * Stores the number of levels, log2(N) + 1, in `*out_count`.
- *
- * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out_count`
- * is written only on success.
- *
- * # Safety
- *
- * `out_count` must be writable.
- */
-OceanStatus ocean_relief_mips_level_count(const struct OceanReliefMips *mips, uint32_t *out_count);
-
-/**
- * Stores the side of mip `level`, N >> level texels, in `*out_size`.
- *
- * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
- * `OCEAN_STATUS_INVALID_ARGUMENT` if `level` >= the level count. `*out_size` is written only on
- * success.
- *
- * # Safety
- *
- * `out_size` must be writable.
- */
-OceanStatus ocean_relief_mips_level_size(const struct OceanReliefMips *mips,
-                                         uint32_t level,
-                                         uint32_t *out_size);
-
-/**
- * Encodes mip `level` and copies it into `out`: `len` = 3 side * side elements (side from
- * `ocean_relief_mips_level_size`) of the encoding's type, `[c, D, E]` per texel, row-major,
- * rounded down, as `ocean_relief_cones_encode` writes level 0.
- *
- * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
- * `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding or a level that does not exist,
- * `OCEAN_STATUS_LENGTH_MISMATCH` for a `len` that is not 3 side * side. Nothing is written
- * on failure.
- *
- * # Safety
- *
- * `out` must point to `len` writable elements of the encoding's
- * type that no other thread touches during the call.
- */
-OceanStatus ocean_relief_mips_copy_level(const struct OceanReliefMips *mips,
-                                         uint32_t level,
-                                         uint32_t encoding,
-                                         void *out,
-                                         size_t len);
-
 #if defined(OCEAN_GPU)
 /**
  * Stores the default scene in `*out`: a unit quad in the xz plane facing +y (u along +x, v
@@ -4061,6 +3989,78 @@ OceanStatus ocean_relief_mip_level(float du_x,
                                    uint32_t size,
                                    uint32_t levels,
                                    uint32_t *out_level);
+
+/**
+ * Builds the mip chain of the cone map of `cones`, level 0 (the cone map) down to 1x1, and
+ * stores a handle in `*out`. `rule`: `OCEAN_RELIEF_MIP_WINDOW` (the 4x4-window minimum, valid
+ * under bilinear sampling; use it) or `OCEAN_RELIEF_MIP_GROUP` (the book's 2x2 minimum, valid
+ * under nearest sampling only). Every channel takes the same minimum.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown rule or a side that is not a power of two.
+ * `*out` is written only on success.
+ *
+ * # Safety
+ *
+ * `out` must be writable.
+ */
+OceanStatus ocean_relief_mips_create(const struct OceanReliefCones *cones,
+                                     uint32_t rule,
+                                     struct OceanReliefMips **out);
+
+/**
+ * Frees a mip chain. NULL does nothing; a handle of another kind or already destroyed frees
+ * nothing and sets the last-error message (see the header's notes on handles).
+ */
+void ocean_relief_mips_destroy(struct OceanReliefMips *mips);
+
+/**
+ * Stores the number of levels, log2(N) + 1, in `*out_count`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out_count`
+ * is written only on success.
+ *
+ * # Safety
+ *
+ * `out_count` must be writable.
+ */
+OceanStatus ocean_relief_mips_level_count(const struct OceanReliefMips *mips, uint32_t *out_count);
+
+/**
+ * Stores the side of mip `level`, N >> level texels, in `*out_size`.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` if `level` >= the level count. `*out_size` is written only on
+ * success.
+ *
+ * # Safety
+ *
+ * `out_size` must be writable.
+ */
+OceanStatus ocean_relief_mips_level_size(const struct OceanReliefMips *mips,
+                                         uint32_t level,
+                                         uint32_t *out_size);
+
+/**
+ * Encodes mip `level` and copies it into `out`: `len` = 3 side * side elements (side from
+ * `ocean_relief_mips_level_size`) of the encoding's type, `[c, D, E]` per texel, row-major,
+ * rounded down, as `ocean_relief_cones_encode` writes level 0.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding or a level that does not exist,
+ * `OCEAN_STATUS_LENGTH_MISMATCH` for a `len` that is not 3 side * side. Nothing is written
+ * on failure.
+ *
+ * # Safety
+ *
+ * `out` must point to `len` writable elements of the encoding's
+ * type that no other thread touches during the call.
+ */
+OceanStatus ocean_relief_mips_copy_level(const struct OceanReliefMips *mips,
+                                         uint32_t level,
+                                         uint32_t encoding,
+                                         void *out,
+                                         size_t len);
 
 /**
  * Generates the quad-directional cone map of `map` (one relaxed or conservative cone map per

@@ -43,7 +43,10 @@ mod ocean_draw;
 mod relief;
 #[cfg(feature = "gpu")]
 mod relief_draw;
+mod relief_encode;
+mod relief_enums;
 mod relief_lod;
+mod relief_mips;
 mod relief_quad;
 mod relief_trace;
 mod sao;
@@ -103,24 +106,28 @@ pub use ocean_draw::{
 };
 pub use relief::{
     OCEAN_RELIEF_MAX_RATIO_LIMIT, OCEAN_RELIEF_MAX_SIDE, OCEAN_RELIEF_MIN_SIDE,
-    OCEAN_RELIEF_PROGRESS_BANDS, OceanReliefConeKind, OceanReliefConeParams, OceanReliefCones,
-    OceanReliefEdge, OceanReliefEncoding, OceanReliefMap, OceanReliefMip, OceanReliefMips,
-    OceanReliefProgress, OceanReliefRange, ocean_relief_cone_params_default,
-    ocean_relief_cones_create, ocean_relief_cones_destroy, ocean_relief_cones_encode,
-    ocean_relief_cones_quantize, ocean_relief_cones_size, ocean_relief_cones_texels,
-    ocean_relief_generate_encoded, ocean_relief_generate_texels, ocean_relief_map_create_f32,
-    ocean_relief_map_create_u8, ocean_relief_map_create_u16, ocean_relief_map_depths,
-    ocean_relief_map_destroy, ocean_relief_map_size, ocean_relief_mips_copy_level,
-    ocean_relief_mips_create, ocean_relief_mips_destroy, ocean_relief_mips_level_count,
-    ocean_relief_mips_level_size, ocean_relief_normals,
+    OCEAN_RELIEF_PROGRESS_BANDS, OceanReliefConeParams, OceanReliefCones, OceanReliefMap,
+    OceanReliefProgress, ocean_relief_cone_params_default, ocean_relief_cones_create,
+    ocean_relief_cones_destroy, ocean_relief_cones_encode, ocean_relief_cones_quantize,
+    ocean_relief_cones_size, ocean_relief_cones_texels, ocean_relief_generate_encoded,
+    ocean_relief_generate_texels, ocean_relief_map_create_f32, ocean_relief_map_create_u8,
+    ocean_relief_map_create_u16, ocean_relief_map_depths, ocean_relief_map_destroy,
+    ocean_relief_map_size, ocean_relief_normals,
 };
 #[cfg(feature = "gpu")]
 pub use relief_draw::{
     OCEAN_RELIEF_UNIFORMS_SIZE, OceanReliefScene, ocean_relief_scene_default, ocean_relief_uniforms,
 };
+pub use relief_enums::{
+    OceanReliefConeKind, OceanReliefEdge, OceanReliefEncoding, OceanReliefMip, OceanReliefRange,
+};
 pub use relief_lod::{
     ocean_relief_map_downsample, ocean_relief_mip_atlas_origin, ocean_relief_mip_atlas_size,
     ocean_relief_mip_level,
+};
+pub use relief_mips::{
+    OceanReliefMips, ocean_relief_mips_copy_level, ocean_relief_mips_create,
+    ocean_relief_mips_destroy, ocean_relief_mips_level_count, ocean_relief_mips_level_size,
 };
 pub use relief_quad::{
     OCEAN_RELIEF_QUAD_LAYERS, OCEAN_RELIEF_QUAD_X_NEG, OCEAN_RELIEF_QUAD_Y_NEG,

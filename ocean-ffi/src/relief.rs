@@ -10,109 +10,24 @@
 //! texel depths. Cone values are in texture widths (per unit of depth for the ratio `c` and the
 //! near cap `E`, plain texture widths for the clearance `D`).
 
+use crate::relief_encode::{check_encoded_out, encode_cones, texels, write_encoded};
 use core::ffi::{c_int, c_void};
 
-use ocean_relief::mip::{MipRule, chain};
-use ocean_relief::storage::{Encoded, Encoding, encode};
+use ocean_relief::storage::Encoding;
 use ocean_relief::{
     ConeKind, ConeMap, ConeParams, Edge, HeightMap, HeightRange, ReliefError, ReliefTexture,
 };
 
 use crate::boundary::OceanNext;
 use crate::boundary::{
-    CEnum, CheckedStruct, EnumField, borrow, check_enum, check_len, check_ptr, destroy, input,
+    CheckedStruct, EnumField, borrow, check_enum, check_len, check_ptr, destroy, input,
     read_params_checked, write_handle, write_out, write_slice,
 };
 use crate::camera::camera_status;
+pub use crate::relief_enums::{
+    OceanReliefConeKind, OceanReliefEdge, OceanReliefEncoding, OceanReliefMip, OceanReliefRange,
+};
 use crate::status::{Error, OceanStatus, guard};
-
-/// How texel indices outside the map are read (the `edge` parameter, a `uint32_t`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern)]
-pub enum OceanReliefEdge {
-    /// The texture tiles (sampler addressing *repeat*).
-    Wrap = 0,
-    /// Texel indices clamp to the border (sampler addressing *clamp-to-edge*).
-    Clamp = 1,
-}
-
-impl CEnum for OceanReliefEdge {
-    const REFUSAL: &'static str =
-        "is neither OCEAN_RELIEF_EDGE_WRAP (0) nor OCEAN_RELIEF_EDGE_CLAMP (1)";
-}
-
-/// What `ocean_relief_map_create_f32` does with heights outside [0, 1] (its `range` parameter,
-/// a `uint32_t`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern)]
-pub enum OceanReliefRange {
-    /// A height outside [0, 1] is refused (`OCEAN_STATUS_INVALID_ARGUMENT`, the message names
-    /// the first such texel).
-    Refuse = 0,
-    /// The smallest height becomes 0 and the largest 1 (affinely; a constant map becomes a flat
-    /// map at height 1, the polygon surface).
-    Normalize = 1,
-}
-
-impl CEnum for OceanReliefRange {
-    const REFUSAL: &'static str =
-        "is neither OCEAN_RELIEF_RANGE_REFUSE (0) nor OCEAN_RELIEF_RANGE_NORMALIZE (1)";
-}
-
-/// `OceanReliefConeParams::kind`: which cones are made.
-#[repr(u32)]
-#[derive(
-    Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern,
-)]
-pub enum OceanReliefConeKind {
-    /// Relaxed cones (section 18.4): a ray may enter the relief inside a cone but never leave
-    /// it. For `OCEAN_RELIEF_TRACER_RELAXED`.
-    #[default]
-    Relaxed = 0,
-    /// Conservative cones (Dummer 2006): the cone holds no solid. For
-    /// `OCEAN_RELIEF_TRACER_CONE_STEP`.
-    Conservative = 1,
-}
-
-impl CEnum for OceanReliefConeKind {
-    const REFUSAL: &'static str =
-        "is neither OCEAN_RELIEF_CONE_KIND_RELAXED (0) nor OCEAN_RELIEF_CONE_KIND_CONSERVATIVE (1)";
-}
-
-/// How cone values are stored (the `encoding` parameter, a `uint32_t`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern)]
-pub enum OceanReliefEncoding {
-    /// 8-bit unorm (`uint8_t`), clamped to 1.0: code k = floor(255 min(r, 1)), read back as
-    /// k / 255 (a GPU's `R8Unorm` conversion).
-    Unorm8 = 0,
-    /// 8-bit unorm of the square root (`uint8_t`), clamped to 1.0: read back as (k / 255)^2.
-    Unorm8Sqrt = 1,
-    /// IEEE binary16 bit patterns (`uint16_t`), unclamped (up to 65504), rounded toward zero.
-    F16 = 2,
-    /// `float`, the generator's values as they are.
-    F32 = 3,
-}
-
-impl CEnum for OceanReliefEncoding {
-    const REFUSAL: &'static str = "is not an OCEAN_RELIEF_ENCODING_* value (0 to 3)";
-}
-
-/// How `ocean_relief_mips_create` makes a coarse texel (its `rule` parameter, a `uint32_t`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::NoUninit, bytemuck::CheckedBitPattern)]
-pub enum OceanReliefMip {
-    /// The minimum of a 4x4 window of the finer level (its 2x2 group and a one-texel ring):
-    /// valid under bilinear sampling.
-    Window = 0,
-    /// The book's 2x2 group minimum, valid under nearest sampling only.
-    Group = 1,
-}
-
-impl CEnum for OceanReliefMip {
-    const REFUSAL: &'static str =
-        "is neither OCEAN_RELIEF_MIP_WINDOW (0) nor OCEAN_RELIEF_MIP_GROUP (1)";
-}
 
 /// The smallest side of a height map, texels (a bilinear cell needs two texel centres).
 pub const OCEAN_RELIEF_MIN_SIDE: u32 = 2;
@@ -177,9 +92,9 @@ pub struct OceanReliefMap {
 /// (opaque). Create with `ocean_relief_cones_create` (or `ocean_relief_cones_quantize`), free
 /// with `ocean_relief_cones_destroy`. Immutable and shareable between threads.
 pub struct OceanReliefCones {
-    map: HeightMap,
-    cones: ConeMap,
-    texture: ReliefTexture,
+    pub(crate) map: HeightMap,
+    pub(crate) cones: ConeMap,
+    pub(crate) texture: ReliefTexture,
 }
 
 impl OceanReliefCones {
@@ -198,17 +113,10 @@ impl OceanReliefCones {
     }
 }
 
-/// A mip chain of a cone map, level 0 (the cone map) down to 1x1 (opaque). Create with
-/// `ocean_relief_mips_create`, free with `ocean_relief_mips_destroy`. Immutable and shareable.
-pub struct OceanReliefMips {
-    levels: Vec<ConeMap>,
-}
-
 const _: () = {
     const fn shareable<T: Send + Sync>() {}
     shareable::<OceanReliefMap>();
     shareable::<OceanReliefCones>();
-    shareable::<OceanReliefMips>();
 };
 
 /// The error of a crate call as a status, with the crate's message (`?` converts).
@@ -672,85 +580,6 @@ pub unsafe extern "C" fn ocean_relief_cones_size(
     })
 }
 
-/// `[depth, c, D, E]` per texel, flattened.
-pub(crate) fn texels(map: &HeightMap, cones: &ConeMap) -> Vec<f32> {
-    let (d, c0, c1, c2) = (
-        map.depths(),
-        cones.ratios(),
-        cones.clearance(),
-        cones.near_cap(),
-    );
-    (0..d.len())
-        .flat_map(|k| [d[k], c0[k], c1[k], c2[k]])
-        .collect()
-}
-
-/// The three cone channels of `cones` encoded, interleaved `[c, D, E]` per texel.
-enum Interleaved {
-    U8(Vec<u8>),
-    U16(Vec<u16>),
-    F32(Vec<f32>),
-}
-
-fn interleave<T: Copy>(channels: [Vec<T>; 3]) -> Vec<T> {
-    let [a, b, c] = channels;
-    a.iter()
-        .zip(&b)
-        .zip(&c)
-        .flat_map(|((&x, &y), &z)| [x, y, z])
-        .collect()
-}
-
-fn encode_cones(cones: &ConeMap, encoding: Encoding) -> Interleaved {
-    let chans = [cones.ratios(), cones.clearance(), cones.near_cap()].map(|v| encode(v, encoding));
-    match chans {
-        [Encoded::Unorm8(a), Encoded::Unorm8(b), Encoded::Unorm8(c)] => {
-            Interleaved::U8(interleave([a, b, c]))
-        }
-        [Encoded::F16(a), Encoded::F16(b), Encoded::F16(c)] => {
-            Interleaved::U16(interleave([a, b, c]))
-        }
-        [Encoded::F32(a), Encoded::F32(b), Encoded::F32(c)] => {
-            Interleaved::F32(interleave([a, b, c]))
-        }
-        _ => unreachable!("one encoding gives one variant for every channel"),
-    }
-}
-
-/// The element size of an encoding, bytes.
-fn element_size(encoding: Encoding) -> usize {
-    match encoding {
-        Encoding::Unorm8 | Encoding::Unorm8Sqrt => 1,
-        Encoding::F16 => 2,
-        Encoding::F32 => 4,
-    }
-}
-
-/// Checks a caller's encoded output (`len` elements of the encoding's type, aligned for it).
-fn check_encoded_out(out: *mut c_void, encoding: Encoding) -> Result<(), Error> {
-    match element_size(encoding) {
-        1 => check_ptr(out.cast_const().cast::<u8>(), "out"),
-        2 => check_ptr(out.cast_const().cast::<u16>(), "out"),
-        _ => check_ptr(out.cast_const().cast::<f32>(), "out"),
-    }
-}
-
-/// Writes encoded cones to a checked output.
-///
-/// # Safety
-///
-/// `out` must point to as many writable elements of the encoding's type as `values` holds.
-unsafe fn write_encoded(out: *mut c_void, values: &Interleaved) -> Result<(), Error> {
-    match values {
-        // SAFETY: forwarded from this function's contract.
-        Interleaved::U8(v) => unsafe { write_slice(out.cast::<u8>(), "out", v) },
-        // SAFETY: forwarded from this function's contract.
-        Interleaved::U16(v) => unsafe { write_slice(out.cast::<u16>(), "out", v) },
-        // SAFETY: forwarded from this function's contract.
-        Interleaved::F32(v) => unsafe { write_slice(out.cast::<f32>(), "out", v) },
-    }
-}
-
 /// Copies the relief texture into `rgba`: `len` = 4 N * N floats, row-major, `[depth, c, D, E]`
 /// per texel (the depth of the map and the three cone channels), the layout of an `RGBA32F`
 /// texture and exactly what the CPU tracers read.
@@ -914,146 +743,9 @@ pub unsafe extern "C" fn ocean_relief_generate_encoded(
     })
 }
 
-/// Builds the mip chain of the cone map of `cones`, level 0 (the cone map) down to 1x1, and
-/// stores a handle in `*out`. `rule`: `OCEAN_RELIEF_MIP_WINDOW` (the 4x4-window minimum, valid
-/// under bilinear sampling; use it) or `OCEAN_RELIEF_MIP_GROUP` (the book's 2x2 minimum, valid
-/// under nearest sampling only). Every channel takes the same minimum.
-///
-/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
-/// `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown rule or a side that is not a power of two.
-/// `*out` is written only on success.
-///
-/// # Safety
-///
-/// `out` must be writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_relief_mips_create(
-    cones: *const OceanReliefCones,
-    rule: u32,
-    out: *mut *mut OceanReliefMips,
-) -> OceanStatus {
-    guard("ocean_relief_mips_create", || {
-        let c = borrow(cones, "cones")?;
-        check_ptr(out.cast_const(), "out")?;
-        let rule = match check_enum::<OceanReliefMip>("`rule`", rule)? {
-            OceanReliefMip::Window => MipRule::Window,
-            OceanReliefMip::Group => MipRule::Group,
-        };
-        let levels = chain(&c.cones, rule)?;
-        // SAFETY: forwarded from this function's contract.
-        unsafe { write_handle(out, OceanReliefMips { levels }) }
-    })
-}
-
-/// Frees a mip chain. NULL does nothing; a handle of another kind or already destroyed frees
-/// nothing and sets the last-error message (see the header's notes on handles).
-#[unsafe(no_mangle)]
-pub extern "C" fn ocean_relief_mips_destroy(mips: *mut OceanReliefMips) {
-    destroy(mips, "ocean_relief_mips_destroy", "mips");
-}
-
-/// Stores the number of levels, log2(N) + 1, in `*out_count`.
-///
-/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer; `*out_count`
-/// is written only on success.
-///
-/// # Safety
-///
-/// `out_count` must be writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_relief_mips_level_count(
-    mips: *const OceanReliefMips,
-    out_count: *mut u32,
-) -> OceanStatus {
-    guard("ocean_relief_mips_level_count", || {
-        let m = borrow(mips, "mips")?;
-        // At most 13 levels (N <= 4096).
-        let count = m.levels.len() as u32;
-        // SAFETY: forwarded from this function's contract.
-        unsafe { write_out(out_count, "out_count", count) }
-    })
-}
-
-fn level(m: &OceanReliefMips, level: u32) -> Result<&ConeMap, Error> {
-    m.levels.get(level as usize).ok_or_else(|| {
-        Error::new(
-            OceanStatus::InvalidArgument,
-            format!(
-                "level {level} does not exist: the chain has levels 0 to {}",
-                m.levels.len() - 1
-            ),
-        )
-    })
-}
-
-/// Stores the side of mip `level`, N >> level texels, in `*out_size`.
-///
-/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
-/// `OCEAN_STATUS_INVALID_ARGUMENT` if `level` >= the level count. `*out_size` is written only on
-/// success.
-///
-/// # Safety
-///
-/// `out_size` must be writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_relief_mips_level_size(
-    mips: *const OceanReliefMips,
-    level: u32,
-    out_size: *mut u32,
-) -> OceanStatus {
-    guard("ocean_relief_mips_level_size", || {
-        let m = borrow(mips, "mips")?;
-        check_ptr(out_size.cast_const(), "out_size")?;
-        // At most OCEAN_RELIEF_MAX_SIDE.
-        let side = self::level(&m, level)?.size() as u32;
-        // SAFETY: forwarded from this function's contract.
-        unsafe { write_out(out_size, "out_size", side) }
-    })
-}
-
-/// Encodes mip `level` and copies it into `out`: `len` = 3 side * side elements (side from
-/// `ocean_relief_mips_level_size`) of the encoding's type, `[c, D, E]` per texel, row-major,
-/// rounded down, as `ocean_relief_cones_encode` writes level 0.
-///
-/// Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
-/// `OCEAN_STATUS_INVALID_ARGUMENT` for an unknown encoding or a level that does not exist,
-/// `OCEAN_STATUS_LENGTH_MISMATCH` for a `len` that is not 3 side * side. Nothing is written
-/// on failure.
-///
-/// # Safety
-///
-/// `out` must point to `len` writable elements of the encoding's
-/// type that no other thread touches during the call.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn ocean_relief_mips_copy_level(
-    mips: *const OceanReliefMips,
-    level: u32,
-    encoding: u32,
-    out: *mut c_void,
-    len: usize,
-) -> OceanStatus {
-    guard("ocean_relief_mips_copy_level", || {
-        let m = borrow(mips, "mips")?;
-        check_ptr(out.cast_const().cast::<u8>(), "out")?;
-        let encoding = encoding_from(encoding)?;
-        check_encoded_out(out, encoding)?;
-        let l = self::level(&m, level)?;
-        let side = l.size();
-        check_len(
-            "len",
-            len,
-            3 * side * side,
-            &format!("level {level} (3 values a texel)"),
-        )?;
-        let values = encode_cones(l, encoding);
-        // SAFETY: forwarded from this function's contract.
-        unsafe { write_encoded(out, &values) }
-    })
-}
-
 crate::boundary::chain::extensible!(OceanReliefConeParams);
 
-crate::boundary::handle::handles!(OceanReliefMap, OceanReliefCones, OceanReliefMips);
+crate::boundary::handle::handles!(OceanReliefMap, OceanReliefCones);
 
 #[cfg(test)]
 #[path = "relief_tests.rs"]

@@ -18,8 +18,9 @@ use crate::boundary::{
     write_slice,
 };
 use crate::relief::{
-    OceanReliefConeParams, OceanReliefMap, OceanReliefProgress, params_from, texels, with_progress,
+    OceanReliefConeParams, OceanReliefMap, OceanReliefProgress, params_from, with_progress,
 };
+use crate::relief_encode::texels;
 use crate::relief_trace::{
     OceanReliefHit, OceanReliefMethod, OceanReliefPoint, OceanReliefRay, shadow_batch, trace_batch,
 };

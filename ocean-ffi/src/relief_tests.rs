@@ -13,6 +13,7 @@ use ocean_relief::{ConeMap, ConeParams, Edge, HeightMap, HeightRange, ReliefText
 
 use super::*;
 use crate::boundary::enums::Poked;
+use crate::relief_mips::*;
 use crate::relief_trace::*;
 
 const N: u32 = 32;

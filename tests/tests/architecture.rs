@@ -26,7 +26,6 @@ const KNOWN_CYCLES: &[(&str, &[&str])] = &[(
 const KNOWN_LONG: &[&str] = &[
     "ocean-cli/src/bench_wtb.rs",
     "ocean-cli/src/render.rs",
-    "ocean-ffi/src/relief.rs",
     "ocean-ffi/src/relief_tests.rs",
     "ocean-ffi/src/sao_tests.rs",
     "ocean-gpu/src/relief.rs",
