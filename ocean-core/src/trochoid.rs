@@ -61,7 +61,7 @@ pub(crate) fn check_time(t: f64) -> Result<(), EvalError> {
     }
 }
 
-pub(crate) fn check_outputs(n: usize, pos: &[Vec3], nrm: &[Vec3]) -> Result<(), EvalError> {
+pub(crate) fn check_outputs<P>(n: usize, pos: &[P], nrm: &[Vec3]) -> Result<(), EvalError> {
     if n == 0 {
         return Err(EvalError::Empty);
     }

@@ -14,7 +14,7 @@ use alloc::vec::Vec;
 use glam::{DVec2, DVec3, Vec3};
 
 use crate::error::EvalError;
-use crate::trochoid::{WaveSet, check_time};
+use crate::trochoid::{WaveSet, check_outputs, check_time};
 
 /// Side of the lattice cells, metres: a power of two, so that cell corners are exact doubles
 /// and a point's offset from its corner is an `f32` resolved to 2⁻¹⁸ m.
@@ -82,17 +82,7 @@ fn check_world(
     out_pos: &[DVec3],
     out_nrm: &[Vec3],
 ) -> Result<(), EvalError> {
-    let n = world.len();
-    if n == 0 {
-        return Err(EvalError::Empty);
-    }
-    if out_pos.len() != n || out_nrm.len() != n {
-        return Err(EvalError::OutputLength {
-            expected: n,
-            positions: out_pos.len(),
-            normals: out_nrm.len(),
-        });
-    }
+    check_outputs(world.len(), out_pos, out_nrm)?;
     check_time(t)?;
     if let Some(index) = world.iter().position(|p| !p.is_finite()) {
         return Err(EvalError::Position { index });
