@@ -1,14 +1,14 @@
-//! `scene_toml`: the scene files of `ocean render` (ocean-cli/src/scene.rs), parsed, checked
-//! and turned into what the renderer builds from them on the CPU before it needs a GPU
-//! (`Session::build` in ocean-cli/src/render.rs): cameras, spectrum, lighting, rock meshes,
-//! the island with its wave train boxes, the pier. Invariant: no panic; a bad file is an
-//! `Err(String)`.
+//! `scene_toml`: the scene files of `ocean render` (ocean-scene/src/description.rs), parsed,
+//! checked and turned into what the renderer builds from them on the CPU before it needs a GPU
+//! (`SceneRenderer::with_context` in ocean-scene/src/renderer.rs): cameras, spectrum, lighting,
+//! rock meshes, the island with its wave train boxes, the pier. Invariant: no panic; a bad file
+//! is an `Err(SceneError)`.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use ocean_brdf::{Filter, FilteredSurface, Spectrum};
-use ocean_cli::island::Island;
-use ocean_cli::scene::{Preset, SceneFile};
+use ocean_scene::island::Island;
+use ocean_scene::{Preset, SceneDescription};
 
 /// Past these sizes the island (grid_size² points, each box marched over them) and the rocks
 /// (subdivision `detail`) take too long for a fuzz execution; the parser and the checks still
@@ -22,7 +22,7 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
-    let Ok(scene) = SceneFile::parse(text, "fuzz.toml") else {
+    let Ok(scene) = SceneDescription::parse(text, "fuzz.toml") else {
         return;
     };
     scene

@@ -473,10 +473,11 @@ fn built_in_quality() -> Result<Vec<Value>, String> {
     use ocean_sao::reference::{self, ReferenceParams};
     let (w, h, guard) = QUALITY;
     let (iw, ih) = (w + 2 * guard, h + 2 * guard);
-    let mut scene = crate::scene::SceneFile::parse(crate::scene::DEFAULT_SCENE, "built-in")?;
+    let mut scene = ocean_scene::SceneDescription::parse(ocean_scene::DEFAULT_SCENE, "built-in")
+        .map_err(|e| e.to_string())?;
     scene.render.width = iw as u32;
     scene.render.height = ih as u32;
-    let (camera, depth) = crate::render::scene_depth(&scene)?;
+    let (camera, depth) = ocean_scene::renderer::scene_depth(&scene).map_err(|e| e.to_string())?;
     let viewport = Viewport::new(iw, ih, guard).map_err(err)?;
     let rays = CameraRays::new(&camera, iw, ih).map_err(err)?;
     let rp = ReferenceParams::from_params(&SaoParams::default(), 16).map_err(err)?;

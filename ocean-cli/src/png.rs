@@ -2,9 +2,7 @@
 //! canvas of the benchmark plots. Every file is written to a hidden temporary name and renamed
 //! when complete, so a failure or an interruption never leaves a half-written image.
 
-use std::fs::OpenOptions;
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// An RGB8 canvas.
 pub struct Canvas {
@@ -93,44 +91,23 @@ pub fn encode(
     Ok(bytes)
 }
 
-/// Writes `bytes` to `path` atomically: a hidden temporary file in the same directory, flushed
-/// to disk, then renamed over `path`. The temporary file is removed on any failure, and when an
-/// interruption was asked for before the rename ([`crate::interrupt`]), which then fails.
+/// Writes `bytes` to `path` atomically (`ocean_scene::atomic_file`), failing instead when an
+/// interruption was asked for before the rename ([`crate::interrupt`]).
 ///
 /// # Errors
 ///
 /// The file system's, or the interruption, naming `path`.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let p = path.display();
-    let name = path
-        .file_name()
-        .ok_or_else(|| format!("{p} does not name a file"))?;
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let tmp = dir.join(format!(
-        ".{}.tmp-{}",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = (|| -> Result<(), String> {
-        let mut f = OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)
-            .map_err(|e| format!("cannot write {p}: {e}"))?;
-        f.write_all(bytes)
-            .and_then(|()| f.sync_all())
-            .map_err(|e| format!("cannot write {p}: {e}"))?;
+    ocean_scene::atomic_file::write_atomically(path, bytes, || {
         // The last moment an interruption can stop the job without leaving a file behind.
         if crate::interrupt::requested() {
-            return Err(format!("{}: {p} not written", crate::interrupt::MESSAGE));
+            return Err(format!(
+                "{}: {} not written",
+                crate::interrupt::MESSAGE,
+                path.display()
+            ));
         }
-        std::fs::rename(&tmp, path).map_err(|e| format!("cannot write {p}: {e}"))
-    })();
-    result.inspect_err(|_| {
-        let _ = std::fs::remove_file(&tmp);
+        Ok(())
     })
 }
 

@@ -312,7 +312,7 @@ fn the_rocks_and_the_pier_are_drawn() {
         text.contains("2 relief textures for the rocks and the pier with 12 levels"),
         "{text}"
     );
-    let default = include_str!("../scenes/default.toml");
+    let default = include_str!("../../ocean-scene/scenes/default.toml");
     let scene = d.join("no-rocks.toml");
     std::fs::write(&scene, &default[..default.find("# Rocks:").unwrap()]).unwrap();
     let without = d.join("without.png");

@@ -64,7 +64,7 @@ fn luminance(p: [u8; 4]) -> f64 {
 fn foreground() -> String {
     format!(
         "{}\n[[rocks]]\ncentre = [-14.0, 1.0, -38.0]\nsize = [12.0, 8.0, 10.0]\nseed = 4\n",
-        include_str!("../scenes/default.toml")
+        include_str!("../../ocean-scene/scenes/default.toml")
     )
 }
 

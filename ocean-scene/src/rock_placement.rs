@@ -1,17 +1,18 @@
 //! The rocks of `ocean render` (`[[rocks]]` in scene files): low-poly noise rocks
-//! (`ocean_scene::rock`) standing on the island's shore, or anywhere, every triangle
+//! (`crate::rock`) standing on the island's shore, or anywhere, every triangle
 //! relief-mapped by relaxed cone stepping (`ocean_gpu::ReliefScene::on_polygon`), the relief
 //! carved into the rock.
 
+use crate::{RockMesh, RockShape};
 use glam::{DVec2, DVec3};
 use ocean_gpu::ReliefScene;
-use ocean_scene::{RockMesh, RockShape};
 use serde::Deserialize;
 
+use crate::SceneError;
 use crate::blocks::lit;
+use crate::description::range;
+use crate::face_light::FaceLight;
 use crate::island::IslandSection;
-use crate::render::FaceLight;
-use crate::scene::range;
 
 /// `[[rocks]]`: one rock.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
@@ -101,16 +102,12 @@ impl Rock {
             "rocks.roughness",
             self.roughness,
             0.0,
-            ocean_scene::rock::MAX_ROUGHNESS,
+            crate::rock::MAX_ROUGHNESS,
         )?;
-        if self.detail > ocean_scene::rock::MAX_DETAIL {
+        if self.detail > crate::rock::MAX_DETAIL {
             return Err((
                 "rocks.detail",
-                format!(
-                    "= {} is above {}",
-                    self.detail,
-                    ocean_scene::rock::MAX_DETAIL
-                ),
+                format!("= {} is above {}", self.detail, crate::rock::MAX_DETAIL),
             ));
         }
         range("rocks.relief_depth", self.relief_depth, 0.0, 1e3)?;
@@ -136,12 +133,12 @@ impl Rock {
     /// # Errors
     ///
     /// A message if the bearing finds no shoreline.
-    pub fn position(&self, island: Option<&IslandSection>) -> Result<DVec3, String> {
+    pub fn position(&self, island: Option<&IslandSection>) -> Result<DVec3, SceneError> {
         if let Some(c) = self.centre {
             return Ok(DVec3::from_array(c));
         }
         let Some(island) = island else {
-            return Err("a rock on the shore needs an [island]".to_owned());
+            return Err("a rock on the shore needs an [island]".to_owned().into());
         };
         let bearing = self.shore;
         let b = bearing.to_radians();
@@ -158,14 +155,14 @@ impl Rock {
     /// # Errors
     ///
     /// A message for a shape the generator refuses or a shore not found.
-    pub fn mesh(&self, island: Option<&IslandSection>) -> Result<(DVec3, RockMesh), String> {
+    pub fn mesh(&self, island: Option<&IslandSection>) -> Result<(DVec3, RockMesh), SceneError> {
         let shape = RockShape {
             size: DVec3::from_array(self.size),
             roughness: self.roughness,
             detail: self.detail,
             seed: self.seed,
         };
-        let mesh = shape.mesh().map_err(|e| e.to_string())?;
+        let mesh = shape.mesh()?;
         let centre = self.position(island)?;
         Ok((centre, mesh.placed(centre, self.heading.to_radians())))
     }
@@ -181,7 +178,7 @@ impl Rock {
         centre: DVec3,
         mesh: &RockMesh,
         light: FaceLight,
-    ) -> Result<Vec<ReliefScene>, String> {
+    ) -> Result<Vec<ReliefScene>, SceneError> {
         mesh.faces()
             .map(|t| {
                 let face = ReliefScene::on_polygon(&t, centre, self.tile)

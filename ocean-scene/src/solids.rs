@@ -10,6 +10,7 @@ use ocean_core::Camera;
 use ocean_gpu::wgpu::util::DeviceExt;
 use ocean_gpu::{GpuContext, LightTargets, wgpu};
 
+use crate::SceneError;
 use crate::blocks::Block;
 use crate::terrain::Uniform;
 
@@ -62,10 +63,10 @@ impl SolidRenderer {
     /// # Errors
     ///
     /// A message when the blocks have no face to draw.
-    pub fn new(ctx: &GpuContext, blocks: &[Block], samples: u32) -> Result<Self, String> {
+    pub fn new(ctx: &GpuContext, blocks: &[Block], samples: u32) -> Result<Self, SceneError> {
         let vertices = triangles(blocks);
         if vertices.is_empty() {
-            return Err("solids: no face to draw".to_owned());
+            return Err("solids: no face to draw".to_owned().into());
         }
         let device = ctx.device();
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {

@@ -4,6 +4,7 @@
 //! which darkens the water where it meets the rocks, the island and the pier, the terrain's
 //! creases, and the shade under the pier's deck, while sunlit surfaces keep their direct light.
 
+use crate::SceneError;
 use ocean_core::Camera;
 use ocean_gpu::{GpuContext, GpuError, SaoPass, wgpu};
 use ocean_sao::{DepthSource, Estimator, Sao, SaoParams, Viewport};
@@ -70,7 +71,7 @@ impl Obscurance {
         section: &ObscuranceSection,
         camera: &Camera,
         size: (u32, u32),
-    ) -> Result<Self, String> {
+    ) -> Result<Self, SceneError> {
         if !section.enabled {
             return Ok(Self::Off(ones(ctx, size)));
         }
@@ -91,7 +92,7 @@ impl Obscurance {
             .map_err(|e| format!("obscurance: {e}"))?;
         let sao = Sao::from_camera(camera, DepthSource::Window, viewport, params)
             .map_err(|e| format!("obscurance: {e}"))?;
-        let pass = SaoPass::new(ctx).map_err(|e| e.to_string())?;
+        let pass = SaoPass::new(ctx)?;
         Ok(Self::Sao {
             pass: Box::new(pass),
             sao: Box::new(sao),

@@ -5,9 +5,10 @@
 //! their slope variance feeds the same lighting and near and far water look like one sea. The
 //! open sea's own spectrum fades out over the shallows, where the boxes take over.
 
+use crate::RockMesh;
+use crate::SceneError;
 use glam::{DVec2, DVec3};
 use ocean_brdf::{FilteredSurface, LocalWaves};
-use ocean_scene::RockMesh;
 use ocean_wtb::effects::Effects;
 use ocean_wtb::scenarios::steady_wind;
 use ocean_wtb::scene::{BoxSpec, Scene};
@@ -130,13 +131,13 @@ impl IslandSection {
     }
 
     /// The water grid: `grid_size²` points around the centre.
-    pub fn grid(&self) -> Result<WaterGrid, String> {
+    pub fn grid(&self) -> Result<WaterGrid, SceneError> {
         WaterGrid::centred(
             DVec2::from_array(self.centre),
             self.grid_spacing,
             self.grid_size,
         )
-        .map_err(|e| format!("island grid: {e}"))
+        .map_err(|e| SceneError::Description(format!("island grid: {e}")))
     }
 
     /// The open sea's amplitude factor at a point `depth` metres deep (negative on land).
@@ -252,7 +253,7 @@ impl Island {
         section: &IslandSection,
         boxes: &[WaveBox],
         rocks: &[&RockMesh],
-    ) -> Result<Self, String> {
+    ) -> Result<Self, SceneError> {
         let grid = section.grid()?;
         let ground = Terrain::from_fn(&grid, |p| section.height(p) as f32)
             .map_err(|e| format!("island terrain: {e}"))?;
@@ -302,7 +303,11 @@ impl Island {
     /// # Errors
     ///
     /// A message if the wave train model or the local waves refuse the frame.
-    pub fn local_waves(&mut self, sea: &FilteredSurface, time: f64) -> Result<LocalWaves, String> {
+    pub fn local_waves(
+        &mut self,
+        sea: &FilteredSurface,
+        time: f64,
+    ) -> Result<LocalWaves, SceneError> {
         let g = self.grid;
         let mut local = LocalWaves::new(
             g.origin(),
@@ -424,7 +429,7 @@ mod tests {
 
         // A rock standing there is land to the wave trains (μ = 0 on it) but not to the drawn
         // terrain, which stays the island's.
-        let rock = ocean_scene::RockShape {
+        let rock = crate::RockShape {
             size: DVec3::new(12.0, 6.0, 12.0),
             ..Default::default()
         }

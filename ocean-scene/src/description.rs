@@ -2,8 +2,8 @@
 //! and the format's reference, every key commented there).
 //!
 //! Parsing is strict: an unknown key, a value of the wrong type or out of range is an error that
-//! names the line and the key. [`SceneFile`] mirrors the document; [`SceneFile::camera`] and
-//! [`SceneFile::lighting`] turn it into the library's types.
+//! names the line and the key. [`SceneDescription`] mirrors the document; [`SceneDescription::camera`] and
+//! [`SceneDescription::lighting`] turn it into the library's types.
 
 use std::path::Path;
 
@@ -12,10 +12,11 @@ use ocean_brdf::{Lighting, SeaParams, SkyParams, SpectrumParams};
 use ocean_core::{Camera, DepthConvention, Far, Projection};
 use serde::Deserialize;
 
+use crate::SceneError;
 use crate::island::{IslandSection, WaveBox};
 use crate::obscurance::ObscuranceSection;
 use crate::pier::PierSection;
-use crate::rocks::Rock;
+use crate::rock_placement::Rock;
 
 /// The built-in scene.
 pub const DEFAULT_SCENE: &str = include_str!("../scenes/default.toml");
@@ -23,7 +24,7 @@ pub const DEFAULT_SCENE: &str = include_str!("../scenes/default.toml");
 /// A scene file.
 #[derive(Clone, Debug, Default, Deserialize, PartialEq)]
 #[serde(default, deny_unknown_fields)]
-pub struct SceneFile {
+pub struct SceneDescription {
     pub render: RenderSection,
     pub camera: CameraSection,
     pub sun: SunSection,
@@ -65,7 +66,8 @@ impl Default for RenderSection {
 }
 
 /// The camera presets of `[camera] preset` and `--camera`.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Preset {
     /// 6 m above the water, looking 8° down.
@@ -168,15 +170,15 @@ const FOCUS: DVec3 = DVec3::new(0.0, 0.0, -40.0);
 /// Seconds of scene time per revolution of the orbit preset.
 const ORBIT_PERIOD: f64 = 60.0;
 
-impl SceneFile {
+impl SceneDescription {
     /// Parses and checks a scene; `origin` names the document in messages.
     ///
     /// # Errors
     ///
     /// A message naming `origin`, the line and the key: TOML syntax, unknown keys, wrong types,
     /// values out of range.
-    pub fn parse(text: &str, origin: &str) -> Result<Self, String> {
-        let scene: SceneFile =
+    pub fn parse(text: &str, origin: &str) -> Result<Self, SceneError> {
+        let scene: SceneDescription =
             toml::from_str(text).map_err(|e| format!("{origin}: {}", e.to_string().trim_end()))?;
         scene
             .check()
@@ -191,8 +193,8 @@ impl SceneFile {
     ///
     /// # Errors
     ///
-    /// An unreadable file, or [`SceneFile::parse`]'s errors.
-    pub fn read(path: &Path) -> Result<Self, String> {
+    /// An unreadable file, or [`SceneDescription::parse`]'s errors.
+    pub fn read(path: &Path) -> Result<Self, SceneError> {
         let text = std::fs::read_to_string(path)
             .map_err(|e| format!("cannot read the scene {}: {e}", path.display()))?;
         Self::parse(&text, &path.display().to_string())
@@ -203,9 +205,9 @@ impl SceneFile {
     /// # Errors
     ///
     /// The first value out of range, named as its key.
-    pub fn check_overrides(&self) -> Result<(), String> {
+    pub fn check_overrides(&self) -> Result<(), SceneError> {
         self.check()
-            .map_err(|(key, _, why)| format!("`{key}` {why}"))
+            .map_err(|(key, _, why)| SceneError::Description(format!("`{key}` {why}")))
     }
 
     /// The first key out of range, as `section.key` with the index of its table among the
@@ -305,7 +307,7 @@ impl SceneFile {
         time: f64,
         width: u32,
         height: u32,
-    ) -> Result<Camera, String> {
+    ) -> Result<Camera, SceneError> {
         let c = &self.camera;
         let (eye, target) = match preset.unwrap_or(c.preset) {
             Preset::Shore => {
@@ -334,7 +336,8 @@ impl SceneFile {
             return Err(format!(
                 "the camera's eye must be above the sea (y > 0), not at y = {}",
                 eye.y
-            ));
+            )
+            .into());
         }
         Camera::look_at(
             eye,
@@ -348,7 +351,7 @@ impl SceneFile {
             },
             DepthConvention::ZERO_TO_ONE,
         )
-        .map_err(|e| format!("camera: {e}"))
+        .map_err(|e| SceneError::Description(format!("camera: {e}")))
     }
 
     /// The spectrum's parameters.
@@ -371,7 +374,7 @@ impl SceneFile {
     /// # Errors
     ///
     /// The lighting model's checks.
-    pub fn lighting(&self) -> Result<Lighting, String> {
+    pub fn lighting(&self) -> Result<Lighting, SceneError> {
         let (el, az) = (
             self.sun.elevation.to_radians(),
             self.sun.azimuth.to_radians(),
@@ -382,7 +385,8 @@ impl SceneFile {
             zenith_radiance: DVec3::from_array(self.sky.zenith_radiance),
             ..SkyParams::default()
         };
-        Lighting::new(sky, SeaParams::default()).map_err(|e| format!("lighting: {e}"))
+        Lighting::new(sky, SeaParams::default())
+            .map_err(|e| SceneError::Description(format!("lighting: {e}")))
     }
 }
 
@@ -455,15 +459,15 @@ mod tests {
 
     #[test]
     fn the_built_in_file_is_the_defaults() {
-        let scene = SceneFile::parse(DEFAULT_SCENE, "default.toml").unwrap();
+        let scene = SceneDescription::parse(DEFAULT_SCENE, "default.toml").unwrap();
         // The defaults of every key; the first rock lists the defaults of its keys, the
         // others differ in place, size and shape alone.
-        let want = SceneFile {
+        let want = SceneDescription {
             island: Some(IslandSection::default()),
             boxes: vec![WaveBox::default()],
             rocks: scene.rocks.clone(),
             pier: Some(PierSection::default()),
-            ..SceneFile::default()
+            ..SceneDescription::default()
         };
         assert_eq!(scene, want);
         assert_eq!(scene.rocks.len(), 3);
@@ -513,7 +517,9 @@ mod tests {
             ),
         ];
         for (text, line, key) in cases {
-            let e = SceneFile::parse(text, "s.toml").unwrap_err();
+            let e = SceneDescription::parse(text, "s.toml")
+                .unwrap_err()
+                .to_string();
             assert!(
                 e.starts_with("s.toml") && e.contains(line) && e.contains(key),
                 "{text:?}: {e}"
@@ -523,7 +529,7 @@ mod tests {
 
     #[test]
     fn presets_and_explicit_cameras() {
-        let scene = SceneFile::default();
+        let scene = SceneDescription::default();
         // The camera gives its eye back from the inverted view matrix: equal up to rounding.
         let eye = |p| scene.camera(Some(p), 0.0, 160, 90).unwrap().eye();
         let close = |a: DVec3, b: DVec3| (a - b).length() < 1e-12 * b.length().max(1.0);
@@ -540,6 +546,7 @@ mod tests {
             below
                 .camera(None, 0.0, 16, 9)
                 .unwrap_err()
+                .to_string()
                 .contains("above the sea")
         );
     }

@@ -6,6 +6,7 @@
 //! wave trains that break on it) are the library's; the terrain only has to occlude, write the
 //! depth the obscurance pass reads, and look like land.
 
+use crate::SceneError;
 use glam::{DMat4, DVec2, DVec3};
 use ocean_brdf::{Irradiance, Lighting};
 use ocean_core::Camera;
@@ -93,7 +94,7 @@ impl TerrainRenderer {
         origin: DVec2,
         spacing: f64,
         samples: u32,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, SceneError> {
         let device = ctx.device();
         let side = device.limits().max_texture_dimension_2d as usize;
         let (nx, nz) = size;
@@ -101,7 +102,8 @@ impl TerrainRenderer {
             return Err(format!(
                 "terrain: a {nx} x {nz} grid with {} heights (at least 2 x 2, at most {side} a side, one height per point)",
                 heights.len()
-            ));
+            )
+            .into());
         }
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("terrain shader"),

@@ -6,7 +6,8 @@
 use glam::{DVec2, DVec3};
 use ocean_gpu::ReliefScene;
 
-use crate::render::FaceLight;
+use crate::SceneError;
+use crate::face_light::FaceLight;
 
 /// Which faces of a block are drawn (a face the camera can never see costs a relief trace per
 /// pixel only when drawn: the back of a quad is discarded before tracing, but its pixels are
@@ -82,7 +83,7 @@ impl Block {
     /// # Errors
     ///
     /// A message if a face's frame is refused (a degenerate size or axis).
-    pub fn faces(&self, light: FaceLight) -> Result<Vec<ReliefScene>, String> {
+    pub fn faces(&self, light: FaceLight) -> Result<Vec<ReliefScene>, SceneError> {
         self.quads()
             .into_iter()
             .map(|q| {

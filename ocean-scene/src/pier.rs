@@ -189,7 +189,7 @@ impl PierSection {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::FaceLight;
+    use crate::face_light::FaceLight;
 
     fn light() -> FaceLight {
         FaceLight {
