@@ -16,7 +16,8 @@
  *   ocean_relief_cones_*, ocean_relief_quad_*, ocean_relief_mips_*, ocean_relief_trace,
  *   ocean_relief_shadow and their helpers.
  * - GPU, declared only where OCEAN_GPU is defined (the full library, libocean; the CPU-only
- *   libocean-cpu lacks them): ocean_gpu_context_*, ocean_renderer_*, ocean_sao_gpu_*,
+ *   libocean-cpu lacks them): ocean_gpu_context_*, ocean_renderer_*, ocean_scene_* (the
+ *   composed scene of `ocean render` from its TOML description), ocean_sao_gpu_*,
  *   ocean_shader_* (every pass exported to GLSL, HLSL, MSL, SPIR-V), and the uniform blocks
  *   and textures of the library's shaders for your own pipeline: ocean_surface_* (the ocean
  *   surface), ocean_sao_uniforms, ocean_relief_uniforms.
@@ -878,6 +879,55 @@ typedef uint32_t OceanReliefEdge;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
+#if defined(OCEAN_GPU)
+/**
+ * The camera a scene's frames are seen from (`OceanSceneOptions::camera`, a `uint32_t`).
+ */
+enum OceanSceneCamera
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+#if defined(OCEAN_GPU)
+  /**
+   * The description's `[camera]` section.
+   */
+  OCEAN_SCENE_CAMERA_DESCRIPTION = 0,
+#endif
+#if defined(OCEAN_GPU)
+  /**
+   * 6 m above the water, looking 8 degrees down.
+   */
+  OCEAN_SCENE_CAMERA_SHORE = 1,
+#endif
+#if defined(OCEAN_GPU)
+  /**
+   * 4 m above the water, looking at the horizon.
+   */
+  OCEAN_SCENE_CAMERA_HORIZON = 2,
+#endif
+#if defined(OCEAN_GPU)
+  /**
+   * 120 m up, looking 30 degrees down.
+   */
+  OCEAN_SCENE_CAMERA_HIGH = 3,
+#endif
+#if defined(OCEAN_GPU)
+  /**
+   * 10 m up, circling the point 40 m ahead once a minute of scene time, looking at it.
+   */
+  OCEAN_SCENE_CAMERA_ORBIT = 4,
+#endif
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum OceanSceneCamera OceanSceneCamera;
+#else
+typedef uint32_t OceanSceneCamera;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+#endif
+
 /**
  * What `ocean_relief_map_create_f32` does with heights outside [0, 1] (its `range` parameter,
  * a `uint32_t`).
@@ -1040,6 +1090,17 @@ typedef struct OceanSao OceanSao;
  * one at a time.
  */
 typedef struct OceanSaoGpu OceanSaoGpu;
+#endif
+
+#if defined(OCEAN_GPU)
+/**
+ * A scene built on a GPU context (opaque): every renderer, texture and wave train box of a
+ * scene description, made once. Create with `ocean_scene_create`, render frames with
+ * `ocean_scene_render_rgba8`, free with `ocean_scene_destroy`. It works only with the context
+ * it was created on. Every call locks the scene, so any thread may use it, but calls on one
+ * scene run one at a time.
+ */
+typedef struct OceanScene OceanScene;
 #endif
 
 #if defined(OCEAN_GPU)
@@ -2041,6 +2102,38 @@ typedef struct OceanSaoInfo {
    */
   uint32_t reserved;
 } OceanSaoInfo;
+
+#if defined(OCEAN_GPU)
+/**
+ * How `ocean_scene_create` builds a scene: overrides of the description's `[render]` and
+ * `[camera]` sections. `ocean_scene_options_default` keeps the description's everywhere.
+ */
+typedef struct OceanSceneOptions {
+  /**
+   * Extensions: NULL, or the first extension struct (see `OceanChain`); the `_default`
+   * function sets NULL.
+   */
+  OceanNext next;
+  /**
+   * Frame width in pixels; 0: the description's `[render] width`. The description's limits
+   * apply (1 to 8192).
+   */
+  uint32_t width;
+  /**
+   * Frame height in pixels; 0: the description's `[render] height` (1 to 8192).
+   */
+  uint32_t height;
+  /**
+   * Samples per pixel, 1 or 4; 0: the description's `[render] samples`. Where the device
+   * cannot draw multisampled targets (OpenGL), one.
+   */
+  uint32_t samples;
+  /**
+   * An `OceanSceneCamera`.
+   */
+  uint32_t camera;
+} OceanSceneOptions;
+#endif
 
 #if defined(OCEAN_GPU)
 /**
@@ -4526,6 +4619,121 @@ OceanStatus ocean_sao_uniforms(const struct OceanSao *sao,
                                uint8_t *out,
                                size_t len,
                                uint32_t *levels);
+#endif
+
+#if defined(OCEAN_GPU)
+/**
+ * Stores in `*out` the built-in scene description: NUL-terminated UTF-8 TOML, owned by the
+ * library and valid for the life of the process. It is the reference of the format (every key
+ * commented) and what `ocean render` draws without `--scene`; pass it to `ocean_scene_create`
+ * with `strlen` as its length, or edit a copy.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`, which is then
+ * left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable and untouched by other threads during the call.
+ */
+OceanStatus ocean_scene_builtin_description(const char **out);
+#endif
+
+#if defined(OCEAN_GPU)
+/**
+ * Stores the default scene options in `*out`: every member 0 (the description's size, samples
+ * and camera), `next` NULL.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` (or `_MISALIGNED_POINTER`) for a bad `out`, which is
+ * then left unchanged.
+ *
+ * # Safety
+ *
+ * `out` must be writable and untouched by other threads during the call.
+ */
+OceanStatus ocean_scene_options_default(struct OceanSceneOptions *out);
+#endif
+
+#if defined(OCEAN_GPU)
+/**
+ * Parses the scene description `text` (`len` bytes of UTF-8 TOML, no NUL needed), builds
+ * everything its frames are drawn with on `ctx` (spectrum and filtering, sky map, island and
+ * wave train boxes, terrain, rocks and pier with their cone maps, obscurance, targets) and
+ * stores the scene in `*out`. Cone maps are read from and written to the cache of
+ * `ocean render` (`$OCEAN_CACHE_DIR`, else `$XDG_CACHE_HOME/ocean`, else
+ * `$HOME/.cache/ocean`) when there is one; a cache that cannot be written costs only time.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_HANDLE` for a bad `ctx`, `OCEAN_STATUS_EMPTY` if `len` is 0,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for text that is not UTF-8, a description that does not
+ * parse or is out of range (the message names the line and the key), an option out of range,
+ * or a piece that cannot be built from it (the message names it); `OCEAN_STATUS_NO_ADAPTER` /
+ * `_GPU_FAILURE` for a device error. On failure `*out` is unchanged. Building takes from a
+ * fraction of a second to seconds (cone maps not in the cache).
+ *
+ * # Safety
+ *
+ * `text` must point to `len` readable bytes, `options` to a readable `OceanSceneOptions` and
+ * `out` to a writable pointer; neither `text` nor `options` is retained.
+ */
+OceanStatus ocean_scene_create(const struct OceanGpuContext *ctx,
+                               const char *text,
+                               size_t len,
+                               const struct OceanSceneOptions *options,
+                               struct OceanScene **out);
+#endif
+
+#if defined(OCEAN_GPU)
+/**
+ * Frees a scene and its GPU resources. NULL does nothing; a handle of another kind or already
+ * destroyed frees nothing and sets the last-error message (see the header's notes on handles).
+ * It may outlive its context.
+ */
+void ocean_scene_destroy(struct OceanScene *scene);
+#endif
+
+#if defined(OCEAN_GPU)
+/**
+ * Stores the size of the scene's frames in pixels in `*width` and `*height`: the description's
+ * `[render]` size, or the options' overrides.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad pointer,
+ * `OCEAN_STATUS_INVALID_HANDLE` for a bad `scene`. On failure nothing is written.
+ *
+ * # Safety
+ *
+ * `width` and `height` must be writable and untouched by other threads during the call.
+ */
+OceanStatus ocean_scene_size(const struct OceanScene *scene, uint32_t *width, uint32_t *height);
+#endif
+
+#if defined(OCEAN_GPU)
+/**
+ * Renders the scene's frame at scene `time` (seconds) on the GPU: the wave train boxes
+ * marched to `time` on the CPU, then the sea, the island, the rocks and the pier, their
+ * ambient obscurance and the composition, as `ocean render` draws the same description; waits
+ * for it and copies it into `out`.
+ *
+ * Format: `len` = width * height * 4 bytes exactly (`ocean_scene_size`); rows from the top of
+ * the image, each `width` pixels of R, G, B, A bytes from left to right, tightly packed.
+ * Colours are tone-mapped and sRGB-encoded (display-ready bytes for an `SRGB8_ALPHA8` texture
+ * or an image file); alpha is 255.
+ *
+ * Returns `OCEAN_STATUS_NULL_POINTER` / `_MISALIGNED_POINTER` for a bad `out`,
+ * `OCEAN_STATUS_INVALID_HANDLE` for a bad `scene` or `ctx`, `OCEAN_STATUS_LENGTH_MISMATCH` if
+ * `len` is not width * height * 4, `OCEAN_STATUS_NON_FINITE` for a NaN or infinite `time`,
+ * `OCEAN_STATUS_INVALID_ARGUMENT` for a context other than the scene's or a `time` at which
+ * the camera or the wave trains cannot be evaluated, `OCEAN_STATUS_GPU_FAILURE` for a device
+ * error. Nothing is written to `out` on failure.
+ *
+ * # Safety
+ *
+ * `out` must point to `len` writable bytes that no other thread touches during the call.
+ */
+OceanStatus ocean_scene_render_rgba8(const struct OceanScene *scene,
+                                     const struct OceanGpuContext *ctx,
+                                     double time,
+                                     uint8_t *out,
+                                     size_t len);
 #endif
 
 #if defined(OCEAN_GPU)

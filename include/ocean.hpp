@@ -248,14 +248,15 @@ inline OceanStatus fill_default(OceanSurfaceDrawParams *o)
     return ocean_surface_draw_params_default(o);
 }
 inline OceanStatus fill_default(OceanReliefScene *o) { return ocean_relief_scene_default(o); }
+inline OceanStatus fill_default(OceanSceneOptions *o) { return ocean_scene_options_default(o); }
 #endif
 } // namespace detail
 
 /// The library's defaults of a parameter struct (its `ocean_*_default` function):
 /// OceanSkyParams, OceanSeaParams, OceanSpectrumParams, OceanEffects, OceanWindDesc and
 /// OceanBoxDesc (of a wave train box scene), OceanReliefConeParams, OceanReliefMethod,
-/// OceanSaoParams, and with OCEAN_GPU OceanRendererOptions, OceanSurfaceDrawParams and
-/// OceanReliefScene.
+/// OceanSaoParams, and with OCEAN_GPU OceanRendererOptions, OceanSurfaceDrawParams,
+/// OceanReliefScene and OceanSceneOptions.
 template <typename T>
 T defaults()
 {

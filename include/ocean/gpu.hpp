@@ -74,6 +74,49 @@ public:
     }
 };
 
+/// The composed scene of `ocean render` (`OceanScene`): the sea, the island and its wave train
+/// boxes, relief-mapped rocks and pier, ambient obscurance; works only with its context.
+class scene : public detail::handle<OceanScene, ocean_scene_destroy> {
+public:
+    /// The owner: get(), release(), reset(), moves; constructible from a raw handle it adopts.
+    using base = detail::handle<OceanScene, ocean_scene_destroy>;
+    using base::base;
+
+    /// `ocean_scene_builtin_description`: the built-in scene's TOML (the format's reference).
+    static std::string builtin_description()
+    {
+        const char *text = nullptr;
+        check(ocean_scene_builtin_description(&text));
+        return std::string(text);
+    }
+    /// `ocean_scene_create` from a TOML description on `ctx` (start the options from
+    /// `defaults<OceanSceneOptions>()`).
+    static scene create(const gpu_context &ctx, const std::string &description,
+                        const OceanSceneOptions &options)
+    {
+        OceanScene *s = nullptr;
+        check(ocean_scene_create(ctx.get(), description.data(), description.size(), &options,
+                                 &s));
+        return scene(s);
+    }
+    /// The frames' width and height in pixels.
+    std::pair<std::uint32_t, std::uint32_t> size() const
+    {
+        std::uint32_t w = 0, h = 0;
+        check(ocean_scene_size(get(), &w, &h));
+        return {w, h};
+    }
+    /// Renders the frame at `time` seconds: size() RGBA8 pixels (sRGB, rows from the top).
+    std::vector<std::uint8_t> render_rgba8(const gpu_context &ctx, double time) const
+    {
+        const auto [w, h] = size();
+        std::vector<std::uint8_t> out(4 * detail::mul(w, h));
+        check(ocean_scene_render_rgba8(get(), ctx.get(), time,
+                                       detail::ptr(span<std::uint8_t>(out)), out.size()));
+        return out;
+    }
+};
+
 /// The GPU ambient obscurance passes (`OceanSaoGpu`); works only with its context.
 class sao_gpu : public detail::handle<OceanSaoGpu, ocean_sao_gpu_destroy> {
 public:

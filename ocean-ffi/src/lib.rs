@@ -54,6 +54,8 @@ mod sao_depth;
 #[cfg(feature = "gpu")]
 mod sao_gpu;
 #[cfg(feature = "gpu")]
+mod scene;
+#[cfg(feature = "gpu")]
 mod shader_export;
 mod status;
 mod version;
@@ -151,6 +153,12 @@ pub use sao_depth::OceanSaoDepth;
 pub use sao_gpu::{
     OCEAN_SAO_UNIFORMS_SIZE, OceanSaoGpu, ocean_sao_gpu_create, ocean_sao_gpu_destroy,
     ocean_sao_gpu_run, ocean_sao_uniforms,
+};
+#[cfg(feature = "gpu")]
+pub use scene::{
+    OceanScene, OceanSceneCamera, OceanSceneOptions, ocean_scene_builtin_description,
+    ocean_scene_create, ocean_scene_destroy, ocean_scene_options_default, ocean_scene_render_rgba8,
+    ocean_scene_size,
 };
 #[cfg(feature = "gpu")]
 pub use shader_export::{

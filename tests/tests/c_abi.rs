@@ -487,6 +487,69 @@ fn c11_gpu_renderer_and_shader_export_against_the_static_library() {
     );
 }
 
+/// The scene renderer of the C ABI from C11 (`tests/c/test_scene.c`): the built-in description
+/// built and rendered through `ocean_scene_*` with every error path. The program writes its
+/// 96 x 54 frame at t = 1.5 s (one sample per pixel) to `OCEAN_SCENE_IMAGE`; this test draws
+/// the same frame with `ocean_scene::SceneRenderer` (same adapter, chosen by the same
+/// `WGPU_BACKEND`) and requires the same bytes. Without an adapter both sides skip, unless
+/// `OCEAN_REQUIRE_GPU=1`, under which the C program itself fails.
+#[test]
+fn c11_scene_renderer_against_the_static_library() {
+    use ocean_scene::renderer::RenderOptions;
+    use ocean_scene::{Backend, DEFAULT_SCENE, SceneDescription, SceneRenderer};
+
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_abi");
+    let image_path = dir.join("test_scene_c.rgba");
+    // The C program's cone maps go to a cache of its own (generation is deterministic: a
+    // cached map is bit for bit the generated one).
+    let cache = dir.join("scene-cache");
+    std::fs::create_dir_all(&cache).expect("create the directories");
+    let _ = std::fs::remove_file(&image_path);
+    let stdout = build_and_run_with(
+        compiler("CC", "cc"),
+        "-std=c11",
+        "tests/c/test_scene.c",
+        "test_scene_c",
+        &Extras {
+            env: &[
+                ("OCEAN_SCENE_IMAGE", &image_path),
+                ("OCEAN_CACHE_DIR", &cache),
+            ],
+            gpu: true,
+            ..Extras::default()
+        },
+    );
+    let Ok(from_c) = std::fs::read(&image_path) else {
+        assert!(
+            stdout.contains("SKIPPED") && !ocean_tests::gpu_required(),
+            "test_scene.c neither rendered nor skipped:\n{stdout}"
+        );
+        return;
+    };
+    let mut scene = SceneDescription::parse(DEFAULT_SCENE, "built-in").expect("the built-in scene");
+    scene.render.width = 96;
+    scene.render.height = 54;
+    let options = RenderOptions {
+        samples: Some(1),
+        ..RenderOptions::default()
+    };
+    let mut renderer = SceneRenderer::new(&scene, Backend::Auto, options).expect("renderer");
+    let from_rust = renderer.frame(1.5, false).expect("frame").rgba;
+    assert_eq!(from_c.len(), from_rust.len());
+    let differing = from_c
+        .iter()
+        .zip(&from_rust)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(
+        differing,
+        0,
+        "{differing} of {} bytes differ between the C ABI's scene frame and ocean_scene's on {}",
+        from_c.len(),
+        renderer.describe()
+    );
+}
+
 /// The thread-safety promises of `include/ocean.h` from C11 and POSIX threads
 /// (`tests/c/test_threads.c`): 8 threads making the library's first calls at once, then 8
 /// threads sharing one handle of every shareable kind (and one scene) while 8 others create,

@@ -14,7 +14,12 @@ use super::header::{Base, Function, Header, Param, Struct};
 /// Handle kinds that need a GPU device. Functions taking or making one are not exercised: the
 /// matrix makes thousands of calls and CI's adapter may be a slow software rasteriser; the GPU
 /// tests (`tests/tests/gpu_*.rs`, `tests/c/test_gpu.c`) cover their error paths.
-pub const GPU_KINDS: &[&str] = &["OceanGpuContext", "OceanRenderer", "OceanSaoGpu"];
+pub const GPU_KINDS: &[&str] = &[
+    "OceanGpuContext",
+    "OceanRenderer",
+    "OceanSaoGpu",
+    "OceanScene",
+];
 
 /// Base values that plausible-by-type would get wrong, from each function's documentation in
 /// `include/ocean.h`: (function, parameter, C code). For scalars the code is an expression; for
