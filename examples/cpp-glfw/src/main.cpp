@@ -19,8 +19,9 @@
 // Options: --frames N (stop after N frames), --screenshot out.png (write the last frame, and fail
 // unless it shows water: not black, not uniform, bluish; and unless the obscurance matches the
 // library's CPU reference, ocean_sao_run, within 2/255 on 99.9 % of the pixels), --size WxH
-// (render size, default 1280x720). Exit status 0 on success, 1 on an error, 3 when a check of
-// the screenshot fails.
+// (render size, default 1280x720), --scene (instead of all the above, the library's composed
+// scene of `ocean render`, drawn by ocean::scene and shown in the window: scene_view.cpp).
+// Exit status 0 on success, 1 on an error, 3 when a check of the screenshot fails.
 //
 // The library is used through its C++ wrapper, ocean.hpp: owning handles, ocean::error
 // exceptions (caught in main), std::vector in and out.
@@ -30,6 +31,7 @@
 
 #include "gl.hpp"
 #include "png.hpp"
+#include "scene_view.hpp"
 
 // GLM before ocean.hpp, which then offers ocean::make_camera for GLM matrices.
 #include <glm/glm.hpp>
@@ -78,6 +80,7 @@ struct Options {
     std::string screenshot;
     int width = 1280;
     int height = 720;
+    bool scene = false; // --scene: the library's composed scene instead of this engine's frame
 };
 
 Options parse(int argc, char **argv)
@@ -94,6 +97,8 @@ Options parse(int argc, char **argv)
             o.frames = std::atoi(value().c_str());
             if (o.frames < 1)
                 die("--frames must be at least 1");
+        } else if (a == "--scene") {
+            o.scene = true;
         } else if (a == "--screenshot") {
             o.screenshot = value();
         } else if (a == "--size") {
@@ -102,7 +107,7 @@ Options parse(int argc, char **argv)
                 o.height < 16 || o.width > 8192 || o.height > 8192)
                 die("--size takes WxH, each side in [16, 8192], got %s", v.c_str());
         } else if (a == "--help" || a == "-h") {
-            std::printf("usage: %s [--frames N] [--screenshot out.png] [--size WxH]\n", argv[0]);
+            std::printf("usage: %s [--scene] [--frames N] [--screenshot out.png] [--size WxH]\n", argv[0]);
             std::exit(0);
         } else {
             die("unknown argument %s (see --help)", a.c_str());
@@ -417,6 +422,12 @@ int run(int argc, char **argv)
     std::printf("ocean_glfw: library %s, OpenGL %s (%s), %d x %d\n", ocean_version(),
                 reinterpret_cast<const char *>(gl::GetString(GL_VERSION)),
                 reinterpret_cast<const char *>(gl::GetString(GL_RENDERER)), W, H);
+    if (opt.scene) {
+        const int status = run_scene(window, W, H, opt.frames, opt.screenshot);
+        glfwDestroyWindow(window);
+        glfwTerminate();
+        return status;
+    }
 
     // --- The library's objects. --------------------------------------------------------------
     ocean::check_version();
