@@ -13,6 +13,7 @@ use ocean_core::{Camera, DepthConvention, Far, Projection};
 use serde::Deserialize;
 
 use crate::SceneError;
+use crate::check::range;
 use crate::island::{IslandSection, WaveBox};
 use crate::obscurance::ObscuranceSection;
 use crate::pier::PierSection;
@@ -395,19 +396,6 @@ fn finite(key: &'static str, v: f64) -> Result<(), (&'static str, String)> {
         Ok(())
     } else {
         Err((key, format!("= {v} is not finite")))
-    }
-}
-
-pub(crate) fn range(
-    key: &'static str,
-    v: f64,
-    min: f64,
-    max: f64,
-) -> Result<(), (&'static str, String)> {
-    if v.is_finite() && (min..=max).contains(&v) {
-        Ok(())
-    } else {
-        Err((key, format!("= {v} is outside {min} to {max}")))
     }
 }
 

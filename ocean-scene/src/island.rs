@@ -7,6 +7,7 @@
 
 use crate::RockMesh;
 use crate::SceneError;
+use crate::check::{Bad, range};
 use glam::{DVec2, DVec3};
 use ocean_brdf::{FilteredSurface, LocalWaves};
 use ocean_wtb::effects::Effects;
@@ -54,15 +55,6 @@ impl Default for IslandSection {
             open_sea_depths: [1.0, 10.0],
         }
     }
-}
-
-type Bad = (&'static str, String);
-
-fn range(key: &'static str, v: f64, min: f64, max: f64) -> Result<(), Bad> {
-    if !v.is_finite() || v < min || v > max {
-        return Err((key, format!("= {v} is outside [{min}, {max}]")));
-    }
-    Ok(())
 }
 
 impl IslandSection {

@@ -19,6 +19,7 @@
 
 pub mod atomic_file;
 pub mod blocks;
+pub mod check;
 pub mod cone_cache;
 pub mod description;
 pub mod face_light;

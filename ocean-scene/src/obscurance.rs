@@ -5,6 +5,7 @@
 //! creases, and the shade under the pier's deck, while sunlit surfaces keep their direct light.
 
 use crate::SceneError;
+use crate::check::range;
 use ocean_core::Camera;
 use ocean_gpu::{GpuContext, GpuError, SaoPass, wgpu};
 use ocean_sao::{DepthSource, Estimator, Sao, SaoParams, Viewport};
@@ -37,12 +38,6 @@ impl Default for ObscuranceSection {
 
 impl ObscuranceSection {
     pub fn check(&self) -> Result<(), (&'static str, String)> {
-        let range = |key, v: f64, min: f64, max: f64| {
-            if !v.is_finite() || v < min || v > max {
-                return Err((key, format!("= {v} is outside [{min}, {max}]")));
-            }
-            Ok(())
-        };
         range("obscurance.radius", self.radius, 1e-3, 1e3)?;
         range("obscurance.samples", f64::from(self.samples), 1.0, 64.0)?;
         range("obscurance.intensity", self.intensity, 0.0, 10.0)

@@ -8,6 +8,7 @@ use glam::DVec3;
 use serde::Deserialize;
 
 use crate::blocks::{Block, Faces};
+use crate::check::range;
 
 /// `[pier]`.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
@@ -66,12 +67,6 @@ const PLANKS_PER_TILE: usize = 8;
 
 impl PierSection {
     pub fn check(&self) -> Result<(), (&'static str, String)> {
-        let range = |key, v: f64, min: f64, max: f64| {
-            if !v.is_finite() || v < min || v > max {
-                return Err((key, format!("= {v} is outside [{min}, {max}]")));
-            }
-            Ok(())
-        };
         for x in self.start {
             range("pier.start", x, -1e6, 1e6)?;
         }

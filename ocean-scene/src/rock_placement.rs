@@ -10,7 +10,7 @@ use serde::Deserialize;
 
 use crate::SceneError;
 use crate::blocks::lit;
-use crate::description::range;
+use crate::check::{Bad, range};
 use crate::face_light::FaceLight;
 use crate::island::IslandSection;
 
@@ -70,8 +70,6 @@ impl Default for Rock {
         }
     }
 }
-
-type Bad = (&'static str, String);
 
 impl Rock {
     /// Checks every key's range, and that a rock on the shore has an island.
