@@ -1399,7 +1399,7 @@ typedef struct OceanSeaParams {
 } OceanSeaParams;
 
 /**
- * The environment's irradiance on a surface of any orientation, E(n) = sum_i k[i] Y_i(n)
+ * The environment's irradiance on a surface of any orientation, E(n) = sum_i `k[i]` Y_i(n)
  * (order-2 real spherical harmonics, world space, y up), the nine Y_i in the order
  * 1; x, y, z; xy, yz, 3y^2 - 1, xz, x^2 - z^2 with their orthonormal normalisations; linear
  * RGB per coefficient. All zero: no environment light.
@@ -2080,8 +2080,8 @@ typedef struct OceanSaoInfo {
   double far;
   /**
    * Eq. 2 with ocean-sao's fourth constant: the view-space z (negative in front) of a depth
-   * d is (c[0] + c[3] d) / (c[1] d + c[2]), in float arithmetic (c[3] = 0 for a
-   * perspective, c[1] = 0 for an orthographic box), for every depth but `far_depth`.
+   * d is (`c[0]` + `c[3]` d) / (`c[1]` d + `c[2]`), in float arithmetic (`c[3]` = 0 for a
+   * perspective, `c[1]` = 0 for an orthographic box), for every depth but `far_depth`.
    */
   float z_constants[4];
   /**

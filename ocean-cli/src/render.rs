@@ -1,14 +1,10 @@
 //! `ocean render`: a headless render of a scene file into PNG images.
 //!
-//! What it draws: the open sea to the horizon and the sky, lit by the geometry-to-BRDF model
-//! (Bruneton, Neyret & Holzschuch 2010: Sun, sky and refracted light, Algorithm 5.1) on the
-//! projected grid of `ocean_gpu::OceanRenderer`, with the scene file's spectrum, Sun, sky and
-//! camera ([`crate::scene`]); the island's terrain ([`crate::terrain`]) and the wave trains of
-//! its wave train boxes, drawn on the same sea as local waves ([`crate::island`]); the scene's
-//! rock faces, relief-mapped by relaxed cone stepping (`ocean_gpu::ReliefRenderer`, cone maps
-//! generated at start-up and cached on disk, [`crate::cone_cache`]), self-shadowed by the Sun
-//! and writing the depth of their relief; and the ambient obscurance of the whole depth buffer
-//! (`ocean_gpu::OceanRenderer::compose`).
+//! What it draws is `ocean_scene::SceneRenderer`'s frame of the scene description (the open
+//! sea and the sky lit by Algorithm 5.1 of Bruneton, Neyret & Holzschuch 2010, the island and
+//! the wave train boxes that reach its shore, relief-mapped rocks and pier, ambient
+//! obscurance); this module parses the arguments, shows progress, writes the PNGs and prints
+//! the timings.
 //!
 //! Every PNG is written to a temporary file and renamed when complete, the output directory is
 //! checked before anything is rendered, and an interruption (Ctrl-C, SIGTERM, SIGHUP) stops the

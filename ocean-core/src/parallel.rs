@@ -1,7 +1,7 @@
 //! Threaded loops on the current rayon pool (with `std`): [`for_rows`], which the CPU
 //! reference kernels of the other crates run their rows through (in order without `std`), the
 //! task sizes every threaded loop of the crate shares, and the threaded grid and point
-//! evaluations of [`WaveSet`](crate::WaveSet). Each is bit-identical to its single-threaded
+//! evaluations of [`WaveSet`]. Each is bit-identical to its single-threaded
 //! twin for every thread count.
 
 #[cfg(feature = "std")]

@@ -347,7 +347,7 @@ pub unsafe extern "C" fn ocean_lighting_sky_irradiance(
     }
 }
 
-/// The environment's irradiance on a surface of any orientation, E(n) = sum_i k[i] Y_i(n)
+/// The environment's irradiance on a surface of any orientation, E(n) = sum_i `k[i]` Y_i(n)
 /// (order-2 real spherical harmonics, world space, y up), the nine Y_i in the order
 /// 1; x, y, z; xy, yz, 3y^2 - 1, xz, x^2 - z^2 with their orthonormal normalisations; linear
 /// RGB per coefficient. All zero: no environment light.

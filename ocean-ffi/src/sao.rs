@@ -439,8 +439,8 @@ pub struct OceanSaoInfo {
     /// Far-plane distance read from the matrix, metres; `INFINITY` for an infinite perspective.
     pub far: f64,
     /// Eq. 2 with ocean-sao's fourth constant: the view-space z (negative in front) of a depth
-    /// d is (c[0] + c[3] d) / (c[1] d + c[2]), in float arithmetic (c[3] = 0 for a
-    /// perspective, c[1] = 0 for an orthographic box), for every depth but `far_depth`.
+    /// d is (`c[0]` + `c[3]` d) / (`c[1]` d + `c[2]`), in float arithmetic (`c[3]` = 0 for a
+    /// perspective, `c[1]` = 0 for an orthographic box), for every depth but `far_depth`.
     pub z_constants: [f32; 4],
     /// The depth value of the near plane (0, -1 for NDC depth under [-1, 1], or 1 reversed).
     pub near_depth: f32,

@@ -1,6 +1,6 @@
 //! The four closed quadrants of horizontal ray directions, which quad-directional cone maps
-//! ([`crate::quad`]) keep one cone each for, and which the cone bounds ([`crate::bound`],
-//! [`crate::arc`]) restrict their vectors to.
+//! ([`crate::quad`]) keep one cone each for, and which the cone bounds ([`crate::bound`], and
+//! its arcs of directions in `arc.rs`) restrict their vectors to.
 
 /// A closed quadrant of horizontal directions (see [`crate::quad`]): `x_neg` for `uₓ ≤ 0`
 /// (else `uₓ ≥ 0`), `y_neg` for `u_y ≤ 0` (else `u_y ≥ 0`). Layer index

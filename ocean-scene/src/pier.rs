@@ -158,7 +158,7 @@ impl PierSection {
             .collect()
     }
 
-    /// The deck's height map (`n × n`, 1 = the deck's surface): [`PLANKS_PER_TILE`] planks
+    /// The deck's height map (`n × n`, 1 = the deck's surface): `PLANKS_PER_TILE` (8) planks
     /// along the texture's rows, a gap of a tenth of a plank at the bottom between neighbours,
     /// and a shallow grain (value noise stretched along each plank) on their tops.
     pub fn plank_heights(&self) -> Vec<f32> {

@@ -14,9 +14,9 @@
 //!
 //! Gerstner waves move points horizontally, so a query first finds the rest position p₀ whose
 //! displaced point lies over (x, z), by Newton's method on p₀ + D(p₀) = (x, z), then reads the
-//! height and normal there. Batches are solved [`LANES`] queries at a time in lock step: every
+//! height and normal there. Batches are solved four queries at a time in lock step: every
 //! Newton round evaluates the waves for all the lanes that still iterate with one lane loop
-//! ([`TimedWaves::add_sums_lanes`]), whose lanes do exactly the operations of a single query,
+//! ([`ocean_core::TimedWaves::add_sums_lanes`]), whose lanes do exactly the operations of a single query,
 //! so a batched answer has the bits of [`Frame::continuous_height_at`] for the same point.
 
 // Lane loops index several arrays in step; that indexed shape is what LLVM vectorises.

@@ -28,7 +28,7 @@ pub struct FrameStats {
     /// The cost model's estimate for it, nanoseconds.
     pub estimated_ns: f64,
     /// Trains of the visible boxes weighted down in the geometry by the scene's
-    /// [`TrainFilter`] (w_p < 1), those left out included.
+    /// [`TrainFilter`](crate::filter::TrainFilter) (w_p < 1), those left out included.
     pub filtered_trains: usize,
     /// Of those, the trains left out entirely (w_p = 0: shorter than the filter's N_min).
     pub removed_trains: usize,
