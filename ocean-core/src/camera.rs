@@ -154,6 +154,33 @@ pub enum DepthRange {
     NegOneToOne,
 }
 
+impl DepthRange {
+    /// The window depth in `[0, 1]` (what a depth buffer holds under WebGPU, Vulkan, Direct3D,
+    /// Metal, and OpenGL's default `glDepthRange(0, 1)`) of an NDC depth in this range:
+    /// `(z + 1)/2` for `[−1, 1]`, `z` for `[0, 1]`.
+    pub fn window_depth(self, ndc_depth: f64) -> f64 {
+        match self {
+            Self::NegOneToOne => 0.5 * ndc_depth + 0.5,
+            Self::ZeroToOne => ndc_depth,
+        }
+    }
+
+    /// [`DepthRange::window_depth`] as a matrix acting on clip coordinates: multiplied on the
+    /// left of a projection in this range, it gives the projection in WebGPU's `[0, 1]` range
+    /// (the identity for [`DepthRange::ZeroToOne`]).
+    pub fn to_zero_to_one(self) -> DMat4 {
+        match self {
+            Self::NegOneToOne => DMat4::from_cols(
+                DVec4::X,
+                DVec4::Y,
+                DVec4::new(0.0, 0.0, 0.5, 0.0),
+                DVec4::new(0.0, 0.0, 0.5, 1.0),
+            ),
+            Self::ZeroToOne => DMat4::IDENTITY,
+        }
+    }
+}
+
 /// Which end of the depth range the near plane maps to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum DepthDirection {

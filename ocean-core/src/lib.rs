@@ -74,6 +74,7 @@ pub mod camera;
 pub mod dispersion;
 mod error;
 pub mod frustum;
+pub mod gpu_params;
 pub mod grid;
 pub mod isa;
 pub mod kernel;

@@ -51,12 +51,12 @@
 
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
-use glam::{DMat4, DVec2, DVec3, DVec4};
+use glam::{DMat4, DVec2, DVec3};
 use ocean_brdf::sky_map::{SKY_MAP_EXTENT, SKY_MAP_MAX_SIZE, SKY_MAP_MIN_SIZE};
 use ocean_brdf::variance::{trochoid_slope_variance, wave_variance_term};
 use ocean_brdf::{FilteredSurface, Lighting, LocalWaves, SeaLight, SlopeVariance};
 use ocean_core::phase::reduce_angle;
-use ocean_core::{Camera, DepthDirection, DepthRange, EvalError, Wave};
+use ocean_core::{Camera, DepthDirection, EvalError, Wave};
 
 use crate::ocean_local::LocalTextures;
 
@@ -75,7 +75,7 @@ pub use probe::{SeaColorInput, SurfaceProbe};
 pub use resources::fresnel_table_texels;
 use resources::*;
 pub use uniform::{FrameUniform, MeshGrid, WaveTexels, frame_uniform};
-use uniform::{depth_remap, grid_counts, lighting_uniform, rgb};
+use uniform::{grid_counts, lighting_uniform, rgb};
 
 /// Rows of the wave texture (see `ocean_common.wgsl`).
 const WAVE_ROWS: u32 = 3;

@@ -80,9 +80,9 @@
 
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
-use glam::{DMat4, DVec2, DVec3, DVec4, Vec2, Vec3};
+use glam::{DMat4, DVec2, DVec3, Vec2, Vec3};
 use ocean_brdf::Irradiance;
-use ocean_core::{Camera, DepthDirection, DepthRange, Projection};
+use ocean_core::{Camera, DepthDirection, Projection};
 use ocean_relief::gpu_params::{FLAG_SHADOWS, FLAG_SRGB_ENCODE, ReliefUniforms};
 use ocean_relief::lod::atlas_size;
 use ocean_relief::trace::BinarySearch;
@@ -349,27 +349,10 @@ impl ReliefScene {
     }
 }
 
-/// The depth remap from a camera's NDC depth to WebGPU's: `z' = (z + 1)/2` for OpenGL's
-/// `[−1, 1]` range, the identity otherwise (as a matrix acting on clip coordinates).
-fn depth_remap(camera: &Camera) -> DMat4 {
-    match camera.depth().range() {
-        DepthRange::NegOneToOne => DMat4::from_cols(
-            DVec4::X,
-            DVec4::Y,
-            DVec4::new(0.0, 0.0, 0.5, 0.0),
-            DVec4::new(0.0, 0.0, 0.5, 1.0),
-        ),
-        DepthRange::ZeroToOne => DMat4::IDENTITY,
-    }
-}
-
 /// The window depth (what a depth buffer of a [`ReliefRenderer`] holds) of an NDC depth in the
 /// camera's convention: `(z + 1)/2` for OpenGL's `[−1, 1]` range, `z` otherwise.
 pub fn window_depth(camera: &Camera, ndc_depth: f64) -> f64 {
-    match camera.depth().range() {
-        DepthRange::NegOneToOne => 0.5 * ndc_depth + 0.5,
-        DepthRange::ZeroToOne => ndc_depth,
-    }
+    camera.depth().range().window_depth(ndc_depth)
 }
 
 /// A new uniform buffer holding `u` (written through the queue).
@@ -414,8 +397,9 @@ pub fn scene_uniforms(
     scene.check_shading()?;
     polygon::check_corners(&scene.corners)?;
     let eye = camera.eye();
-    let view_proj =
-        depth_remap(camera) * camera.view_projection_f64() * DMat4::from_translation(eye);
+    let view_proj = camera.depth().range().to_zero_to_one()
+        * camera.view_projection_f64()
+        * DMat4::from_translation(eye);
     let vp = view_proj.as_mat4();
     if !vp.is_finite() || !eye.is_finite() {
         return Err(invalid(

@@ -26,6 +26,8 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 use glam::Vec3;
 use ocean_core::{Grid, WaveCoeffs, WaveSet};
 
+pub use ocean_core::gpu_params::TrochoidParams;
+
 use crate::readback::{GpuDuration, GpuTimer, read_buffer_as};
 use crate::{GpuContext, GpuError};
 
@@ -34,30 +36,6 @@ pub const WORKGROUP_SIZE: u32 = 64;
 
 /// Bytes per output element (one `vec4<f32>`).
 pub const OUTPUT_STRIDE: u64 = 16;
-
-/// The pass's uniform block, byte for byte the WGSL `Params` struct (32 bytes, std140).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct TrochoidParams {
-    /// Columns (along x).
-    pub nx: u32,
-    /// Rows (along z).
-    pub nz: u32,
-    /// Number of waves.
-    pub waves: u32,
-    /// Index in the sin/cos table buffer of the first column entry: `waves · nz`.
-    pub cols_offset: u32,
-    /// Workgroups along x of the dispatch; the linear workgroup index is
-    /// `workgroup_id.y · groups_x + workgroup_id.x`.
-    pub groups_x: u32,
-    /// Explicit padding, 0: keeps the struct at 32 bytes (a whole number of 16-byte std140
-    /// rows) with no implicit padding, which `Pod` forbids.
-    pub _pad: u32,
-    /// Grid spacing along x, metres (`f32`, as the CPU kernel rounds it).
-    pub spacing_x: f32,
-    /// Grid spacing along z, metres.
-    pub spacing_z: f32,
-}
 
 /// The dispatch shape for `groups` workgroups when one dimension holds at most `max_per_dim`:
 /// `(x, y)` with `x · y ≥ groups`, `x ≤ max_per_dim`, folding into y only when needed.

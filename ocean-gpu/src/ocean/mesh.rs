@@ -9,9 +9,7 @@ use ocean_core::{Camera, DepthDirection};
 use wgpu::util::DeviceExt;
 
 use super::layers::{ComposeInputs, depth_state};
-use super::{
-    FrameUniform, MeshGrid, OceanRenderer, depth_remap, frame_uniform, invalid, write_waves,
-};
+use super::{FrameUniform, MeshGrid, OceanRenderer, frame_uniform, invalid, write_waves};
 use crate::light_targets::{RADIANCE_FORMAT, radiance_targets};
 use crate::readback::read_texture;
 use crate::{GpuContext, GpuError};
@@ -164,8 +162,8 @@ impl OceanRenderer {
         let indices = mesh.indices();
         let device = ctx.device();
         let direction = camera.depth().direction();
-        let (_, to_wgpu) = depth_remap(camera);
-        let clear_depth = to_wgpu(camera.depth().clear_depth()) as f32;
+        let range = camera.depth().range();
+        let clear_depth = range.window_depth(camera.depth().clear_depth()) as f32;
         let depth_format = self
             .options
             .depth_format

@@ -140,8 +140,8 @@ impl OceanRenderer {
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("ocean image"),
         });
-        let (_, to_wgpu) = depth_remap(camera);
-        let clear_depth = to_wgpu(camera.depth().clear_depth()) as f32;
+        let range = camera.depth().range();
+        let clear_depth = range.window_depth(camera.depth().clear_depth()) as f32;
         self.record(
             ctx,
             &mut encoder,

@@ -86,13 +86,13 @@ fn opengl_depth_folds_into_webgpu_clip_space() {
     )
     .unwrap();
     // Folding [−1, 1] into [0, 1] gives the [0, 1] camera's matrix.
-    let (remap, to_wgpu) = depth_remap(&gl);
-    let folded = remap * gl.view_projection_f64();
+    let range = gl.depth().range();
+    let folded = range.to_zero_to_one() * gl.view_projection_f64();
     let direct = wgpu_cam.view_projection_f64();
     assert!(folded.abs_diff_eq(direct, 1e-12), "{folded} vs {direct}");
-    assert_eq!(to_wgpu(-1.0), 0.0);
-    assert_eq!(to_wgpu(0.0), 0.5);
-    assert_eq!(to_wgpu(1.0), 1.0);
+    assert_eq!(range.window_depth(-1.0), 0.0);
+    assert_eq!(range.window_depth(0.0), 0.5);
+    assert_eq!(range.window_depth(1.0), 1.0);
 }
 
 fn test_surface() -> FilteredSurface {

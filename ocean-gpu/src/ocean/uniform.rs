@@ -136,24 +136,6 @@ pub struct MeshGrid {
     pub nz: u32,
 }
 
-/// The depth remap from a camera's NDC depth to WebGPU's: `z' = (z + 1)/2` for OpenGL's
-/// `[−1, 1]` range, the identity otherwise (as a matrix acting on clip coordinates, and on one
-/// NDC value).
-pub(super) fn depth_remap(camera: &Camera) -> (DMat4, fn(f64) -> f64) {
-    match camera.depth().range() {
-        DepthRange::NegOneToOne => (
-            DMat4::from_cols(
-                DVec4::X,
-                DVec4::Y,
-                DVec4::new(0.0, 0.0, 0.5, 0.0),
-                DVec4::new(0.0, 0.0, 0.5, 1.0),
-            ),
-            |z| 0.5 * z + 0.5,
-        ),
-        DepthRange::ZeroToOne => (DMat4::IDENTITY, |z| z),
-    }
-}
-
 /// The grid's vertex counts (per row, rows) for a viewport.
 pub(super) fn grid_counts(
     options: &OceanOptions,
@@ -240,13 +222,14 @@ pub fn frame_uniform(
     }
     let (nx, ny) = grid_counts(options, width, height)?;
     let o = DVec2::new(eye.x, eye.z);
-    let (remap, to_wgpu) = depth_remap(camera);
+    let range = camera.depth().range();
+    let remap = range.to_zero_to_one();
     let view_proj = remap * camera.view_projection_f64() * DMat4::from_translation(eye);
     let inv_view_proj =
         DMat4::from_translation(-eye) * camera.inverse_view_projection_f64() * remap.inverse();
     let depth = camera.depth();
-    let near = to_wgpu(depth.near_ndc());
-    let far = to_wgpu(depth.far_ndc());
+    let near = range.window_depth(depth.near_ndc());
+    let far = range.window_depth(depth.far_ndc());
     let mut u = lighting_uniform(options, surface, lighting);
     u.view_proj = mat_f32(view_proj, "camera view-projection")?;
     u.inv_view_proj = mat_f32(inv_view_proj, "camera inverse view-projection")?;
