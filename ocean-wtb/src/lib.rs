@@ -81,6 +81,7 @@ pub mod effects;
 pub mod error;
 pub mod filter;
 pub mod frame;
+pub mod gpu_params;
 pub mod grid;
 pub mod march;
 pub mod scenarios;
