@@ -47,6 +47,7 @@ pub mod error;
 pub mod filter;
 pub mod fresnel;
 pub mod fresnel_table;
+pub mod gpu_params;
 pub mod irradiance;
 pub mod local;
 mod quadrature;

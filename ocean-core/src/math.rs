@@ -82,6 +82,20 @@ pub fn sqrtf(x: f32) -> f32 {
     libm::sqrtf(x)
 }
 
+/// The largest whole number ≤ `x`, exact whichever implementation serves it.
+#[cfg(feature = "std")]
+#[inline(always)]
+pub fn floor(x: f64) -> f64 {
+    x.floor()
+}
+
+/// The largest whole number ≤ `x`, exact.
+#[cfg(not(feature = "std"))]
+#[inline(always)]
+pub fn floor(x: f64) -> f64 {
+    libm::floor(x)
+}
+
 /// w(a, b, x) = 3x̄² − 2x̄³ with x̄ = clamp((x − a)/(b − a), 0, 1): 0 up to a, 1 from b, C¹
 /// between. The per-wave filter weight of Bruneton, Neyret & Holzschuch §3.2, which both the
 /// lighting paper's ocean and the wave-train-box grids filter their waves with.

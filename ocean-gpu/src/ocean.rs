@@ -53,10 +53,8 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use glam::{DMat4, DVec2, DVec3};
 use ocean_brdf::sky_map::{SKY_MAP_EXTENT, SKY_MAP_MAX_SIZE, SKY_MAP_MIN_SIZE};
-use ocean_brdf::variance::{trochoid_slope_variance, wave_variance_term};
 use ocean_brdf::{FilteredSurface, Lighting, LocalWaves, SeaLight, SlopeVariance};
-use ocean_core::phase::reduce_angle;
-use ocean_core::{Camera, DepthDirection, EvalError, Wave};
+use ocean_core::{Camera, DepthDirection, EvalError};
 
 use crate::ocean_local::LocalTextures;
 
@@ -75,10 +73,7 @@ pub use probe::{SeaColorInput, SurfaceProbe};
 pub use resources::fresnel_table_texels;
 use resources::*;
 pub use uniform::{FrameUniform, MeshGrid, WaveTexels, frame_uniform};
-use uniform::{grid_counts, lighting_uniform, rgb};
-
-/// Rows of the wave texture (see `ocean_common.wgsl`).
-const WAVE_ROWS: u32 = 3;
+use uniform::{WAVE_ROWS, grid_counts, lighting_uniform, rgb};
 
 /// How an [`OceanRenderer`] draws.
 #[derive(Clone, Debug, PartialEq)]
@@ -381,7 +376,7 @@ impl OceanRenderer {
         let (texture, view, bind_group) = crate::scoped(device, || {
             let texture = wave_texture(device, n as u32);
             let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-            write_waves(ctx, &texture, &waves.texels, n as u32, WAVE_ROWS);
+            write_waves(ctx, &texture, waves.texels(), n as u32, WAVE_ROWS);
             let bind_group = draw_bind_group(
                 device,
                 &self.layout,
@@ -473,18 +468,18 @@ impl OceanRenderer {
         })?;
         let textures = match local {
             Some(l) => {
-                if (l.wind() - surface.wind).length() > 1e-9 {
+                if (l.wind() - surface.wind()).length() > 1e-9 {
                     return Err(invalid(
                         "local waves",
                         format!(
                             "wind {:?} is not the surface's {:?}: both variances must be measured along one wind",
                             l.wind(),
-                            surface.wind
+                            surface.wind()
                         ),
                     ));
                 }
                 let f = l.filter();
-                if f.n_min() != surface.n_min || f.n_max() != surface.n_max {
+                if f.n_min() != surface.n_min() || f.n_max() != surface.n_max() {
                     return Err(invalid(
                         "local waves",
                         "their filter must be the surface's (the shader has one)",

@@ -120,7 +120,7 @@ pub fn words(v: i64) -> [u32; 2] {
 
 /// `t` split as the shader's `time` (see [`MarchParams::time`]).
 pub fn split_time(t: f64) -> [f32; 4] {
-    let whole = t.floor();
+    let whole = ocean_core::math::floor(t);
     let w = (t - whole) as f32;
     let n = whole as u64;
     [
@@ -236,7 +236,7 @@ impl MarchStatics {
             a_dj: (u.y * s) as f32,
             b_di: (v.x * s) as f32,
             b_dj: (v.y * s) as f32,
-            omega_deep: (ocean_core::GRAVITY * b.peak_k).sqrt() as f32,
+            omega_deep: ocean_core::math::sqrt(ocean_core::GRAVITY * b.peak_k) as f32,
             ray_groups_x: 0,
             _pad: 0,
             time: [0.0; 4],

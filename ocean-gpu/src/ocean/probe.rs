@@ -260,13 +260,7 @@ impl OceanRenderer {
             }
         }
         // Lighting only: the surface fields of a default surface state are unused by the probe.
-        let placeholder = WaveTexels {
-            waves: Vec::new(),
-            texels: Vec::new(),
-            n_min: 1.0,
-            n_max: 2.5,
-            wind: DVec2::X,
-        };
+        let placeholder = WaveTexels::default();
         let mut u = lighting_uniform(
             &self.options,
             self.surface.as_ref().unwrap_or(&placeholder),
@@ -366,7 +360,7 @@ impl OceanRenderer {
             let probe_waves = match (phases, self.surface.as_ref()) {
                 (Some((phases, _)), Some(surface)) => {
                     let n = phases.len();
-                    let mut texels = surface.texels.clone();
+                    let mut texels = surface.texels().to_vec();
                     texels[..n].copy_from_slice(phases);
                     let texture = wave_texture(device, n as u32);
                     write_waves(ctx, &texture, &texels, n as u32, WAVE_ROWS);

@@ -232,10 +232,10 @@ fn wave_texels_form_each_frames_phases_in_f64() {
     let texels = waves.frame_texels(&camera, time);
     assert_eq!(texels.len(), 3 * n);
     // Rows 1 and 2 are the fixed ones; row 0 keeps (λ, k) and gains θ₀ at o.
-    assert_eq!(texels[n..], waves.texels[n..]);
+    assert_eq!(texels[n..], waves.texels()[n..]);
     let o = DVec2::new(1.0e5 + 2.0, -4.0e4);
     for (i, w) in surface.wave_set().waves().iter().enumerate() {
-        assert_eq!(texels[i][..3], waves.texels[i][..3]);
+        assert_eq!(texels[i][..3], waves.texels()[i][..3]);
         // k·o − ωt + Φ reaches about 10⁸ rad here; reduced in f64 it lies in [−π, π] and
         // equals the unreduced phase modulo 2π.
         let theta = f64::from(texels[i][3]);
