@@ -290,7 +290,7 @@ pub fn relief_png(
         }
         _ => return Err(format!("{encoding:?} cannot be stored in a PNG")),
     }
-    crate::png::encode(
+    ocean_scene::image_file::encode_png(
         n as u32,
         n as u32,
         ::png::ColorType::Rgba,

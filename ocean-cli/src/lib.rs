@@ -4,12 +4,6 @@
 #![forbid(unsafe_code)]
 
 pub mod bench;
-pub mod bench_ffi;
-pub mod bench_gpu;
-pub mod bench_lighting;
-pub mod bench_relief;
-pub mod bench_sao;
-pub mod bench_wtb;
 pub mod cone_map;
 pub mod interrupt;
 pub mod png;

@@ -1,104 +1,18 @@
-//! PNG files: encoding (the `png` crate, fdeflate's fast mode), atomic writing, and the RGB8
-//! canvas of the benchmark plots. Every file is written to a hidden temporary name and renamed
-//! when complete, so a failure or an interruption never leaves a half-written image.
+//! PNG files of the command: atomic writing that an interruption stops, and the height maps
+//! `ocean cone-map` reads. Every file is written to a hidden temporary name and renamed when
+//! complete, so a failure or an interruption never leaves a half-written image; encoding is
+//! `ocean_scene::image_file::encode_png`.
 
 use std::path::Path;
 
-/// An RGB8 canvas.
-pub struct Canvas {
-    pub width: usize,
-    pub height: usize,
-    pixels: Vec<[u8; 3]>,
-}
-
-impl Canvas {
-    pub fn new(width: usize, height: usize, background: [u8; 3]) -> Self {
-        Self {
-            width,
-            height,
-            pixels: vec![background; width * height],
-        }
-    }
-
-    /// Sets a pixel; coordinates outside the canvas are ignored.
-    pub fn set(&mut self, x: i64, y: i64, c: [u8; 3]) {
-        if x >= 0 && y >= 0 && (x as usize) < self.width && (y as usize) < self.height {
-            self.pixels[y as usize * self.width + x as usize] = c;
-        }
-    }
-
-    /// A line from (x0, y0) to (x1, y1), one pixel wide (DDA).
-    pub fn line(&mut self, x0: f64, y0: f64, x1: f64, y1: f64, c: [u8; 3]) {
-        let steps = (x1 - x0).abs().max((y1 - y0).abs()).ceil().max(1.0) as usize;
-        for i in 0..=steps {
-            let t = i as f64 / steps as f64;
-            let x = x0 + (x1 - x0) * t;
-            let y = y0 + (y1 - y0) * t;
-            self.set(x.round() as i64, y.round() as i64, c);
-        }
-    }
-
-    /// An axis-aligned rectangle outline.
-    pub fn rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64, c: [u8; 3]) {
-        self.line(x0, y0, x1, y0, c);
-        self.line(x1, y0, x1, y1, c);
-        self.line(x1, y1, x0, y1, c);
-        self.line(x0, y1, x0, y0, c);
-    }
-
-    /// Writes the canvas as a PNG file ([`write_atomically`]).
-    ///
-    /// # Errors
-    ///
-    /// The encoder's or the file system's, naming `path`.
-    pub fn write_png(&self, path: &Path) -> Result<(), String> {
-        let raw: Vec<u8> = self.pixels.iter().flatten().copied().collect();
-        let bytes = encode(
-            self.width as u32,
-            self.height as u32,
-            ::png::ColorType::Rgb,
-            ::png::BitDepth::Eight,
-            &raw,
-        )?;
-        write_atomically(path, &bytes)
-    }
-}
-
-/// `data` (rows from the top, big-endian samples for 16 bits) as PNG bytes, compressed with
-/// fdeflate's PNG-tuned fast mode: several times faster than the default level for about the
-/// same size on rendered images.
-///
-/// # Errors
-///
-/// The encoder's, for a size that does not match `data`.
-pub fn encode(
-    width: u32,
-    height: u32,
-    color: ::png::ColorType,
-    depth: ::png::BitDepth,
-    data: &[u8],
-) -> Result<Vec<u8>, String> {
-    let mut bytes = Vec::new();
-    {
-        let mut enc = ::png::Encoder::new(&mut bytes, width, height);
-        enc.set_color(color);
-        enc.set_depth(depth);
-        enc.set_compression(::png::Compression::Fast);
-        let mut w = enc.write_header().map_err(|e| e.to_string())?;
-        w.write_image_data(data).map_err(|e| e.to_string())?;
-        w.finish().map_err(|e| e.to_string())?;
-    }
-    Ok(bytes)
-}
-
-/// Writes `bytes` to `path` atomically (`ocean_scene::atomic_file`), failing instead when an
+/// Writes `bytes` to `path` atomically (`ocean_scene::image_file`), failing instead when an
 /// interruption was asked for before the rename ([`crate::interrupt`]).
 ///
 /// # Errors
 ///
 /// The file system's, or the interruption, naming `path`.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    ocean_scene::atomic_file::write_atomically(path, bytes, || {
+    ocean_scene::image_file::write_atomically(path, bytes, || {
         // The last moment an interruption can stop the job without leaving a file behind.
         if crate::interrupt::requested() {
             return Err(format!(
@@ -109,34 +23,4 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
         }
         Ok(())
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The canvas decodes to its own pixels, and only the PNG is left in the directory.
-    #[test]
-    fn a_canvas_round_trips() {
-        let dir = std::env::temp_dir().join(format!("ocean-png-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        let mut c = Canvas::new(5, 3, [10, 20, 30]);
-        c.set(4, 2, [200, 100, 0]);
-        c.set(7, 1, [1, 1, 1]); // outside: ignored
-        let path = dir.join("c.png");
-        c.write_png(&path).unwrap();
-        let mut reader =
-            ::png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).unwrap()))
-                .read_info()
-                .unwrap();
-        let mut buf = vec![0u8; reader.output_buffer_size().unwrap()];
-        let info = reader.next_frame(&mut buf).unwrap();
-        assert_eq!((info.width, info.height), (5, 3));
-        let mut want: Vec<u8> = [10u8, 20, 30].repeat(15);
-        want[3 * 14..].copy_from_slice(&[200, 100, 0]);
-        assert_eq!(&buf[..info.buffer_size()], &want[..]);
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
 }

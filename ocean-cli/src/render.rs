@@ -112,7 +112,7 @@ fn depth_png(width: u32, height: u32, depth: &[f32]) -> Result<Vec<u8>, String> 
         .iter()
         .flat_map(|d| ((d.clamp(0.0, 1.0) * 65535.0).round() as u16).to_be_bytes())
         .collect();
-    crate::png::encode(
+    ocean_scene::image_file::encode_png(
         width,
         height,
         ::png::ColorType::Grayscale,
@@ -195,7 +195,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             }
         }
         let t = Instant::now();
-        let png = crate::png::encode(
+        let png = ocean_scene::image_file::encode_png(
             width,
             height,
             ::png::ColorType::Rgba,

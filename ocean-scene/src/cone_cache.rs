@@ -125,7 +125,7 @@ pub fn cones(
         if p.parent()
             .is_some_and(|d| std::fs::create_dir_all(d).is_ok())
         {
-            let _ = crate::atomic_file::write_atomically(p, &encode(&cones, k), || Ok(()));
+            let _ = crate::image_file::write_atomically(p, &encode(&cones, k), || Ok(()));
         }
     }
     Ok((cones, Source::Generated))

@@ -17,13 +17,13 @@
 //! at rest is `y = 0`; cameras use WebGPU's forward depth range `[0, 1]`.
 #![forbid(unsafe_code)]
 
-pub mod atomic_file;
 pub mod blocks;
 pub mod check;
 pub mod cone_cache;
 pub mod description;
 pub mod face_light;
 pub mod frame;
+pub mod image_file;
 pub mod island;
 pub mod obscurance;
 pub mod pier;

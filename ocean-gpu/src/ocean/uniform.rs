@@ -8,7 +8,6 @@ use super::*;
 
 pub use ocean_brdf::gpu_params::{FrameUniform, WAVE_ROWS, WaveTexels};
 
-
 /// A water mesh that `mesh_vs` draws (ocean.wgsl): a grid of `nx × nz` points, point `(i, j)`
 /// resting at world `(origin.x + i·spacing, 0, origin.y + j·spacing)`, its vertex index
 /// `j·nx + i` (a wave train box scene's water grid, [`ocean_wtb::WaterGrid`]'s layout).

@@ -47,7 +47,8 @@ use ocean_relief::{
 use rayon::prelude::*;
 use serde_json::{Value, json};
 
-use crate::bench::{BenchArgs, cpu_name};
+use crate::options::BenchOptions;
+use crate::timing::cpu_name;
 
 /// Sides of figure 1.
 const SIZES: [usize; 3] = [256, 512, 1024];
@@ -434,7 +435,7 @@ fn tracers(runs: u32) -> Result<Value, String> {
     }))
 }
 
-pub fn relief(args: &BenchArgs) -> Result<Value, String> {
+pub fn relief(args: &BenchOptions) -> Result<Value, String> {
     let runs = args.runs;
     let accuracy = table(&Config::standard(128, 4096).map_err(err)?).map_err(err)?;
     let doc = json!({

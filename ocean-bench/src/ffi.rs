@@ -20,7 +20,8 @@ use ocean_wtb::continuous::HeightSample;
 use ocean_wtb::scenarios::scenario_1;
 use serde_json::{Value, json};
 
-use crate::bench::{BenchArgs, bench_wave_descs, bench_waves, interleaved_medians};
+use crate::options::BenchOptions;
+use crate::timing::{bench_wave_descs, bench_waves, interleaved_medians};
 
 /// Points or pixels per call: the batch size the overhead target is stated for.
 const BATCH: usize = 1024;
@@ -332,7 +333,7 @@ fn crossing(runs: u32, handle: &Waves) -> Result<Value, String> {
 }
 
 /// Runs the suite.
-pub fn ffi(args: &BenchArgs) -> Result<Value, String> {
+pub fn ffi(args: &BenchOptions) -> Result<Value, String> {
     let (waves_row, handle) = waves(args.runs)?;
     let heights_row = heights(args.runs)?;
     let sea_row = sea_colour(args.runs)?;

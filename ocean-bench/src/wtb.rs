@@ -36,7 +36,8 @@ use ocean_wtb::scene::{
 };
 use serde_json::{Value, json};
 
-use crate::bench::{BenchArgs, cpu_name, interleaved_medians, memory_baseline};
+use crate::options::BenchOptions;
+use crate::timing::{cpu_name, interleaved_medians, memory_baseline};
 
 /// Grid sides of figure 1.
 const SIDES: [usize; 6] = [64, 128, 256, 512, 1024, 2048];
@@ -234,7 +235,7 @@ impl Baseline {
     }
 }
 
-pub fn wtb(args: &BenchArgs) -> Result<Value, String> {
+pub fn wtb(args: &BenchOptions) -> Result<Value, String> {
     let runs = args.runs;
     let threads = rayon::current_num_threads();
     let started = Instant::now();
@@ -485,7 +486,7 @@ pub fn wtb(args: &BenchArgs) -> Result<Value, String> {
     let gpu = if args.no_gpu {
         json!({ "unavailable": "skipped (--no-gpu)" })
     } else {
-        match crate::bench_gpu::Bench::new() {
+        match crate::gpu::Bench::new() {
             Ok(bench) => {
                 let mut sizes = Vec::new();
                 for side in [512, 1024] {

@@ -44,7 +44,8 @@ use ocean_sao::analytic::{AnalyticView, DepthFormat};
 use ocean_sao::{DepthSource, Sao, SaoParams, Viewport};
 use serde_json::{Value, json};
 
-use crate::bench::{BenchArgs, cpu_name};
+use crate::options::BenchOptions;
+use crate::timing::cpu_name;
 
 /// Radii of figure 1, metres.
 const RADII: [f32; 4] = [0.25, 1.0, 4.0, 16.0];
@@ -548,7 +549,7 @@ fn cpu_reference(runs: u32) -> Result<Value, String> {
     }))
 }
 
-pub fn sao(args: &BenchArgs) -> Result<Value, String> {
+pub fn sao(args: &BenchOptions) -> Result<Value, String> {
     let runs = args.runs;
     let gpu_doc = if args.no_gpu {
         json!({ "skipped": "--no-gpu" })

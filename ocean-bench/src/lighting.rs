@@ -24,16 +24,17 @@ use ocean_core::rng::Pcg32;
 use rayon::prelude::*;
 use serde_json::{Value, json};
 
-use crate::bench::{BenchArgs, cpu_name, interleaved_medians};
-use crate::bench_gpu::Bench;
-use crate::png::Canvas;
+use crate::gpu::Bench;
+use crate::options::BenchOptions;
+use crate::plot::Canvas;
+use crate::timing::{cpu_name, interleaved_medians};
 
 /// Inputs per timed batch.
 const BATCH: usize = 1 << 16;
 /// The seas of the validation: wind speeds, m/s.
 const SEAS: [f64; 2] = [5.0, 15.0];
 
-pub fn lighting(args: &BenchArgs) -> Result<Value, String> {
+pub fn lighting(args: &BenchOptions) -> Result<Value, String> {
     let cpu = cpu_figures(args.runs)?;
     let gpu = if args.no_gpu {
         Value::Null
