@@ -74,7 +74,7 @@ fn displace(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) local: u32,
 ) {
-    let index = (group.y * params.groups_x + group.x) * 64u + local;
+    let index = grid_index(group, local, params.groups_x);
     let nx = params.nx;
     let nz = params.nz;
     // Total point count is checked on the host to fit in u32.
@@ -84,14 +84,7 @@ fn displace(
     let i = index % nx;
     let j = index / nx;
 
-    var dx = 0.0;
-    var y = 0.0;
-    var dz = 0.0;
-    var jxx = 1.0;
-    var jxz = 0.0;
-    var jzz = 1.0;
-    var sx = 0.0;
-    var sz = 0.0;
+    var g = no_waves();
     for (var l = 0u; l < params.layers; l++) {
         let d = layers[l];
         // Unsigned differences wrap for points before the rectangle, so one test per axis.
@@ -109,24 +102,21 @@ fn displace(
             let cos_t = row.y * col.y - row.x * col.x;
             let s = sin_t * m.x + cos_t * m.y;
             let co = cos_t * m.x - sin_t * m.y;
-            dx -= data[k + 1u] * s;    // ahx
-            dz -= data[k + 2u] * s;    // ahz
-            y += data[k] * co;         // a
-            jxx -= data[k + 3u] * co;  // cxx
-            jxz -= data[k + 4u] * co;  // cxz
-            jzz -= data[k + 5u] * co;  // czz
-            sx -= data[k + 6u] * s;    // gx
-            sz -= data[k + 7u] * s;    // gz
+            let coeffs = WaveCoeffs(
+                data[k], data[k + 1u], data[k + 2u], data[k + 3u],
+                data[k + 4u], data[k + 5u], data[k + 6u], data[k + 7u],
+            );
+            add_wave(&g, coeffs, s, co);
         }
     }
     if params.has_height != 0u {
-        y += data[params.height + index];
+        g.y += data[params.height + index];
     }
 
     let x0 = f32(i) * params.spacing_x;
     let z0 = f32(j) * params.spacing_z;
-    let normal = unit_normal(jxx, jxz, jzz, sx, sz);
+    let normal = unit_normal(g.jxx, g.jxz, g.jzz, g.sx, g.sz);
 
-    positions[index] = vec4<f32>(x0 + dx, y, z0 + dz, 1.0);
+    positions[index] = vec4<f32>(x0 + g.dx, g.y, z0 + g.dz, 1.0);
     normals[index] = vec4<f32>(normal, 0.0);
 }

@@ -14,16 +14,16 @@ macro_rules! wgsl {
 
 wgsl!(
     /// Source of the trochoid displacement pass, after the shared `grid_normal.wgsl` (the unit
-    /// normal of the CPU kernel). The host uploads sines and cosines, which the shader combines by
-    /// angle addition.
-    TROCHOID_WGSL, TROCHOID_FILES = ["grid_normal.wgsl", "trochoid.wgsl"]
+    /// normal of the CPU kernel) and `grid_sums.wgsl` (the point and the sums of its wave
+    /// terms). The host uploads sines and cosines, which the shader combines by angle addition.
+    TROCHOID_WGSL, TROCHOID_FILES = ["grid_normal.wgsl", "grid_sums.wgsl", "trochoid.wgsl"]
 );
 
 wgsl!(
     /// Source of the layered (wave-train-box) displacement pass: sums of wave sets modulated by
     /// complex amplitude fields over grid rectangles, plus an additive height field. Like the
     /// trochoid pass it combines host-made sines and cosines by angle addition.
-    LAYERS_WGSL, LAYERS_FILES = ["grid_normal.wgsl", "layers.wgsl"]
+    LAYERS_WGSL, LAYERS_FILES = ["grid_normal.wgsl", "grid_sums.wgsl", "layers.wgsl"]
 );
 
 wgsl!(

@@ -22,17 +22,6 @@
 // (workgroup_id.y · groups_x + workgroup_id.x) · 64 + local_invocation_index, so grids with more
 // than 65535 workgroups fold into a second dispatch dimension.
 
-struct WaveCoeffs {
-    a: f32,    // A
-    ahx: f32,  // A k_x/|k|
-    ahz: f32,  // A k_z/|k|
-    cxx: f32,  // A k_x²/|k|
-    cxz: f32,  // A k_x k_z/|k|
-    czz: f32,  // A k_z²/|k|
-    gx: f32,   // A k_x
-    gz: f32,   // A k_z
-}
-
 // Matches `ocean_gpu::trochoid::TrochoidParams` (32 bytes).
 struct Params {
     nx: u32,            // columns (along x)
@@ -58,7 +47,7 @@ fn displace(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(local_invocation_index) local: u32,
 ) {
-    let index = (group.y * params.groups_x + group.x) * 64u + local;
+    let index = grid_index(group, local, params.groups_x);
     let nx = params.nx;
     let nz = params.nz;
     // Total point count is checked on the host to fit in u32.
@@ -68,34 +57,19 @@ fn displace(
     let i = index % nx;
     let j = index / nx;
 
-    var dx = 0.0;
-    var y = 0.0;
-    var dz = 0.0;
-    var jxx = 1.0;
-    var jxz = 0.0;
-    var jzz = 1.0;
-    var sx = 0.0;
-    var sz = 0.0;
+    var g = no_waves();
     for (var w = 0u; w < params.waves; w++) {
-        let c = coeffs[w];
         let row = tables[w * nz + j];                        // (sin R, cos R)
         let col = tables[params.cols_offset + w * nx + i];   // (sin C, cos C)
         let s = row.x * col.y + row.y * col.x;
         let co = row.y * col.y - row.x * col.x;
-        dx -= c.ahx * s;
-        dz -= c.ahz * s;
-        y += c.a * co;
-        jxx -= c.cxx * co;
-        jxz -= c.cxz * co;
-        jzz -= c.czz * co;
-        sx -= c.gx * s;
-        sz -= c.gz * s;
+        add_wave(&g, coeffs[w], s, co);
     }
 
     let x0 = f32(i) * params.spacing_x;
     let z0 = f32(j) * params.spacing_z;
-    let normal = unit_normal(jxx, jxz, jzz, sx, sz);
+    let normal = unit_normal(g.jxx, g.jxz, g.jzz, g.sx, g.sz);
 
-    positions[index] = vec4<f32>(x0 + dx, y, z0 + dz, 1.0);
+    positions[index] = vec4<f32>(x0 + g.dx, g.y, z0 + g.dz, 1.0);
     normals[index] = vec4<f32>(normal, 0.0);
 }
