@@ -12,7 +12,7 @@ use ocean_gpu::{GpuContext, LightTargets, wgpu};
 
 use crate::SceneError;
 use crate::blocks::Block;
-use crate::terrain::Uniform;
+use crate::terrain::{Uniform, lit_pipeline};
 
 /// One vertex: world position, unit normal, linear albedo.
 #[repr(C)]
@@ -100,49 +100,20 @@ impl SolidRenderer {
                 resource: uniform.as_entire_binding(),
             }],
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("solids pipeline layout"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
         let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x3];
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("solids"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("solid_vs"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: std::mem::size_of::<Vertex>() as u64,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &attributes,
-                })],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: wgpu::TextureFormat::Depth32Float,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: wgpu::StencilState::default(),
-                bias: wgpu::DepthBiasState::default(),
-            }),
-            multisample: wgpu::MultisampleState {
-                count: samples,
-                ..wgpu::MultisampleState::default()
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("solid_fs"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                targets: &[
-                    Some(ocean_gpu::RADIANCE_FORMAT.into()),
-                    Some(ocean_gpu::RADIANCE_FORMAT.into()),
-                ],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = lit_pipeline(
+            ctx,
+            "solids",
+            &module,
+            &layout,
+            ("solid_vs", "solid_fs"),
+            &[Some(wgpu::VertexBufferLayout {
+                array_stride: std::mem::size_of::<Vertex>() as u64,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &attributes,
+            })],
+            samples,
+        );
         let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("solids vertices"),
             contents: bytemuck::cast_slice(&vertices),

@@ -77,6 +77,59 @@ fn rgb(v: DVec3, w: f32) -> [f32; 4] {
     [v.x as f32, v.y as f32, v.z as f32, w]
 }
 
+/// A pipeline that draws lit triangles into the frame's split light targets (direct, ambient:
+/// `ocean_gpu::RADIANCE_FORMAT`) and its depth (`Depth32Float`, less, written), with `samples`
+/// samples per pixel: the terrain's and the solids' (`terrain.wgsl`'s entry points `entries`).
+pub(crate) fn lit_pipeline(
+    ctx: &GpuContext,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    layout: &wgpu::BindGroupLayout,
+    entries: (&str, &str),
+    buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
+    samples: u32,
+) -> wgpu::RenderPipeline {
+    let device = ctx.device();
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(&format!("{label} pipeline layout")),
+        bind_group_layouts: &[Some(layout)],
+        immediate_size: 0,
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: Some(&pipeline_layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some(entries.0),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            buffers,
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: wgpu::TextureFormat::Depth32Float,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Less),
+            stencil: wgpu::StencilState::default(),
+            bias: wgpu::DepthBiasState::default(),
+        }),
+        multisample: wgpu::MultisampleState {
+            count: samples,
+            ..wgpu::MultisampleState::default()
+        },
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some(entries.1),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
+            targets: &[
+                Some(ocean_gpu::RADIANCE_FORMAT.into()),
+                Some(ocean_gpu::RADIANCE_FORMAT.into()),
+            ],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
 impl TerrainRenderer {
     /// Uploads `heights` (row-major, `size.0` per row, metres above the sea at rest) of a grid
     /// whose point (0, 0) is at world `(x, z)` = `origin`, `spacing` metres apart, for split
@@ -175,44 +228,15 @@ impl TerrainRenderer {
                 },
             ],
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("terrain pipeline layout"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("terrain"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("terrain_vs"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: wgpu::TextureFormat::Depth32Float,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: wgpu::StencilState::default(),
-                bias: wgpu::DepthBiasState::default(),
-            }),
-            multisample: wgpu::MultisampleState {
-                count: samples,
-                ..wgpu::MultisampleState::default()
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("terrain_fs"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                targets: &[
-                    Some(ocean_gpu::RADIANCE_FORMAT.into()),
-                    Some(ocean_gpu::RADIANCE_FORMAT.into()),
-                ],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = lit_pipeline(
+            ctx,
+            "terrain",
+            &module,
+            &layout,
+            ("terrain_vs", "terrain_fs"),
+            &[],
+            samples,
+        );
         // Two triangles per cell.
         let mut index = Vec::with_capacity((nx - 1) * (nz - 1) * 6);
         for j in 0..nz as u32 - 1 {
