@@ -20,7 +20,6 @@ const KNOWN_CYCLES: &[(&str, &[&str])] = &[];
 
 /// Files over [`MAX_LINES`] without a stated reason, still to be split.
 const KNOWN_LONG: &[&str] = &[
-    "ocean-bench/src/wtb.rs",
     "ocean-ffi/src/relief_tests.rs",
     "ocean-ffi/src/sao_tests.rs",
     "tests/tests/gpu_ocean.rs",
