@@ -22,7 +22,6 @@ const KNOWN_CYCLES: &[(&str, &[&str])] = &[];
 const KNOWN_LONG: &[&str] = &[
     "ocean-ffi/src/relief_tests.rs",
     "ocean-ffi/src/sao_tests.rs",
-    "tests/tests/gpu_sao.rs",
     "tests/tests/matrix/generate.rs",
 ];
 
