@@ -46,7 +46,7 @@ pub use ocean_core::gpu_params::{LayerDesc, LayersParams};
 
 use crate::readback::GpuTimer;
 use crate::trochoid::{
-    OUTPUT_STRIDE, WORKGROUP_SIZE, dispatch_shape, grown_size, input_buffer, output_bytes,
+    OUTPUT_STRIDE, WORKGROUP_SIZE, dispatch_shape, grow_inputs, input_buffer, output_bytes,
 };
 use crate::{GpuContext, GpuError, GridOutput, TrochoidTarget};
 

@@ -248,6 +248,43 @@ pub(crate) fn grown_size(current: u64, needed: u64, limit: u64) -> u64 {
     needed.max(current.saturating_mul(2).min(limit))
 }
 
+/// Replaces each of `buffers` (a buffer, the bytes it must hold, its label) that is smaller than
+/// it must be by a storage buffer of [`grown_size`]. Contents are not copied: every run rewrites
+/// its inputs. The new buffers are created inside one error scope and installed only if all
+/// succeed, so an out-of-memory failure leaves the old, valid ones. Returns which were
+/// replaced; cached bind groups that refer to a replaced buffer must be dropped by the caller.
+pub(crate) fn grow_inputs<const N: usize>(
+    device: &wgpu::Device,
+    mut buffers: [(&mut wgpu::Buffer, u64, &str); N],
+    binding_limit: u64,
+) -> Result<[bool; N], GpuError> {
+    let grow = buffers.each_ref().map(|(b, needed, _)| *needed > b.size());
+    if !grow.contains(&true) {
+        return Ok(grow);
+    }
+    let mut new = crate::scoped(device, || {
+        let mut new: [Option<wgpu::Buffer>; N] = std::array::from_fn(|_| None);
+        for (k, (b, needed, label)) in buffers.iter().enumerate() {
+            if grow[k] {
+                let size = grown_size(b.size(), *needed, binding_limit);
+                new[k] = Some(input_buffer(
+                    device,
+                    label,
+                    size,
+                    wgpu::BufferUsages::STORAGE,
+                ));
+            }
+        }
+        Ok(new)
+    })?;
+    for ((b, _, _), n) in buffers.iter_mut().zip(new.iter_mut()) {
+        if let Some(n) = n.take() {
+            **b = n;
+        }
+    }
+    Ok(grow)
+}
+
 pub(crate) fn input_buffer(
     device: &wgpu::Device,
     label: &str,
@@ -300,36 +337,32 @@ impl Inputs {
     /// buffers and are dropped with them.
     fn reserve(&mut self, device: &wgpu::Device, p: &Prepared) -> Result<(), GpuError> {
         let waves = u64::from(p.params.waves);
-        let coeff_bytes = waves * COEFF_STRIDE;
-        let table_bytes = p.table_pairs * PAIR_STRIDE;
-        let grow_coeffs = coeff_bytes > self.coeffs.size();
-        let grow_tables = table_bytes > self.tables.size();
-        if !grow_coeffs && !grow_tables {
+        let [coeffs, tables] = grow_inputs(
+            device,
+            [
+                (
+                    &mut self.coeffs,
+                    waves * COEFF_STRIDE,
+                    "ocean trochoid coefficients",
+                ),
+                (
+                    &mut self.tables,
+                    p.table_pairs * PAIR_STRIDE,
+                    "ocean trochoid sin/cos tables",
+                ),
+            ],
+            p.binding_limit,
+        )?;
+        if coeffs {
+            self.stats.wave_capacity = self.coeffs.size() / COEFF_STRIDE;
+            self.stats.buffers_created += 1;
+        }
+        if tables {
+            self.stats.table_capacity = self.tables.size() / PAIR_STRIDE;
+            self.stats.buffers_created += 1;
+        }
+        if !coeffs && !tables {
             return Ok(());
-        }
-        let storage = wgpu::BufferUsages::STORAGE;
-        // Create inside an error scope and install only on success, so an out-of-memory
-        // failure leaves the pass with its old, valid buffers.
-        let (coeffs, tables) = crate::scoped(device, || {
-            let coeffs = grow_coeffs.then(|| {
-                let size = grown_size(self.coeffs.size(), coeff_bytes, p.binding_limit);
-                input_buffer(device, "ocean trochoid coefficients", size, storage)
-            });
-            let tables = grow_tables.then(|| {
-                let size = grown_size(self.tables.size(), table_bytes, p.binding_limit);
-                input_buffer(device, "ocean trochoid sin/cos tables", size, storage)
-            });
-            Ok((coeffs, tables))
-        })?;
-        if let Some(b) = coeffs {
-            self.stats.wave_capacity = b.size() / COEFF_STRIDE;
-            self.stats.buffers_created += 1;
-            self.coeffs = b;
-        }
-        if let Some(b) = tables {
-            self.stats.table_capacity = b.size() / PAIR_STRIDE;
-            self.stats.buffers_created += 1;
-            self.tables = b;
         }
         self.bind_groups.clear();
         Ok(())

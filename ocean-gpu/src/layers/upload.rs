@@ -74,36 +74,28 @@ impl Inputs {
     /// rewritten by every run, so nothing is copied). Cached bind groups refer to the old
     /// buffers and are dropped with them.
     pub(super) fn reserve(&mut self, device: &wgpu::Device, p: &Prepared) -> Result<(), GpuError> {
-        let desc_bytes = u64::from(p.params.layers) * DESC_STRIDE;
-        let data_bytes = p.data_words * WORD;
-        let grow_descs = desc_bytes > self.descs.size();
-        let grow_data = data_bytes > self.data.size();
-        if !grow_descs && !grow_data {
+        let [descs, data] = grow_inputs(
+            device,
+            [
+                (
+                    &mut self.descs,
+                    u64::from(p.params.layers) * DESC_STRIDE,
+                    "ocean layers descriptors",
+                ),
+                (&mut self.data, p.data_words * WORD, "ocean layers data"),
+            ],
+            p.binding_limit,
+        )?;
+        if descs {
+            self.stats.layer_capacity = self.descs.size() / DESC_STRIDE;
+            self.stats.buffers_created += 1;
+        }
+        if data {
+            self.stats.data_capacity = self.data.size() / WORD;
+            self.stats.buffers_created += 1;
+        }
+        if !descs && !data {
             return Ok(());
-        }
-        let storage = wgpu::BufferUsages::STORAGE;
-        // Create inside an error scope and install only on success, so an out-of-memory
-        // failure leaves the pass with its old, valid buffers.
-        let (descs, data) = crate::scoped(device, || {
-            let descs = grow_descs.then(|| {
-                let size = grown_size(self.descs.size(), desc_bytes, p.binding_limit);
-                input_buffer(device, "ocean layers descriptors", size, storage)
-            });
-            let data = grow_data.then(|| {
-                let size = grown_size(self.data.size(), data_bytes, p.binding_limit);
-                input_buffer(device, "ocean layers data", size, storage)
-            });
-            Ok((descs, data))
-        })?;
-        if let Some(b) = descs {
-            self.stats.layer_capacity = b.size() / DESC_STRIDE;
-            self.stats.buffers_created += 1;
-            self.descs = b;
-        }
-        if let Some(b) = data {
-            self.stats.data_capacity = b.size() / WORD;
-            self.stats.buffers_created += 1;
-            self.data = b;
         }
         self.bind_groups.clear();
         Ok(())
