@@ -176,8 +176,10 @@ impl BindGroupCache {
     }
 }
 
-/// Checks that `texture` can be a single-sampled render target of `format` (sRGB or not) for a
-/// viewport of `size`; `what` names it in the error.
+/// Checks that `texture` can be a single-sampled render target of `format` (exactly: a pipeline's
+/// colour target format must be its attachment's, and an sRGB twin would fail wgpu's
+/// validation when the pass is recorded, past any error scope) for a viewport of `size`; `what`
+/// names it in the error.
 pub(crate) fn check_render_target(
     what: &'static str,
     texture: &wgpu::Texture,
@@ -196,7 +198,7 @@ pub(crate) fn check_render_target_samples(
     samples: u32,
 ) -> Result<(), GpuError> {
     let t = texture;
-    if t.format().remove_srgb_suffix() != format.remove_srgb_suffix() {
+    if t.format() != format {
         return Err(GpuError::InvalidResource {
             what,
             reason: format!("format {:?}, the renderer draws {format:?}", t.format()),

@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use ocean_brdf::{Irradiance, Lighting};
 use ocean_core::Camera;
-use ocean_gpu::{ComposeInputs, GpuContext, OceanRenderer, ReliefScene};
+use ocean_gpu::{ComposeInputs, GpuContext, OceanRenderer, ReliefScene, wgpu};
 
 use crate::obscurance::Obscurance;
 use crate::relief_draws::RockDraw;
@@ -69,7 +69,32 @@ pub(crate) fn draw_frame(
     read_depth: bool,
     times: &mut [f64; PASSES.len()],
 ) -> Result<FrameImage, ocean_gpu::GpuError> {
-    use ocean_gpu::wgpu;
+    draw_passes(ctx, ocean, dressing, camera, time, t, &t.color_view, times)?;
+    let started = Instant::now();
+    let rgba = ocean_gpu::readback::read_texture(ctx, &t.color, 0)?.data;
+    let depth = if read_depth {
+        let bytes = ocean_gpu::readback::read_texture(ctx, t.single_depth(), 0)?.data;
+        Some(bytemuck::pod_collect_to_vec(&bytes))
+    } else {
+        None
+    };
+    times[6] += started.elapsed().as_secs_f64();
+    Ok(FrameImage { rgba, depth })
+}
+
+/// The passes of [`draw_frame`] up to the composition, which writes into `out` (the targets'
+/// colour, or a caller's texture of the same size and format).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn draw_passes(
+    ctx: &GpuContext,
+    ocean: &OceanRenderer,
+    dressing: &mut Dressing<'_>,
+    camera: &Camera,
+    time: f64,
+    t: &Targets,
+    out: &wgpu::TextureView,
+    times: &mut [f64; PASSES.len()],
+) -> Result<(), ocean_gpu::GpuError> {
     let size = (t.color.width(), t.color.height());
     let encoder = || {
         ctx.device()
@@ -166,17 +191,6 @@ pub(crate) fn draw_frame(
         ambient: &t.ambient,
         obscurance,
     };
-    ocean.compose(ctx, &mut e, &inputs, &t.color_view, size)?;
-    submit(e, &mut times[5], started)?;
-
-    let started = Instant::now();
-    let rgba = ocean_gpu::readback::read_texture(ctx, &t.color, 0)?.data;
-    let depth = if read_depth {
-        let bytes = ocean_gpu::readback::read_texture(ctx, t.single_depth(), 0)?.data;
-        Some(bytemuck::pod_collect_to_vec(&bytes))
-    } else {
-        None
-    };
-    times[6] += started.elapsed().as_secs_f64();
-    Ok(FrameImage { rgba, depth })
+    ocean.compose(ctx, &mut e, &inputs, out, size)?;
+    submit(e, &mut times[5], started)
 }

@@ -36,7 +36,7 @@ mod targets;
 pub mod terrain;
 
 pub use description::{DEFAULT_SCENE, Preset, SceneDescription};
-pub use renderer::{Backend, BuildTimes, Frame, FrameTimes, SceneRenderer};
+pub use renderer::{Backend, BuildTimes, COLOR_FORMAT, Frame, FrameTimes, SceneRenderer};
 pub use rock::{RockMesh, RockShape};
 
 /// What building or drawing a scene refuses.

@@ -11,11 +11,12 @@ use crate::RockMesh;
 use crate::SceneError;
 use crate::description::{Preset, SceneDescription};
 use crate::face_light::FaceLight;
-use crate::frame::{Dressing, FrameImage, PASSES, draw_frame};
+use crate::frame::{Dressing, FrameImage, PASSES, draw_frame, draw_passes};
 use crate::island::Island;
 use crate::obscurance::Obscurance;
 use crate::relief_draws::{RockDraw, rock_draws};
 use crate::solids::SolidRenderer;
+pub use crate::targets::COLOR_FORMAT;
 use crate::targets::Targets;
 use crate::terrain::TerrainRenderer;
 
@@ -172,7 +173,11 @@ impl SceneRenderer {
         let surface =
             FilteredSurface::new(&spectrum, Filter::PAPER).map_err(|e| format!("spectrum: {e}"))?;
         let lighting = scene.lighting()?;
-        let mut renderer = OceanRenderer::new(&ctx, OceanOptions::default())?;
+        let ocean_options = OceanOptions {
+            color_format: COLOR_FORMAT,
+            ..OceanOptions::default()
+        };
+        let mut renderer = OceanRenderer::new(&ctx, ocean_options)?;
         renderer.set_surface(&ctx, &surface)?;
         renderer.set_lighting(&ctx, &lighting)?;
         ctx.wait_idle()?;
@@ -253,16 +258,8 @@ impl SceneRenderer {
                 "this renderer was built without RenderOptions::read_depth".to_owned(),
             ));
         }
-        let (width, height) = self.size();
-        let camera = self.scene.camera(self.preset, time, width, height)?;
         let mut times = FrameTimes::default();
-        let t = Instant::now();
-        if let Some(island) = self.island.as_mut() {
-            let local = island.local_waves(&self.surface, time)?;
-            self.renderer.set_local_waves(&self.ctx, Some(&local))?;
-        }
-        times.waves = t.elapsed().as_secs_f64();
-        let t = Instant::now();
+        let (camera, t) = self.prepare(time, &mut times)?;
         let mut dressing = Dressing {
             terrain: self.terrain.as_ref(),
             obscurance: &mut self.obscurance,
@@ -288,6 +285,64 @@ impl SceneRenderer {
             camera,
             times,
         })
+    }
+
+    /// Draws the frame at scene `time` (seconds) into `target`, a view of the caller's texture
+    /// on the renderer's device (built [`with_context`](Self::with_context) on the caller's
+    /// device): 2D, [`COLOR_FORMAT`] (tone-mapped, sRGB-encoded bytes), `RENDER_ATTACHMENT`,
+    /// and exactly [`size`](Self::size). The frame is submitted and finished when this returns;
+    /// nothing is read back. Returns the camera it was seen from and what it took (the readback
+    /// slot stays zero).
+    ///
+    /// # Errors
+    ///
+    /// As [`frame`](Self::frame); [`SceneError::Gpu`] (`GpuError::InvalidResource`) for a
+    /// target of another format or size, or not a render attachment.
+    pub fn render_into(
+        &mut self,
+        time: f64,
+        target: &wgpu::TextureView,
+    ) -> Result<(Camera, FrameTimes), SceneError> {
+        let mut times = FrameTimes::default();
+        let (camera, t) = self.prepare(time, &mut times)?;
+        let mut dressing = Dressing {
+            terrain: self.terrain.as_ref(),
+            obscurance: &mut self.obscurance,
+            lighting: &self.lighting,
+            sky: &self.face_light.sky,
+            rocks: &self.rocks,
+            solids: self.solids.as_ref(),
+        };
+        draw_passes(
+            &self.ctx,
+            &self.renderer,
+            &mut dressing,
+            &camera,
+            time,
+            &self.targets,
+            target,
+            &mut times.passes,
+        )?;
+        times.total = t.elapsed().as_secs_f64();
+        Ok((camera, times))
+    }
+
+    /// The frame's camera, and its wave trains marched to `time` and uploaded as local waves
+    /// (timed in `times.waves`); returns when the drawing may start.
+    fn prepare(
+        &mut self,
+        time: f64,
+        times: &mut FrameTimes,
+    ) -> Result<(Camera, Instant), SceneError> {
+        let (width, height) = self.size();
+        let camera = self.scene.camera(self.preset, time, width, height)?;
+        let t = Instant::now();
+        if let Some(island) = self.island.as_mut() {
+            let local = island.local_waves(&self.surface, time)?;
+            self.renderer.set_local_waves(&self.ctx, Some(&local))?;
+        }
+        times.waves = t.elapsed().as_secs_f64();
+        Ok((camera, Instant::now()))
     }
 
     /// The frames' size in pixels: the description's `[render]` width and height.

@@ -1,9 +1,13 @@
 //! The render targets of a scene's frames: split light and depth, the resolved depth the
 //! obscurance reads, and the composed colour.
 
-use ocean_gpu::{DepthResolve, GpuContext, LightTargets, OceanOptions, RADIANCE_FORMAT, wgpu};
+use ocean_gpu::{DepthResolve, GpuContext, LightTargets, RADIANCE_FORMAT, wgpu};
 
 use crate::SceneError;
+
+/// The format of a frame's colour ([`crate::SceneRenderer::render_into`]'s target): 8-bit RGBA holding
+/// tone-mapped, sRGB-encoded values (a view of an `Rgba8UnormSrgb` texture would encode twice).
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// The targets of the frames: split light and depth (what every renderer draws into, with
 /// `samples` samples per pixel), the single-sampled depth the obscurance reads (the resolve of
@@ -76,7 +80,7 @@ impl Targets {
         };
         let color = texture(
             "ocean render colour",
-            OceanOptions::default().color_format,
+            COLOR_FORMAT,
             wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
             1,
         );
