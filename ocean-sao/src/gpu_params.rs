@@ -213,31 +213,7 @@ impl SaoUniforms {
 /// As [`ZConstants::z_pass`], for the same first offending pixel in row-major order:
 /// [`SaoError::BufferSize`], [`SaoError::DepthNotFinite`], [`SaoError::DepthOutOfRange`].
 pub fn check_depth(z: &ZConstants, viewport: &Viewport, depth: &[f32]) -> Result<(), SaoError> {
-    let w = viewport.input_width();
-    let expected = viewport.input_len();
-    if depth.len() != expected {
-        return Err(SaoError::BufferSize {
-            name: "depth",
-            expected,
-            got: depth.len(),
-        });
-    }
-    let (min, max) = z.depth_range();
-    for (i, &d) in depth.iter().enumerate() {
-        if !d.is_finite() {
-            return Err(SaoError::DepthNotFinite { x: i % w, y: i / w });
-        }
-        if d < min || d > max {
-            return Err(SaoError::DepthOutOfRange {
-                x: i % w,
-                y: i / w,
-                value: d,
-                min,
-                max,
-            });
-        }
-    }
-    Ok(())
+    z.check_depth(viewport, depth)
 }
 
 #[cfg(test)]

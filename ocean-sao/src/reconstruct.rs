@@ -229,18 +229,14 @@ impl ZConstants {
         }
     }
 
-    /// The z pass: Eq. 2 at every pixel of `depth` (row-major, `viewport`'s input size),
-    /// checking every value first.
+    /// Checks a depth buffer as [`ZConstants::z_pass`] reads it: `viewport.input_len()` values,
+    /// each finite and within [`ZConstants::depth_range`].
     ///
     /// # Errors
     ///
-    /// [`SaoError::BufferSize`]; [`SaoError::DepthNotFinite`] and [`SaoError::DepthOutOfRange`]
+    /// [`SaoError::BufferSize`], [`SaoError::DepthNotFinite`], [`SaoError::DepthOutOfRange`]
     /// for the first offending pixel in row-major order.
-    pub fn z_pass(
-        &self,
-        viewport: &Viewport,
-        depth: &[f32],
-    ) -> Result<alloc::vec::Vec<f32>, SaoError> {
+    pub fn check_depth(&self, viewport: &Viewport, depth: &[f32]) -> Result<(), SaoError> {
         let w = viewport.input_width();
         let expected = viewport.input_len();
         if depth.len() != expected {
@@ -265,6 +261,24 @@ impl ZConstants {
                 });
             }
         }
+        Ok(())
+    }
+
+    /// The z pass: Eq. 2 at every pixel of `depth` (row-major, `viewport`'s input size),
+    /// checking every value first.
+    ///
+    /// # Errors
+    ///
+    /// [`SaoError::BufferSize`]; [`SaoError::DepthNotFinite`] and [`SaoError::DepthOutOfRange`]
+    /// for the first offending pixel in row-major order.
+    pub fn z_pass(
+        &self,
+        viewport: &Viewport,
+        depth: &[f32],
+    ) -> Result<alloc::vec::Vec<f32>, SaoError> {
+        self.check_depth(viewport, depth)?;
+        let w = viewport.input_width();
+        let expected = viewport.input_len();
         let mut z = alloc::vec![0.0f32; expected];
         for_rows(&mut z, w, |j, row| {
             for (zi, &d) in row.iter_mut().zip(&depth[j * w..(j + 1) * w]) {
