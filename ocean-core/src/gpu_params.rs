@@ -1,5 +1,5 @@
 //! The uniform blocks and descriptors of the GPU twins of this crate's grid evaluations
-//! (`ocean-gpu`'s `trochoid.wgsl` for [`crate::evaluate_grid`], `layers.wgsl` for
+//! (`ocean-gpu`'s `trochoid.wgsl` for [`crate::WaveSet::evaluate_grid`], `layers.wgsl` for
 //! [`crate::evaluate_layers`]), defined here beside the math they encode so that the WGSL, the
 //! pass that fills them and any engine binding the exported shaders share one layout.
 //!
