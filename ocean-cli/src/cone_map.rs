@@ -77,7 +77,8 @@ pub enum EdgeArg {
 pub struct ConeMapArgs {
     /// The height map (PNG; see below).
     input: PathBuf,
-    /// The relief texture to write (PNG; see below). Replaced atomically if it exists.
+    /// The relief texture to write (PNG; see below). Replaced atomically if it exists; never
+    /// the input itself without --force.
     output: PathBuf,
     /// Which cones.
     #[arg(long, value_enum, default_value_t = Kind::Relaxed)]
@@ -88,13 +89,39 @@ pub struct ConeMapArgs {
     /// What lies beyond the map's borders (use the sampler's addressing mode).
     #[arg(long, value_enum, default_value_t = EdgeArg::Wrap)]
     edge: EdgeArg,
-    /// Cap on the cone ratios and clearances, texture widths (per unit depth), in (0, 64]. The
-    /// 8-bit encodings store at most 1.0.
+    /// Cap on the cone ratios and clearances, texture widths (per unit depth), in [2^-12, 64]
+    /// (2^-12: one texel of the largest map across the whole relief depth). The 8-bit encodings
+    /// store at most 1.0.
     #[arg(long, default_value_t = 1.0)]
     max_ratio: f32,
+    /// Allow OUT to be the input file (it is replaced only once the texture is complete).
+    #[arg(long)]
+    force: bool,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+}
+
+/// Smallest `--max-ratio`: one texel of the largest map (`MAX_SIDE` = 4096) per unit depth.
+const MIN_RATIO: f32 = 1.0 / 4096.0;
+const _: () = assert!(MAX_SIDE == 4096);
+
+/// Whether `a` and `b` name one existing file (through links, `..` or another spelling).
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(a), Ok(b)) if a == b => true,
+        #[cfg(unix)]
+        _ => {
+            // Hard links: one inode under two names.
+            use std::os::unix::fs::MetadataExt;
+            match (std::fs::metadata(a), std::fs::metadata(b)) {
+                (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+                _ => false,
+            }
+        }
+        #[cfg(not(unix))]
+        _ => false,
+    }
 }
 
 /// Heights as read from the PNG.
@@ -348,10 +375,19 @@ pub fn run(args: &ConeMapArgs) -> Result<(), String> {
             );
         }
     };
-    if !(args.max_ratio > 0.0 && args.max_ratio <= MAX_RATIO_LIMIT) {
+    if !(MIN_RATIO..=MAX_RATIO_LIMIT).contains(&args.max_ratio) {
         return Err(format!(
-            "--max-ratio {} is outside (0, {MAX_RATIO_LIMIT}]",
+            "--max-ratio {} is outside [{MIN_RATIO} (2^-12), {MAX_RATIO_LIMIT}]: a smaller cap \
+             makes every cone narrower than one texel of a 4096 x 4096 map across the whole \
+             relief depth",
             args.max_ratio
+        ));
+    }
+    if !args.force && same_file(&args.input, &args.output) {
+        return Err(format!(
+            "{} is the input: writing the texture there would replace the height map (choose \
+             another OUT, or pass --force)",
+            args.output.display()
         ));
     }
     let params = match args.kind {

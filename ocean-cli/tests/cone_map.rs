@@ -350,6 +350,9 @@ fn non_square_and_bad_options_are_refused() {
         (&["--encoding", "f32"][..], "cannot be stored in a PNG"),
         (&["--max-ratio", "0"][..], "--max-ratio 0"),
         (&["--max-ratio", "65"][..], "--max-ratio 65"),
+        // Below one texel of a 4096² map over the whole depth: a cap that means nothing.
+        (&["--max-ratio", "1e-30"][..], "(2^-12)"),
+        (&["--max-ratio", "NaN"][..], "--max-ratio NaN"),
     ] {
         let mut all = vec![
             "cone-map",
@@ -364,6 +367,50 @@ fn non_square_and_bad_options_are_refused() {
     }
     assert!(!output.exists());
     assert_eq!(files(&d), ["square.png", "tiny.png", "wide.png"]);
+}
+
+/// OUT naming the input, in any spelling (the same path, `.` in it, a hard link), is refused
+/// and leaves the height map as it was; with `--force` the texture replaces it.
+#[test]
+fn the_input_is_never_overwritten_without_force() {
+    let d = dir("same_file");
+    let input = d.join("heights.png");
+    write_png(
+        &input,
+        (24, 24),
+        png::ColorType::Grayscale,
+        png::BitDepth::Eight,
+        &heights8(),
+    );
+    let original = std::fs::read(&input).unwrap();
+    let link = d.join("link.png");
+    std::fs::hard_link(&input, &link).unwrap();
+    let dotted = d.join(".").join("heights.png");
+    for out in [&input, &dotted, &link] {
+        let o = ocean(&["cone-map", input.to_str().unwrap(), out.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(1), "{}", out.display());
+        let msg = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            msg.contains("is the input") && msg.contains("--force"),
+            "{msg}"
+        );
+        assert_eq!(
+            std::fs::read(&input).unwrap(),
+            original,
+            "{}",
+            out.display()
+        );
+    }
+    assert_eq!(files(&d), ["heights.png", "link.png"]);
+    let o = ocean(&[
+        "cone-map",
+        input.to_str().unwrap(),
+        input.to_str().unwrap(),
+        "--force",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (w, h, color, _, _) = read_png(&input);
+    assert_eq!((w, h, color), (24, 24, png::ColorType::Rgba));
 }
 
 /// Ctrl-C during the generation of a 1024² map (seconds on any machine, in any profile): the
