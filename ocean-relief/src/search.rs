@@ -51,15 +51,19 @@ impl Node {
     }
 }
 
-/// Level `l` has `(P >> l)²` nodes, `P` the cell count rounded up to a power of two; node
-/// `(x, y)` of level `l` covers cells `[x·2ˡ, (x + 1)·2ˡ) × [y·2ˡ, (y + 1)·2ˡ)`.
+/// Level `l` has `S_l²` nodes, `S_0` the cells per side and `S_{l+1} = ⌈S_l / 2⌉` up to one
+/// node; node `(x, y)` of level `l` covers cells `[x·2ˡ, (x + 1)·2ˡ) × [y·2ˡ, (y + 1)·2ˡ)`, those
+/// that exist. Every node that exists is the node a pyramid padded to a power of two would hold
+/// there (padding merges as an empty node), with the same number of levels, without the padding:
+/// a clamped map has `N + 1` cells a side, which a power of two would round up to `2N`, four
+/// times the memory.
 pub(crate) struct Pyramid {
     levels: Vec<(usize, Vec<Node>)>,
 }
 
 impl Pyramid {
     pub fn new(grid: &Grid, kind: ConeKind) -> Self {
-        let p = grid.nc.next_power_of_two();
+        let p = grid.nc;
         let mut base = vec![EMPTY; p * p];
         for y in 0..grid.nc {
             for x in 0..grid.nc {
@@ -76,12 +80,19 @@ impl Pyramid {
         let mut levels = vec![(p, base)];
         let mut size = p;
         while size > 1 {
-            let half = size / 2;
+            let half = size.div_ceil(2);
             let prev = &levels[levels.len() - 1].1;
             let mut next = vec![EMPTY; half * half];
             for y in 0..half {
                 for x in 0..half {
-                    let at = |dx: usize, dy: usize| prev[(2 * y + dy) * size + 2 * x + dx];
+                    let at = |dx: usize, dy: usize| {
+                        let (cx, cy) = (2 * x + dx, 2 * y + dy);
+                        if cx < size && cy < size {
+                            prev[cy * size + cx]
+                        } else {
+                            EMPTY
+                        }
+                    };
                     next[y * half + x] = Node::merge(
                         Node::merge(at(0, 0), at(1, 0)),
                         Node::merge(at(0, 1), at(1, 1)),
@@ -241,14 +252,15 @@ impl Search<'_> {
         // Distance and depth of a node, or None when it is skipped.
         let measure = |level: u32, x: u32, y: u32, best: &Best| -> Option<(f64, f64)> {
             let (size, nodes) = &pyramid.levels[level as usize];
+            // Past the last node of its level: no cell there (x·2ˡ ≥ the cell count).
+            if x as usize >= *size || y as usize >= *size {
+                return None;
+            }
             let node = nodes[y as usize * size + x as usize];
             if f64::from(node.m) >= q.smax {
                 return None;
             }
             let (x0, y0) = (i64::from(x) << level, i64::from(y) << level);
-            if x0 >= nc || y0 >= nc {
-                return None;
-            }
             let x1 = ((i64::from(x) + 1) << level).min(nc);
             let y1 = ((i64::from(y) + 1) << level).min(nc);
             let rect = [
