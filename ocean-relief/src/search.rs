@@ -63,22 +63,23 @@ pub(crate) struct Pyramid {
 
 impl Pyramid {
     pub fn new(grid: &Grid, kind: ConeKind) -> Self {
-        let p = grid.nc;
-        let mut base = vec![EMPTY; p * p];
-        for y in 0..grid.nc {
-            for x in 0..grid.nc {
-                let c = &grid.cells[y * grid.nc + x];
+        let base: Vec<Node> = grid
+            .cells
+            .iter()
+            .map(|c| {
                 if kind == ConeKind::Conservative || !c.flat {
-                    base[y * p + x] = Node {
+                    Node {
                         m: c.m,
                         gx: c.gx,
                         gy: c.gy,
-                    };
+                    }
+                } else {
+                    EMPTY
                 }
-            }
-        }
-        let mut levels = vec![(p, base)];
-        let mut size = p;
+            })
+            .collect();
+        let mut levels = vec![(grid.nc, base)];
+        let mut size = grid.nc;
         while size > 1 {
             let half = size.div_ceil(2);
             let prev = &levels[levels.len() - 1].1;

@@ -258,27 +258,8 @@ impl SceneRenderer {
                 "this renderer was built without RenderOptions::read_depth".to_owned(),
             ));
         }
-        let mut times = FrameTimes::default();
-        let (camera, t) = self.prepare(time, &mut times)?;
-        let mut dressing = Dressing {
-            terrain: self.terrain.as_ref(),
-            obscurance: &mut self.obscurance,
-            lighting: &self.lighting,
-            sky: &self.face_light.sky,
-            rocks: &self.rocks,
-            solids: self.solids.as_ref(),
-        };
-        let FrameImage { rgba, depth } = draw_frame(
-            &self.ctx,
-            &self.renderer,
-            &mut dressing,
-            &camera,
-            time,
-            &self.targets,
-            read_depth,
-            &mut times.passes,
-        )?;
-        times.total = t.elapsed().as_secs_f64();
+        let (camera, times, image) = self.draw(time, None, read_depth)?;
+        let FrameImage { rgba, depth } = image.expect("drawn into the renderer's own targets");
         Ok(Frame {
             rgba,
             depth,
@@ -290,19 +271,32 @@ impl SceneRenderer {
     /// Draws the frame at scene `time` (seconds) into `target`, a view of the caller's texture
     /// on the renderer's device (built [`with_context`](Self::with_context) on the caller's
     /// device): 2D, [`COLOR_FORMAT`] (tone-mapped, sRGB-encoded bytes), `RENDER_ATTACHMENT`,
-    /// and exactly [`size`](Self::size). The frame is submitted and finished when this returns;
+    /// single-sampled and at least [`size`](Self::size): the frame fills its top-left corner
+    /// and the rest is cleared to black. The frame is submitted and finished when this returns;
     /// nothing is read back. Returns the camera it was seen from and what it took (the readback
     /// slot stays zero).
     ///
     /// # Errors
     ///
     /// As [`frame`](Self::frame); [`SceneError::Gpu`] (`GpuError::InvalidResource`) for a
-    /// target of another format or size, or not a render attachment.
+    /// target of another format, smaller than the frame, or not a render attachment.
     pub fn render_into(
         &mut self,
         time: f64,
         target: &wgpu::TextureView,
     ) -> Result<(Camera, FrameTimes), SceneError> {
+        let (camera, times, _) = self.draw(time, Some(target), false)?;
+        Ok((camera, times))
+    }
+
+    /// The frame at `time`: composed into `target`, or with `None` into the renderer's own
+    /// targets and read back (with the depth when `read_depth`).
+    fn draw(
+        &mut self,
+        time: f64,
+        target: Option<&wgpu::TextureView>,
+        read_depth: bool,
+    ) -> Result<(Camera, FrameTimes, Option<FrameImage>), SceneError> {
         let mut times = FrameTimes::default();
         let (camera, t) = self.prepare(time, &mut times)?;
         let mut dressing = Dressing {
@@ -313,18 +307,34 @@ impl SceneRenderer {
             rocks: &self.rocks,
             solids: self.solids.as_ref(),
         };
-        draw_passes(
-            &self.ctx,
-            &self.renderer,
-            &mut dressing,
-            &camera,
-            time,
-            &self.targets,
-            target,
-            &mut times.passes,
-        )?;
+        let (ctx, ocean, targets) = (&self.ctx, &self.renderer, &self.targets);
+        let image = match target {
+            Some(out) => {
+                draw_passes(
+                    ctx,
+                    ocean,
+                    &mut dressing,
+                    &camera,
+                    time,
+                    targets,
+                    out,
+                    &mut times.passes,
+                )?;
+                None
+            }
+            None => Some(draw_frame(
+                ctx,
+                ocean,
+                &mut dressing,
+                &camera,
+                time,
+                targets,
+                read_depth,
+                &mut times.passes,
+            )?),
+        };
         times.total = t.elapsed().as_secs_f64();
-        Ok((camera, times))
+        Ok((camera, times, image))
     }
 
     /// The frame's camera, and its wave trains marched to `time` and uploaded as local waves

@@ -73,6 +73,26 @@ fn a_frame_into_the_callers_texture_is_the_frame_read_back() {
     // Not a blank image: the sea, the island and the sky differ.
     let first = &drawn[..4];
     assert!(drawn.chunks_exact(4).filter(|p| *p != first).count() > drawn.len() / 16);
+
+    // A larger target: the frame in its top-left corner, the rest cleared to opaque black.
+    let (w, h) = (SIZE.0 + 8, SIZE.1 + 4);
+    let large = target(&ctx, COLOR_FORMAT, (w, h));
+    r.render_into(1.5, &view(&large))
+        .expect("render_into a larger target");
+    let big = ocean_gpu::readback::read_texture(&ctx, &large, 0)
+        .expect("read the larger target")
+        .data;
+    for y in 0..h as usize {
+        for x in 0..w as usize {
+            let px = &big[4 * (y * w as usize + x)..][..4];
+            if x < SIZE.0 as usize && y < SIZE.1 as usize {
+                let k = 4 * (y * SIZE.0 as usize + x);
+                assert_eq!(px, &read_back.rgba[k..k + 4], "pixel ({x}, {y})");
+            } else {
+                assert_eq!(px, [0, 0, 0, 255], "pixel ({x}, {y}) outside the frame");
+            }
+        }
+    }
 }
 
 #[test]
