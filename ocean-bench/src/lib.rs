@@ -14,6 +14,7 @@ pub mod lighting;
 pub mod options;
 pub mod plot;
 pub mod relief;
+pub mod relief_family;
 pub mod sao;
 pub mod suite;
 pub mod timing;

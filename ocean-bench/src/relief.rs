@@ -31,6 +31,7 @@
 //!    channel over the pixels on the quad in both frames when the quad moves by 0.002 m (about
 //!    0.4 pixel); and the CPU time to generate level 0's cones against the whole chain's.
 //!    `--no-gpu` or a missing adapter leaves the reason in `lod`.
+//! 8. and 9. **Width** and **speed** on the family of twelve map kinds: `relief_family.rs`.
 //!
 //! Times are medians of `--runs` runs. Generation runs are not preceded by a warm-up (each
 //! takes 0.1 s or more, so no cache or thread wake-up effect shows); tracer runs are.
@@ -115,7 +116,8 @@ fn gpu_generation(runs: u32) -> Result<Value, String> {
     let software = ctx
         .adapter_info()
         .is_some_and(|i| i.device_type == ocean_gpu::wgpu::DeviceType::Cpu);
-    let params = ConeParams::relaxed(1.0);
+    let params = ConeParams::relaxed(1.0).with_parts(0);
+    // The GPU bounds whole cells (`ConeParams::parts` 0): its CPU twin is timed with the same.
     let warm = to_map(64, &value_noise(64, 8, 6, 1), Edge::Wrap).map_err(err)?;
     generator.generate(&ctx, &warm, params).map_err(err)?;
     generator.generate_quad(&ctx, &warm, params).map_err(err)?;
@@ -452,6 +454,8 @@ pub fn relief(args: &BenchOptions) -> Result<Value, String> {
             gpu_generation(runs).unwrap_or_else(|e| json!({ "measured": false, "reason": e }))
         },
         "tracers": tracers(runs)?,
+        "width": crate::relief_family::width_figure()?,
+        "family_speed": crate::relief_family::speed_figure()?,
         "lod": if args.no_gpu {
             json!({ "measured": false, "reason": "skipped (--no-gpu)" })
         } else {
@@ -477,6 +481,7 @@ pub fn relief(args: &BenchOptions) -> Result<Value, String> {
 /// The suite's tables.
 pub fn print(doc: &Value) {
     print_table(doc);
+    crate::relief_family::print(doc);
     println!(
         "\naccuracy (128² maps, 4096 rays a row):\n{}",
         doc["accuracy_table"].as_str().unwrap_or("-")

@@ -353,6 +353,7 @@ fn non_square_and_bad_options_are_refused() {
         // Below one texel of a 4096² map over the whole depth: a cap that means nothing.
         (&["--max-ratio", "1e-30"][..], "(2^-12)"),
         (&["--max-ratio", "NaN"][..], "--max-ratio NaN"),
+        (&["--parts", "9"][..], "--parts 9 is above 8"),
     ] {
         let mut all = vec![
             "cone-map",

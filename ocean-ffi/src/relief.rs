@@ -192,6 +192,7 @@ pub(crate) fn params_from(p: &OceanReliefConeParams) -> Result<ConeParams, Error
     Ok(ConeParams {
         kind,
         max_ratio: p.max_ratio,
+        ..ConeParams::default()
     })
 }
 

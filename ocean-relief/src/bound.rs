@@ -80,6 +80,10 @@
 //! `C` and it is not a candidate; otherwise `s/(S(p) − M) ≥ 1/ρ`, and `B = max(1/ρ, 1/L)`. A
 //! plane has `R(u) > 0` exactly where its cells do not fall, so its near cells drop out.
 //!
+//! The proof needs of `q` only an upper bound of the depth over it and of `C` only that it is one
+//! bilinear patch; `refine.rs` runs the same bound over parts of both cells, which gives up
+//! less width than whole cells.
+//!
 //! The conservative cone (Dummer 2006: the cone contains no solid at all) is bounded the same
 //! way with every cell that has `m_C < Smax(q)` as a candidate, flat or not, no falling test
 //! and `B = 1/L`.
@@ -195,6 +199,8 @@ pub(crate) struct Grid {
     pub cells: Vec<Cell>,
     /// `L` over all cells.
     pub lip_global: f64,
+    /// The map's depths, row-major, `N × N` (the corners of the cells, for `crate::refine`).
+    pub depth: Vec<f32>,
 }
 
 impl Grid {
@@ -227,7 +233,18 @@ impl Grid {
             origin,
             cells,
             lip_global,
+            depth: map.depths().to_vec(),
         }
+    }
+
+    /// Corner depths `[d00, d10, d01, d11]` of the cell at spatial position `(ci, cj)`
+    /// (unwrapped; resolved by the edge mode).
+    pub fn corners(&self, ci: i64, cj: i64) -> [f64; 4] {
+        let n = self.n;
+        let d = |i: i64, j: i64| {
+            f64::from(self.depth[self.edge.resolve(j, n) * n + self.edge.resolve(i, n)])
+        };
+        [d(ci, cj), d(ci + 1, cj), d(ci, cj + 1), d(ci + 1, cj + 1)]
     }
 
     /// Index of the cell at spatial position `(ci, cj)` (unwrapped in wrap mode), if it exists.
@@ -394,7 +411,13 @@ impl Apex {
     /// clip is `±∞` and the box is the difference box bit for bit.
     #[inline(always)]
     pub fn vectors(&self, rect: [f64; 4]) -> Option<[f64; 4]> {
-        let [qx0, qx1, qy0, qy1] = self.rect;
+        self.vectors_from(self.rect, rect)
+    }
+
+    /// [`Apex::vectors`] from a part `from` of the apex box (a sub-rectangle, `crate::refine`).
+    #[inline(always)]
+    pub fn vectors_from(&self, from: [f64; 4], rect: [f64; 4]) -> Option<[f64; 4]> {
+        let [qx0, qx1, qy0, qy1] = from;
         let [x0, x1, y0, y1] = rect;
         let [cx0, cx1, cy0, cy1] = self.clip;
         let w = [
@@ -410,7 +433,13 @@ impl Apex {
 /// Largest product `g·w` over `g ∈ [g0, g1]`, `w ∈ [w0, w1]`.
 #[inline(always)]
 fn max_product(g: [f32; 2], w0: f64, w1: f64) -> f64 {
-    let (g0, g1) = (f64::from(g[0]), f64::from(g[1]));
+    max_product64([f64::from(g[0]), f64::from(g[1])], w0, w1)
+}
+
+/// [`max_product`] for bounds held in `f64`.
+#[inline(always)]
+fn max_product64(g: [f64; 2], w0: f64, w1: f64) -> f64 {
+    let [g0, g1] = g;
     (g0 * w0).max(g0 * w1).max(g1 * w0).max(g1 * w1)
 }
 
@@ -420,34 +449,54 @@ fn growth(w: [f64; 4], gx: [f32; 2], gy: [f32; 2]) -> f64 {
     max_product(gx, w[0], w[1]) + max_product(gy, w[2], w[3])
 }
 
-/// Condition 2 for a block of cells (a pyramid node): can the depth grow, or stay level, along
-/// some vector of `w` ([`Apex::vectors`] of the node) with gradients in `gx × gy`? A node that
-/// fails holds no cell that passes [`falling_cell`] (its box contains theirs).
+/// Condition 2 for a block of cells (a pyramid node): can the depth grow, or stay level with a
+/// twisted cell curving it upwards, along some vector of `w` ([`Apex::vectors`] of the node)
+/// with gradients in `gx × gy`? `twists` has bit 0 set when some cell of the block has a
+/// positive twist, bit 1 when some has a negative one. A node that fails holds no cell that
+/// passes [`falling_cell`]: each cell's gradient and vector boxes lie in the node's, so its
+/// largest `g·w` is at most the node's (the products and the sum round monotonically), and when
+/// the node's is 0 a cell can only pass through its twist, on a box of vectors inside the node's.
+/// (Without the twist test, a tread of a staircase saw the whole column of risers beside it as
+/// falling, level along the riser: the search then visited every node of that column.)
 #[inline(always)]
-pub(crate) fn falling(w: [f64; 4], gx: [f32; 2], gy: [f32; 2]) -> bool {
-    growth(w, gx, gy) >= 0.0
-}
-
-/// Condition 2 for one cell: the depth can grow right after the exit point `b` along
-/// `u ∝ b − p` only if `∇S(b)·u > 0`, or `∇S(b)·u = 0` and the second derivative
-/// `2·D·uₓ·u_y > 0`. When the largest `g·w` over the boxes is exactly 0 (a planar ramp seen
-/// along its level direction), only a twisted cell whose box of directions allows
-/// `D·wₓ·w_y > 0` can still have an exit.
-#[inline(always)]
-fn falling_cell(w: [f64; 4], cell: &Cell) -> bool {
-    let f = growth(w, cell.gx, cell.gy);
-    let [wx0, wx1, wy0, wy1] = w;
+pub(crate) fn falling(w: [f64; 4], gx: [f32; 2], gy: [f32; 2], twists: u8) -> bool {
+    let f = growth(w, gx, gy);
     if f > 0.0 {
         return true;
     }
     if f < 0.0 {
         return false;
     }
-    match cell.twist {
+    (twists & 1 != 0 && twist_allows(w, 1)) || (twists & 2 != 0 && twist_allows(w, -1))
+}
+
+/// Whether a box of vectors `w` holds a vector along which a cell of twist sign `twist` curves
+/// its depth upwards (second derivative `2·D·wₓ·w_y > 0`).
+#[inline(always)]
+fn twist_allows(w: [f64; 4], twist: i8) -> bool {
+    let [wx0, wx1, wy0, wy1] = w;
+    match twist {
         1 => (wx1 > 0.0 && wy1 > 0.0) || (wx0 < 0.0 && wy0 < 0.0),
         -1 => (wx1 > 0.0 && wy0 < 0.0) || (wx0 < 0.0 && wy1 > 0.0),
         _ => false,
     }
+}
+
+/// Condition 2 for one cell (or part of one, `g` its gradient box `[gx0, gx1, gy0, gy1]`): the
+/// depth can grow right after the exit point `b` along `u ∝ b − p` only if `∇S(b)·u > 0`, or
+/// `∇S(b)·u = 0` and the second derivative `2·D·uₓ·u_y > 0`. When the largest `g·w` over the
+/// boxes is exactly 0 (a planar ramp seen along its level direction), only a twisted cell whose
+/// box of directions allows `D·wₓ·w_y > 0` can still have an exit.
+#[inline(always)]
+fn falling_cell(w: [f64; 4], g: [f64; 4], twist: i8) -> bool {
+    let f = max_product64([g[0], g[1]], w[0], w[1]) + max_product64([g[2], g[3]], w[2], w[3]);
+    if f > 0.0 {
+        return true;
+    }
+    if f < 0.0 {
+        return false;
+    }
+    twist_allows(w, twist)
 }
 
 /// The shortest vector of the box `w`: the Euclidean distance from the apex box to a rectangle
@@ -480,6 +529,33 @@ impl Candidate {
     }
 }
 
+/// What the bound needs about a candidate region: a whole cell, or a sub-rectangle of one
+/// (`crate::refine`): its box, its smallest depth (a lower bound) and its gradient box
+/// `[gx0, gx1, gy0, gy1]` (containing every gradient in the closed box).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Region {
+    pub rect: [f64; 4],
+    pub m: f64,
+    pub g: [f64; 4],
+}
+
+impl Region {
+    /// The whole cell at spatial position `(ci, cj)`.
+    #[inline(always)]
+    pub fn cell(cell: &Cell, ci: i64, cj: i64) -> Self {
+        Self {
+            rect: [ci as f64, ci as f64 + 1.0, cj as f64, cj as f64 + 1.0],
+            m: f64::from(cell.m),
+            g: [
+                f64::from(cell.gx[0]),
+                f64::from(cell.gx[1]),
+                f64::from(cell.gy[0]),
+                f64::from(cell.gy[1]),
+            ],
+        }
+    }
+}
+
 /// Candidate cell `cell` at spatial position `(ci, cj)` for apex `q`, or `None` when it is not
 /// a candidate (module documentation).
 #[inline(always)]
@@ -491,13 +567,54 @@ pub(crate) fn candidate(
     kind: ConeKind,
     lip_global: f64,
 ) -> Option<Candidate> {
-    let m = f64::from(cell.m);
-    if m >= q.smax || (kind == ConeKind::Relaxed && cell.flat) {
+    if kind == ConeKind::Relaxed && cell.flat {
         return None;
     }
-    let rect = [ci as f64, ci as f64 + 1.0, cj as f64, cj as f64 + 1.0];
-    let w = q.vectors(rect)?;
-    if kind == ConeKind::Relaxed && !falling_cell(w, cell) {
+    let part = ApexPart {
+        rect: q.rect,
+        smax: q.smax,
+    };
+    candidate_in(
+        q,
+        part,
+        &Region::cell(cell, ci, cj),
+        cell.twist,
+        ci,
+        cj,
+        kind,
+        lip_global,
+    )
+}
+
+/// A part of an apex cell: its box and the largest depth over it (an upper bound).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct ApexPart {
+    pub rect: [f64; 4],
+    pub smax: f64,
+}
+
+/// The bound of the module documentation for apex part `part` of `q` and candidate region `r`
+/// inside the (non-flat, for relaxed cones) cell at `(ci, cj)` with twist `twist`: the theorem
+/// holds word for word for any box `q` on which `Smax(q)` bounds the depth and any box `C` on
+/// which the surface is one bilinear patch, so parts of cells take it too (`crate::refine`).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn candidate_in(
+    q: &Apex,
+    part: ApexPart,
+    r: &Region,
+    twist: i8,
+    ci: i64,
+    cj: i64,
+    kind: ConeKind,
+    lip_global: f64,
+) -> Option<Candidate> {
+    let m = r.m;
+    if m >= part.smax {
+        return None;
+    }
+    let w = q.vectors_from(part.rect, r.rect)?;
+    if kind == ConeKind::Relaxed && !falling_cell(w, r.g, twist) {
         return None;
     }
     let (dx, dy) = (ci - q.qi, cj - q.qj);
@@ -510,15 +627,9 @@ pub(crate) fn candidate(
     let mut b = if l > 0.0 { 1.0 / l } else { f64::INFINITY };
     if kind == ConeKind::Relaxed && cheb <= K_LIP {
         // Direction-consistent bound (module documentation, "near cells").
-        let gc = [
-            f64::from(cell.gx[0]),
-            f64::from(cell.gx[1]),
-            f64::from(cell.gy[0]),
-            f64::from(cell.gy[1]),
-        ];
         let k = K_LIP as i64;
         let path = q.path[((dy + k) as usize) * NEAR + (dx + k) as usize];
-        let rise = crate::arc::max_rise(w, gc, path, q.sector);
+        let rise = crate::arc::max_rise(w, r.g, path, q.sector);
         if rise <= 0.0 {
             return None;
         }
@@ -526,7 +637,7 @@ pub(crate) fn candidate(
     }
     Some(Candidate {
         dist: distance(w),
-        depth: q.smax - m,
+        depth: part.smax - m,
         b,
     })
 }

@@ -5,7 +5,8 @@
 //! `|a|, |b| ≤ ⌈max_ratio⌉`: a copy at offset `a` lies at least `(|a| − 1)·N` texels away, so
 //! its value is at least that and cannot go below the cap `max_ratio·N` beyond that range.
 
-use crate::bound::{ConeKind, Grid, candidate};
+use crate::ConeParams;
+use crate::bound::{Grid, candidate};
 use crate::map::Edge;
 use crate::quadrant::Quadrant;
 use crate::search::{CHANNELS, NEAR_DISTANCE};
@@ -17,10 +18,10 @@ pub(crate) fn cell_cone(
     qi: i64,
     qj: i64,
     sector: Option<Quadrant>,
-    kind: ConeKind,
-    cap: f64,
-    max_ratio: f32,
+    params: ConeParams,
 ) -> [f64; CHANNELS] {
+    let kind = params.kind;
+    let cap = f64::from(params.max_ratio) * grid.n as f64;
     let q = grid.apex(qi, qj);
     let q = match sector {
         Some(s) => q.within(s),
@@ -28,7 +29,7 @@ pub(crate) fn cell_cone(
     };
     let mut best = [cap; CHANNELS];
     let reach = match grid.edge {
-        Edge::Wrap => libm::ceil(f64::from(max_ratio)) as i64,
+        Edge::Wrap => libm::ceil(f64::from(params.max_ratio)) as i64,
         Edge::Clamp => 0,
     };
     let n = grid.n as i64;
@@ -48,7 +49,17 @@ pub(crate) fn cell_cone(
                         kind,
                         grid.lip_global,
                     ) {
-                        best[0] = best[0].min(c.value());
+                        crate::refine::refine(
+                            grid,
+                            &q,
+                            &grid.cells[y * grid.nc + x],
+                            ci,
+                            cj,
+                            kind,
+                            c.value(),
+                            params.parts,
+                            &mut best[0],
+                        );
                         if c.dist < NEAR_DISTANCE {
                             best[2] = best[2].min(c.value());
                         } else {

@@ -56,6 +56,10 @@ pub enum ReliefError {
         /// The value.
         value: f32,
     },
+    /// A setting that this implementation does not offer (the message names it and the one to
+    /// use instead).
+    #[error("unsupported: {0}")]
+    Unsupported(&'static str),
     /// A parameter is NaN or infinite.
     #[error("`{0}` must be finite")]
     NotFinite(&'static str),

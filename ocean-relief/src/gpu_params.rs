@@ -259,6 +259,12 @@ impl ConeGenUniforms {
             f64::MIN_POSITIVE,
             f64::from(MAX_RATIO_LIMIT),
         )?;
+        if params.parts != 0 {
+            return Err(ReliefError::Unsupported(
+                "ConeParams::parts above 0 on the GPU, which bounds whole cells: \
+                 use ConeParams::with_parts(0), or the CPU generator",
+            ));
+        }
         let nc = match edge {
             Edge::Wrap => size,
             Edge::Clamp => size + 1,
@@ -316,7 +322,8 @@ mod tests {
     fn pyramid_offsets_follow_the_levels() {
         // Clamp mode, 6 texels: 7 cells, pyramid side 8, levels 8, 4, 2, 1: levels 1.. hold
         // 16 + 4 + 1 nodes.
-        let (u, nodes) = ConeGenUniforms::new(6, Edge::Clamp, ConeParams::relaxed(1.0)).unwrap();
+        let (u, nodes) =
+            ConeGenUniforms::new(6, Edge::Clamp, ConeParams::relaxed(1.0).with_parts(0)).unwrap();
         assert_eq!(u.grid, [6, 7, EDGE_CLAMP, KIND_RELAXED]);
         assert_eq!(u.pyramid[..2], [8, 4]);
         assert_eq!(u.level_offsets[0], [0, 0, 16, 20]);
@@ -327,7 +334,9 @@ mod tests {
         assert_eq!(codes, [1, 2, 3, 4]);
         assert_eq!(u.with_sector(None), u);
         assert!(ConeGenUniforms::new(6, Edge::Wrap, ConeParams::relaxed(f32::NAN)).is_err());
-        assert!(ConeGenUniforms::new(1, Edge::Wrap, ConeParams::relaxed(1.0)).is_err());
+        assert!(
+            ConeGenUniforms::new(1, Edge::Wrap, ConeParams::relaxed(1.0).with_parts(0)).is_err()
+        );
     }
 
     #[test]

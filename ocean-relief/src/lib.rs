@@ -9,9 +9,10 @@
 //! - [`map`]: the height map (depth convention, texel centres, [`Edge`] wrap / clamp, the input
 //!   checks) and [`sample`], the bilinear fetch.
 //! - [`bound`]: what a relaxed cone must guarantee (Lemma 1, the "peak rule") and the per-cell
-//!   bound with its proof; [`cone`]: [`ConeMap`] (plain ratio, clearance, near cap) by
-//!   branch-and-bound over a min-depth pyramid, or by brute force; [`book`]: Listing 18-2 as
-//!   printed, the oracle of the book's semantics.
+//!   bound with its proof, sharpened over parts of cells (`refine.rs`, [`ConeParams::parts`]);
+//!   [`cone`]: [`ConeMap`] (plain ratio, clearance, near cap) by branch-and-bound over a
+//!   min-depth pyramid, or by brute force; [`book`]: Listing 18-2 as printed, the oracle of the
+//!   book's semantics.
 //! - [`check`]: the exact validity check (no ray through a cone's axis crosses the surface twice
 //!   inside it); [`mip`]: the 4×4-window mip rule and its proof; [`lod`]: mip levels that each
 //!   carry their own box-filtered surface and its cones ([`ReliefMips`], [`QuadReliefMips`]) and
@@ -23,7 +24,9 @@
 //! - [`relief`]: the texture the tracers read and the normal map; [`trace`]: linear + binary,
 //!   cone step mapping, relaxed cone stepping + binary; [`shadow`]: self-shadowing;
 //!   [`occlusion`]: the hit's depth for the z-buffer; [`truth`]: the exact first hit.
-//! - [`accuracy`]: the accuracy table; [`maps`]: procedural test maps.
+//! - [`widest`]: the widest valid cone of every texel, sampled, and how much of it a map uses.
+//! - [`accuracy`]: the accuracy table; [`maps`]: procedural test maps and the family of twelve
+//!   kinds the generator is measured on.
 //!
 //! ```
 //! use glam::{Vec2, Vec3};
@@ -91,6 +94,7 @@ pub mod occlusion;
 pub mod progress;
 pub mod quad;
 pub mod quadrant;
+pub(crate) mod refine;
 pub mod relief;
 mod round;
 pub mod sample;
@@ -99,9 +103,10 @@ pub mod shadow;
 pub mod storage;
 pub mod trace;
 pub mod truth;
+pub mod widest;
 
 pub use bound::ConeKind;
-pub use cone::{ConeMap, ConeParams, MAX_BRUTE_SIDE, MAX_RATIO_LIMIT};
+pub use cone::{ConeMap, ConeParams, DEFAULT_PARTS, MAX_BRUTE_SIDE, MAX_PARTS, MAX_RATIO_LIMIT};
 pub use error::ReliefError;
 pub(crate) use error::check_range;
 pub use lod::{QuadReliefMips, ReliefMips};

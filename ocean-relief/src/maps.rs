@@ -143,6 +143,142 @@ pub fn bumps(n: usize, count: usize, radius: f64, seed: u64) -> Vec<f32> {
         .collect()
 }
 
+/// Ridged noise: `1 − |2·f − 1|` of [`value_noise`] `f`, renormalised: sharp crests along
+/// the noise's mid level, the ridges of eroded terrain.
+pub fn ridged(n: usize, cells: usize, octaves: u32, seed: u64) -> Vec<f32> {
+    let v: Vec<f64> = value_noise(n, cells, octaves, seed)
+        .iter()
+        .map(|&f| 1.0 - libm::fabs(2.0 * f64::from(f) - 1.0))
+        .collect();
+    normalise(&v)
+}
+
+/// A plane rising along `x` from 0 at the first column to 1 at the last: smooth, every line
+/// through it monotone (wrapped, a cliff at the seam).
+pub fn ramp(n: usize) -> Vec<f32> {
+    let last = n.saturating_sub(1).max(1) as f64;
+    (0..n * n).map(|k| ((k % n) as f64 / last) as f32).collect()
+}
+
+/// [`ramp`] in `steps` flat treads of equal width and height: what an 8-bit encoding makes of
+/// a smooth slope.
+pub fn stairs(n: usize, steps: usize) -> Vec<f32> {
+    let steps = steps.clamp(1, n.max(1));
+    let last = steps.saturating_sub(1).max(1) as f64;
+    (0..n * n)
+        .map(|k| ((((k % n) * steps) / n.max(1)) as f64 / last) as f32)
+        .collect()
+}
+
+/// One cone centred on the map, height 1 at its apex falling linearly to 0 at `radius` texels.
+pub fn cone(n: usize, radius: f64) -> Vec<f32> {
+    let c = (n as f64 - 1.0) * 0.5;
+    (0..n * n)
+        .map(|k| {
+            let (dx, dy) = ((k % n) as f64 - c, (k / n) as f64 - c);
+            (1.0 - libm::sqrt(dx * dx + dy * dy) / radius.max(1.0e-9)).max(0.0) as f32
+        })
+        .collect()
+}
+
+/// `count` round pits of radius 2 to `max_radius` texels with steep (one-texel) rims, floors at
+/// depths up to 1, in a plain at height 1: the inverse of pins, holes the ray must find.
+pub fn pits(n: usize, count: usize, max_radius: f64, seed: u64) -> Vec<f32> {
+    let mut rng = Pcg32::new(seed, 0x9175_0001);
+    let mut h = vec![1.0f32; n * n];
+    for _ in 0..count {
+        let (cx, cy) = (rng.next_f64() * n as f64, rng.next_f64() * n as f64);
+        let r = 2.0 + (max_radius - 2.0).max(0.0) * rng.next_f64();
+        let floor = (1.0 - rng.next_f64()) as f32;
+        stamp(n, cx, cy, r, &mut h, |_, cur| cur.min(floor));
+    }
+    h
+}
+
+/// `count` hemispheres of radius 2 to `max_radius` texels on a floor at 0, heights scaled to
+/// at most 1 (a sphere's top is flat, its rim vertical): smooth tops with a grazing silhouette.
+pub fn spheres(n: usize, count: usize, max_radius: f64, seed: u64) -> Vec<f32> {
+    let mut rng = Pcg32::new(seed, 0x5fe7);
+    let mut h = vec![0.0f32; n * n];
+    for _ in 0..count {
+        let (cx, cy) = (rng.next_f64() * n as f64, rng.next_f64() * n as f64);
+        let r = 2.0 + (max_radius - 2.0).max(0.0) * rng.next_f64();
+        let top = 0.3 + 0.7 * rng.next_f64();
+        stamp(n, cx, cy, r, &mut h, |d, cur| {
+            let t = d / r;
+            cur.max((top * libm::sqrt((1.0 - t * t).max(0.0))) as f32)
+        });
+    }
+    h
+}
+
+/// `count` strokes like engraved letters: polylines of 2 to 4 segments, 1 to 2 texels wide,
+/// 3 to `n/8` texels long, raised to heights in `[0.5, 1]` on a floor at 0.
+pub fn strokes(n: usize, count: usize, seed: u64) -> Vec<f32> {
+    let mut rng = Pcg32::new(seed, 0x57e0);
+    let mut h = vec![0.0f32; n * n];
+    let longest = (n as f64 / 8.0).max(3.0);
+    for _ in 0..count {
+        let (mut x, mut y) = (rng.next_f64() * n as f64, rng.next_f64() * n as f64);
+        let width = 0.5 + 0.5 * rng.next_f64();
+        let top = (0.5 + 0.5 * rng.next_f64()) as f32;
+        let segments = 2 + rng.below_u32(3).unwrap_or(0);
+        for _ in 0..segments {
+            let a = core::f64::consts::TAU * rng.next_f64();
+            let len = 3.0 + (longest - 3.0) * rng.next_f64();
+            let steps = (len * 4.0) as usize;
+            for s in 0..=steps {
+                let t = s as f64 / 4.0;
+                let (px, py) = (x + t * libm::cos(a), y + t * libm::sin(a));
+                stamp(n, px, py, width, &mut h, |_, cur| cur.max(top));
+            }
+            x += len * libm::cos(a);
+            y += len * libm::sin(a);
+        }
+    }
+    h
+}
+
+/// Applies `f(distance, current)` to every texel within `r` of `(cx, cy)` (the nearest periodic
+/// copy: the maps tile).
+fn stamp(n: usize, cx: f64, cy: f64, r: f64, h: &mut [f32], f: impl Fn(f64, f32) -> f32) {
+    let nf = n as f64;
+    let reach = libm::ceil(r) as i64;
+    let (x0, y0) = (libm::floor(cx) as i64, libm::floor(cy) as i64);
+    for j in y0 - reach..=y0 + reach + 1 {
+        for i in x0 - reach..=x0 + reach + 1 {
+            let (dx, dy) = (i as f64 - cx, j as f64 - cy);
+            let d = libm::sqrt(dx * dx + dy * dy);
+            if d <= r {
+                let k = (wrap(j as f64, nf) as usize) * n + wrap(i as f64, nf) as usize;
+                h[k] = f(d, h[k]);
+            }
+        }
+    }
+}
+
+/// The twelve kinds of map the cone generator's width and speed are measured on, at side `n`
+/// (at least 16), named: smooth and rough noise, smooth monotone slopes, staircases, a cone,
+/// pits, spheres, boxes, thin walls, pins and strokes.
+pub fn family(n: usize) -> Vec<(&'static str, Vec<f32>)> {
+    let nf = n as f64;
+    let area = n * n;
+    vec![
+        ("fBm", value_noise(n, (n / 16).max(2), 6, 1)),
+        ("value noise", value_noise(n, (n / 16).max(2), 1, 2)),
+        ("ridged", ridged(n, (n / 32).max(2), 5, 3)),
+        ("ramp", ramp(n)),
+        ("stairs", stairs(n, (n / 8).max(2))),
+        ("cone", cone(n, nf * 0.45)),
+        ("pits", pits(n, (area / 512).max(2), nf / 16.0, 4)),
+        ("spheres", spheres(n, (area / 512).max(2), nf / 12.0, 5)),
+        ("boxes", boxes(n, (area / 512).max(2), 6)),
+        ("thin walls", thin_walls(n, (n / 8).max(4))),
+        ("pins", pins(n, 40, 7)),
+        ("strokes", strokes(n, (area / 1024).max(2), 8)),
+    ]
+}
+
 /// `a` modulo `m` in `[0, m)`.
 fn wrap(a: f64, m: f64) -> f64 {
     let r = a % m;

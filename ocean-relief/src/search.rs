@@ -8,8 +8,8 @@
 //! - its lower bound `max(dist(q, node)/(Smax(q) − m), 1/L_global)` is not below the best value
 //!   found so far: every cell's `A` has a larger distance and a smaller denominator, and every
 //!   `B` is at least `1/L_global`;
-//! - (relaxed) the falling test fails for the node's box and gradient union, which contain each
-//!   cell's;
+//! - (relaxed) the falling test fails for the node's box, gradient union and twist signs, which
+//!   contain each cell's;
 //! - (quadrant cones, [`crate::quad`]) no vector from the apex box into the node lies in the
 //!   quadrant: no cell of it can be reached by a ray the cone serves. The clipped box of a node
 //!   contains its cells' clipped boxes, so its distance and growth bound theirs as before.
@@ -33,12 +33,15 @@ struct Node {
     m: f32,
     gx: [f32; 2],
     gy: [f32; 2],
+    /// Bit 0: some cell has a positive twist; bit 1: some has a negative one.
+    twists: u8,
 }
 
 const EMPTY: Node = Node {
     m: f32::INFINITY,
     gx: [f32::INFINITY, f32::NEG_INFINITY],
     gy: [f32::INFINITY, f32::NEG_INFINITY],
+    twists: 0,
 };
 
 impl Node {
@@ -47,6 +50,7 @@ impl Node {
             m: a.m.min(b.m),
             gx: [a.gx[0].min(b.gx[0]), a.gx[1].max(b.gx[1])],
             gy: [a.gy[0].min(b.gy[0]), a.gy[1].max(b.gy[1])],
+            twists: a.twists | b.twists,
         }
     }
 }
@@ -72,6 +76,11 @@ impl Pyramid {
                         m: c.m,
                         gx: c.gx,
                         gy: c.gy,
+                        twists: match c.twist {
+                            1 => 1,
+                            -1 => 2,
+                            _ => 0,
+                        },
                     }
                 } else {
                     EMPTY
@@ -145,6 +154,8 @@ pub(crate) struct Search<'a> {
     pub kind: ConeKind,
     /// Cap of every channel, texels (per unit depth for `c`).
     pub cap: f64,
+    /// Halvings of the parts that sharpen `c` (`crate::refine`).
+    pub parts: u32,
 }
 
 impl Search<'_> {
@@ -169,8 +180,20 @@ impl Search<'_> {
             self.grid.lip_global,
         ) {
             let near = cand.dist < NEAR_DISTANCE;
-            let v = [
+            let mut plain = best.value[0];
+            crate::refine::refine(
+                self.grid,
+                q,
+                &self.grid.cells[k],
+                ci,
+                cj,
+                self.kind,
                 cand.value(),
+                self.parts,
+                &mut plain,
+            );
+            let v = [
+                plain,
                 if near { f64::INFINITY } else { cand.dist },
                 if near { cand.value() } else { f64::INFINITY },
             ];
@@ -277,7 +300,7 @@ impl Search<'_> {
             if !self.open(dist, depth, floor, best) {
                 return None;
             }
-            if self.kind == ConeKind::Relaxed && !falling(w, node.gx, node.gy) {
+            if self.kind == ConeKind::Relaxed && !falling(w, node.gx, node.gy, node.twists) {
                 return None;
             }
             Some((dist, depth))

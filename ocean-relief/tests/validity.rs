@@ -18,6 +18,7 @@ fn assert_valid(n: usize, edge: Edge, kind: ConeKind, params: CheckParams, cap: 
             ConeParams {
                 kind,
                 max_ratio: cap,
+                ..ConeParams::default()
             },
         )
         .unwrap();

@@ -15,7 +15,7 @@ use std::path::PathBuf;
 use ocean_relief::{ConeMap, ConeParams, Edge, HeightMap};
 
 /// Bumped whenever the layout or the generator's output changes.
-const VERSION: u32 = 1;
+const VERSION: u32 = 2;
 const MAGIC: &[u8; 4] = b"OCNC";
 
 /// FNV-1a, 64 bits.

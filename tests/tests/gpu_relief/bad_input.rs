@@ -230,13 +230,31 @@ fn bad_input_is_refused() {
     for cap in [f32::NAN, 0.0, -1.0, 65.0] {
         assert!(
             matches!(
-                generator.generate(&ctx, &setup.map, ConeParams::relaxed(cap)),
+                generator.generate(&ctx, &setup.map, ConeParams::relaxed(cap).with_parts(0)),
                 Err(GpuError::Relief(
                     ReliefError::NotFinite(_) | ReliefError::OutOfRange { .. }
                 ))
             ),
             "{cap}"
         );
+    }
+    // The GPU bounds whole cells: a finer bound (the CPU's default) is refused, for both kinds
+    // of map, rather than answered with other cones.
+    for p in [
+        ConeParams::relaxed(1.0),
+        ConeParams::conservative(1.0).with_parts(1),
+    ] {
+        assert!(
+            matches!(
+                generator.generate(&ctx, &setup.map, p),
+                Err(GpuError::Relief(ReliefError::Unsupported(_)))
+            ),
+            "{p:?}"
+        );
+        assert!(matches!(
+            generator.generate_quad(&ctx, &setup.map, p),
+            Err(GpuError::Relief(ReliefError::Unsupported(_)))
+        ));
     }
     // A clamp-mode map whose cell buffer exceeds the device's largest storage binding.
     let limit = device.limits().max_storage_buffer_binding_size;
@@ -250,7 +268,7 @@ fn bad_input_is_refused() {
     )
     .unwrap();
     assert!(matches!(
-        generator.generate(&ctx, &flat, ConeParams::relaxed(1.0)),
+        generator.generate(&ctx, &flat, ConeParams::relaxed(1.0).with_parts(0)),
         Err(GpuError::TooLarge { .. })
     ));
 }

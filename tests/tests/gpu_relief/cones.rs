@@ -74,12 +74,18 @@ fn tie_maps() -> Vec<(String, HeightMap)> {
 /// conservative cones capped at 1 and the `extra` parameters, and the tie maps with those two,
 /// a cap of 64 (many tile copies in wrap mode) and one of 0.01 (every texel capped).
 fn cone_cases(extra: &[ConeParams]) -> Vec<(String, HeightMap, Vec<ConeParams>)> {
-    let book = [ConeParams::relaxed(1.0), ConeParams::conservative(1.0)];
+    let book = [
+        ConeParams::relaxed(1.0).with_parts(0),
+        ConeParams::conservative(1.0).with_parts(0),
+    ];
     let procedural = test_maps()
         .into_iter()
         .map(|(name, map)| (name.to_owned(), map, [&book[..], extra].concat()));
     let ties = tie_maps().into_iter().map(|(name, map)| {
-        let caps = [ConeParams::relaxed(64.0), ConeParams::relaxed(0.01)];
+        let caps = [
+            ConeParams::relaxed(64.0).with_parts(0),
+            ConeParams::relaxed(0.01).with_parts(0),
+        ];
         (name, map, [&book[..], &caps[..]].concat())
     });
     procedural.chain(ties).collect()
@@ -99,7 +105,7 @@ fn cone_maps_match_the_cpu() {
     };
     let exact = software(&ctx);
     let generator = ConeMapGenerator::new(&ctx).unwrap();
-    let cases = cone_cases(&[ConeParams::relaxed(4.0)]);
+    let cases = cone_cases(&[ConeParams::relaxed(4.0).with_parts(0)]);
     let mut count = 0;
     for (name, map, params) in &cases {
         for &p in params {
@@ -184,12 +190,12 @@ fn time_quad_generation(ctx: &GpuContext, n: usize) {
     for edge in [Edge::Wrap, Edge::Clamp] {
         let warm = to_map(16, &value_noise(16, 2, 2, 1), edge).unwrap();
         generator
-            .generate_quad(ctx, &warm, ConeParams::relaxed(1.0))
+            .generate_quad(ctx, &warm, ConeParams::relaxed(1.0).with_parts(0))
             .unwrap();
     }
     for edge in [Edge::Wrap, Edge::Clamp] {
         let map = to_map(n, &value_noise(n, 8, 5, 3), edge).unwrap();
-        let p = ConeParams::relaxed(1.0);
+        let p = ConeParams::relaxed(1.0).with_parts(0);
         let t = Instant::now();
         let cpu = QuadConeMap::generate(&map, p).unwrap();
         let cpu_time = t.elapsed();
@@ -248,13 +254,13 @@ fn time_generation(ctx: &GpuContext, sizes: &[usize]) {
     for edge in [Edge::Wrap, Edge::Clamp] {
         let warm = to_map(16, &value_noise(16, 2, 2, 1), edge).unwrap();
         generator
-            .generate(ctx, &warm, ConeParams::relaxed(1.0))
+            .generate(ctx, &warm, ConeParams::relaxed(1.0).with_parts(0))
             .unwrap();
     }
     for &n in sizes {
         for edge in [Edge::Wrap, Edge::Clamp] {
             let map = to_map(n, &value_noise(n, 8, 5, 3), edge).unwrap();
-            let p = ConeParams::relaxed(1.0);
+            let p = ConeParams::relaxed(1.0).with_parts(0);
             let t = Instant::now();
             let cpu = ConeMap::generate(&map, p).unwrap();
             let cpu_time = t.elapsed();
