@@ -31,7 +31,8 @@
 //!    channel over the pixels on the quad in both frames when the quad moves by 0.002 m (about
 //!    0.4 pixel); and the CPU time to generate level 0's cones against the whole chain's.
 //!    `--no-gpu` or a missing adapter leaves the reason in `lod`.
-//! 8. and 9. **Width** and **speed** on the family of twelve map kinds: `relief_family.rs`.
+//! 8. to 10. **Width**, **speed** and **steps** on the family of twelve map kinds:
+//!    `relief_family.rs`.
 //!
 //! Times are medians of `--runs` runs. Generation runs are not preceded by a warm-up (each
 //! takes 0.1 s or more, so no cache or thread wake-up effect shows); tracer runs are.
@@ -362,7 +363,7 @@ fn progress_overhead(runs: u32) -> Result<Value, String> {
 }
 
 /// `count` rays at `angle` degrees from the normal, random starts and azimuths.
-fn rays(count: usize, angle: f32, depth: f32) -> Result<Vec<Ray>, String> {
+pub(crate) fn rays(count: usize, angle: f32, depth: f32) -> Result<Vec<Ray>, String> {
     let mut rng = Pcg32::new(11, 3);
     let (st, ct) = angle.to_radians().sin_cos();
     (0..count)
@@ -456,6 +457,7 @@ pub fn relief(args: &BenchOptions) -> Result<Value, String> {
         "tracers": tracers(runs)?,
         "width": crate::relief_family::width_figure()?,
         "family_speed": crate::relief_family::speed_figure()?,
+        "steps": crate::relief_family::steps_figure()?,
         "lod": if args.no_gpu {
             json!({ "measured": false, "reason": "skipped (--no-gpu)" })
         } else {

@@ -96,8 +96,8 @@ pub struct ConeMapArgs {
     max_ratio: f32,
     /// How finely the cones are bounded, 0 to 8: the apex and candidate cells are halved this
     /// many times in turn. 0 bounds whole cells (what the GPU generator computes); each step
-    /// widens the cones a little and costs more time (4: about 10 % wider than 0 on average, for
-    /// about 4 times the time).
+    /// widens the cones a little and costs more time (default 2: about 7 % wider than 0 on
+    /// average for twice the time; 4: about 10 % wider for three to five times the time).
     #[arg(long, default_value_t = ocean_relief::DEFAULT_PARTS)]
     parts: u32,
     /// Allow OUT to be the input file (it is replaced only once the texture is complete).

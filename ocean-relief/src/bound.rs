@@ -583,6 +583,7 @@ pub(crate) fn candidate(
         cj,
         kind,
         lip_global,
+        f64::INFINITY,
     )
 }
 
@@ -597,6 +598,8 @@ pub(crate) struct ApexPart {
 /// inside the (non-flat, for relaxed cones) cell at `(ci, cj)` with twist `twist`: the theorem
 /// holds word for word for any box `q` on which `Smax(q)` bounds the depth and any box `C` on
 /// which the surface is one bilinear patch, so parts of cells take it too (`crate::refine`).
+/// A candidate whose value is at least `enough` may come back with a smaller value at or above
+/// `enough`, or as one, where the near-cell rule would drop it (`∞`: always the exact bound).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn candidate_in(
@@ -608,6 +611,7 @@ pub(crate) fn candidate_in(
     cj: i64,
     kind: ConeKind,
     lip_global: f64,
+    enough: f64,
 ) -> Option<Candidate> {
     let m = r.m;
     if m >= part.smax {
@@ -624,8 +628,14 @@ pub(crate) fn candidate_in(
     } else {
         lip_global
     };
-    let mut b = if l > 0.0 { 1.0 / l } else { f64::INFINITY };
-    if kind == ConeKind::Relaxed && cheb <= K_LIP {
+    let mut out = Candidate {
+        dist: distance(w),
+        depth: part.smax - m,
+        b: if l > 0.0 { 1.0 / l } else { f64::INFINITY },
+    };
+    // The near-cell rule only raises the value or drops the candidate: a caller that discards
+    // values at or above `enough` needs neither when the value is there already.
+    if kind == ConeKind::Relaxed && cheb <= K_LIP && out.value() < enough {
         // Direction-consistent bound (module documentation, "near cells").
         let k = K_LIP as i64;
         let path = q.path[((dy + k) as usize) * NEAR + (dx + k) as usize];
@@ -633,13 +643,9 @@ pub(crate) fn candidate_in(
         if rise <= 0.0 {
             return None;
         }
-        b = b.max(1.0 / rise);
+        out.b = out.b.max(1.0 / rise);
     }
-    Some(Candidate {
-        dist: distance(w),
-        depth: part.smax - m,
-        b,
-    })
+    Some(out)
 }
 
 /// The floor of every candidate's value: `1/L` over the whole map.

@@ -70,5 +70,10 @@ pub(crate) fn cell_cone(
             }
         }
     }
+    // As `search.rs`: with the plain cone at the cap, the clearance and near cap are the cap.
+    if best[0] >= cap {
+        best[1] = cap;
+        best[2] = cap;
+    }
     best
 }

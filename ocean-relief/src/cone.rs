@@ -31,7 +31,10 @@
 //! As `h → 0` over open ground this grows like `D/h` and the ray lands on the surface in a step or
 //! two. The tracer's step for it needs no division by `h` ([`crate::trace::step_length`]).
 //! Texels take the minimum over their four cells for `D` and `E` too (the bound only grows with
-//! each); both are capped like the ratio, `D` in texture widths and `E` per unit depth. Validity
+//! each); both are capped like the ratio, `D` in texture widths and `E` per unit depth. A cell
+//! whose plain cone `c` is the cap stores the cap in `D` and `E`: every limit there is at least
+//! the cap, which `min(D/h, E) ≤ E` never exceeds, so the tracer's cone stays valid, and the
+//! search for them is skipped (`search.rs`). Validity
 //! holds up to the rounding of the tracer's `f32` height and step.
 
 use alloc::vec;
@@ -62,9 +65,10 @@ pub struct ConeParams {
     pub max_ratio: f32,
     /// How finely the plain cone is bounded: the apex cell and each candidate cell are halved
     /// this many times in turn (`refine.rs`), at most [`MAX_PARTS`]. 0 is the bound of whole
-    /// cells (`bound.rs`), the one the GPU generator computes; the default, 4, bounds quarter
-    /// cells against quarter cells, with cones about 10 % wider on average at about three times
-    /// the cost. Every setting is valid.
+    /// cells (`bound.rs`), the one the GPU generator computes; the default, 2, bounds half
+    /// cells against half cells: on the family of `maps::family` at 64², 0.883 of the widest
+    /// valid cone on average against 0.826, at about twice the time. 4 gives 0.912 at three to
+    /// five times the time of 0 (`BENCHMARKS.md`). Every setting is valid.
     pub parts: u32,
 }
 
@@ -83,7 +87,7 @@ impl Default for ConeParams {
 pub const MAX_PARTS: u32 = 8;
 
 /// The default [`ConeParams::parts`].
-pub const DEFAULT_PARTS: u32 = 4;
+pub const DEFAULT_PARTS: u32 = 2;
 
 impl ConeParams {
     /// Relaxed cones capped at `max_ratio`.
@@ -352,7 +356,7 @@ impl ConeMap {
     }
 
     /// Clearances `D`, texture widths: every far candidate lies at least this far from the
-    /// texel's cells.
+    /// texel's cells (the cap for a cell whose plain cone is the cap).
     pub fn clearance(&self) -> &[f32] {
         &self.channels[1]
     }

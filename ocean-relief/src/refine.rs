@@ -186,8 +186,19 @@ impl Pair<'_> {
     }
 
     /// Lowers `best` to the smallest value of a pair of finest parts below it (module
-    /// documentation); `value` is the pair `(qp, cp)`'s own.
-    fn descend(&self, qp: &Part, cp: &Part, value: f64, level: u32, best: &mut f64) {
+    /// documentation); `value` is the pair `(qp, cp)`'s own, `qa` and `cr` what the bound needs
+    /// of each part.
+    #[allow(clippy::too_many_arguments)]
+    fn descend(
+        &self,
+        qp: &Part,
+        qa: ApexPart,
+        cp: &Part,
+        cr: &Region,
+        value: f64,
+        level: u32,
+        best: &mut f64,
+    ) {
         if level == self.levels {
             *best = best.min(value);
             return;
@@ -201,20 +212,25 @@ impl Pair<'_> {
             qp.halves(&mut halves)
         };
         for h in &halves[..count] {
-            let (q2, c2) = if on_candidate { (qp, h) } else { (h, cp) };
+            let (q2, qa2, c2, cr2) = if on_candidate {
+                (qp, qa, h, self.region(h))
+            } else {
+                (h, self.apex_part(h), cp, *cr)
+            };
             if let Some(v) = candidate_in(
                 self.q,
-                self.apex_part(q2),
-                &self.region(c2),
+                qa2,
+                &cr2,
                 self.cell.twist,
                 self.ci,
                 self.cj,
                 self.kind,
                 self.lip_global,
+                *best,
             ) {
                 let v = v.value().max(value);
                 if v < *best {
-                    self.descend(q2, c2, v, level + 1, best);
+                    self.descend(q2, qa2, c2, &cr2, v, level + 1, best);
                 }
             }
         }
@@ -267,5 +283,18 @@ pub(crate) fn refine(
         local: whole,
         split: [!strip(ci), !strip(cj)],
     };
-    pair.descend(&apex, &candidate, coarse, 0, best);
+    let whole_apex = ApexPart {
+        rect: q.rect,
+        smax: q.smax,
+    };
+    let whole_candidate = Region::cell(cell, ci, cj);
+    pair.descend(
+        &apex,
+        whole_apex,
+        &candidate,
+        &whole_candidate,
+        coarse,
+        0,
+        best,
+    );
 }

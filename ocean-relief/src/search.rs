@@ -18,7 +18,10 @@
 //! floating-point note: the node bounds are evaluated with the same monotone operations), so the
 //! result is the brute force's bit for bit. Children are visited nearest bound first, and the
 //! previous apex's best cell seeds the bound (its value is a candidate's value, so the minimum is
-//! unchanged). In wrap mode the pyramid is tiled: copies at Chebyshev ring `r ≥ 1` lie at least
+//! unchanged). A node that can only lower the clearance or the near cap (its bound is not below
+//! the best `c`) is set aside until the plain cone is known: when that is the cap, `D` and `E`
+//! are the cap too (`cone.rs`) and those nodes are never searched, which on the treads of a
+//! staircase is nearly all of them. In wrap mode the pyramid is tiled: copies at Chebyshev ring `r ≥ 1` lie at least
 //! `(r − 1)·N` texels away, which bounds their values from below by `(r − 1)·N` (a depth
 //! difference is at most 1), so the rings stop as soon as that reaches the best value.
 
@@ -137,6 +140,8 @@ struct Entry {
 #[derive(Default)]
 pub(crate) struct Scratch {
     stack: Vec<Entry>,
+    /// Nodes left for the clearance and near cap, with the origin of their pyramid copy.
+    deferred: Vec<(Entry, i64, i64)>,
 }
 
 /// The result for one apex cell: per channel, the value and the cell that attains it (a seed for
@@ -165,9 +170,13 @@ impl Search<'_> {
     #[inline(always)]
     fn open(&self, dist: f64, depth: f64, floor: f64, best: &Best) -> bool {
         let plain = (dist / depth).max(floor);
-        plain < best.value[0]
-            || dist < best.value[1]
-            || (dist < NEAR_DISTANCE && plain < best.value[2])
+        plain < best.value[0] || self.open_near(dist, plain, best)
+    }
+
+    /// [`Search::open`] for the clearance and near cap alone.
+    #[inline(always)]
+    fn open_near(&self, dist: f64, plain: f64, best: &Best) -> bool {
+        dist < best.value[1] || (dist < NEAR_DISTANCE && plain < best.value[2])
     }
 
     fn offer(&self, q: &Apex, ci: i64, cj: i64, k: usize, best: &mut Best) {
@@ -235,6 +244,7 @@ impl Search<'_> {
         if f64::from(root.m) >= q.smax {
             return best;
         }
+        scratch.deferred.clear();
         match grid.edge {
             Edge::Clamp => self.visit(q, floor, grid.origin, grid.origin, &mut best, scratch),
             Edge::Wrap => {
@@ -257,10 +267,27 @@ impl Search<'_> {
                 }
             }
         }
+        if best.value[0] >= self.cap {
+            // The tracer's cone max(c, min(D/h, E)) is c whatever D and E hold when c is the cap
+            // (E never exceeds it), so they are the cap too, and the nodes left for them need no
+            // visit: on a staircase that is most of a tread's search.
+            best.value[1] = self.cap;
+            best.value[2] = self.cap;
+            best.cell[1] = None;
+            best.cell[2] = None;
+        } else {
+            let mut deferred = core::mem::take(&mut scratch.deferred);
+            for &(e, ox, oy) in &deferred {
+                self.descend(q, floor, ox, oy, e, &mut best, &mut scratch.stack, None);
+            }
+            deferred.clear();
+            scratch.deferred = deferred;
+        }
         best
     }
 
-    /// Depth-first search of one copy of the pyramid whose cell `(0, 0)` is at `(ox, oy)`.
+    /// Depth-first search of one copy of the pyramid whose cell `(0, 0)` is at `(ox, oy)`;
+    /// nodes that can only lower the clearance or the near cap go to `scratch.deferred`.
     fn visit(
         &self,
         q: &Apex,
@@ -270,56 +297,103 @@ impl Search<'_> {
         best: &mut Best,
         scratch: &mut Scratch,
     ) {
-        let pyramid = self.pyramid;
-        let top = pyramid.levels.len() as u32 - 1;
-        let nc = self.grid.nc as i64;
-        // Distance and depth of a node, or None when it is skipped.
-        let measure = |level: u32, x: u32, y: u32, best: &Best| -> Option<(f64, f64)> {
-            let (size, nodes) = &pyramid.levels[level as usize];
-            // Past the last node of its level: no cell there (x·2ˡ ≥ the cell count).
-            if x as usize >= *size || y as usize >= *size {
-                return None;
-            }
-            let node = nodes[y as usize * size + x as usize];
-            if f64::from(node.m) >= q.smax {
-                return None;
-            }
-            let (x0, y0) = (i64::from(x) << level, i64::from(y) << level);
-            let x1 = ((i64::from(x) + 1) << level).min(nc);
-            let y1 = ((i64::from(y) + 1) << level).min(nc);
-            let rect = [
-                (ox + x0) as f64,
-                (ox + x1) as f64,
-                (oy + y0) as f64,
-                (oy + y1) as f64,
-            ];
-            // No direction the cone serves reaches the node: none of its cells is a candidate.
-            let w = q.vectors(rect)?;
-            let dist = distance(w);
-            let depth = q.smax - f64::from(node.m);
-            if !self.open(dist, depth, floor, best) {
-                return None;
-            }
-            if self.kind == ConeKind::Relaxed && !falling(w, node.gx, node.gy, node.twists) {
-                return None;
-            }
-            Some((dist, depth))
-        };
-        let Some((dist, depth)) = measure(top, 0, 0, best) else {
+        let top = self.pyramid.levels.len() as u32 - 1;
+        let Some((dist, depth)) = self.measure(q, floor, ox, oy, top, 0, 0, best) else {
             return;
         };
-        let stack = &mut scratch.stack;
-        stack.clear();
-        stack.push(Entry {
+        let root = Entry {
             dist,
             depth,
             level: top,
             x: 0,
             y: 0,
-        });
+        };
+        self.descend(
+            q,
+            floor,
+            ox,
+            oy,
+            root,
+            best,
+            &mut scratch.stack,
+            Some(&mut scratch.deferred),
+        );
+    }
+
+    /// Distance and depth of node `(x, y)` of `level` in the copy at `(ox, oy)`, or `None` when
+    /// it is skipped.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn measure(
+        &self,
+        q: &Apex,
+        floor: f64,
+        ox: i64,
+        oy: i64,
+        level: u32,
+        x: u32,
+        y: u32,
+        best: &Best,
+    ) -> Option<(f64, f64)> {
+        let (size, nodes) = &self.pyramid.levels[level as usize];
+        // Past the last node of its level: no cell there (x·2ˡ ≥ the cell count).
+        if x as usize >= *size || y as usize >= *size {
+            return None;
+        }
+        let node = nodes[y as usize * size + x as usize];
+        if f64::from(node.m) >= q.smax {
+            return None;
+        }
+        let nc = self.grid.nc as i64;
+        let (x0, y0) = (i64::from(x) << level, i64::from(y) << level);
+        let x1 = ((i64::from(x) + 1) << level).min(nc);
+        let y1 = ((i64::from(y) + 1) << level).min(nc);
+        let rect = [
+            (ox + x0) as f64,
+            (ox + x1) as f64,
+            (oy + y0) as f64,
+            (oy + y1) as f64,
+        ];
+        // No direction the cone serves reaches the node: none of its cells is a candidate.
+        let w = q.vectors(rect)?;
+        let dist = distance(w);
+        let depth = q.smax - f64::from(node.m);
+        if !self.open(dist, depth, floor, best) {
+            return None;
+        }
+        if self.kind == ConeKind::Relaxed && !falling(w, node.gx, node.gy, node.twists) {
+            return None;
+        }
+        Some((dist, depth))
+    }
+
+    /// The depth-first search below `start`. With `deferred`, a node that can no longer lower
+    /// the plain cone (its bound is not below the best `c`, which only decreases) but can still
+    /// lower the clearance or the near cap is set aside there instead of being searched.
+    #[allow(clippy::too_many_arguments)]
+    fn descend(
+        &self,
+        q: &Apex,
+        floor: f64,
+        ox: i64,
+        oy: i64,
+        start: Entry,
+        best: &mut Best,
+        stack: &mut Vec<Entry>,
+        mut deferred: Option<&mut Vec<(Entry, i64, i64)>>,
+    ) {
+        stack.clear();
+        stack.push(start);
         while let Some(e) = stack.pop() {
-            if !self.open(e.dist, e.depth, floor, best) {
-                continue;
+            let plain = (e.dist / e.depth).max(floor);
+            if plain >= best.value[0] {
+                if !self.open_near(e.dist, plain, best) {
+                    continue;
+                }
+                if let Some(d) = deferred.as_deref_mut() {
+                    d.push((e, ox, oy));
+                    continue;
+                }
             }
             if e.level == 0 {
                 let (ci, cj) = (ox + i64::from(e.x), oy + i64::from(e.y));
@@ -331,10 +405,9 @@ impl Search<'_> {
             let mut count = 0;
             for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
                 let (x, y) = (2 * e.x + dx, 2 * e.y + dy);
-                if let Some((dist, depth)) = measure(l, x, y, best) {
-                    let key = dist;
+                if let Some((dist, depth)) = self.measure(q, floor, ox, oy, l, x, y, best) {
                     kids[count] = (
-                        key,
+                        dist,
                         Entry {
                             dist,
                             depth,

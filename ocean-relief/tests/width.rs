@@ -86,9 +86,10 @@ fn the_widest_cones_are_valid_and_one_percent_more_is_caught() {
 /// The generated cones on the family at 64², cap 1 (the book's, for 8-bit storage), against
 /// `W` sampled at 2×2 points per cell and 64 directions: never above it (that would be a
 /// violation at a sampled line), never narrower than the bound of whole cells (`parts` 0) at
-/// any texel, and as wide as measured when this test was written: family mean 0.912 in either
-/// edge mode (0.826 with whole cells), the narrowest map fBm at 0.775 (0.668). The guards sit a
-/// little below: 0.90 for the mean and 0.75 for every map.
+/// any texel, and as wide as measured when this test was written with the default bound
+/// (`parts` 2): family mean 0.883 wrapped and 0.882 clamped (0.826 and 0.828 with whole cells),
+/// the narrowest map fBm at 0.730 (0.668). The guards sit a little below: 0.87 for the mean and
+/// 0.72 for every map.
 #[test]
 fn generated_cones_approach_the_widest() {
     let n = 64;
@@ -125,12 +126,12 @@ fn generated_cones_approach_the_widest() {
                 r.worst.i,
                 r.worst.j
             );
-            assert!(r.mean >= 0.75, "{name} {edge:?}: {}", r.mean);
+            assert!(r.mean >= 0.72, "{name} {edge:?}: {}", r.mean);
             sum += r.mean;
             count += 1;
         }
         let mean = sum / f64::from(count);
         println!("family {edge:?}: {mean:.3}");
-        assert!(mean >= 0.90, "{edge:?}: {mean}");
+        assert!(mean >= 0.87, "{edge:?}: {mean}");
     }
 }

@@ -1079,6 +1079,13 @@ fn search_pass(@builtin(global_invocation_id) id: vec3<u32>) {
             visit(-1, -1);
         }
     }
+    // A cell whose plain cone is the cap keeps no clearance or near cap: the tracer's cone
+    // max(c, min(D/h, E)) is c there whatever they hold (E <= cap), so both are the cap
+    // (ocean_relief::search::Search::cell_cone).
+    if !d_lt(best[0], cap) {
+        best[1] = cap;
+        best[2] = cap;
+    }
     let nf = f32(n);
     cones_out[id.y * nc + id.x] = vec4<f32>(
         down_div(best[0], nf),
