@@ -39,8 +39,6 @@
 
 use std::time::Instant;
 
-use glam::{Vec2, Vec3};
-use ocean_core::rng::Pcg32;
 use ocean_relief::accuracy::{Config, Textures, adaptive_cone_steps, table};
 use ocean_relief::maps::{bumps, to_map, value_noise};
 use ocean_relief::{
@@ -50,6 +48,7 @@ use rayon::prelude::*;
 use serde_json::{Value, json};
 
 use crate::options::BenchOptions;
+use crate::relief_family::rays;
 use crate::timing::cpu_name;
 
 /// Sides of figure 1.
@@ -360,19 +359,6 @@ fn progress_overhead(runs: u32) -> Result<Value, String> {
         "reports": reports,
         "overhead": banded / plain - 1.0,
     }))
-}
-
-/// `count` rays at `angle` degrees from the normal, random starts and azimuths.
-pub(crate) fn rays(count: usize, angle: f32, depth: f32) -> Result<Vec<Ray>, String> {
-    let mut rng = Pcg32::new(11, 3);
-    let (st, ct) = angle.to_radians().sin_cos();
-    (0..count)
-        .map(|_| {
-            let start = Vec2::new(rng.next_f32(), rng.next_f32());
-            let (sp, cp) = (std::f32::consts::TAU * rng.next_f32()).sin_cos();
-            Ray::from_view(start, Vec3::new(st * cp, st * sp, -ct), depth).map_err(err)
-        })
-        .collect()
 }
 
 /// Figure 5.

@@ -85,8 +85,12 @@
 //! less width than whole cells.
 //!
 //! The conservative cone (Dummer 2006: the cone contains no solid at all) is bounded the same
-//! way with every cell that has `m_C < Smax(q)` as a candidate, flat or not, no falling test
-//! and `B = 1/L`.
+//! way with every cell that has `m_C < Smax(q)` as a candidate, flat or not, and no falling
+//! test: a point `b` higher than `p` limits it by `s/(S(p) − S(b))`, with the same `A` and `B`.
+//! Near cells take the direction-consistent bound too, with no arc excluded: the surface rises
+//! from `S(p)` to `S(b)` along `u` at a rate at most `R(u)`, so `s/(S(p) − S(b)) ≥ 1/ρ`, `ρ`
+//! the supremum of `R` over the directions of `W`; `ρ = 0` leaves no point of `C` higher than
+//! `p` along them, and `C` is not a candidate.
 //!
 //! **Quadrant cones** ([`crate::quad`]) run the same bound with the vectors `W` clipped to one
 //! closed quadrant (`Apex::within`, `Apex::vectors`): the proof's `b − p` points along the ray's
@@ -188,7 +192,7 @@ impl Cell {
 
 /// The cells of a map: `N × N` in wrap mode, `(N + 1) × (N + 1)` in clamp mode (the border
 /// strips included).
-pub(crate) struct Grid {
+pub(crate) struct Grid<'a> {
     /// Texels per side.
     pub n: usize,
     /// Cells per side.
@@ -200,11 +204,11 @@ pub(crate) struct Grid {
     /// `L` over all cells.
     pub lip_global: f64,
     /// The map's depths, row-major, `N × N` (the corners of the cells, for `crate::refine`).
-    pub depth: Vec<f32>,
+    pub depth: &'a [f32],
 }
 
-impl Grid {
-    pub fn new(map: &HeightMap) -> Self {
+impl<'a> Grid<'a> {
+    pub fn new(map: &'a HeightMap) -> Self {
         let n = map.size();
         let edge = map.edge();
         let (nc, origin) = match edge {
@@ -233,7 +237,7 @@ impl Grid {
             origin,
             cells,
             lip_global,
-            depth: map.depths().to_vec(),
+            depth: map.depths(),
         }
     }
 
@@ -635,11 +639,17 @@ pub(crate) fn candidate_in(
     };
     // The near-cell rule only raises the value or drops the candidate: a caller that discards
     // values at or above `enough` needs neither when the value is there already.
-    if kind == ConeKind::Relaxed && cheb <= K_LIP && out.value() < enough {
-        // Direction-consistent bound (module documentation, "near cells").
+    if cheb <= K_LIP && out.value() < enough {
+        // Direction-consistent bound (module documentation, "near cells"). A conservative cone
+        // must clear every higher point, falling or not: no direction is excluded (a gradient
+        // box around the origin excludes none).
         let k = K_LIP as i64;
         let path = q.path[((dy + k) as usize) * NEAR + (dx + k) as usize];
-        let rise = crate::arc::max_rise(w, r.g, path, q.sector);
+        let g = match kind {
+            ConeKind::Relaxed => r.g,
+            ConeKind::Conservative => [-1.0, 1.0, -1.0, 1.0],
+        };
+        let rise = crate::arc::max_rise(w, g, path, q.sector);
         if rise <= 0.0 {
             return None;
         }

@@ -14,7 +14,7 @@ use crate::search::{CHANNELS, NEAR_DISTANCE};
 /// `w(q)`, `D(q)` and `E(q)` of apex cell `(qi, qj)` (spatial position), for every direction
 /// or one quadrant's ([`crate::quad`]), by visiting every candidate.
 pub(crate) fn cell_cone(
-    grid: &Grid,
+    grid: &Grid<'_>,
     qi: i64,
     qj: i64,
     sector: Option<Quadrant>,

@@ -265,7 +265,7 @@ impl ConeMap {
     }
 
     /// Texel `k` takes the smallest of its four cells, divided by `N`, rounded down to `f32`.
-    fn from_cells(grid: &Grid, cells: &[[f64; CHANNELS]]) -> Self {
+    fn from_cells(grid: &Grid<'_>, cells: &[[f64; CHANNELS]]) -> Self {
         let n = grid.n;
         let mut channels: [Vec<f32>; CHANNELS] = core::array::from_fn(|_| vec![0.0f32; n * n]);
         for k in 0..n * n {

@@ -241,7 +241,7 @@ impl Pair<'_> {
 /// is below it; `coarse` is the cell pair's own bound ([`crate::bound::candidate`]).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn refine(
-    grid: &Grid,
+    grid: &Grid<'_>,
     q: &Apex,
     cell: &Cell,
     ci: i64,

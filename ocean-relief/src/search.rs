@@ -69,7 +69,7 @@ pub(crate) struct Pyramid {
 }
 
 impl Pyramid {
-    pub fn new(grid: &Grid, kind: ConeKind) -> Self {
+    pub fn new(grid: &Grid<'_>, kind: ConeKind) -> Self {
         let base: Vec<Node> = grid
             .cells
             .iter()
@@ -154,7 +154,7 @@ pub(crate) struct Best {
 
 /// What one search needs besides the apex.
 pub(crate) struct Search<'a> {
-    pub grid: &'a Grid,
+    pub grid: &'a Grid<'a>,
     pub pyramid: &'a Pyramid,
     pub kind: ConeKind,
     /// Cap of every channel, texels (per unit depth for `c`).

@@ -25,6 +25,7 @@ use core::f64::consts::TAU;
 use crate::bound::ConeKind;
 use crate::check::{conservative_limit, relaxed_limit};
 use crate::map::{Edge, HeightMap};
+use crate::quadrant::Quadrant;
 use crate::{ReliefError, for_rows};
 
 /// How densely [`widest`] samples.
@@ -60,6 +61,33 @@ pub fn widest(
     cap: f32,
     params: WidestParams,
 ) -> Result<Vec<f64>, ReliefError> {
+    widest_in(map, kind, cap, params, None)
+}
+
+/// [`widest`] for one layer of a quadrant cone map ([`crate::quad`]): the limit over the sampled
+/// directions of the closed quadrant `quadrant` only (both of its axes included when
+/// `directions` is a multiple of 4), the widest cone that layer may hold.
+///
+/// # Errors
+///
+/// As [`widest`].
+pub fn widest_quadrant(
+    map: &HeightMap,
+    kind: ConeKind,
+    cap: f32,
+    params: WidestParams,
+    quadrant: Quadrant,
+) -> Result<Vec<f64>, ReliefError> {
+    widest_in(map, kind, cap, params, Some(quadrant))
+}
+
+fn widest_in(
+    map: &HeightMap,
+    kind: ConeKind,
+    cap: f32,
+    params: WidestParams,
+    sector: Option<Quadrant>,
+) -> Result<Vec<f64>, ReliefError> {
     crate::check_range(
         "cap",
         f64::from(cap),
@@ -75,8 +103,12 @@ pub fn widest(
     let dirs: Vec<(f64, f64)> = (0..params.directions)
         .map(|k| {
             let a = TAU * k as f64 / params.directions as f64;
-            (libm::cos(a), libm::sin(a))
+            // cos(π/2) is 6e-17, not 0: the axes are snapped so that both quadrants that share
+            // an axis take it (as `check::check_quadrant`).
+            let snap = |c: f64| if c.abs() < 1.0e-12 { 0.0 } else { c };
+            (snap(libm::cos(a)), snap(libm::sin(a)))
         })
+        .filter(|&(ux, uy)| sector.is_none_or(|q| q.contains(ux, uy)))
         .collect();
     // Sample points: spatial positions origin + k/s for k in 0..=nc·s (both ends: in wrap mode
     // the last equals the first a period on; in clamp mode it is the far border strip).

@@ -100,10 +100,13 @@ fn flat_map_gets_the_cap() {
 
 /// A ramp has no peak: along any line its height is monotone, so no ray can enter it and come
 /// out; clamp mode extends it by strips that are flat along the ramp and repeat it across, which
-/// add none. Relaxed cones are the cap (4). The conservative cone must avoid the rising part:
-/// exactly `1/σ` texels per unit depth for a ramp rising `σ` per texel, `1/(σN)` texture widths;
-/// the bound reaches it up to the rounding of the gradient bound and the final `f32` (relative
-/// 1e-6) and never exceeds it.
+/// add none. Relaxed cones are the cap (4). The conservative cone must avoid the rising part: a
+/// line up the ramp from the near edge of a cell that rises `σ` over its texel width reaches
+/// that height difference in one texel, so texel `k`, read over the cells `k − 1` and `k`, may
+/// hold at most `1/(σ N)` texture widths for each of them; no line rises faster than the
+/// steepest cell, so `1/(σ_max N)` is always allowed. (The `f32` depths make `σ` differ from
+/// cell to cell by a few parts in a million.) The bound stays within those two, up to the
+/// rounding of the gradient bound and the final `f32` (relative 1e-6).
 ///
 /// (A plane tilted along both axes is not peak-free in clamp mode: beyond its high edge the strip
 /// keeps the slope of the other axis, so a line climbing to the edge and running slightly
@@ -114,17 +117,26 @@ fn ramp_cones() {
     let map = from_fn(n, Edge::Clamp, |i, _| i as f32 * (0.9 / 64.0) + 0.05);
     let relaxed = ConeMap::generate(&map, ConeParams::relaxed(4.0)).unwrap();
     assert!(relaxed.ratios().iter().all(|&r| r == 4.0));
-    // σ: the steepest step between neighbouring f32 depths (0.9/64 up to their rounding).
+    // σ of each cell along the ramp: 0.9/64 up to the rounding of the f32 depths.
     let d = map.depths();
-    let sigma = (0..n - 1)
+    let sigma: Vec<f64> = (0..n - 1)
         .map(|i| f64::from(d[i]) - f64::from(d[i + 1]))
-        .fold(0.0, f64::max);
-    assert!((sigma - 0.9 / 64.0).abs() < 1e-6);
-    let exact = 1.0 / (sigma * n as f64);
+        .collect();
+    let steepest = sigma.iter().copied().fold(0.0, f64::max);
+    assert!((steepest - 0.9 / 64.0).abs() < 1e-6);
     let cons = ConeMap::generate(&map, ConeParams::conservative(4.0)).unwrap();
-    for &r in cons.ratios() {
-        let r = f64::from(r);
-        assert!(r <= exact && r >= exact * (1.0 - 1e-6), "{r} vs {exact}");
+    for (k, &r) in cons.ratios().iter().enumerate() {
+        let (i, r) = (k % n, f64::from(r));
+        let local = [i.wrapping_sub(1), i]
+            .iter()
+            .filter_map(|&c| sigma.get(c))
+            .copied()
+            .fold(0.0, f64::max);
+        let (upper, lower) = (1.0 / (local * n as f64), 1.0 / (steepest * n as f64));
+        assert!(
+            r <= upper && r >= lower * (1.0 - 1e-6),
+            "{k}: {r} not in [{lower}, {upper}]"
+        );
     }
 }
 

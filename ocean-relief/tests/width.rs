@@ -4,8 +4,8 @@
 
 use ocean_relief::check::{CheckParams, check};
 use ocean_relief::maps::{family, to_map};
-use ocean_relief::widest::{WidestParams, widest, width};
-use ocean_relief::{ConeKind, ConeMap, ConeParams, Edge};
+use ocean_relief::widest::{WidestParams, widest, widest_quadrant, width};
+use ocean_relief::{ConeKind, ConeMap, ConeParams, Edge, Quadrant};
 
 /// A pin of height `h` at texel (10, 12) on a floor at height 0. Texel (13, 12) is read at every
 /// point of `[12, 14] × [11, 13]`; the nearest of them to the pin is (12, 12), 2 texels away,
@@ -34,6 +34,19 @@ fn widest_cone_beside_a_pin_is_its_distance_over_its_height() {
         // The generated cone there is valid, so at most W.
         let cones = ConeMap::generate(&map, ConeParams::relaxed(1.0)).unwrap();
         assert!(f64::from(cones.ratios()[12 * n + 13]) <= expected);
+        // Over the quadrants: the pin lies at −x from the whole footprint, so the two quadrants
+        // of uₓ ≤ 0 have the same limit, and those of uₓ ≥ 0 see only the copy 32 texels on
+        // (wrap: 28 texels from the footprint, 28/h = 1.17 texture widths) or nothing (clamp):
+        // the cap, 1, either way.
+        for q in Quadrant::ALL {
+            let wq = widest_quadrant(&map, ConeKind::Relaxed, 1.0, WidestParams::default(), q)
+                .unwrap()[12 * n + 13];
+            let want = if q.x_neg { expected } else { 1.0 };
+            assert!(
+                (wq - want).abs() < 1e-12,
+                "{edge:?} {q:?}: {wq} against {want}"
+            );
+        }
     }
 }
 

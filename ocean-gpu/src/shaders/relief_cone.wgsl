@@ -882,9 +882,11 @@ fn candidate(cell: Cell, ci: i32, cj: i32) -> Candidate {
     if cheb <= K_LIP {
         b = inv_lring[cheb];
     }
-    if relaxed() && cheb <= K_LIP {
-        // The direction-consistent bound of near cells.
-        let rise = max_rise(w, cell.g, path[path_at(dx, dy)]);
+    if cheb <= K_LIP {
+        // The direction-consistent bound of near cells; a conservative cone excludes no
+        // direction (a gradient box around the origin excludes none).
+        let g = select(vec4<f32>(-1.0, 1.0, -1.0, 1.0), cell.g, relaxed());
+        let rise = max_rise(w, g, path[path_at(dx, dy)]);
         if rise <= 0.0 {
             return out;
         }
