@@ -195,7 +195,7 @@ impl ConeMap {
             parts: params.parts,
         };
         let rows = grid.nc;
-        let mut cells = vec![[0.0f64; CHANNELS]; grid.nc * grid.nc];
+        let mut cells = vec![[0.0f32; CHANNELS]; grid.nc * grid.nc];
         let band = match progress {
             Some(_) => band_rows(rows, bands),
             None => rows,
@@ -224,7 +224,7 @@ impl ConeMap {
                         None => q,
                     };
                     let best = search.cell_cone(&q, &seeds, &mut scratch);
-                    *out = best.value;
+                    *out = Self::texture_units(&grid, best.value);
                     for (s, c) in seeds.iter_mut().zip(best.cell) {
                         *s = c.or(*s);
                     }
@@ -254,23 +254,30 @@ impl ConeMap {
         params.validate()?;
         crate::map::check_size(map.size(), map.size(), 2, MAX_BRUTE_SIDE)?;
         let grid = Grid::new(map);
-        let mut cells = vec![[0.0f64; CHANNELS]; grid.nc * grid.nc];
+        let mut cells = vec![[0.0f32; CHANNELS]; grid.nc * grid.nc];
         for_rows(&mut cells, grid.nc, |y, row| {
             for (x, out) in row.iter_mut().enumerate() {
                 let (qi, qj) = (grid.origin + x as i64, grid.origin + y as i64);
-                *out = brute::cell_cone(&grid, qi, qj, sector, params);
+                *out = Self::texture_units(&grid, brute::cell_cone(&grid, qi, qj, sector, params));
             }
         });
         Ok(Self::from_cells(&grid, &cells))
     }
 
-    /// Texel `k` takes the smallest of its four cells, divided by `N`, rounded down to `f32`.
-    fn from_cells(grid: &Grid<'_>, cells: &[[f64; CHANNELS]]) -> Self {
+    /// A cell's values in the map's units: divided by `N`, rounded down to `f32`. Kept per cell
+    /// in `f32` (12 bytes, not 24): both steps are monotone, so the texels' minima over these
+    /// are the rounded minima of the `f64` values, bit for bit.
+    fn texture_units(grid: &Grid<'_>, v: [f64; CHANNELS]) -> [f32; CHANNELS] {
+        v.map(|a| down32(a / grid.n as f64))
+    }
+
+    /// Texel `k` takes the smallest of its four cells (already in texture units).
+    fn from_cells(grid: &Grid<'_>, cells: &[[f32; CHANNELS]]) -> Self {
         let n = grid.n;
         let mut channels: [Vec<f32>; CHANNELS] = core::array::from_fn(|_| vec![0.0f32; n * n]);
         for k in 0..n * n {
             let (i, j) = ((k % n) as i64, (k / n) as i64);
-            let mut v = [f64::INFINITY; CHANNELS];
+            let mut v = [f32::INFINITY; CHANNELS];
             // The cells whose corner is texel (i, j) sit at spatial positions i − 1 and i.
             for cj in [j - 1, j] {
                 for ci in [i - 1, i] {
@@ -282,7 +289,7 @@ impl ConeMap {
                 }
             }
             for (ch, a) in channels.iter_mut().zip(v) {
-                ch[k] = down32(a / n as f64);
+                ch[k] = a;
             }
         }
         Self {
