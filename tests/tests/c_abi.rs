@@ -506,6 +506,8 @@ fn build_and_run_snippet(
         &format!("compile {} as {lang} {std_flag}", source.display()),
     );
     run(Command::new(exe), &format!("run {}", exe.display()));
+    // Passed: drop the executable (it carries the static library's debug information).
+    let _ = std::fs::remove_file(exe);
 }
 
 /// Every C example of the README (its ```c blocks) compiles as C11 and as C++17 with the
