@@ -474,6 +474,31 @@ pub(crate) fn falling(w: [f64; 4], gx: [f32; 2], gy: [f32; 2], twists: u8) -> bo
     (twists & 1 != 0 && twist_allows(w, 1)) || (twists & 2 != 0 && twist_allows(w, -1))
 }
 
+/// A necessary condition for some cell of a block to pass [`falling_cell`], from where its cells
+/// lie rather than from the block's box: `reach` holds, in spatial coordinates, the largest right
+/// edge of the cells whose `∂S/∂x` can be positive, the smallest left edge of those whose
+/// `∂S/∂x` can be negative, and the same along `y` (`∓∞` when there are none). A cell's largest
+/// `g·w` is positive only if one of its two products is, and `gₓ·wₓ > 0` needs either
+/// `gₓ > 0` and a vector with `wₓ > 0`, which [`Apex::vectors`] gives the cell only when its right
+/// edge lies right of the apex box's left edge (within the clip), or the mirror case; when the
+/// largest `g·w` is 0 the cell passes only through its twist, which `twists` and `w` (the block's
+/// vectors, a superset of the cell's) test as in [`falling`]. The coordinates are integers, so
+/// the differences are exact and monotone in the edge. (The gradient union alone cannot see
+/// that, on the treads of a staircase, the risers that fall towards the apex lie behind it: a
+/// node straddling the apex's column passed, and the search opened every such node out to the
+/// clearance radius.)
+#[inline(always)]
+pub(crate) fn falling_reach(q: &Apex, w: [f64; 4], reach: [f64; 4], twists: u8) -> bool {
+    let [qx0, qx1, qy0, qy1] = q.rect;
+    let [cx0, cx1, cy0, cy1] = q.clip;
+    (reach[0] - qx0).min(cx1) > 0.0
+        || (reach[1] - qx1).max(cx0) < 0.0
+        || (reach[2] - qy0).min(cy1) > 0.0
+        || (reach[3] - qy1).max(cy0) < 0.0
+        || (twists & 1 != 0 && twist_allows(w, 1))
+        || (twists & 2 != 0 && twist_allows(w, -1))
+}
+
 /// Whether a box of vectors `w` holds a vector along which a cell of twist sign `twist` curves
 /// its depth upwards (second derivative `2·D·wₓ·w_y > 0`).
 #[inline(always)]
@@ -588,6 +613,7 @@ pub(crate) fn candidate(
         kind,
         lip_global,
         f64::INFINITY,
+        || None,
     )
 }
 
@@ -616,6 +642,7 @@ pub(crate) fn candidate_in(
     kind: ConeKind,
     lip_global: f64,
     enough: f64,
+    path: impl FnOnce() -> Option<[f64; 4]>,
 ) -> Option<Candidate> {
     let m = r.m;
     if m >= part.smax {
@@ -644,7 +671,7 @@ pub(crate) fn candidate_in(
         // must clear every higher point, falling or not: no direction is excluded (a gradient
         // box around the origin excludes none).
         let k = K_LIP as i64;
-        let path = q.path[((dy + k) as usize) * NEAR + (dx + k) as usize];
+        let path = path().unwrap_or_else(|| q.path[((dy + k) as usize) * NEAR + (dx + k) as usize]);
         let g = match kind {
             ConeKind::Relaxed => r.g,
             ConeKind::Conservative => [-1.0, 1.0, -1.0, 1.0],

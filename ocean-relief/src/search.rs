@@ -9,7 +9,9 @@
 //!   found so far: every cell's `A` has a larger distance and a smaller denominator, and every
 //!   `B` is at least `1/L_global`;
 //! - (relaxed) the falling test fails for the node's box, gradient union and twist signs, which
-//!   contain each cell's;
+//!   contain each cell's, or no cell whose gradient can point some way lies where a vector from
+//!   the apex box points that way too ([`falling_reach`]: the node keeps, for each of the four
+//!   signs of `∂S/∂x` and `∂S/∂y`, the outermost edge of the cells that can have it);
 //! - (quadrant cones, [`crate::quad`]) no vector from the apex box into the node lies in the
 //!   quadrant: no cell of it can be reached by a ray the cone serves. The clipped box of a node
 //!   contains its cells' clipped boxes, so its distance and growth bound theirs as before.
@@ -28,7 +30,9 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use crate::bound::{Apex, Cell, ConeKind, Grid, candidate, distance, falling, floor_value};
+use crate::bound::{
+    Apex, Cell, ConeKind, Grid, candidate, distance, falling, falling_reach, floor_value,
+};
 use crate::map::Edge;
 
 #[derive(Clone, Copy, Debug)]
@@ -38,6 +42,10 @@ struct Node {
     gy: [f32; 2],
     /// Bit 0: some cell has a positive twist; bit 1: some has a negative one.
     twists: u8,
+    /// In cell coordinates of the pyramid copy: the largest right edge of the cells whose
+    /// `∂S/∂x` can be positive, the smallest left edge of those whose `∂S/∂x` can be negative,
+    /// the same along `y` (`∓∞`: none); see [`falling_reach`].
+    reach: [f32; 4],
 }
 
 const EMPTY: Node = Node {
@@ -45,6 +53,12 @@ const EMPTY: Node = Node {
     gx: [f32::INFINITY, f32::NEG_INFINITY],
     gy: [f32::INFINITY, f32::NEG_INFINITY],
     twists: 0,
+    reach: [
+        f32::NEG_INFINITY,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::INFINITY,
+    ],
 };
 
 impl Node {
@@ -54,6 +68,12 @@ impl Node {
             gx: [a.gx[0].min(b.gx[0]), a.gx[1].max(b.gx[1])],
             gy: [a.gy[0].min(b.gy[0]), a.gy[1].max(b.gy[1])],
             twists: a.twists | b.twists,
+            reach: [
+                a.reach[0].max(b.reach[0]),
+                a.reach[1].min(b.reach[1]),
+                a.reach[2].max(b.reach[2]),
+                a.reach[3].min(b.reach[3]),
+            ],
         }
     }
 }
@@ -87,7 +107,7 @@ impl Pyramid {
                         } else if let Some((_, prev)) = levels.last() {
                             prev[cy * size + cx]
                         } else {
-                            Self::base(&grid.cells[cy * size + cx], kind)
+                            Self::base(&grid.cells[cy * size + cx], kind, cx, cy)
                         }
                     };
                     next[y * half + x] = Node::merge(
@@ -102,11 +122,14 @@ impl Pyramid {
         Self { levels, kind }
     }
 
-    /// The level-0 node of a cell: the cell itself, or nothing for a flat cell under relaxed
-    /// cones (never a candidate).
+    /// The level-0 node of the cell at `(x, y)`: the cell itself, or nothing for a flat cell
+    /// under relaxed cones (never a candidate).
     #[inline(always)]
-    fn base(c: &Cell, kind: ConeKind) -> Node {
+    fn base(c: &Cell, kind: ConeKind, x: usize, y: usize) -> Node {
         if kind == ConeKind::Conservative || !c.flat {
+            // Cell coordinates are below 2²⁴: exact in f32.
+            let (x, y) = (x as f32, y as f32);
+            let edge = |can: bool, at: f32, none: f32| if can { at } else { none };
             Node {
                 m: c.m,
                 gx: c.gx,
@@ -116,6 +139,12 @@ impl Pyramid {
                     -1 => 2,
                     _ => 0,
                 },
+                reach: [
+                    edge(c.gx[1] > 0.0, x + 1.0, f32::NEG_INFINITY),
+                    edge(c.gx[0] < 0.0, x, f32::INFINITY),
+                    edge(c.gy[1] > 0.0, y + 1.0, f32::NEG_INFINITY),
+                    edge(c.gy[0] < 0.0, y, f32::INFINITY),
+                ],
             }
         } else {
             EMPTY
@@ -131,7 +160,7 @@ impl Pyramid {
     #[inline(always)]
     fn node(&self, grid: &Grid<'_>, level: u32, x: usize, y: usize) -> Node {
         match level {
-            0 => Self::base(&grid.cells[y * grid.nc + x], self.kind),
+            0 => Self::base(&grid.cells[y * grid.nc + x], self.kind, x, y),
             l => {
                 let (size, nodes) = &self.levels[l as usize - 1];
                 nodes[y * size + x]
@@ -391,7 +420,20 @@ impl Search<'_> {
         if !self.open(dist, depth, floor, best) {
             return None;
         }
-        if self.kind == ConeKind::Relaxed && !falling(w, node.gx, node.gy, node.twists) {
+        if self.kind == ConeKind::Relaxed
+            && !(falling(w, node.gx, node.gy, node.twists)
+                && falling_reach(
+                    q,
+                    w,
+                    [
+                        ox as f64 + f64::from(node.reach[0]),
+                        ox as f64 + f64::from(node.reach[1]),
+                        oy as f64 + f64::from(node.reach[2]),
+                        oy as f64 + f64::from(node.reach[3]),
+                    ],
+                    node.twists,
+                ))
+        {
             return None;
         }
         Some((dist, depth))

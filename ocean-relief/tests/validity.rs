@@ -91,6 +91,35 @@ fn relaxed_128_is_valid() {
     );
 }
 
+/// The twelve kinds of `maps::family` (ramps, stairs, cones, pits, spheres, boxes, thin walls,
+/// pins and strokes besides noise), both edge modes, at the default subdivision and the finest,
+/// where the bound over parts of cells and their path boxes is most aggressive: every channel
+/// valid on 2×2 apexes per cell and 32 directions.
+#[test]
+fn family_cones_are_valid_at_every_subdivision() {
+    let n = 32;
+    let params = CheckParams {
+        apexes: 2,
+        directions: 32,
+        usage: false,
+    };
+    for edge in [Edge::Wrap, Edge::Clamp] {
+        for (name, heights) in ocean_relief::maps::family(n) {
+            let map = ocean_relief::maps::to_map(n, &heights, edge).unwrap();
+            for parts in [ocean_relief::DEFAULT_PARTS, ocean_relief::MAX_PARTS] {
+                let cones =
+                    ConeMap::generate(&map, ConeParams::relaxed(1.0).with_parts(parts)).unwrap();
+                let r = check(&map, Channels::of(&cones), ConeKind::Relaxed, params).unwrap();
+                assert_eq!(
+                    r.violations, 0,
+                    "{name} {edge:?} parts {parts}: {:?}",
+                    r.worst
+                );
+            }
+        }
+    }
+}
+
 /// Quantised maps (8-bit, 8-bit square root, f16) round down, so they stay valid.
 #[test]
 fn quantised_cones_stay_valid() {
