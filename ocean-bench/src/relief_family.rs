@@ -4,9 +4,10 @@
 //!
 //! 8. **Width**: at 128², relaxed cones capped at 1 (the book's cap), the generated plain cone
 //!    of every texel against `W`, the widest valid one (`ocean_relief::widest`, sampled at 2×2
-//!    points per cell and 64 directions): per map the mean of `generated / W`, the mean weighted
-//!    by the texel's depth and the worst texel, with the default bound (`ConeParams::parts` 2);
-//!    the means with `parts` 4 and with whole cells (`parts` 0, the GPU's). In wrap mode also
+//!    points per cell and 64 directions, then refined by its local search): per map the mean of
+//!    `generated / W`, the mean weighted by the texel's depth and the worst texel, with the
+//!    default bound (`ConeParams::parts` 2); the means with `parts` 4 and 6 and with whole cells
+//!    (`parts` 0, the GPU's). In wrap mode also
 //!    the family means of conservative cones against the widest conservative ones, and of each
 //!    layer of quadrant cone maps (relaxed and conservative, `ocean_relief::quad`) against the
 //!    widest cone over that quadrant's directions (`widest::widest_quadrant`). Targets: family mean at least 0.95, every
@@ -40,6 +41,8 @@ use serde_json::{Value, json};
 
 /// Side of figure 8.
 pub const WIDTH_SIDE: usize = 128;
+/// The finest subdivision figure 8 shows besides the default and 4.
+const FINEST: u32 = 6;
 /// Targets of figure 8.
 const TARGET_MEAN: f64 = 0.95;
 const TARGET_EACH: f64 = 0.9;
@@ -60,6 +63,7 @@ pub fn width_figure() -> Result<Value, String> {
     for (edge, edge_name) in EDGES {
         let mut rows = Vec::new();
         let (mut sum, mut sum_cells, mut sum_fine, mut least) = (0.0, 0.0, 0.0, f64::INFINITY);
+        let (mut sum_finest, mut finest_least) = (0.0, f64::INFINITY);
         for (name, heights) in family(n) {
             let map =
                 HeightMap::from_heights(n, n, &heights, edge, Default::default()).map_err(err)?;
@@ -67,10 +71,14 @@ pub fn width_figure() -> Result<Value, String> {
             let cones = ConeMap::generate(&map, params).map_err(err)?;
             let cells = ConeMap::generate(&map, params.with_parts(0)).map_err(err)?;
             let fine = ConeMap::generate(&map, params.with_parts(4)).map_err(err)?;
+            let finest = ConeMap::generate(&map, params.with_parts(FINEST)).map_err(err)?;
             let r = width(&map, cones.ratios(), &w).map_err(err)?;
             let c = width(&map, cells.ratios(), &w).map_err(err)?;
             let f4 = width(&map, fine.ratios(), &w).map_err(err)?;
+            let f6 = width(&map, finest.ratios(), &w).map_err(err)?;
             sum_fine += f4.mean;
+            sum_finest += f6.mean;
+            finest_least = finest_least.min(f6.mean);
             sum += r.mean;
             sum_cells += c.mean;
             least = least.min(r.mean);
@@ -86,6 +94,7 @@ pub fn width_figure() -> Result<Value, String> {
                 "whole_cells_mean": c.mean,
                 "whole_cells_depth_weighted": c.depth_weighted,
                 "parts_4_mean": f4.mean,
+                "parts_6_mean": f6.mean,
             }));
         }
         let count = rows.len() as f64;
@@ -101,6 +110,8 @@ pub fn width_figure() -> Result<Value, String> {
             "family_mean": mean,
             "family_mean_whole_cells": sum_cells / count,
             "family_mean_parts_4": sum_fine / count,
+            "family_mean_parts_6": sum_finest / count,
+            "narrowest_map_mean_parts_6": finest_least,
             "narrowest_map_mean": least,
             "meets_target": mean >= TARGET_MEAN && least >= TARGET_EACH,
             "other_kinds": others,
@@ -299,30 +310,34 @@ pub fn print(doc: &Value) {
     let w = &doc["width"];
     println!(
         "8. cone width at {0}² (relaxed, cap {1}): generated / widest valid, mean over texels \
-         (depth-weighted; whole cells; parts 4); worst texel",
+         (depth-weighted; whole cells; parts 4; parts 6); worst texel",
         w["side"], w["max_ratio"]
     );
     for m in w["modes"].as_array().into_iter().flatten() {
         println!("   {}:", m["edge"].as_str().unwrap_or("?"));
         for r in m["maps"].as_array().into_iter().flatten() {
             println!(
-                "     {:<12} {} ({}; {}; {}), worst {} at {} depth {}",
+                "     {:<12} {} ({}; {}; {}; {}), worst {} at {} depth {}",
                 r["map"].as_str().unwrap_or("?"),
                 f(&r["mean"], 3),
                 f(&r["depth_weighted"], 3),
                 f(&r["whole_cells_mean"], 3),
                 f(&r["parts_4_mean"], 3),
+                f(&r["parts_6_mean"], 3),
                 f(&r["worst"], 3),
                 r["worst_texel"],
                 f(&r["worst_depth"], 2)
             );
         }
         println!(
-            "     family mean {} (whole cells {}, parts 4 {}), narrowest map {} (targets {} and {}: {})",
+            "     family mean {} (whole cells {}, parts 4 {}, parts 6 {}), narrowest map {} \
+             (parts 6: {}) (targets {} and {}, default: {})",
             f(&m["family_mean"], 3),
             f(&m["family_mean_whole_cells"], 3),
             f(&m["family_mean_parts_4"], 3),
+            f(&m["family_mean_parts_6"], 3),
             f(&m["narrowest_map_mean"], 3),
+            f(&m["narrowest_map_mean_parts_6"], 3),
             w["target_family_mean"],
             w["target_each_map"],
             if m["meets_target"].as_bool() == Some(true) {

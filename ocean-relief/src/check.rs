@@ -196,10 +196,23 @@ pub fn relaxed_limit(
     reach: f64,
     height: f64,
 ) -> f64 {
+    relaxed_limit_at(map, px, py, ux, uy, reach, height).0
+}
+
+/// [`relaxed_limit`] and the distance along the line of the exit that sets it (`∞` with it).
+pub(crate) fn relaxed_limit_at(
+    map: &HeightMap,
+    px: f64,
+    py: f64,
+    ux: f64,
+    uy: f64,
+    reach: f64,
+    height: f64,
+) -> (f64, f64) {
     let sp = map.surface_f64(px, py);
     let floor_level = sp - height;
     let mut m = sp;
-    let mut best = f64::INFINITY;
+    let mut best = (f64::INFINITY, f64::INFINITY);
     // Whether g has been at or below the floor level (an upward crossing of it is then an exit),
     // and whether that crossing has been found.
     let mut dipped = false;
@@ -207,9 +220,9 @@ pub fn relaxed_limit(
     const EPS: f64 = 1.0e-12;
     walk(map, px, py, ux, uy, reach, |pc| {
         // Exits at the running minimum (levels above the floor level).
-        let cand = |s: f64, level: f64, best: &mut f64| {
-            if level < sp - EPS && level >= floor_level {
-                *best = best.min(s / (sp - level));
+        let cand = |s: f64, level: f64, best: &mut (f64, f64)| {
+            if level < sp - EPS && level >= floor_level && s / (sp - level) < best.0 {
+                *best = (s / (sp - level), s);
             }
         };
         if pc.k0 > m + EPS {
@@ -240,13 +253,15 @@ pub fn relaxed_limit(
             if let Some(f) = from
                 && let Some(s) = rise_above(pc, f, floor_level)
             {
-                best = best.min(s / height);
+                if s / height < best.0 {
+                    best = (s / height, s);
+                }
                 crossed = true;
             }
         }
         m = m.min(pc.at(pc.s1));
         // Farther points cannot beat `best`: s/(S(p) − L) ≥ s/S(p).
-        pc.s1 < best * sp
+        pc.s1 < best.0 * sp
     });
     best
 }
@@ -263,14 +278,31 @@ pub fn conservative_limit(
     reach: f64,
     height: f64,
 ) -> f64 {
+    conservative_limit_at(map, px, py, ux, uy, reach, height).0
+}
+
+/// [`conservative_limit`] and the distance along the line of the point that sets it (`∞` with
+/// it).
+pub(crate) fn conservative_limit_at(
+    map: &HeightMap,
+    px: f64,
+    py: f64,
+    ux: f64,
+    uy: f64,
+    reach: f64,
+    height: f64,
+) -> (f64, f64) {
     let sp = map.surface_f64(px, py);
     let floor_level = sp - height;
-    let mut best = f64::INFINITY;
+    let mut best = (f64::INFINITY, f64::INFINITY);
     walk(map, px, py, ux, uy, reach, |pc| {
         let mut try_at = |s: f64| {
             let g = pc.at(s).max(floor_level);
             if g < sp {
-                best = best.min(if s > 0.0 { s / (sp - g) } else { 0.0 });
+                let v = if s > 0.0 { s / (sp - g) } else { 0.0 };
+                if v < best.0 {
+                    best = (v, s);
+                }
             }
         };
         try_at(pc.s0);
@@ -305,7 +337,7 @@ pub fn conservative_limit(
         if floor_level > f64::NEG_INFINITY {
             roots(pc.k2, pc.k1, pc.k0 - floor_level, &mut try_at);
         }
-        pc.s1 < best * sp
+        pc.s1 < best.0 * sp
     });
     best
 }

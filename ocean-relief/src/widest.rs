@@ -10,9 +10,16 @@
 //! `c*` the exact directional limit of [`crate::check`] (Lemma 1 of [`crate::bound`]). A map of
 //! `W` values is itself valid: a bilinear blend at `p` mixes four texels whose footprints all
 //! contain `p`, each `≤ c*(p)`. [`widest`] samples the infimum on a sub-grid of points (texel
-//! centres, cell edges and the clamp-mode border strips included) and a fan of directions, so
-//! it can only overestimate `W`: a generated cone above it is invalid at a sampled line
-//! ([`crate::check`] finds it), one below it is narrower than allowed by at least that much.
+//! centres, cell edges and the clamp-mode border strips included) and a fan of directions, then
+//! (with [`WidestParams::refine`]) walks downhill from each cell's smallest sample: a pattern
+//! search over the point (inside the closed cell) and the direction, halving its steps. Every
+//! value it takes is `c*` of some line, so it can only overestimate `W`: a generated cone above
+//! it is invalid on that line, one below it is narrower than allowed by at least that much.
+//! The sampled infimum alone misses the minima between samples, most where the limiting line
+//! grazes the top of a pin or a box's corner. Measured on the family at 64² with the default
+//! generator: its mean share of the sampled `W` is 0.883, of a 16 times denser sampling (4×4
+//! points a cell, 256 directions) 0.897, and of the refined `W` from the default sampling
+//! 0.908, at about the cost of the samples.
 //!
 //! [`width`] compares a cone map with it: the mean of `generated / W`, the mean weighted by the
 //! texel's depth (a cone's reach from the top of the relief is its ratio times that depth, so
@@ -23,7 +30,7 @@ use alloc::vec::Vec;
 use core::f64::consts::TAU;
 
 use crate::bound::ConeKind;
-use crate::check::{conservative_limit, relaxed_limit};
+use crate::check::{conservative_limit_at, relaxed_limit_at};
 use crate::map::{Edge, HeightMap};
 use crate::quadrant::Quadrant;
 use crate::{ReliefError, for_rows};
@@ -37,6 +44,10 @@ pub struct WidestParams {
     /// Directions per point, evenly spaced from angle 0 (axes and diagonals included when a
     /// multiple of 8).
     pub directions: usize,
+    /// Step halvings of the local search from each cell's smallest sample (0: the samples
+    /// alone). It starts at half the sample spacing for the point, and for the pivot at half the
+    /// angle between directions (as an arc at the exit's distance).
+    pub refine: u32,
 }
 
 impl Default for WidestParams {
@@ -44,9 +55,13 @@ impl Default for WidestParams {
         Self {
             apexes: 2,
             directions: 64,
+            refine: 10,
         }
     }
 }
+
+/// Moves the local search may make at one step size before it halves the step.
+const MOVES_PER_STEP: usize = 8;
 
 /// `W` per texel, row-major, in texture widths per unit depth (the cone map's unit), capped at
 /// `cap` ([`crate::ConeParams::max_ratio`]): see the module documentation.
@@ -96,6 +111,7 @@ fn widest_in(
     )?;
     crate::check_range("apexes", params.apexes as f64, 1.0, 16.0)?;
     crate::check_range("directions", params.directions as f64, 1.0, 4096.0)?;
+    crate::check_range("refine", f64::from(params.refine), 0.0, 40.0)?;
     let n = map.size();
     let nf = n as f64;
     let s = params.apexes;
@@ -117,52 +133,168 @@ fn widest_in(
         Edge::Clamp => (n + 1, -1i64),
     };
     let side = nc * s + 1;
-    let mut limits = vec![0.0f64; side * side];
+    // The exact limit along one line (texels per unit depth) and the distance of the exit that
+    // sets it, searched only as far as it can still come below `below`: farther exits cannot,
+    // their value being at least s/S(p).
+    let limit = |px: f64, py: f64, ux: f64, uy: f64, below: f64| -> (f64, f64) {
+        let reach = below * map.surface_f64(px, py) + 1.0;
+        match kind {
+            ConeKind::Relaxed => relaxed_limit_at(map, px, py, ux, uy, reach, f64::INFINITY),
+            ConeKind::Conservative => {
+                conservative_limit_at(map, px, py, ux, uy, reach, f64::INFINITY)
+            }
+        }
+    };
+    // Per sample: the smallest limit over the directions, with the exit that sets it.
+    let mut limits = vec![Line::NONE; side * side];
     for_rows(&mut limits, side, |row, out| {
         let py = origin as f64 + row as f64 / s as f64;
         for (col, out) in out.iter_mut().enumerate() {
             let px = origin as f64 + col as f64 / s as f64;
-            let sp = map.surface_f64(px, py);
-            let mut best = cap_texels;
+            let mut best = Line {
+                value: cap_texels,
+                ..Line::NONE
+            };
             for &(ux, uy) in &dirs {
-                // Farther exits cannot beat `best`: their value is at least s/S(p).
-                let reach = best * sp + 1.0;
-                let limit = match kind {
-                    ConeKind::Relaxed => relaxed_limit(map, px, py, ux, uy, reach, f64::INFINITY),
-                    ConeKind::Conservative => {
-                        conservative_limit(map, px, py, ux, uy, reach, f64::INFINITY)
-                    }
-                };
-                best = best.min(limit);
+                let (value, at) = limit(px, py, ux, uy, best.value);
+                if value < best.value {
+                    best = Line {
+                        value,
+                        p: (px, py),
+                        exit: (px + at * ux, py + at * uy),
+                    };
+                }
             }
             *out = best;
         }
     });
-    // Texel (i, j)'s footprint: spatial [i − 1, i + 1] × [j − 1, j + 1], sample indices
-    // (i − 1 − origin)·s ..= (i + 1 − origin)·s, wrapped in wrap mode.
-    let at = |x: i64, y: i64| -> f64 {
-        let (x, y) = match map.edge() {
-            Edge::Wrap => {
-                let p = (n * s) as i64;
-                (x.rem_euclid(p) as usize, y.rem_euclid(p) as usize)
+    // Per cell (spatial [origin + ci, origin + ci + 1] × likewise): its smallest sample, then
+    // the local search from there.
+    let spacing = 1.0 / s as f64;
+    let half_angle = TAU / (2 * params.directions) as f64;
+    let mut cells = vec![0.0f64; nc * nc];
+    for_rows(&mut cells, nc, |cj, out| {
+        for (ci, out) in out.iter_mut().enumerate() {
+            let mut start = Line::NONE;
+            for y in cj * s..=(cj + 1) * s {
+                for x in ci * s..=(ci + 1) * s {
+                    if limits[y * side + x].value < start.value {
+                        start = limits[y * side + x];
+                    }
+                }
             }
-            Edge::Clamp => (x as usize, y as usize),
+            *out = if start.value >= cap_texels || params.refine == 0 {
+                start.value.min(cap_texels)
+            } else {
+                let (x0, y0) = (origin as f64 + ci as f64, origin as f64 + cj as f64);
+                let length = libm::hypot(start.exit.0 - start.p.0, start.exit.1 - start.p.1);
+                descend(
+                    start,
+                    [x0, x0 + 1.0, y0, y0 + 1.0],
+                    (0.5 * spacing, (length * half_angle).max(0.5 * spacing)),
+                    params.refine,
+                    |p, toward, below| {
+                        let (dx, dy) = (toward.0 - p.0, toward.1 - p.1);
+                        let len = libm::hypot(dx, dy);
+                        let (ux, uy) = (dx / len, dy / len);
+                        if len <= 0.0 || !sector.is_none_or(|q| q.contains(ux, uy)) {
+                            return None;
+                        }
+                        let (value, at) = limit(p.0, p.1, ux, uy, below);
+                        Some(Line {
+                            value,
+                            p,
+                            exit: (p.0 + at * ux, p.1 + at * uy),
+                        })
+                    },
+                )
+            };
+        }
+    });
+    let cell = |x: i64, y: i64| -> f64 {
+        let (x, y) = match map.edge() {
+            Edge::Wrap => (
+                x.rem_euclid(n as i64) as usize,
+                y.rem_euclid(n as i64) as usize,
+            ),
+            Edge::Clamp => ((x - origin) as usize, (y - origin) as usize),
         };
-        limits[y * side + x]
+        cells[y * nc + x]
     };
+    // Texel (i, j)'s footprint: the four cells of spatial [i − 1, i + 1] × [j − 1, j + 1].
     let mut w = vec![0.0f64; n * n];
-    let si = s as i64;
     for (k, out) in w.iter_mut().enumerate() {
         let (i, j) = ((k % n) as i64, (k / n) as i64);
-        let mut m = f64::INFINITY;
-        for y in (j - 1 - origin) * si..=(j + 1 - origin) * si {
-            for x in (i - 1 - origin) * si..=(i + 1 - origin) * si {
-                m = m.min(at(x, y));
-            }
-        }
+        let m = cell(i - 1, j - 1)
+            .min(cell(i, j - 1))
+            .min(cell(i - 1, j))
+            .min(cell(i, j));
         *out = m / nf;
     }
     Ok(w)
+}
+
+/// A line from a sample point: its limit and the exit that sets it.
+#[derive(Clone, Copy, Debug)]
+struct Line {
+    value: f64,
+    p: (f64, f64),
+    exit: (f64, f64),
+}
+
+impl Line {
+    const NONE: Line = Line {
+        value: f64::INFINITY,
+        p: (0.0, 0.0),
+        exit: (0.0, 0.0),
+    };
+}
+
+/// Pattern search for a line with a smaller limit, from `start`: each move shifts either the
+/// point `p` (inside the closed box `rect`) with the line kept through the exit that limits it,
+/// so the line pivots on the feature that sets the value, or that pivot with `p` kept; `f(p,
+/// toward, below)` evaluates the line from `p` through `toward` (`None`: a direction the sector
+/// excludes). At each step size `(dp, db)` it takes the best of the eight moves that is lower,
+/// up to [`MOVES_PER_STEP`] times, then halves both steps, `halvings` times. Returns the
+/// smallest value seen. (Moving the point and the direction separately, a search stalls in the
+/// valley of the lines through one feature: both have to change together.)
+fn descend(
+    start: Line,
+    rect: [f64; 4],
+    step: (f64, f64),
+    halvings: u32,
+    f: impl Fn((f64, f64), (f64, f64), f64) -> Option<Line>,
+) -> f64 {
+    let mut line = start;
+    let (mut dp, mut db) = step;
+    for _ in 0..halvings {
+        for _ in 0..MOVES_PER_STEP {
+            let mut best: Option<Line> = None;
+            let (p, b) = (line.p, line.exit);
+            let shifts = [(-1.0, 0.0), (1.0, 0.0), (0.0, -1.0), (0.0, 1.0)];
+            for (sx, sy) in shifts {
+                let moved = (
+                    (p.0 + sx * dp).clamp(rect[0], rect[1]),
+                    (p.1 + sy * dp).clamp(rect[2], rect[3]),
+                );
+                let turned = (b.0 + sx * db, b.1 + sy * db);
+                for (from, toward) in [(moved, b), (p, turned)] {
+                    if let Some(l) = f(from, toward, line.value)
+                        && l.value < best.map_or(line.value, |b| b.value)
+                    {
+                        best = Some(l);
+                    }
+                }
+            }
+            match best {
+                Some(l) => line = l,
+                None => break,
+            }
+        }
+        dp *= 0.5;
+        db *= 0.5;
+    }
+    line.value
 }
 
 /// The worst texel of a [`width`] comparison.

@@ -50,6 +50,38 @@ fn widest_cone_beside_a_pin_is_its_distance_over_its_height() {
     }
 }
 
+/// The local search finds the limit between sampled directions. With five directions (72°
+/// apart) no sample looks from the footprint of texel (13, 12) straight at the pin of
+/// [`widest_cone_beside_a_pin_is_its_distance_over_its_height`]: the sampled lines cross lower
+/// parts of its bilinear bump, farther away, and the sampled `W` is twice `2/(h·N)`. The search
+/// from the best sample reaches the line through the pin's top and that value.
+#[test]
+fn the_local_search_finds_the_limit_between_sampled_directions() {
+    let n = 32;
+    let h = 0.75f32;
+    let mut heights = vec![0.0f32; n * n];
+    heights[12 * n + 10] = h;
+    let map = to_map(n, &heights, Edge::Wrap).unwrap();
+    let expected = 2.0 / (f64::from(h) * n as f64);
+    let with = |refine| {
+        let params = WidestParams {
+            apexes: 2,
+            directions: 5,
+            refine,
+        };
+        widest(&map, ConeKind::Relaxed, 1.0, params).unwrap()[12 * n + 13]
+    };
+    let sampled = with(0);
+    assert!(sampled > 2.0 * expected, "{sampled} against {expected}");
+    // Every value the search takes is the limit of some line, never below the infimum; ten
+    // halvings take the pivot to within a thousandth of its first step.
+    let refined = with(10);
+    assert!(
+        refined >= expected && refined < expected * (1.0 + 1e-6),
+        "{refined} against {expected}"
+    );
+}
+
 /// The map of `W` values is valid under the exhaustive check at the same sampling (each texel
 /// holds at most the limit at every point it is read, so every blend does too), and the check
 /// catches it 1 % wider on every map where `W` is below the cap somewhere: at the point with the
@@ -58,9 +90,12 @@ fn widest_cone_beside_a_pin_is_its_distance_over_its_height() {
 #[test]
 fn the_widest_cones_are_valid_and_one_percent_more_is_caught() {
     let n = 24;
+    // The samples alone: the check reads the same lines, so the limit at its smallest sample is
+    // on one of them (the local search's lines are not).
     let params = WidestParams {
         apexes: 2,
         directions: 32,
+        refine: 0,
     };
     let check_params = CheckParams {
         apexes: 2,
@@ -97,12 +132,12 @@ fn the_widest_cones_are_valid_and_one_percent_more_is_caught() {
 }
 
 /// The generated cones on the family at 64², cap 1 (the book's, for 8-bit storage), against
-/// `W` sampled at 2×2 points per cell and 64 directions: never above it (that would be a
-/// violation at a sampled line), never narrower than the bound of whole cells (`parts` 0) at
-/// any texel, and as wide as measured when this test was written with the default bound
-/// (`parts` 2): family mean 0.883 wrapped and 0.882 clamped (0.826 and 0.828 with whole cells),
-/// the narrowest map fBm at 0.730 (0.668). The guards sit a little below: 0.87 for the mean and
-/// 0.72 for every map.
+/// `W` sampled at 2×2 points per cell and 64 directions and refined by the local search: never
+/// above it (that would be a violation on one of its lines), never narrower than the bound of
+/// whole cells (`parts` 0) at any texel, and as wide as measured when this test was last
+/// changed, with the default bound (`parts` 2): family mean 0.908 in both edge modes (0.84 with
+/// whole cells), the narrowest map fBm at 0.781 (0.687). The guards sit a little below: 0.9 for
+/// the mean and 0.77 for every map.
 #[test]
 fn generated_cones_approach_the_widest() {
     let n = 64;
@@ -139,12 +174,12 @@ fn generated_cones_approach_the_widest() {
                 r.worst.i,
                 r.worst.j
             );
-            assert!(r.mean >= 0.72, "{name} {edge:?}: {}", r.mean);
+            assert!(r.mean >= 0.77, "{name} {edge:?}: {}", r.mean);
             sum += r.mean;
             count += 1;
         }
         let mean = sum / f64::from(count);
         println!("family {edge:?}: {mean:.3}");
-        assert!(mean >= 0.87, "{edge:?}: {mean}");
+        assert!(mean >= 0.9, "{edge:?}: {mean}");
     }
 }
