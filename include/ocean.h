@@ -178,7 +178,7 @@
 
 /**
  * The largest side of a height map, texels (16.7 M texels; a generation at this size needs
- * about 68 bytes a texel, 1.15 GB).
+ * about 77 bytes a texel, 1.29 GB).
  */
 #define OCEAN_RELIEF_MAX_SIDE 4096
 

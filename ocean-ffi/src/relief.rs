@@ -32,7 +32,7 @@ use crate::status::{Error, OceanStatus, guard};
 /// The smallest side of a height map, texels (a bilinear cell needs two texel centres).
 pub const OCEAN_RELIEF_MIN_SIDE: u32 = 2;
 /// The largest side of a height map, texels (16.7 M texels; a generation at this size needs
-/// about 68 bytes a texel, 1.15 GB).
+/// about 77 bytes a texel, 1.29 GB).
 pub const OCEAN_RELIEF_MAX_SIDE: u32 = 4096;
 /// The largest `OceanReliefConeParams::max_ratio`, texture widths per unit depth.
 pub const OCEAN_RELIEF_MAX_RATIO_LIMIT: f32 = 64.0;

@@ -24,9 +24,9 @@ use alloc::vec::Vec;
 use crate::ReliefError;
 
 /// Largest side accepted, in texels (16.7 M texels). It keeps every texel coordinate exact in
-/// `f32` with room to spare and bounds the memory of a cone-map generation: about 68 bytes a
-/// texel (32 for the cells, 8 for the pyramid above them, 12 for the cells' cones, 12 for the
-/// cone map and 4 for the heights), 1.15 GB at this size.
+/// `f32` with room to spare and bounds the memory of a cone-map generation: about 77 bytes a
+/// texel (32 for the cells, 13 for the pyramid above them, 12 for the cells' cones, 12 for the
+/// cone map, 4 for the heights, and the command's buffers), 1.29 GB at this size.
 pub const MAX_SIDE: usize = 4096;
 
 pub use crate::sample::Edge;

@@ -85,6 +85,29 @@ fn edge_range(e0: f64, e1: f64, t0: f64, t1: f64, stored: [f64; 2]) -> [f64; 2] 
     [lo.max(stored[0]), hi.min(stored[1])]
 }
 
+/// The gradient box `[gx0, gx1, gy0, gy1]` of the bilinear patch with corners `c` over its part
+/// `[x0, x1, y0, y1]` (local coordinates), within the cell's stored box: `∂S/∂x` runs from
+/// `d10 − d00` (y = 0) to `d11 − d01` (y = 1), `∂S/∂y` likewise along x.
+#[inline(always)]
+fn gradients(c: [f64; 4], cell: &Cell, part: [f64; 4]) -> [f64; 4] {
+    let [x0, x1, y0, y1] = part;
+    let gx = edge_range(
+        c[1] - c[0],
+        c[3] - c[2],
+        y0,
+        y1,
+        [f64::from(cell.gx[0]), f64::from(cell.gx[1])],
+    );
+    let gy = edge_range(
+        c[2] - c[0],
+        c[3] - c[1],
+        x0,
+        x1,
+        [f64::from(cell.gy[0]), f64::from(cell.gy[1])],
+    );
+    [gx[0], gx[1], gy[0], gy[1]]
+}
+
 /// A part of a cell in local coordinates `[x0, x1, y0, y1] ⊂ [0, 1]²`, and whether each axis
 /// may be halved.
 #[derive(Clone, Copy, Debug)]
@@ -167,22 +190,7 @@ impl Pair<'_> {
             .min(bilinear(c, x1, y0))
             .min(bilinear(c, x0, y1))
             .min(bilinear(c, x1, y1));
-        let cell = self.cell;
-        // ∂S/∂x runs from d10 − d00 (y = 0) to d11 − d01 (y = 1); ∂S/∂y likewise along x.
-        let gx = edge_range(
-            c[1] - c[0],
-            c[3] - c[2],
-            y0,
-            y1,
-            [f64::from(cell.gx[0]), f64::from(cell.gx[1])],
-        );
-        let gy = edge_range(
-            c[2] - c[0],
-            c[3] - c[1],
-            x0,
-            x1,
-            [f64::from(cell.gy[0]), f64::from(cell.gy[1])],
-        );
+        let g = gradients(c, self.cell, p.local);
         Region {
             rect: [
                 self.ci as f64 + x0,
@@ -190,8 +198,8 @@ impl Pair<'_> {
                 self.cj as f64 + y0,
                 self.cj as f64 + y1,
             ],
-            m: (low - DEPTH_PAD).max(f64::from(cell.m)),
-            g: [gx[0], gx[1], gy[0], gy[1]],
+            m: (low - DEPTH_PAD).max(f64::from(self.cell.m)),
+            g,
         }
     }
 
@@ -261,27 +269,18 @@ impl Pair<'_> {
                 let d = |i: usize, j: usize| f64::from(g.depth[ty[j] * g.n + tx[i]]);
                 let c = [d(a, b), d(a + 1, b), d(a, b + 1), d(a + 1, b + 1)];
                 let local = |v: f64, at: i64| (v - at as f64).clamp(0.0, 1.0);
-                let (x0, x1) = (local(r[0], ci), local(r[1], ci));
-                let (y0, y1) = (local(r[2], cj), local(r[3], cj));
-                let gx = edge_range(
-                    c[1] - c[0],
-                    c[3] - c[2],
-                    y0,
-                    y1,
-                    [f64::from(cell.gx[0]), f64::from(cell.gx[1])],
-                );
-                let gy = edge_range(
-                    c[2] - c[0],
-                    c[3] - c[1],
-                    x0,
-                    x1,
-                    [f64::from(cell.gy[0]), f64::from(cell.gy[1])],
-                );
+                let part = [
+                    local(r[0], ci),
+                    local(r[1], ci),
+                    local(r[2], cj),
+                    local(r[3], cj),
+                ];
+                let g = gradients(c, cell, part);
                 out = [
-                    out[0].min(gx[0]),
-                    out[1].max(gx[1]),
-                    out[2].min(gy[0]),
-                    out[3].max(gy[1]),
+                    out[0].min(g[0]),
+                    out[1].max(g[1]),
+                    out[2].min(g[2]),
+                    out[3].max(g[3]),
                 ];
             }
         }
