@@ -234,11 +234,11 @@ impl Pair<'_> {
         // a clamp-mode cell outside the grid), resolved once for the whole box.
         let mut tx = [0usize; SPAN];
         let mut ty = [0usize; SPAN];
-        for k in 0..=wx {
-            tx[k] = g.edge.resolve(xs.0 + k as i64, g.n);
+        for (k, t) in tx.iter_mut().enumerate().take(wx + 1) {
+            *t = g.edge.resolve(xs.0 + k as i64, g.n);
         }
-        for k in 0..=wy {
-            ty[k] = g.edge.resolve(ys.0 + k as i64, g.n);
+        for (k, t) in ty.iter_mut().enumerate().take(wy + 1) {
+            *t = g.edge.resolve(ys.0 + k as i64, g.n);
         }
         let cell_index = |c: i64, resolved: usize| -> Option<usize> {
             match g.edge {
