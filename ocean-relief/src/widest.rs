@@ -69,7 +69,8 @@ const MOVES_PER_STEP: usize = 8;
 /// # Errors
 ///
 /// [`ReliefError::OutOfRange`] / [`ReliefError::NotFinite`] for `cap` outside
-/// `(0, MAX_RATIO_LIMIT]`, zero or too many apexes (at most 16) or directions (at most 4096).
+/// `(0, MAX_RATIO_LIMIT]`, zero or too many apexes (at most 16) or directions (at most 4096),
+/// more than 40 halvings of the local search.
 pub fn widest(
     map: &HeightMap,
     kind: ConeKind,

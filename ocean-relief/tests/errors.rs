@@ -180,6 +180,30 @@ fn cones() {
         check(&map, Channels::of(&cones), ConeKind::Relaxed, bad).unwrap_err(),
         ReliefError::OutOfRange { .. }
     ));
+    // The widest-cone oracle: its sampling and the local search's halvings (at most 40).
+    let params = ocean_relief::widest::WidestParams::default();
+    for bad in [
+        ocean_relief::widest::WidestParams {
+            apexes: 0,
+            ..params
+        },
+        ocean_relief::widest::WidestParams {
+            directions: 0,
+            ..params
+        },
+        ocean_relief::widest::WidestParams {
+            refine: 41,
+            ..params
+        },
+    ] {
+        assert!(
+            matches!(
+                ocean_relief::widest::widest(&map, ConeKind::Relaxed, 1.0, bad).unwrap_err(),
+                ReliefError::OutOfRange { .. }
+            ),
+            "{bad:?}"
+        );
+    }
 }
 
 /// Rays must point into the relief and reliefs must not be negatively deep; step counts must be
